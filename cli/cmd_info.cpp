@@ -1,0 +1,37 @@
+// voxlink info FILE [--json]: the memory footprint report (paper, Table 3) with the OpenVDB
+// peer measured on the same voxels.
+#include <cstdio>
+
+#include "cli/command.h"
+#include "convert/vdb_footprint.h"
+#include "format/footprint.h"
+#include "format/voxlink_file.h"
+
+namespace voxlink::cli {
+
+CommandRunner addInfoCommand(CLI::App& app) {
+  struct Args {
+    std::string path;
+    bool json = false;
+    bool skipVdb = false;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("info", "Memory footprint report of a VoxLink file");
+  cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
+  cmd->add_flag("--json", args->json, "Print the report as JSON");
+  cmd->add_flag("--no-vdb", args->skipVdb, "Skip building the OpenVDB FloatGrid used for comparison");
+  return [args] {
+    auto file = format::VoxLinkFile::open(args->path);
+    if (!file) return reportError(file.error());
+    format::FootprintReport report = format::computeFootprint(*file);
+    if (!args->skipVdb) {
+      auto peer = convert::measureVdbFootprint(*file);
+      if (!peer) return reportError(peer.error());
+      report.peer = *peer;
+    }
+    std::fputs((args->json ? format::footprintJson(report) + "\n" : format::footprintTable(report)).c_str(), stdout);
+    return 0;
+  };
+}
+
+}  // namespace voxlink::cli

@@ -1,0 +1,26 @@
+// Each `voxlink` subcommand lives in its own cmd_*.cpp and registers itself here. A command
+// turns library errors into one line on stderr and a non-zero exit status.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+
+#include "format/error.h"
+
+namespace voxlink::cli {
+
+// Adds a subcommand to `app`; the returned callback runs it and gives the exit status.
+using CommandRunner = std::function<int()>;
+using CommandFactory = CommandRunner (*)(CLI::App& app);
+
+// Prints "voxlink: <message>" on stderr and returns the exit status for the error's kind.
+int reportError(const Error& error);
+int reportError(const Status& status);
+
+// Subcommands, in the order --help lists them.
+CommandRunner addConvertCommand(CLI::App& app);
+CommandRunner addInfoCommand(CLI::App& app);
+CommandRunner addValidateCommand(CLI::App& app);
+
+}  // namespace voxlink::cli

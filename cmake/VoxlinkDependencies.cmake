@@ -1,0 +1,53 @@
+# Every dependency comes from Debian 12 packages (scripts/install-deps.sh installs them).
+find_package(Threads REQUIRED)
+find_package(ZLIB REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+
+# OpenVDB: Debian ships only a Find module.
+list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
+find_package(OpenVDB REQUIRED)
+
+# OpenImageIO's config lists /usr/include/opencv4 as an include directory although OpenCV is
+# not a dependency of ours; drop directories that do not exist so configuring does not fail.
+find_package(OpenImageIO CONFIG REQUIRED)
+foreach(oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
+  if(TARGET ${oiio_target})
+    get_target_property(oiio_dirs ${oiio_target} INTERFACE_INCLUDE_DIRECTORIES)
+    if(oiio_dirs)
+      set(kept_dirs "")
+      foreach(dir IN LISTS oiio_dirs)
+        if(EXISTS "${dir}" OR dir MATCHES "\\$<")
+          list(APPEND kept_dirs "${dir}")
+        endif()
+      endforeach()
+      set_target_properties(${oiio_target} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${kept_dirs}")
+    endif()
+  endif()
+endforeach()
+
+find_package(GDCM REQUIRED CONFIG PATHS /usr/lib/x86_64-linux-gnu/gdcm-3.0)
+
+# NIfTI-1/2 C library (libnifti2-dev): no CMake config, plain library + headers.
+find_path(NIFTI_INCLUDE_DIR nifti2_io.h PATH_SUFFIXES nifti REQUIRED)
+find_library(NIFTI2_LIBRARY nifti2 REQUIRED)
+find_library(ZNZ_LIBRARY znz)
+add_library(voxlink_nifti INTERFACE)
+target_include_directories(voxlink_nifti SYSTEM INTERFACE ${NIFTI_INCLUDE_DIR})
+target_link_libraries(voxlink_nifti INTERFACE ${NIFTI2_LIBRARY} ZLIB::ZLIB)
+if(ZNZ_LIBRARY)
+  target_link_libraries(voxlink_nifti INTERFACE ${ZNZ_LIBRARY})
+endif()
+
+if(VOXLINK_BUILD_VIEWER)
+  find_package(glfw3 3.3 REQUIRED)
+  find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
+  find_package(PkgConfig REQUIRED)
+  pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
+  pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+  find_package(glm REQUIRED)
+endif()
+
+if(VOXLINK_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()

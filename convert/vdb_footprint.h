@@ -1,0 +1,13 @@
+// The OpenVDB peer of the footprint report: the same voxels and values held as an
+// openvdb::FloatGrid in memory, measured with OpenVDB's own memUsage().
+#pragma once
+
+#include "format/error.h"
+#include "format/footprint.h"
+#include "format/voxlink_file.h"
+
+namespace voxlink::convert {
+
+Result<format::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& file);
+
+}  // namespace voxlink::convert

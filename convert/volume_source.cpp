@@ -1,0 +1,50 @@
+#include "convert/volume_source.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "convert/readers/raw_reader.h"
+#include "convert/readers/reader_registry.h"
+
+namespace voxlink::convert {
+
+Result<std::vector<uint8_t>> readAll(VolumeSource& source) {
+  const VolumeInfo& info = source.info();
+  const uint64_t bytes = info.voxelCount() * scalarSize(info.type);
+  std::vector<uint8_t> data;
+  try {
+    data.resize(bytes);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, info.path, ": ", bytes, " bytes do not fit in memory");
+  }
+  VOXLINK_RETURN_IF_ERROR(source.rewind());
+  VOXLINK_RETURN_IF_ERROR(source.read(0, info.dims[2], data.data()));
+  return data;
+}
+
+std::vector<std::string> readerNames() {
+  std::vector<std::string> names;
+  for (const ReaderEntry& r : readerRegistry()) names.push_back(r.name);
+  return names;
+}
+
+Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path, const OpenOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    return makeError(ErrorCode::kIo, path, ": no such file or directory");
+  const auto& registry = readerRegistry();
+  if (!options.format.empty()) {
+    for (const ReaderEntry& r : registry)
+      if (r.name == options.format) return r.open(path, options);
+    std::string known;
+    for (const ReaderEntry& r : registry) known += (known.empty() ? "" : ", ") + r.name;
+    return makeError(ErrorCode::kInvalidArgument, path, ": --format ", options.format, " is not one of: ", known);
+  }
+  for (const ReaderEntry& r : registry)
+    if (r.matches(path)) return r.open(path, options);
+  // A file no reader claims is raw when dims and type were given.
+  if (options.dims && options.type) return openRaw(path, options);
+  return makeError(ErrorCode::kUnsupported, path, ": unknown volume format; give --format, or --dims and --type for a raw file");
+}
+
+}  // namespace voxlink::convert

@@ -1,0 +1,78 @@
+// A dense source volume read slice by slice (z slices, x fastest), so a converter never needs
+// the whole volume in memory. Readers for each file format implement this interface.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "format/error.h"
+#include "format/scalar_type.h"
+
+namespace voxlink::convert {
+
+struct VolumeInfo {
+  std::array<uint32_t, 3> dims{0, 0, 0};
+  ScalarType type = ScalarType::kU8;
+  std::array<double, 3> spacing{1.0, 1.0, 1.0};
+  std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of voxel (0,0,0)'s centre
+  std::string path;    // as the user gave it
+  std::string format;  // "raw", "nrrd", "metaimage", "nifti", "dicom", "image-stack", "vdb", ...
+  // Things the reader did or ignored that a user should know ("z order reversed to increasing
+  // slice position", "oblique space directions: only their lengths are used as spacing").
+  std::vector<std::string> notes;
+
+  uint64_t sliceVoxels() const { return uint64_t{dims[0]} * dims[1]; }
+  uint64_t voxelCount() const { return sliceVoxels() * dims[2]; }
+  uint64_t sliceBytes() const { return sliceVoxels() * scalarSize(type); }
+};
+
+class VolumeSource {
+ public:
+  virtual ~VolumeSource() = default;
+  const VolumeInfo& info() const { return info_; }
+
+  // Copies slices [z0, z0 + count) into dst as native-endian values of info().type.
+  // Sequential sources (compressed streams) need z0 >= the end of the previous read;
+  // call rewind() to start over. Random-access sources accept any order.
+  virtual Status read(uint32_t z0, uint32_t count, void* dst) = 0;
+  virtual Status rewind() { return Status::ok(); }
+  virtual bool randomAccess() const { return false; }
+
+  // Zero-copy path: a pointer to slices [z0, z0 + count) already in memory in native layout
+  // (a mapped raw file), valid while the source lives; nullptr when the source cannot.
+  virtual const void* map(uint32_t /*z0*/, uint32_t /*count*/) { return nullptr; }
+  // Says mapped slices are done with, so their pages leave the resident set.
+  virtual void unmap(uint32_t /*z0*/, uint32_t /*count*/) {}
+
+ protected:
+  VolumeInfo info_;
+};
+
+enum class Endian { kLittle, kBig };
+
+// What the command line may say about an input. Raw files need dims and type; for other
+// formats a given value must agree with the header or the open fails.
+struct OpenOptions {
+  std::optional<std::array<uint32_t, 3>> dims;
+  std::optional<ScalarType> type;
+  Endian endian = Endian::kLittle;
+  uint64_t headerBytes = 0;  // raw: bytes to skip before the data
+  std::optional<std::array<double, 3>> spacing;  // overrides the file's spacing
+  std::string format;        // force a reader ("raw", "nrrd", ...) instead of guessing
+};
+
+// Opens `path` with the reader its name or content calls for.
+Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path,
+                                                 const OpenOptions& options = {});
+
+// Names of the readers openVolume() knows, for --help and error messages.
+std::vector<std::string> readerNames();
+
+// Reads the whole volume into memory (tests, small inputs, the reference renderer).
+Result<std::vector<uint8_t>> readAll(VolumeSource& source);
+
+}  // namespace voxlink::convert

@@ -1,0 +1,299 @@
+#include "format/file_writer.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "format/brick_rows.h"
+#include "format/crc32c.h"
+#include "format/half.h"
+#include "format/mapped_file.h"
+#include "format/voxlink_file.h"
+
+namespace voxlink::format {
+namespace {
+
+uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+
+}  // namespace
+
+Status checkDescription(const VolumeDescription& d) {
+  if (!isValidBrickSize(d.brickSize))
+    return makeError(ErrorCode::kInvalidArgument, "brick size ", d.brickSize, ": expected 4, 8, 16 or 32");
+  for (int a = 0; a < 3; ++a) {
+    if (d.dims[a] == 0 || d.dims[a] > kMaxDim)
+      return makeError(ErrorCode::kTooLarge, "dims[", a, "] = ", d.dims[a], ": expected 1..", kMaxDim);
+    if (!(std::isfinite(d.spacing[a]) && d.spacing[a] > 0))
+      return makeError(ErrorCode::kInvalidArgument, "spacing[", a, "] = ", d.spacing[a], ": expected a finite value > 0");
+    if (!std::isfinite(d.origin[a]))
+      return makeError(ErrorCode::kInvalidArgument, "origin[", a, "] is not finite");
+  }
+  if (!std::isfinite(d.valueScale) || d.valueScale == 0 || !std::isfinite(d.valueOffset))
+    return makeError(ErrorCode::kInvalidArgument, "value mapping scale ", d.valueScale, " offset ", d.valueOffset, " is not finite and invertible");
+  return Status::ok();
+}
+
+FileHeader makeHeader(const VolumeDescription& d, uint64_t voxelCount, uint64_t occupiedBricks) {
+  FileHeader h{};
+  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  h.versionMajor = kVersionMajor;
+  h.versionMinor = kVersionMinor;
+  h.byteOrderMark = kByteOrderMark;
+  h.headerBytes = sizeof(FileHeader);
+  h.brickSize = d.brickSize;
+  for (int a = 0; a < 3; ++a) {
+    h.dims[a] = d.dims[a];
+    h.brickGrid[a] = static_cast<uint32_t>(ceilDiv(d.dims[a], d.brickSize));
+    h.spacing[a] = d.spacing[a];
+    h.origin[a] = d.origin[a];
+  }
+  h.predominantAxis = static_cast<uint8_t>(d.predominantAxis);
+  h.valueType = static_cast<uint8_t>(d.valueType);
+  h.gradientCodec = static_cast<uint8_t>(GradientCodec::kPolar16);
+  h.sourceType = static_cast<uint8_t>(d.sourceType);
+  h.flags = d.flags;
+  h.valueScale = d.valueScale;
+  h.valueOffset = d.valueOffset;
+  h.valueMin = d.valueMin;
+  h.valueMax = d.valueMax;
+  h.valueMaxAbsError = d.valueMaxAbsError;
+  h.valueMaxRelError = d.valueMaxRelError;
+  h.valueErrorBound = d.valueErrorBound;
+  h.voxelCount = voxelCount;
+  h.occupiedBrickCount = occupiedBricks;
+  return h;
+}
+
+const SectionEntry& SectionLayout::entry(SectionId id) const {
+  for (const SectionEntry& e : entries)
+    if (e.id == static_cast<uint32_t>(id)) return e;
+  return entries.front();  // unreachable for required sections
+}
+
+SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
+  SectionLayout layout;
+  uint64_t offset = alignUp(sizeof(FileHeader), kSectionAlignment);
+  for (SectionId id : kRequiredSections) {
+    SectionEntry e{};
+    e.id = static_cast<uint32_t>(id);
+    e.elementBytes = expectedElementBytes(header, id);
+    e.offset = offset;
+    e.bytes = expectedSectionBytes(header, id, metaBytes);
+    layout.entries.push_back(e);
+    offset = alignUp(offset + e.bytes, kSectionAlignment);
+  }
+  layout.tableOffset = offset;
+  layout.fileBytes = offset + layout.entries.size() * sizeof(SectionEntry);
+  return layout;
+}
+
+Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header,
+                                      const std::string& metaJson) {
+  if (header.voxelCount > kMaxVoxels)
+    return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount, " voxels exceed the format's limit of ", kMaxVoxels, "; classify more strictly or split the volume");
+  FileWriter w;
+  w.path_ = path;
+  w.header_ = header;
+  w.layout_ = planSections(header, metaJson.size());
+  // The temporary file sits beside the destination so the final rename stays on one file system.
+  std::string pattern = path + ".tmp-XXXXXX";
+  w.fd_ = mkstemp(pattern.data());
+  if (w.fd_ < 0)
+    return makeError(ErrorCode::kIo, path, ": cannot create output file: ", std::strerror(errno));
+  w.tempPath_ = pattern;
+  fchmod(w.fd_, 0644);
+  if (ftruncate(w.fd_, static_cast<off_t>(w.layout_.fileBytes)) != 0)
+    return makeError(ErrorCode::kIo, path, ": cannot size output to ", w.layout_.fileBytes, " bytes: ", std::strerror(errno));
+  VOXLINK_RETURN_IF_ERROR(w.write(SectionId::kMeta, 0, metaJson.data(), metaJson.size()));
+  return w;
+}
+
+FileWriter::FileWriter(FileWriter&& other) noexcept
+    : path_(std::move(other.path_)),
+      tempPath_(std::move(other.tempPath_)),
+      fd_(std::exchange(other.fd_, -1)),
+      header_(other.header_),
+      layout_(std::move(other.layout_)) {
+  other.tempPath_.clear();
+}
+
+FileWriter::~FileWriter() { discard(); }
+
+void FileWriter::discard() {
+  if (fd_ >= 0) ::close(fd_);
+  fd_ = -1;
+  if (!tempPath_.empty()) ::unlink(tempPath_.c_str());
+  tempPath_.clear();
+}
+
+Status FileWriter::writeRaw(uint64_t fileOffset, const void* data, size_t bytes) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  while (bytes > 0) {
+    const ssize_t n = pwrite(fd_, p, bytes, static_cast<off_t>(fileOffset));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return makeError(ErrorCode::kIo, path_, ": write failed: ", std::strerror(errno));
+    }
+    p += n;
+    bytes -= static_cast<size_t>(n);
+    fileOffset += static_cast<uint64_t>(n);
+  }
+  return Status::ok();
+}
+
+Status FileWriter::write(SectionId id, uint64_t offset, const void* data, size_t bytes) {
+  const SectionEntry& e = layout_.entry(id);
+  if (offset + bytes > e.bytes)
+    return makeError(ErrorCode::kInvalidArgument, path_, ": section ", sectionName(id), ": write of ", bytes, " bytes at ", offset, " exceeds its ", e.bytes, " bytes");
+  return writeRaw(e.offset + offset, data, bytes);
+}
+
+Status FileWriter::commit() {
+  if (fd_ < 0) return makeError(ErrorCode::kInvalidArgument, path_, ": writer already finished");
+  {
+    // Checksum what actually reached the file, not what we meant to write.
+    VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(tempPath_));
+    for (SectionEntry& e : layout_.entries) {
+      e.crc = crc32c(mapped.data() + e.offset, e.bytes);
+      mapped.release(e.offset, e.bytes);
+    }
+  }
+  header_.sectionTableOffset = layout_.tableOffset;
+  header_.sectionCount = static_cast<uint32_t>(layout_.entries.size());
+  header_.headerCrc = 0;
+  header_.headerCrc = crc32c(&header_, sizeof(header_));
+  VOXLINK_RETURN_IF_ERROR(writeRaw(layout_.tableOffset, layout_.entries.data(),
+                                   layout_.entries.size() * sizeof(SectionEntry)));
+  VOXLINK_RETURN_IF_ERROR(writeRaw(0, &header_, sizeof(header_)));
+  if (::close(std::exchange(fd_, -1)) != 0)
+    return makeError(ErrorCode::kIo, path_, ": closing the output failed: ", std::strerror(errno));
+  if (std::rename(tempPath_.c_str(), path_.c_str()) != 0)
+    return makeError(ErrorCode::kIo, path_, ": cannot move the finished file into place: ", std::strerror(errno));
+  tempPath_.clear();
+  return Status::ok();
+}
+
+std::vector<uint32_t> rankFromOccupancy(const std::vector<uint32_t>& occupancy) {
+  std::vector<uint32_t> rank(occupancy.size());
+  uint32_t total = 0;
+  for (size_t w = 0; w < occupancy.size(); ++w) {
+    rank[w] = total;
+    total += static_cast<uint32_t>(std::popcount(occupancy[w]));
+  }
+  return rank;
+}
+
+Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
+  VOXLINK_RETURN_IF_ERROR(checkDescription(v.description));
+  const FileHeader header = makeHeader(v.description, v.voxelCount(), v.occupiedBrickCount());
+  const size_t valueBytes = v.voxelCount() * storedSize(v.description.valueType);
+  if (v.values.size() != valueBytes)
+    return makeError(ErrorCode::kInvalidArgument, path, ": VALU has ", v.values.size(), " bytes, ", v.voxelCount(), " voxels need ", valueBytes);
+  VOXLINK_ASSIGN_OR_RETURN(FileWriter writer, FileWriter::create(path, header, v.metaJson));
+  auto put = [&](SectionId id, const auto& vec) {
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    return writer.write(id, 0, vec.data(), vec.size() * sizeof(T));
+  };
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kBrickOccupancy, v.occupancy));
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kBrickRank, v.rank));
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kBrickVoxelBase, v.voxelBase));
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kRowStart, v.rowStarts));
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kRowMask, v.rowMasks));
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kValues, v.values));
+  VOXLINK_RETURN_IF_ERROR(put(SectionId::kGradients, v.gradients));
+  return writer.commit();
+}
+
+BrickedVolumeBuilder::BrickedVolumeBuilder(VolumeDescription description)
+    : description_(std::move(description)) {}
+
+void BrickedVolumeBuilder::add(uint32_t x, uint32_t y, uint32_t z, uint32_t storedBits,
+                               uint16_t gradient) {
+  voxels_.push_back(Entry{0, storedBits, gradient, x, y, z});
+}
+
+Result<BrickedVolume> BrickedVolumeBuilder::build(std::string metaJson) const {
+  VOXLINK_RETURN_IF_ERROR(checkDescription(description_));
+  const VolumeDescription& d = description_;
+  const uint32_t n = d.brickSize;
+  const uint32_t grid[3] = {static_cast<uint32_t>(ceilDiv(d.dims[0], n)),
+                            static_cast<uint32_t>(ceilDiv(d.dims[1], n)),
+                            static_cast<uint32_t>(ceilDiv(d.dims[2], n))};
+  const uint64_t bricks = uint64_t{grid[0]} * grid[1] * grid[2];
+  const AxisFrame frame = axisFrame(d.predominantAxis);
+  std::vector<Entry> sorted = voxels_;
+  for (Entry& e : sorted) {
+    const uint32_t p[3] = {e.x, e.y, e.z};
+    if (e.x >= d.dims[0] || e.y >= d.dims[1] || e.z >= d.dims[2])
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, ") lies outside the ", d.dims[0], "x", d.dims[1], "x", d.dims[2], " volume");
+    const uint64_t brick = (uint64_t{p[2] / n} * grid[1] + p[1] / n) * grid[0] + p[0] / n;
+    const uint32_t row = (p[frame.v] % n) * n + p[frame.u] % n;
+    const uint32_t depth = p[frame.w] % n;
+    e.key = (brick * n * n + row) * n + depth;
+  }
+  std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  for (size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i].key == sorted[i - 1].key)
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", sorted[i].x, ", ", sorted[i].y, ", ", sorted[i].z, ") added twice");
+
+  BrickedVolume v;
+  v.description = d;
+  v.metaJson = std::move(metaJson);
+  v.occupancy.assign(ceilDiv(bricks, 32), 0);
+  const size_t valueSize = storedSize(d.valueType);
+  const uint32_t maskWords = maskWordsPerBrick(n);
+  v.values.resize(sorted.size() * valueSize);
+  v.gradients.resize(sorted.size());
+  uint64_t currentBrick = UINT64_MAX;
+  for (size_t i = 0; i < sorted.size(); ++i) {
+    const Entry& e = sorted[i];
+    const uint64_t brick = e.key / (uint64_t{n} * n * n);
+    const uint32_t cell = static_cast<uint32_t>(e.key % (uint64_t{n} * n * n));  // row*n + depth
+    if (brick != currentBrick) {
+      currentBrick = brick;
+      v.occupancy[brick / 32] |= 1u << (brick % 32);
+      v.voxelBase.push_back(static_cast<uint32_t>(i));
+      v.rowMasks.resize(v.rowMasks.size() + maskWords, 0);
+    }
+    uint32_t* mask = v.rowMasks.data() + v.rowMasks.size() - maskWords;
+    mask[cell / 32] |= 1u << (cell % 32);
+    std::memcpy(v.values.data() + i * valueSize, &e.bits, valueSize);  // little-endian host
+    v.gradients[i] = e.gradient;
+  }
+  v.voxelBase.push_back(static_cast<uint32_t>(sorted.size()));
+  v.rank = rankFromOccupancy(v.occupancy);
+  const uint64_t k = v.occupiedBrickCount();
+  v.rowStarts.resize(k * n * n);
+  for (uint64_t b = 0; b < k; ++b)
+    rowStartsFromMasks(v.rowMasks.data() + b * maskWords, n, v.rowStarts.data() + b * n * n);
+  // Value range in source units, for the header.
+  if (!sorted.empty()) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < sorted.size(); ++i) {
+      double stored = 0;
+      const uint32_t bits = sorted[i].bits;
+      switch (d.valueType) {
+        case StoredType::kU8: stored = bits & 0xFF; break;
+        case StoredType::kU16: stored = bits & 0xFFFF; break;
+        case StoredType::kF16: stored = halfToFloat(static_cast<uint16_t>(bits)); break;
+        case StoredType::kF32: { float f; std::memcpy(&f, &bits, 4); stored = f; break; }
+      }
+      const double value = stored * d.valueScale + d.valueOffset;
+      lo = std::min(lo, value);
+      hi = std::max(hi, value);
+    }
+    v.description.valueMin = lo;
+    v.description.valueMax = hi;
+  }
+  return v;
+}
+
+}  // namespace voxlink::format

@@ -1,0 +1,123 @@
+// Writing VoxLink files. Output goes to a temporary file beside the destination and is renamed
+// into place only by commit(), so a failed or interrupted write never leaves a half-written file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "format/error.h"
+#include "format/layout.h"
+#include "format/scalar_type.h"
+
+namespace voxlink::format {
+
+// What the header says about a volume, apart from counts and section bookkeeping.
+struct VolumeDescription {
+  std::array<uint32_t, 3> dims{0, 0, 0};
+  uint32_t brickSize = 8;
+  Axis predominantAxis = Axis::kZ;
+  StoredType valueType = StoredType::kU8;
+  ScalarType sourceType = ScalarType::kU8;
+  std::array<double, 3> spacing{1.0, 1.0, 1.0};
+  std::array<double, 3> origin{0.0, 0.0, 0.0};
+  double valueScale = 1.0;  // source = stored * valueScale + valueOffset
+  double valueOffset = 0.0;
+  double valueMin = 0.0;  // of the stored voxels, source units
+  double valueMax = 0.0;
+  double valueMaxAbsError = 0.0;
+  double valueMaxRelError = 0.0;
+  double valueErrorBound = 0.0;
+  uint32_t flags = kFlagGradientsInWorldSpace;
+};
+
+Status checkDescription(const VolumeDescription& d);
+
+// Header with every field but the section table and the CRC filled in.
+FileHeader makeHeader(const VolumeDescription& d, uint64_t voxelCount, uint64_t occupiedBricks);
+
+struct SectionLayout {
+  std::vector<SectionEntry> entries;  // in kRequiredSections order, crc not yet known
+  uint64_t tableOffset = 0;
+  uint64_t fileBytes = 0;
+  const SectionEntry& entry(SectionId id) const;
+};
+
+// Places the required sections one after another, each on a kSectionAlignment boundary.
+SectionLayout planSections(const FileHeader& header, uint64_t metaBytes);
+
+class FileWriter {
+ public:
+  // `header` must come from makeHeader(); metaJson is stored in the META section.
+  static Result<FileWriter> create(const std::string& path, const FileHeader& header,
+                                   const std::string& metaJson);
+  FileWriter(FileWriter&& other) noexcept;
+  FileWriter& operator=(FileWriter&&) = delete;
+  FileWriter(const FileWriter&) = delete;
+  ~FileWriter();  // removes the temporary file unless commit() succeeded
+
+  const SectionLayout& layout() const { return layout_; }
+  FileHeader& header() { return header_; }  // fields like valueMin may be set before commit()
+  const std::string& path() const { return path_; }
+
+  // Writes bytes at `offset` inside a section; thread-safe for disjoint ranges.
+  Status write(SectionId id, uint64_t offset, const void* data, size_t bytes);
+  // Checksums every section as written, writes the table and the header, renames into place.
+  Status commit();
+
+ private:
+  FileWriter() = default;
+  Status writeRaw(uint64_t fileOffset, const void* data, size_t bytes);
+  void discard();
+
+  std::string path_;
+  std::string tempPath_;
+  int fd_ = -1;
+  FileHeader header_{};
+  SectionLayout layout_;
+};
+
+// A whole file held in memory: what small producers (tests, voxelizers) build and write.
+struct BrickedVolume {
+  VolumeDescription description;
+  std::string metaJson = "{}";
+  std::vector<uint32_t> occupancy;   // BOCC
+  std::vector<uint32_t> rank;        // BRNK
+  std::vector<uint32_t> voxelBase;   // BVOX, occupied bricks + 1 entries
+  std::vector<uint16_t> rowStarts;   // ROWS
+  std::vector<uint32_t> rowMasks;    // MASK
+  std::vector<uint8_t> values;       // VALU, voxelCount * storedSize bytes (unpadded)
+  std::vector<uint16_t> gradients;   // GRAD
+
+  uint64_t voxelCount() const { return gradients.size(); }
+  uint64_t occupiedBrickCount() const { return voxelBase.empty() ? 0 : voxelBase.size() - 1; }
+};
+
+Status writeBrickedVolume(const std::string& path, const BrickedVolume& volume);
+
+// Fills BRNK from BOCC.
+std::vector<uint32_t> rankFromOccupancy(const std::vector<uint32_t>& occupancy);
+
+// Collects voxels in any order and sorts them into bricks and rows.
+class BrickedVolumeBuilder {
+ public:
+  explicit BrickedVolumeBuilder(VolumeDescription description);
+  // `storedBits` is the stored value's bit pattern (u8, u16, f16 or f32 per valueType).
+  void add(uint32_t x, uint32_t y, uint32_t z, uint32_t storedBits, uint16_t gradient);
+  size_t size() const { return voxels_.size(); }
+  // Fails on coordinates outside dims or on a voxel added twice.
+  Result<BrickedVolume> build(std::string metaJson = "{}") const;
+
+ private:
+  struct Entry {
+    uint64_t key;  // brick, row, depth
+    uint32_t bits;
+    uint16_t gradient;
+    uint32_t x, y, z;
+  };
+  VolumeDescription description_;
+  std::vector<Entry> voxels_;
+};
+
+}  // namespace voxlink::format

@@ -1,0 +1,97 @@
+#include "format/footprint.h"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+namespace voxlink::format {
+
+FootprintReport computeFootprint(const VoxLinkFile& f) {
+  const FileHeader& h = f.header();
+  FootprintReport r;
+  r.path = f.path();
+  for (int a = 0; a < 3; ++a) r.dims[a] = h.dims[a];
+  r.brickSize = h.brickSize;
+  r.voxels = h.voxelCount;
+  const double gridVoxels = double(h.dims[0]) * h.dims[1] * h.dims[2];
+  r.occupancy = r.voxels / gridVoxels;
+  r.bricks = f.gridBrickCount();
+  r.bricksOccupied = h.occupiedBrickCount;
+  r.bricksNonemptyFraction = r.bricks ? double(r.bricksOccupied) / r.bricks : 0.0;
+  r.bytesTotal = f.fileBytes();
+  r.bytesPerVoxel = r.voxels ? double(r.bytesTotal) / r.voxels : 0.0;
+  const double perVoxel = r.voxels ? 1.0 / r.voxels : 0.0;
+  uint64_t sectionTotal = 0;
+  for (const SectionEntry& e : f.sectionTable()) {
+    r.sections.push_back({std::string(sectionName(static_cast<SectionId>(e.id))), e.bytes, e.bytes * perVoxel});
+    sectionTotal += e.bytes;
+  }
+  const uint64_t overhead = r.bytesTotal - sectionTotal;
+  r.sections.push_back({"header+table+padding", overhead, overhead * perVoxel});
+  r.denseSourceBytes = static_cast<uint64_t>(gridVoxels) * scalarSize(f.sourceType());
+  r.ratioVsDense = double(r.bytesTotal) / double(r.denseSourceBytes);
+  r.valueType = std::string(storedName(f.valueType()));
+  r.sourceType = std::string(scalarName(f.sourceType()));
+  return r;
+}
+
+std::string footprintTable(const FootprintReport& r) {
+  std::string out;
+  char line[256];
+  auto add = [&](const char* fmt, auto... args) {
+    std::snprintf(line, sizeof(line), fmt, args...);
+    out += line;
+  };
+  add("%s\n", r.path.c_str());
+  add("  %-22s %-16s %-12s %-12s %-11s %-10s\n", "resolution [brick]", "voxels", "non-empty %", "bricks %", "total MB", "B/voxel");
+  char res[64];
+  std::snprintf(res, sizeof(res), "%ux%ux%u [%u]", r.dims[0], r.dims[1], r.dims[2], r.brickSize);
+  add("  %-22s %-16llu %-12.3f %-12.2f %-11.2f %-10.3f\n", res, (unsigned long long)r.voxels,
+      100.0 * r.occupancy, 100.0 * r.bricksNonemptyFraction, r.bytesTotal / 1e6, r.bytesPerVoxel);
+  add("  values %s (source %s)\n", r.valueType.c_str(), r.sourceType.c_str());
+  add("  %-22s %14s %10s\n", "section", "bytes", "B/voxel");
+  for (const SectionFootprint& s : r.sections)
+    add("  %-22s %14llu %10.3f\n", s.name.c_str(), (unsigned long long)s.bytes, s.bytesPerVoxel);
+  add("  %-22s %14llu %10.3f\n", "total", (unsigned long long)r.bytesTotal, r.bytesPerVoxel);
+  add("  dense source: %llu bytes; this file is %.2f%% of it (%.1fx smaller)\n",
+      (unsigned long long)r.denseSourceBytes, 100.0 * r.ratioVsDense, r.ratioVsDense > 0 ? 1.0 / r.ratioVsDense : 0.0);
+  if (r.peer) {
+    const PeerFootprint& p = *r.peer;
+    add("  %s holding the same voxels: %llu bytes (%.3f B/voxel, measured in %.2f s); this file is %.2fx %s\n",
+        p.name.c_str(), (unsigned long long)p.bytes, p.bytesPerVoxel, p.seconds,
+        p.bytes ? double(r.bytesTotal) / p.bytes : 0.0, "its size");
+    if (!p.note.empty()) add("  (%s)\n", p.note.c_str());
+  }
+  return out;
+}
+
+std::string footprintJson(const FootprintReport& r) {
+  nlohmann::ordered_json j;
+  j["path"] = r.path;
+  j["dims"] = {r.dims[0], r.dims[1], r.dims[2]};
+  j["brick_size"] = r.brickSize;
+  j["voxels"] = r.voxels;
+  j["occupancy"] = r.occupancy;
+  j["bricks"] = r.bricks;
+  j["bricks_nonempty"] = r.bricksOccupied;
+  j["bricks_nonempty_fraction"] = r.bricksNonemptyFraction;
+  j["bytes_total"] = r.bytesTotal;
+  j["bytes_per_voxel"] = r.bytesPerVoxel;
+  j["value_type"] = r.valueType;
+  j["source_type"] = r.sourceType;
+  nlohmann::ordered_json sections = nlohmann::ordered_json::object();
+  for (const SectionFootprint& s : r.sections) sections[s.name] = s.bytes;
+  j["sections"] = sections;
+  j["dense_source_bytes"] = r.denseSourceBytes;
+  j["ratio_vs_dense"] = r.ratioVsDense;
+  if (r.peer) {
+    j["peer"] = {{"name", r.peer->name},
+                 {"bytes", r.peer->bytes},
+                 {"bytes_per_voxel", r.peer->bytesPerVoxel},
+                 {"seconds", r.peer->seconds},
+                 {"ratio", r.peer->bytes ? double(r.bytesTotal) / r.peer->bytes : 0.0},
+                 {"note", r.peer->note}};
+  }
+  return j.dump(2);
+}
+
+}  // namespace voxlink::format

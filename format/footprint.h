@@ -1,0 +1,52 @@
+// The memory footprint report of `voxlink info`: the paper's Table 3 columns, bytes per
+// section, and ratios against the dense source. Peer comparisons (OpenVDB) are added by the
+// caller, which measures them (format/ links no OpenVDB).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "format/voxlink_file.h"
+
+namespace voxlink::format {
+
+struct SectionFootprint {
+  std::string name;
+  uint64_t bytes = 0;
+  double bytesPerVoxel = 0;
+};
+
+struct PeerFootprint {
+  std::string name;       // e.g. "OpenVDB FloatGrid"
+  uint64_t bytes = 0;     // measured in memory
+  double bytesPerVoxel = 0;
+  double seconds = 0;     // time to build it
+  std::string note;
+};
+
+struct FootprintReport {
+  std::string path;
+  uint32_t dims[3] = {0, 0, 0};
+  uint32_t brickSize = 0;
+  uint64_t voxels = 0;
+  double occupancy = 0;              // stored voxels / grid voxels
+  uint64_t bricks = 0;
+  uint64_t bricksOccupied = 0;
+  double bricksNonemptyFraction = 0;
+  uint64_t bytesTotal = 0;           // the whole file: header, table, padding, every section
+  double bytesPerVoxel = 0;
+  std::vector<SectionFootprint> sections;
+  uint64_t denseSourceBytes = 0;     // dims x source element size
+  double ratioVsDense = 0;           // bytesTotal / denseSourceBytes
+  std::string valueType;
+  std::string sourceType;
+  std::optional<PeerFootprint> peer;
+};
+
+FootprintReport computeFootprint(const VoxLinkFile& file);
+std::string footprintTable(const FootprintReport& report);
+std::string footprintJson(const FootprintReport& report);
+
+}  // namespace voxlink::format

@@ -1,0 +1,144 @@
+// The VoxLink file layout, version 1: plain structs whose every field carries its byte offset.
+// docs/format.md is the prose spec of the same thing; tests/format_layout_test.cpp and
+// tests/glsl_layout_test.cpp keep this header, the spec and the shaders in step.
+//
+// A file is: FileHeader at offset 0, then sections, each starting on a kSectionAlignment
+// boundary, then the section table (SectionEntry[sectionCount]). Everything is little-endian.
+// Every section is an array of 32-bit words (its byte size is padded to a multiple of 4 with
+// zeros), so it can be uploaded to a GPU buffer unchanged.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace voxlink::format {
+
+inline constexpr char kMagic[8] = {'V', 'O', 'X', 'L', 'I', 'N', 'K', '\0'};
+inline constexpr uint16_t kVersionMajor = 1;  // readers accept only their own major version
+inline constexpr uint16_t kVersionMinor = 0;  // readers accept any minor version
+inline constexpr uint32_t kByteOrderMark = 0x01020304u;  // reads 0x04030201 when swapped
+inline constexpr uint32_t kByteOrderMarkSwapped = 0x04030201u;
+inline constexpr uint64_t kSectionAlignment = 64;
+inline constexpr uint32_t kMinBrickSize = 4;
+inline constexpr uint32_t kMaxBrickSize = 32;
+// Voxel and brick indices are 32-bit on the GPU.
+inline constexpr uint64_t kMaxVoxels = 0xFFFFFFFFull;
+// Largest extent per axis; keeps brick counts and products far from 64-bit overflow.
+inline constexpr uint32_t kMaxDim = 1u << 16;
+
+enum class Axis : uint8_t { kX = 0, kY = 1, kZ = 2 };
+
+// Codec of the GRAD section. Written to files: never renumber.
+enum class GradientCodec : uint8_t {
+  kPolar16 = 1,  // see format/gradient_codec.h
+};
+
+// Bits of FileHeader::flags.
+enum HeaderFlags : uint32_t {
+  kFlagGradientsInWorldSpace = 1u << 0,  // gradients are d(value)/d(world mm), not per index
+};
+
+struct FileHeader {                // 256 bytes at offset 0
+  char magic[8];                   // 8B (0)    kMagic
+  uint16_t versionMajor;           // 2B (8)    kVersionMajor
+  uint16_t versionMinor;           // 2B (10)   kVersionMinor
+  uint32_t byteOrderMark;          // 4B (12)   kByteOrderMark
+  uint32_t headerBytes;            // 4B (16)   sizeof(FileHeader)
+  uint32_t headerCrc;              // 4B (20)   CRC-32C of the 256 header bytes with this field 0
+  uint64_t sectionTableOffset;     // 8B (24)   byte offset of SectionEntry[sectionCount]
+  uint32_t sectionCount;           // 4B (32)
+  uint32_t brickSize;              // 4B (36)   n: 4, 8, 16 or 32 voxels per brick edge
+  uint32_t dims[3];                // 12B (40)  voxels along x, y, z (the source's dims)
+  uint32_t brickGrid[3];           // 12B (52)  ceil(dims / n) bricks along x, y, z
+  uint8_t predominantAxis;         // 1B (64)   Axis along which rows run (depth axis)
+  uint8_t valueType;               // 1B (65)   StoredType of the VALU section
+  uint8_t gradientCodec;           // 1B (66)   GradientCodec of the GRAD section
+  uint8_t sourceType;              // 1B (67)   ScalarType of the dense source
+  uint32_t flags;                  // 4B (68)   HeaderFlags
+  double spacing[3];               // 24B (72)  world size of a voxel along x, y, z
+  double origin[3];                // 24B (96)  world position of voxel (0,0,0)'s centre
+  double valueScale;               // 8B (120)  source value = stored * valueScale + valueOffset
+  double valueOffset;              // 8B (128)
+  double valueMin;                 // 8B (136)  smallest stored value, in source units
+  double valueMax;                 // 8B (144)  largest stored value, in source units
+  double valueMaxAbsError;         // 8B (152)  max |decoded - source| over stored voxels
+  double valueMaxRelError;         // 8B (160)  max |decoded - source| / |source| (source != 0)
+  uint64_t voxelCount;             // 8B (168)  stored voxels
+  uint64_t occupiedBrickCount;     // 8B (176)  bricks with at least one stored voxel
+  double valueErrorBound;          // 8B (184)  error bound asked for, 0 if none (lossless)
+  uint8_t reserved[64];            // 64B (192) zero
+};
+static_assert(sizeof(FileHeader) == 256);
+static_assert(offsetof(FileHeader, sectionTableOffset) == 24);
+static_assert(offsetof(FileHeader, dims) == 40);
+static_assert(offsetof(FileHeader, predominantAxis) == 64);
+static_assert(offsetof(FileHeader, spacing) == 72);
+static_assert(offsetof(FileHeader, valueScale) == 120);
+static_assert(offsetof(FileHeader, voxelCount) == 168);
+static_assert(offsetof(FileHeader, valueErrorBound) == 184);
+
+// Four ASCII characters read as a little-endian u32.
+constexpr uint32_t fourCC(const char (&s)[5]) {
+  return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+         uint32_t(uint8_t(s[3])) << 24;
+}
+
+// Section identifiers. A reader skips sections it does not know (they may come with a later
+// minor version); every section below is required in version 1.
+enum class SectionId : uint32_t {
+  kMeta = fourCC("META"),            // UTF-8 JSON: source, classification, converter, notes
+  kBrickOccupancy = fourCC("BOCC"),  // u32[ceil(B/32)]: bit b%32 of word b/32 = brick b occupied
+  kBrickRank = fourCC("BRNK"),       // u32[ceil(B/32)]: occupied bricks before word w
+  kBrickVoxelBase = fourCC("BVOX"),  // u32[K+1]: first voxel of occupied brick k; [K] = voxels
+  kRowStart = fourCC("ROWS"),        // u16[K*n*n]: first voxel of row r relative to its brick
+  kRowMask = fourCC("MASK"),         // u32[K*n*n*n/32]: n bits per row, bit d = voxel at depth d
+  kValues = fourCC("VALU"),          // StoredType[voxels], padded to 4 bytes
+  kGradients = fourCC("GRAD"),       // u16[voxels], padded to 4 bytes: GradientCodec codes
+};
+// (B = brick count of the grid, K = occupied bricks, n = brick size.)
+
+inline constexpr std::array<SectionId, 8> kRequiredSections = {
+    SectionId::kMeta,     SectionId::kBrickOccupancy, SectionId::kBrickRank,
+    SectionId::kBrickVoxelBase, SectionId::kRowStart, SectionId::kRowMask,
+    SectionId::kValues,   SectionId::kGradients};
+
+std::string_view sectionName(SectionId id);  // "META", ...
+
+struct SectionEntry {    // 32 bytes; the table is SectionEntry[sectionCount]
+  uint32_t id;           // 4B (0)   SectionId
+  uint32_t elementBytes; // 4B (4)   size of one element: 1 (META, u8 values), 2, 4
+  uint64_t offset;       // 8B (8)   byte offset from the start of the file, kSectionAlignment
+  uint64_t bytes;        // 8B (16)  payload bytes, a multiple of 4 (zero padding included)
+  uint32_t crc;          // 4B (24)  CRC-32C of the payload bytes
+  uint32_t reserved;     // 4B (28)  zero
+};
+static_assert(sizeof(SectionEntry) == 32);
+static_assert(offsetof(SectionEntry, offset) == 8);
+static_assert(offsetof(SectionEntry, crc) == 24);
+
+// --- Brick-local coordinates ("VoxLink space") -----------------------------------------------
+// Rows run along the predominant axis a (depth axis w). The two other axes are taken in cyclic
+// order: u = (a+1)%3, v = (a+2)%3, so (u, v, w) is a right-handed rotation of (x, y, z).
+// Within a brick, row r = v*n + u and depth d = w, all brick-local in [0, n).
+// Bricks are numbered in source order whatever the predominant axis:
+//   b = (bz * brickGrid[1] + by) * brickGrid[0] + bx.
+struct AxisFrame {
+  int u, v, w;  // source axis index (0=x,1=y,2=z) of each VoxLink-space axis
+};
+constexpr AxisFrame axisFrame(Axis a) {
+  const int w = static_cast<int>(a);
+  return AxisFrame{(w + 1) % 3, (w + 2) % 3, w};
+}
+
+constexpr uint64_t alignUp(uint64_t value, uint64_t alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
+
+constexpr bool isValidBrickSize(uint32_t n) { return n == 4 || n == 8 || n == 16 || n == 32; }
+
+// Words a brick takes in the MASK section: n^3 bits.
+constexpr uint32_t maskWordsPerBrick(uint32_t n) { return n * n * n / 32; }
+
+}  // namespace voxlink::format

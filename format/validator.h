@@ -1,0 +1,20 @@
+// Full check of a VoxLink file: every checksum and every structural invariant of docs/format.md.
+// Returns the first problem found, naming file, section and field; it never aborts.
+#pragma once
+
+#include <string>
+
+#include "format/error.h"
+#include "format/voxlink_file.h"
+
+namespace voxlink::format {
+
+struct ValidationReport {
+  uint64_t bytesChecked = 0;
+  uint64_t voxelsChecked = 0;
+  uint64_t bricksChecked = 0;
+};
+
+Result<ValidationReport> validateFile(const VoxLinkFile& file);
+
+}  // namespace voxlink::format

@@ -1,0 +1,249 @@
+#include "format/voxlink_file.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "format/crc32c.h"
+#include "format/half.h"
+
+namespace voxlink::format {
+namespace {
+
+uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+
+uint64_t headerCrcOf(const FileHeader& header) {
+  FileHeader copy = header;
+  copy.headerCrc = 0;
+  return crc32c(&copy, sizeof(copy));
+}
+
+}  // namespace
+
+std::string_view sectionName(SectionId id) {
+  switch (id) {
+    case SectionId::kMeta: return "META";
+    case SectionId::kBrickOccupancy: return "BOCC";
+    case SectionId::kBrickRank: return "BRNK";
+    case SectionId::kBrickVoxelBase: return "BVOX";
+    case SectionId::kRowStart: return "ROWS";
+    case SectionId::kRowMask: return "MASK";
+    case SectionId::kValues: return "VALU";
+    case SectionId::kGradients: return "GRAD";
+  }
+  return "????";
+}
+
+uint32_t expectedElementBytes(const FileHeader& header, SectionId id) {
+  switch (id) {
+    case SectionId::kMeta: return 1;
+    case SectionId::kRowStart:
+    case SectionId::kGradients: return 2;
+    case SectionId::kValues: return static_cast<uint32_t>(storedSize(static_cast<StoredType>(header.valueType)));
+    default: return 4;
+  }
+}
+
+uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t metaBytes) {
+  const uint64_t n = header.brickSize;
+  const uint64_t bricks = uint64_t{header.brickGrid[0]} * header.brickGrid[1] * header.brickGrid[2];
+  const uint64_t k = header.occupiedBrickCount;
+  const uint64_t voxels = header.voxelCount;
+  switch (id) {
+    case SectionId::kMeta: return alignUp(metaBytes, 4);
+    case SectionId::kBrickOccupancy:
+    case SectionId::kBrickRank: return ceilDiv(bricks, 32) * 4;
+    case SectionId::kBrickVoxelBase: return (k + 1) * 4;
+    case SectionId::kRowStart: return alignUp(k * n * n * 2, 4);
+    case SectionId::kRowMask: return k * maskWordsPerBrick(static_cast<uint32_t>(n)) * 4;
+    case SectionId::kValues: return alignUp(voxels * storedSize(static_cast<StoredType>(header.valueType)), 4);
+    case SectionId::kGradients: return alignUp(voxels * 2, 4);
+  }
+  return 0;
+}
+
+Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& where) {
+  if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0)
+    return makeError(ErrorCode::kNotAVoxLinkFile, where, ": header.magic: not a VoxLink file (expected \"VOXLINK\\0\")");
+  if (h.byteOrderMark == kByteOrderMarkSwapped)
+    return makeError(ErrorCode::kByteOrder, where, ": header.byteOrderMark: file was written big-endian; this reader reads little-endian files only");
+  if (h.byteOrderMark != kByteOrderMark)
+    return makeError(ErrorCode::kCorrupt, where, ": header.byteOrderMark: 0x", std::hex, h.byteOrderMark, " is not 0x01020304");
+  if (h.versionMajor != kVersionMajor)
+    return makeError(ErrorCode::kUnsupported, where, ": header.versionMajor: file is version ", h.versionMajor, ".", h.versionMinor, ", this reader reads version ", kVersionMajor, ".x");
+  if (h.headerBytes != sizeof(FileHeader))
+    return makeError(ErrorCode::kCorrupt, where, ": header.headerBytes: ", h.headerBytes, " (expected ", sizeof(FileHeader), ")");
+  if (headerCrcOf(h) != h.headerCrc)
+    return makeError(ErrorCode::kCorrupt, where, ": header.headerCrc: checksum mismatch (stored 0x", std::hex, h.headerCrc, ", computed 0x", headerCrcOf(h), ")");
+  if (!isValidBrickSize(h.brickSize))
+    return makeError(ErrorCode::kCorrupt, where, ": header.brickSize: ", h.brickSize, " (expected 4, 8, 16 or 32)");
+  for (int a = 0; a < 3; ++a) {
+    if (h.dims[a] == 0 || h.dims[a] > kMaxDim)
+      return makeError(ErrorCode::kCorrupt, where, ": header.dims[", a, "]: ", h.dims[a], " (expected 1..", kMaxDim, ")");
+    if (h.brickGrid[a] != ceilDiv(h.dims[a], h.brickSize))
+      return makeError(ErrorCode::kCorrupt, where, ": header.brickGrid[", a, "]: ", h.brickGrid[a], " (expected ceil(", h.dims[a], "/", h.brickSize, "))");
+    if (!(std::isfinite(h.spacing[a]) && h.spacing[a] > 0))
+      return makeError(ErrorCode::kCorrupt, where, ": header.spacing[", a, "]: ", h.spacing[a], " (expected a finite value > 0)");
+    if (!std::isfinite(h.origin[a]))
+      return makeError(ErrorCode::kCorrupt, where, ": header.origin[", a, "]: not finite");
+  }
+  if (h.predominantAxis > 2)
+    return makeError(ErrorCode::kCorrupt, where, ": header.predominantAxis: ", int(h.predominantAxis), " (expected 0, 1 or 2)");
+  if (!isValidStoredType(h.valueType))
+    return makeError(ErrorCode::kUnsupported, where, ": header.valueType: ", int(h.valueType), " is not a known stored type");
+  if (h.gradientCodec != static_cast<uint8_t>(GradientCodec::kPolar16))
+    return makeError(ErrorCode::kUnsupported, where, ": header.gradientCodec: ", int(h.gradientCodec), " is not a known gradient codec");
+  if (!isValidScalarType(h.sourceType))
+    return makeError(ErrorCode::kCorrupt, where, ": header.sourceType: ", int(h.sourceType), " is not a known scalar type");
+  if (!std::isfinite(h.valueScale) || h.valueScale == 0 || !std::isfinite(h.valueOffset))
+    return makeError(ErrorCode::kCorrupt, where, ": header.valueScale/valueOffset: not a finite, invertible mapping");
+  const uint64_t bricks = uint64_t{h.brickGrid[0]} * h.brickGrid[1] * h.brickGrid[2];
+  const uint64_t n3 = uint64_t{h.brickSize} * h.brickSize * h.brickSize;
+  if (h.occupiedBrickCount > bricks)
+    return makeError(ErrorCode::kCorrupt, where, ": header.occupiedBrickCount: ", h.occupiedBrickCount, " exceeds the ", bricks, " bricks of the grid");
+  if (h.voxelCount > kMaxVoxels || h.voxelCount > h.occupiedBrickCount * n3 || h.voxelCount < h.occupiedBrickCount)
+    return makeError(ErrorCode::kCorrupt, where, ": header.voxelCount: ", h.voxelCount, " does not fit ", h.occupiedBrickCount, " occupied bricks of ", n3, " voxels");
+  if (h.sectionTableOffset > fileBytes || h.sectionCount > 1024 ||
+      h.sectionTableOffset + uint64_t{h.sectionCount} * sizeof(SectionEntry) > fileBytes)
+    return makeError(ErrorCode::kTruncated, where, ": header.sectionTableOffset: table of ", h.sectionCount, " entries at byte ", h.sectionTableOffset, " lies beyond the end of the ", fileBytes, "-byte file");
+  return Status::ok();
+}
+
+Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(path));
+  auto holder = std::make_shared<MappedFile>(std::move(mapped));
+  const uint8_t* data = holder->data();
+  const uint64_t size = holder->size();
+  return parse(std::shared_ptr<const void>(holder, holder.get()), data, size, path);
+}
+
+Result<VoxLinkFile> VoxLinkFile::fromBytes(std::vector<uint8_t> bytes, const std::string& name) {
+  auto holder = std::make_shared<std::vector<uint8_t>>(std::move(bytes));
+  return parse(std::shared_ptr<const void>(holder, holder.get()), holder->data(), holder->size(), name);
+}
+
+Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const uint8_t* data,
+                                       uint64_t size, std::string path) {
+  if (size < sizeof(FileHeader)) {
+    if (size >= sizeof(kMagic) && std::memcmp(data, kMagic, sizeof(kMagic)) != 0)
+      return makeError(ErrorCode::kNotAVoxLinkFile, path, ": header.magic: not a VoxLink file");
+    return makeError(ErrorCode::kTruncated, path, ": header: file has ", size, " bytes, a header needs ", sizeof(FileHeader));
+  }
+  if (reinterpret_cast<uintptr_t>(data) % 8 != 0)
+    return makeError(ErrorCode::kInvalidArgument, path, ": buffer is not 8-byte aligned");
+  VoxLinkFile file;
+  file.owner_ = std::move(owner);
+  file.data_ = data;
+  file.size_ = size;
+  file.path_ = std::move(path);
+  file.header_ = reinterpret_cast<const FileHeader*>(data);
+  VOXLINK_RETURN_IF_ERROR(checkHeader(*file.header_, size, file.path_));
+
+  const FileHeader& h = *file.header_;
+  file.table_.resize(h.sectionCount);
+  std::memcpy(file.table_.data(), data + h.sectionTableOffset, h.sectionCount * sizeof(SectionEntry));
+  const std::string& where = file.path_;
+  for (size_t i = 0; i < file.table_.size(); ++i) {
+    const SectionEntry& e = file.table_[i];
+    const std::string name(sectionName(static_cast<SectionId>(e.id)));
+    if (e.offset % kSectionAlignment != 0)
+      return makeError(ErrorCode::kCorrupt, where, ": section ", name, ".offset: ", e.offset, " is not a multiple of ", kSectionAlignment);
+    if (e.offset < sizeof(FileHeader) || e.offset > size || e.bytes > size - e.offset)
+      return makeError(ErrorCode::kTruncated, where, ": section ", name, ": bytes [", e.offset, ", ", e.offset + e.bytes, ") lie beyond the end of the ", size, "-byte file");
+    if (e.bytes % 4 != 0)
+      return makeError(ErrorCode::kCorrupt, where, ": section ", name, ".bytes: ", e.bytes, " is not a multiple of 4");
+    for (size_t j = 0; j < i; ++j) {
+      const SectionEntry& o = file.table_[j];
+      if (o.id == e.id)
+        return makeError(ErrorCode::kCorrupt, where, ": section ", name, ": appears twice in the section table");
+      if (e.offset < o.offset + o.bytes && o.offset < e.offset + e.bytes)
+        return makeError(ErrorCode::kCorrupt, where, ": section ", name, ": overlaps section ", sectionName(static_cast<SectionId>(o.id)));
+    }
+  }
+  const SectionEntry* meta = file.findSection(SectionId::kMeta);
+  for (SectionId id : kRequiredSections) {
+    const SectionEntry* e = file.findSection(id);
+    if (!e) return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ": missing");
+    if (e->elementBytes != expectedElementBytes(h, id))
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ".elementBytes: ", e->elementBytes, " (expected ", expectedElementBytes(h, id), ")");
+    if (id == SectionId::kMeta) continue;
+    const uint64_t expected = expectedSectionBytes(h, id, meta->bytes);
+    if (e->bytes != expected)
+      return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id), ".bytes: ", e->bytes, " but the header's counts need ", expected);
+  }
+  return file;
+}
+
+const SectionEntry* VoxLinkFile::findSection(SectionId id) const {
+  for (const SectionEntry& e : table_)
+    if (e.id == static_cast<uint32_t>(id)) return &e;
+  return nullptr;
+}
+
+std::span<const uint8_t> VoxLinkFile::sectionBytes(const SectionEntry& e) const {
+  return {data_ + e.offset, static_cast<size_t>(e.bytes)};
+}
+
+std::span<const uint8_t> VoxLinkFile::sectionBytes(SectionId id) const {
+  const SectionEntry* e = findSection(id);
+  return e ? sectionBytes(*e) : std::span<const uint8_t>{};
+}
+
+std::span<const uint32_t> VoxLinkFile::words32(SectionId id) const {
+  auto bytes = sectionBytes(id);
+  return {reinterpret_cast<const uint32_t*>(bytes.data()), bytes.size() / 4};
+}
+
+uint64_t VoxLinkFile::gridBrickCount() const {
+  return uint64_t{header_->brickGrid[0]} * header_->brickGrid[1] * header_->brickGrid[2];
+}
+
+std::span<const uint32_t> VoxLinkFile::brickVoxelBase() const {
+  return words32(SectionId::kBrickVoxelBase).first(occupiedBrickCount() + 1);
+}
+
+std::span<const uint16_t> VoxLinkFile::rowStarts() const {
+  auto bytes = sectionBytes(SectionId::kRowStart);
+  const uint64_t n = brickSize();
+  return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(occupiedBrickCount() * n * n)};
+}
+
+std::span<const uint16_t> VoxLinkFile::gradientCodes() const {
+  auto bytes = sectionBytes(SectionId::kGradients);
+  return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(voxelCount())};
+}
+
+std::string VoxLinkFile::metaJson() const {
+  auto bytes = sectionBytes(SectionId::kMeta);
+  std::string text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  while (!text.empty() && text.back() == '\0') text.pop_back();  // padding
+  return text;
+}
+
+double VoxLinkFile::storedValue(uint64_t voxel) const {
+  const uint8_t* v = valueBytes();
+  switch (valueType()) {
+    case StoredType::kU8: return v[voxel];
+    case StoredType::kU16: {
+      uint16_t x;
+      std::memcpy(&x, v + voxel * 2, 2);
+      return x;
+    }
+    case StoredType::kF16: {
+      uint16_t x;
+      std::memcpy(&x, v + voxel * 2, 2);
+      return halfToFloat(x);
+    }
+    case StoredType::kF32: {
+      float x;
+      std::memcpy(&x, v + voxel * 4, 4);
+      return x;
+    }
+  }
+  return 0;
+}
+
+double VoxLinkFile::value(uint64_t voxel) const {
+  return storedValue(voxel) * header_->valueScale + header_->valueOffset;
+}
+
+}  // namespace voxlink::format

@@ -1,0 +1,76 @@
+// Read access to a VoxLink file: maps it, checks the header and the section table (cheap), and
+// hands out typed views of the sections. Checksums and deep invariants are checked by
+// validateFile() (format/validator.h), which reads every byte.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "format/error.h"
+#include "format/layout.h"
+#include "format/mapped_file.h"
+#include "format/scalar_type.h"
+
+namespace voxlink::format {
+
+class VoxLinkFile {
+ public:
+  static Result<VoxLinkFile> open(const std::string& path);
+  // For tests and tools that hold a file in memory; `name` is used in error messages.
+  static Result<VoxLinkFile> fromBytes(std::vector<uint8_t> bytes, const std::string& name);
+
+  const std::string& path() const { return path_; }
+  const FileHeader& header() const { return *header_; }
+  uint64_t fileBytes() const { return size_; }
+  const std::vector<SectionEntry>& sectionTable() const { return table_; }
+  const SectionEntry* findSection(SectionId id) const;
+  std::span<const uint8_t> sectionBytes(SectionId id) const;
+  std::span<const uint8_t> sectionBytes(const SectionEntry& entry) const;
+
+  uint32_t brickSize() const { return header_->brickSize; }
+  uint64_t gridBrickCount() const;
+  uint64_t occupiedBrickCount() const { return header_->occupiedBrickCount; }
+  uint64_t voxelCount() const { return header_->voxelCount; }
+  Axis predominantAxis() const { return static_cast<Axis>(header_->predominantAxis); }
+  StoredType valueType() const { return static_cast<StoredType>(header_->valueType); }
+  ScalarType sourceType() const { return static_cast<ScalarType>(header_->sourceType); }
+
+  std::span<const uint32_t> occupancyWords() const { return words32(SectionId::kBrickOccupancy); }
+  std::span<const uint32_t> rankWords() const { return words32(SectionId::kBrickRank); }
+  // K + 1 entries: voxel range of occupied brick k is [base[k], base[k+1]).
+  std::span<const uint32_t> brickVoxelBase() const;
+  std::span<const uint16_t> rowStarts() const;    // K * n^2
+  std::span<const uint32_t> rowMaskWords() const { return words32(SectionId::kRowMask); }
+  std::span<const uint16_t> gradientCodes() const;  // voxelCount
+  const uint8_t* valueBytes() const { return sectionBytes(SectionId::kValues).data(); }
+  std::string metaJson() const;
+
+  // Value of voxel i in source units (stored value mapped through scale and offset).
+  double value(uint64_t voxel) const;
+  // The stored value of voxel i as a double, before the mapping.
+  double storedValue(uint64_t voxel) const;
+
+ private:
+  static Result<VoxLinkFile> parse(std::shared_ptr<const void> owner, const uint8_t* data,
+                                   uint64_t size, std::string path);
+  std::span<const uint32_t> words32(SectionId id) const;
+
+  std::shared_ptr<const void> owner_;  // keeps the mapping or the byte vector alive
+  const uint8_t* data_ = nullptr;
+  uint64_t size_ = 0;
+  std::string path_;
+  const FileHeader* header_ = nullptr;
+  std::vector<SectionEntry> table_;
+};
+
+// Checks a header in isolation; `where` prefixes messages (usually the file name).
+Status checkHeader(const FileHeader& header, uint64_t fileBytes, const std::string& where);
+
+// Expected payload size of a required section for a given header.
+uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t metaBytes);
+uint32_t expectedElementBytes(const FileHeader& header, SectionId id);
+
+}  // namespace voxlink::format
