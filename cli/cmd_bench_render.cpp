@@ -1,0 +1,113 @@
+// voxlink bench-render FILE.vxl: the paper's protocol (360 deg about y, then 360 deg about x,
+// mean FPS) for the VoxLink ray tracer and the dense 3D-texture ray caster, with the PSNR of
+// each against the float64 reference, as a Markdown table.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+#include "cli/command.h"
+#include "cli/render_options.h"
+#include "viewer/core/recorded_source.h"
+#include "viewer/gl/dense_renderer.h"
+#include "viewer/gl/gl_context.h"
+#include "viewer/gl/render_benchmark.h"
+#include "viewer/gl/voxlink_renderer.h"
+
+namespace voxlink::cli {
+
+CommandRunner addBenchRenderCommand(CLI::App& app) {
+  struct Args {
+    std::string path;
+    std::vector<std::string> sizes{"512x512", "1000x1000"};
+    std::vector<std::string> samplings{"voxel", "trilinear"};
+    uint32_t framesPerTurn = 36;
+    bool noDense = false, noReference = false;
+    std::string pictures;
+    SourceOptions source;
+    RenderOptions render;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("bench-render", "Rendering benchmark: VoxLink vs dense ray caster, with PSNR");
+  cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--sizes", args->sizes, "Image sizes WxH")->capture_default_str();
+  cmd->add_option("--samplings", args->samplings, "Sampling modes")
+      ->check(CLI::IsMember({"voxel", "trilinear"}))->capture_default_str();
+  cmd->add_option("--frames-per-turn", args->framesPerTurn, "Frames per 360 degree turn (two turns)")->capture_default_str();
+  cmd->add_flag("--no-dense", args->noDense, "Skip the dense 3D-texture ray caster");
+  cmd->add_flag("--no-reference", args->noReference, "Skip the float64 reference (no PSNR)");
+  cmd->add_option("--pictures", args->pictures, "Directory for PNGs of each run's first frame and the reference");
+  args->source.add(cmd);
+  args->render.add(cmd, false);
+  return [args] {
+    auto file = format::VoxLinkFile::open(args->path);
+    if (!file) return reportError(file.error());
+    viewer::BenchmarkOptions o;
+    o.framesPerTurn = args->framesPerTurn;
+    o.sizes.clear();
+    for (const auto& s : args->sizes) {
+      auto wh = viewer::parseImageSize(s);
+      if (!wh) return reportError(wh.error());
+      o.sizes.push_back(*wh);
+    }
+    o.samplings.clear();
+    for (const auto& s : args->samplings) o.samplings.push_back(*viewer::parseSampling(s));
+    auto settings = args->render.settings();
+    if (!settings) return reportError(settings.error());
+    o.base = *settings;
+    auto spec = args->render.cameraSpec();
+    if (!spec) return reportError(spec.error());
+    o.camera = *spec;
+    o.pictureDir = args->pictures;
+    if (!o.pictureDir.empty()) std::filesystem::create_directories(o.pictureDir);
+    o.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    auto tf = args->render.transferFunction(*file);
+    if (!tf) return reportError(tf.error());
+
+    std::optional<viewer::DenseVolume> dense;
+    if (!args->noDense || !args->noReference) {
+      auto sourceOptions = args->source.openOptions();
+      if (!sourceOptions) return reportError(sourceOptions.error());
+      auto loaded = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
+      if (!loaded) return reportError(loaded.error());
+      dense = std::move(*loaded);
+    }
+    auto context = viewer::createHeadlessContext();
+    if (!context) return reportError(context.error());
+    auto voxlink = viewer::VoxLinkRenderer::create(*file);
+    if (!voxlink) return reportError(voxlink.error());
+    (*voxlink)->setTransferFunction(*tf);
+    std::vector<viewer::VolumeRenderer*> renderers{voxlink->get()};
+    std::unique_ptr<viewer::DenseRenderer> denseRenderer;
+    if (!args->noDense) {
+      auto d = viewer::DenseRenderer::create(*dense, (*voxlink)->geometry());
+      if (!d) return reportError(d.error());
+      denseRenderer = std::move(*d);
+      denseRenderer->setTransferFunction(*tf);
+      renderers.push_back(denseRenderer.get());
+    }
+    std::optional<viewer::ReferenceRenderer> reference;
+    if (!args->noReference) reference.emplace(*dense, *tf);
+
+    const auto& h = file->header();
+    std::printf("file: %s (%ux%ux%u, brick %u, %llu voxels = %.2f %% of %llu, %llu of %llu bricks occupied)\n",
+                args->path.c_str(), h.dims[0], h.dims[1], h.dims[2], h.brickSize,
+                (unsigned long long)h.voxelCount,
+                100.0 * double(h.voxelCount) / (double(h.dims[0]) * h.dims[1] * h.dims[2]),
+                (unsigned long long)(uint64_t{h.dims[0]} * h.dims[1] * h.dims[2]),
+                (unsigned long long)h.occupiedBrickCount, (unsigned long long)file->gridBrickCount());
+    const char* threads = std::getenv("LP_NUM_THREADS");
+    std::printf("GL: %s%s%s\n", (*context)->description().c_str(), threads ? ", LP_NUM_THREADS=" : "",
+                threads ? threads : "");
+    std::printf("protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; shadows %s\n\n",
+                o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
+                o.base.shading.shadows ? "on" : "off");
+    auto rows = viewer::runRenderBenchmark(renderers, reference ? &*reference : nullptr,
+                                           (*voxlink)->geometry().worldBox(), o);
+    if (!rows) return reportError(rows.error());
+    std::fputs(viewer::benchmarkTable(*rows).c_str(), stdout);
+    return 0;
+  };
+}
+
+}  // namespace voxlink::cli

@@ -1,0 +1,75 @@
+// voxlink render FILE.vxl -o out.png: one frame through EGL (no X server), written as PNG or
+// EXR. With --reference it also renders the float64 reference from the dense source and prints
+// the image error.
+#include <chrono>
+#include <cstdio>
+
+#include "cli/command.h"
+#include "cli/render_options.h"
+#include "viewer/core/recorded_source.h"
+#include "viewer/core/reference_renderer.h"
+#include "viewer/gl/gl_context.h"
+#include "viewer/gl/voxlink_renderer.h"
+
+namespace voxlink::cli {
+
+CommandRunner addRenderCommand(CLI::App& app) {
+  struct Args {
+    std::string path, output, referenceOut;
+    bool reference = false;
+    SourceOptions source;
+    RenderOptions render;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("render", "Render a VoxLink file to PNG or EXR (headless, EGL)");
+  cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", args->output, "Image to write (.png: 8-bit sRGB, .exr: linear half float)")->required();
+  args->render.add(cmd);
+  cmd->add_flag("--reference", args->reference,
+                "Also render the float64 reference from the dense source and print PSNR and max error");
+  cmd->add_option("--reference-output", args->referenceOut, "Write the reference image here (implies --reference)");
+  args->source.add(cmd);
+  return [args] {
+    auto file = format::VoxLinkFile::open(args->path);
+    if (!file) return reportError(file.error());
+    auto settings = args->render.settings();
+    if (!settings) return reportError(settings.error());
+    auto spec = args->render.cameraSpec();
+    if (!spec) return reportError(spec.error());
+    auto tf = args->render.transferFunction(*file);
+    if (!tf) return reportError(tf.error());
+    auto context = viewer::createHeadlessContext();
+    if (!context) return reportError(context.error());
+    auto renderer = viewer::VoxLinkRenderer::create(*file);
+    if (!renderer) return reportError(renderer.error());
+    (*renderer)->setTransferFunction(*tf);
+    const viewer::Camera camera = viewer::Camera::framing((*renderer)->geometry().worldBox(), *spec);
+    viewer::RenderTarget target;
+    const auto start = std::chrono::steady_clock::now();
+    if (Status s = (*renderer)->render(camera, *settings, target); !s) return reportError(s);
+    const viewer::Image image = target.read();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (Status s = viewer::writeImage(image, args->output); !s) return reportError(s);
+    std::printf("%s: %ux%u, %s sampling, %.3f s (first frame, includes shader compilation) on %s\n",
+                args->output.c_str(), settings->width, settings->height,
+                std::string(viewer::samplingName(settings->sampling)).c_str(), seconds,
+                (*context)->description().c_str());
+    if (!args->reference && args->referenceOut.empty()) return 0;
+    auto sourceOptions = args->source.openOptions();
+    if (!sourceOptions) return reportError(sourceOptions.error());
+    auto dense = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
+    if (!dense) return reportError(dense.error());
+    const viewer::ReferenceRenderer reference(*dense, *tf);
+    const viewer::Image truth = reference.render(camera, *settings);
+    if (!args->referenceOut.empty())
+      if (Status s = viewer::writeImage(truth, args->referenceOut); !s) return reportError(s);
+    auto error = viewer::compareImages(image, truth);
+    if (!error) return reportError(error.error());
+    std::printf("against the float64 reference: PSNR %.2f dB, max error %.4f, %llu pixels off by more than 1/255, %llu non-finite\n",
+                error->psnr, error->maxError, (unsigned long long)error->pixelsOver,
+                (unsigned long long)error->nonFinite);
+    return 0;
+  };
+}
+
+}  // namespace voxlink::cli

@@ -1,0 +1,92 @@
+#include "cli/render_options.h"
+
+#include <cstdio>
+#include <sstream>
+
+#include "viewer/core/tf_presets.h"
+
+namespace voxlink::cli {
+
+void RenderOptions::add(CLI::App* cmd, bool withSize) {
+  if (withSize) cmd->add_option("--size", size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--tf", tfPath, "Transfer function JSON (docs/transfer-function.md)");
+  cmd->add_option("--tf-preset", tfPreset, "Built-in transfer function stretched over the stored value range")
+      ->check(CLI::IsMember(viewer::tfPresetNames()));
+  cmd->add_option("--camera", camera, "AZ,EL[,DIST[,FOV]]: azimuth and elevation in degrees, distance "
+                                      "(1 frames the volume), vertical field of view (default 30,20,1,30)");
+  cmd->add_option("--up", up, "World axis pointing up on screen")->check(CLI::IsMember({"y", "z"}))->capture_default_str();
+  cmd->add_option("--sampling", sampling, "voxel (nearest, exact chords) or trilinear")
+      ->check(CLI::IsMember({"voxel", "trilinear"}))->capture_default_str();
+  cmd->add_option("--step", step, "Trilinear step in units of the smallest voxel spacing")->capture_default_str();
+  cmd->add_flag("--shadows", shadows, "Shadow rays towards the light");
+  cmd->add_flag("--no-shading", noShading, "Unlit colours (no Phong shading)");
+  cmd->add_option("--background", background, "Background colour R,G,B in [0, 1] (linear)")->capture_default_str();
+}
+
+Result<viewer::RenderSettings> RenderOptions::settings() const {
+  viewer::RenderSettings s;
+  VOXLINK_ASSIGN_OR_RETURN(auto wh, viewer::parseImageSize(size));
+  s.width = wh[0];
+  s.height = wh[1];
+  s.sampling = *viewer::parseSampling(sampling);
+  s.stepVoxels = step;
+  s.shading.shadows = shadows;
+  s.shading.enabled = !noShading;
+  std::stringstream in(background);
+  std::string item;
+  for (int i = 0; i < 3; ++i) {
+    if (!std::getline(in, item, ','))
+      return makeError(ErrorCode::kInvalidArgument, "--background: expected R,G,B, got '", background, "'");
+    try {
+      s.background[i] = std::stod(item);
+    } catch (const std::exception&) {
+      return makeError(ErrorCode::kInvalidArgument, "--background: '", item, "' is not a number");
+    }
+  }
+  VOXLINK_RETURN_IF_ERROR(viewer::checkSettings(s, "render"));
+  return s;
+}
+
+Result<viewer::CameraSpec> RenderOptions::cameraSpec() const {
+  viewer::CameraSpec defaults;
+  defaults.up = up == "y" ? viewer::UpAxis::kY : viewer::UpAxis::kZ;
+  if (camera.empty()) return defaults;
+  return viewer::parseCameraSpec(camera, defaults);
+}
+
+Result<format::TransferFunction> RenderOptions::transferFunction(const format::VoxLinkFile& file) const {
+  if (!tfPath.empty()) return format::loadTransferFunction(tfPath);
+  if (!tfPreset.empty()) {
+    double lo = file.header().valueMin, hi = file.header().valueMax;
+    if (!(lo < hi)) hi = lo + 1;
+    return viewer::tfPreset(tfPreset, lo, hi);
+  }
+  return viewer::defaultTransferFunction(file);
+}
+
+void SourceOptions::add(CLI::App* cmd) {
+  cmd->add_option("--source", path, "Dense source volume (default: the one the file's META records)");
+  cmd->add_option("--source-dims", dims, "X,Y,Z of a raw --source");
+  cmd->add_option("--source-type", type, "Element type of a raw --source (u8, i16, f32, ...)");
+}
+
+Result<convert::OpenOptions> SourceOptions::openOptions() const {
+  convert::OpenOptions o;
+  if (!dims.empty()) {
+    std::array<uint32_t, 3> d{};
+    char c1 = 0, c2 = 0, extra = 0;
+    if (std::sscanf(dims.c_str(), "%u%c%u%c%u%c", &d[0], &c1, &d[1], &c2, &d[2], &extra) != 5 ||
+        c1 != ',' || c2 != ',')
+      return makeError(ErrorCode::kInvalidArgument, "--source-dims: expected X,Y,Z, got '", dims, "'");
+    o.dims = d;
+  }
+  if (!type.empty()) {
+    const auto t = parseScalarName(type);
+    if (!t) return makeError(ErrorCode::kInvalidArgument, "--source-type: unknown type '", type, "'");
+    o.type = *t;
+  }
+  if (o.dims && o.type) o.format = "raw";
+  return o;
+}
+
+}  // namespace voxlink::cli

@@ -1,0 +1,48 @@
+// Options that `voxlink render`, `bench-render` and `view` share: image size, camera, transfer
+// function, sampling and shading, turned into the viewer's structs.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+
+#include "convert/volume_source.h"
+#include "format/transfer_function.h"
+#include "format/voxlink_file.h"
+#include "viewer/core/camera.h"
+#include "viewer/core/render_settings.h"
+
+namespace voxlink::cli {
+
+struct RenderOptions {
+  std::string size = "512x512";
+  std::string tfPath;
+  std::string tfPreset;
+  std::string camera;
+  std::string up = "z";
+  std::string sampling = "voxel";
+  double step = 0.5;
+  bool shadows = false;
+  bool noShading = false;
+  std::string background = "0,0,0";
+
+  // Registers the options on `cmd`; `withSize` is false for commands with their own size flag.
+  void add(CLI::App* cmd, bool withSize = true);
+  Result<viewer::RenderSettings> settings() const;
+  Result<viewer::CameraSpec> cameraSpec() const;
+  // --tf file, else --tf-preset over the file's value range, else the file's default.
+  Result<format::TransferFunction> transferFunction(const format::VoxLinkFile& file) const;
+};
+
+// --source PATH [--source-dims X,Y,Z --source-type T]: the dense volume for the reference and the
+// dense peer, when META's record is not wanted (or a raw file needs its dims and type).
+struct SourceOptions {
+  std::string path;
+  std::string dims;
+  std::string type;
+
+  void add(CLI::App* cmd);
+  Result<convert::OpenOptions> openOptions() const;
+};
+
+}  // namespace voxlink::cli

@@ -1,0 +1,54 @@
+// Trilinear sampling shared by the sparse and the dense traversals: the cell's classified
+// corners, their blend, and the shading and compositing of a sample. Included after the
+// traversal's shadowTransmittance().
+
+
+// Classified corners of one trilinear cell: colour and gradient weighted by opacity. Corner m
+// sits at offset (bit 0 along the predominant axis w, bit 1 along u, bit 2 along v) from the
+// cell's low corner, so corners 2j and 2j + 1 share a row. Dense volumes use the same order.
+// Named shader-private variables, not arrays: llvmpipe keeps these in registers, while arrays
+// (or struct parameters) went through memory and made trilinear sampling several times slower.
+vec4 gA0, gA1, gA2, gA3, gA4, gA5, gA6, gA7;  // alpha * rgb, alpha
+vec3 gL0, gL1, gL2, gL3, gL4, gL5, gL6, gL7;  // alpha * gradient direction
+bool gCellVisible;  // some corner has opacity: samples in an invisible cell are skipped
+
+// Offset of corner m in x, y, z.
+ivec3 cornerOffset(int m) {
+  ivec3 o;
+  o[VXL_W] = m & 1;
+  o[VXL_U] = (m >> 1) & 1;
+  o[VXL_V] = (m >> 2) & 1;
+  return o;
+}
+
+// Blends the corners with trilinear weights for fractions f (x, y, z): opacity-weighted colour,
+// opacity and gradient. Mirrors ReferenceRenderer::traceTrilinear.
+vec4 blendCorners(vec3 f, out vec3 gradient) {
+  vec2 w = vec2(1.0 - f[VXL_W], f[VXL_W]);
+  vec2 u = vec2(1.0 - f[VXL_U], f[VXL_U]);
+  vec2 v = vec2(1.0 - f[VXL_V], f[VXL_V]);
+  gradient = v.x * (u.x * (w.x * gL0 + w.y * gL1) + u.y * (w.x * gL2 + w.y * gL3)) +
+             v.y * (u.x * (w.x * gL4 + w.y * gL5) + u.y * (w.x * gL6 + w.y * gL7));
+  return v.x * (u.x * (w.x * gA0 + w.y * gA1) + u.y * (w.x * gA2 + w.y * gA3)) +
+             v.y * (u.x * (w.x * gA4 + w.y * gA5) + u.y * (w.x * gA6 + w.y * gA7));
+}
+
+// Shades and composites one trilinear sample at index-space point p (q = p - 1/2).
+void compositeSample(vec3 q, vec3 fraction, vec3 toEye, inout vec3 color, inout float transmittance) {
+  vec3 gradient;
+  vec4 c = blendCorners(fraction, gradient);
+  if (!(c.a > 0.0)) return;
+  vec3 ambient, lit;
+  shadeSample(c.rgb, c.a, gradient, toEye, ambient, lit);
+  float a = correctedAlpha(c.a, uStep);
+  float shadow = 1.0;
+#if VXL_SHADOWS
+  shadow = shadowTransmittance(indexToWorld(q + 0.5));
+#endif
+  color += transmittance * (a / c.a) * (ambient + shadow * lit);
+  transmittance *= 1.0 - a;
+}
+
+// First sample index at or after t for samples t_k = t0 + (k + 1/2) step, minus one against
+// rounding (a sample evaluated twice is prevented by the caller's running index).
+int firstSampleNear(float t, float t0) { return int(ceil((t - t0) / uStep - 0.5)) - 1; }

@@ -1,0 +1,48 @@
+// Phong shading and opacity correction, as viewer/core/render_model.h states them.
+
+uniform float uUnit;             // smallest voxel spacing: the length TF opacities refer to
+uniform vec3 uToLight;           // world, unit
+uniform vec4 uPhong;             // ambient, diffuse, specular, shininess
+uniform bool uShadingEnabled;
+uniform float uStopTransmittance;  // 1 - termination alpha: rays stop at or below this
+uniform float uShadowStop;         // shadow rays stop below this transmittance
+uniform float uStep;               // trilinear step, world units
+
+// Opacity of a chord of `len` through matter of opacity `alpha` per unit length.
+float correctedAlpha(float alpha, float len) {
+  if (alpha <= 0.0 || len <= 0.0) return 0.0;
+  return 1.0 - pow(1.0 - min(alpha, kMaxUnitAlpha), len / uUnit);
+}
+
+// Phong terms of a sample with (premultiplied) colour c and opacity alpha: colour = ambient +
+// shadow * lit. The surface normal is -gradient; a zero gradient (or shading off) is unlit.
+// Mirrors shadeSample() in viewer/core/render_model.h.
+void shadeSample(vec3 c, float alpha, vec3 gradient, vec3 toEye, out vec3 ambient, out vec3 lit) {
+  float len = length(gradient);
+  if (!uShadingEnabled || !(len > 0.0)) {
+    ambient = c;
+    lit = vec3(0.0);
+    return;
+  }
+  vec3 n = -gradient / len;
+  float ndl = dot(n, uToLight);
+  float diffuse = 0.0, specular = 0.0;
+  if (ndl > 0.0) {
+    diffuse = ndl;
+    vec3 r = 2.0 * ndl * n - uToLight;
+    specular = pow(max(dot(r, toEye), 0.0), uPhong.w);
+  }
+  ambient = c * uPhong.x;
+  lit = c * (uPhong.y * diffuse) + vec3(alpha * uPhong.z * specular);
+}
+
+// A trilinear corner: colour and gradient direction weighted by the voxel's opacity.
+void classifyCorner(uint bits, uint gradientCode, out vec4 colorAlpha, out vec3 gradient) {
+  vec4 c = classify(bits);
+  colorAlpha = vec4(0.0);
+  gradient = vec3(0.0);
+  if (c.a > 0.0) {
+    colorAlpha = vec4(c.rgb * c.a, c.a);
+    gradient = c.a * decodeGradient(gradientCode);
+  }
+}

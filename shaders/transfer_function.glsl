@@ -1,0 +1,37 @@
+// Transfer function lookup by stored value bits (viewer/core/tf_table.h). Indexed tables hold
+// one RGBA per stored value (u8, u16, f16 files); f32 files evaluate the TF's breakpoints.
+
+layout(std430, binding = VXL_TF_BINDING) readonly restrict buffer VxlTransferFunction {
+  vec4 tfTable[];
+};
+uniform int uTfEntries;
+uniform float uValueScale;   // source = stored * scale + offset
+uniform float uValueOffset;
+
+#if VXL_TF_BREAKPOINTS
+vec4 tfBreakpoints(float value) {
+  if (uTfEntries == 0) return vec4(0.0);
+  if (value < tfTable[0].x) return tfTable[1];
+  int lo = 0, hi = uTfEntries - 1;  // largest j with u_j <= value
+  while (lo < hi) {
+    int mid = (lo + hi + 1) / 2;
+    if (tfTable[3 * mid].x <= value) lo = mid; else hi = mid - 1;
+  }
+  if (lo == uTfEntries - 1) return tfTable[3 * lo + 2];
+  float u0 = tfTable[3 * lo].x;
+  float u1 = tfTable[3 * lo + 3].x;
+  return mix(tfTable[3 * lo + 2], tfTable[3 * lo + 4],
+             (value - u0) / (u1 - u0));
+}
+#endif
+
+// RGBA (colour, opacity per unit length) of a voxel's stored value bits.
+vec4 classify(uint bits) {
+#if VXL_TF_BREAKPOINTS
+  float value = uintBitsToFloat(bits) * uValueScale + uValueOffset;
+  if (isnan(value) || isinf(value)) return vec4(0.0);
+  return tfBreakpoints(value);
+#else
+  return tfTable[bits];
+#endif
+}

@@ -1,0 +1,83 @@
+// Lookups in a VoxLink file's sections, uploaded unchanged (format/layout.h, the same steps as
+// format::VoxelLocator): brick bit -> rank -> row start -> bit rank within the row mask.
+// The generated voxlink_sections.glsl declares the buffers (split into chunks where a section
+// exceeds one storage block) and the word accessors occWord(), rankWord(), bvoxWord(),
+// rowsWord(), maskWord(), valuWord(), gradWord().
+#include "voxlink_sections.glsl"
+
+// VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
+
+uniform ivec3 uBrickGrid;
+
+uint brickId(ivec3 b) {
+  return (uint(b.z) * uint(uBrickGrid.y) + uint(b.y)) * uint(uBrickGrid.x) + uint(b.x);
+}
+
+bool brickOccupied(uint b) { return ((occWord(b >> 5u) >> (b & 31u)) & 1u) != 0u; }
+
+// Index of occupied brick b among the occupied bricks, or -1 when b is empty.
+int occupiedIndex(uint b) {
+  uint word = occWord(b >> 5u);
+  uint bit = b & 31u;
+  if (((word >> bit) & 1u) == 0u) return -1;
+  return int(rankWord(b >> 5u) + uint(bitCount(word & ((1u << bit) - 1u))));
+}
+
+uint u16At(uint word, uint i) { return (word >> ((i & 1u) << 4u)) & 0xFFFFu; }
+
+// One row (list) of an occupied brick: its mask bits and the index of its first voxel.
+struct Row {
+  uint bits;
+  uint first;
+};
+
+uint rowBits(uint k, uint row) {
+  const uint n = uint(VXL_N);
+  uint bit = row * n;
+  uint word = maskWord(k * (n * n * n / 32u) + (bit >> 5u));
+#if VXL_N == 32
+  return word;
+#else
+  return (word >> (bit & 31u)) & ((1u << n) - 1u);
+#endif
+}
+
+// Mask bits and first voxel of a row; the start is only read when the row holds voxels.
+Row fetchRow(uint k, uint row) {
+  uint bits = rowBits(k, row);
+  if (bits == 0u) return Row(0u, 0u);
+  uint r = k * uint(VXL_N * VXL_N) + row;
+  return Row(bits, bvoxWord(k) + u16At(rowsWord(r >> 1u), r));
+}
+
+// Voxel index of depth d in a row, or -1: the next voxel along the predominant axis is the next
+// list element; a depth in the row is found by counting the set bits before it.
+int voxelInRow(Row row, uint depth) {
+  if (((row.bits >> depth) & 1u) == 0u) return -1;
+  uint before = depth == 0u ? 0u : bitCount(row.bits << (32u - depth));
+  return int(row.first + before);
+}
+
+uint rowOfLocal(ivec3 local) { return uint(local[VXL_V]) * uint(VXL_N) + uint(local[VXL_U]); }
+
+// Index of the voxel at index-space cell p, or -1 (outside the volume or not stored).
+int findVoxel(ivec3 p) {
+  if (!insideGrid(p, uDims)) return -1;
+  ivec3 b = p / VXL_N;
+  int k = occupiedIndex(brickId(b));
+  if (k < 0) return -1;
+  ivec3 local = p - b * VXL_N;
+  return voxelInRow(fetchRow(uint(k), rowOfLocal(local)), uint(local[VXL_W]));
+}
+
+uint storedBits(uint voxel) {
+#if VXL_VALUE_BYTES == 1
+  return (valuWord(voxel >> 2u) >> ((voxel & 3u) << 3u)) & 0xFFu;
+#elif VXL_VALUE_BYTES == 2
+  return u16At(valuWord(voxel >> 1u), voxel);
+#else
+  return valuWord(voxel);
+#endif
+}
+
+uint gradientCode(uint voxel) { return u16At(gradWord(voxel >> 1u), voxel); }

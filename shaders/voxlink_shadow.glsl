@@ -1,0 +1,32 @@
+// Shadow rays through a VoxLink file: transmittance towards the light with voxel (nearest)
+// sampling, skipping empty bricks and walking rows. Mirrors ReferenceRenderer::shadowTransmittance.
+
+float shadowTransmittance(vec3 worldPoint) {
+  vec3 o = worldToIndex(worldPoint + uToLight * uUnit);
+  vec3 d = directionToIndex(uToLight);
+  vec2 range = intersectBox(o, d, vec3(uDims));
+  float t0 = max(range.x, 0.0), t1 = range.y;
+  float transmittance = 1.0;
+  if (!(t0 < t1)) return transmittance;
+  Dda bricks = ddaInit(o / float(VXL_N), d / float(VXL_N), t0, ivec3(0), uBrickGrid - 1);
+  float t = t0;
+  int limit = uBrickGrid.x + uBrickGrid.y + uBrickGrid.z + 3;
+  for (int i = 0; i < limit && t < t1; ++i) {
+    int axis = minAxis(bricks.tMax);
+    float tb = min(max(bricks.tMax[axis], t), t1);
+    int k = occupiedIndex(brickId(bricks.cell));
+    if (k >= 0 && tb > t) {
+      RowWalk walk = rowWalkBegin(o, d, t, tb, bricks.cell, uint(k));
+      uint voxel;
+      float ta, tz;
+      while (rowWalkNext(walk, voxel, ta, tz)) {
+        transmittance *= 1.0 - correctedAlpha(classify(storedBits(voxel)).a, tz - ta);
+        if (transmittance < uShadowStop) return transmittance;
+      }
+    }
+    t = tb;
+    ddaAdvance(bricks, axis);
+    if (bricks.cell[axis] < 0 || bricks.cell[axis] >= uBrickGrid[axis]) break;
+  }
+  return transmittance;
+}

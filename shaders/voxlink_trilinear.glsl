@@ -1,0 +1,114 @@
+// Trilinear sampling of a VoxLink file. A sample at index-space point p blends the 8 voxels
+// around q = p - 1/2 (voxel centres at integers). Samples are grouped by dual bricks (bricks
+// shifted by half a voxel): dual brick D covers q in [D n, D n + n) and reads voxels of bricks
+// D and D + 1 per axis, so it is skipped when those 8 bricks are all empty. Corners are looked
+// up in pairs along the predominant axis, so one row fetch serves both voxels of a pair.
+// Mirrors ReferenceRenderer::traceTrilinear.
+
+bool dualBrickActive(ivec3 d) {
+  for (int i = 0; i < 8; ++i) {
+    ivec3 b = d + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    if (insideGrid(b, uBrickGrid) && brickOccupied(brickId(b))) return true;
+  }
+  return false;
+}
+
+// The corner terms of a stored voxel (nothing for -1).
+void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
+  colorAlpha = vec4(0.0);
+  gradient = vec3(0.0);
+  if (voxel < 0) return;
+  classifyCorner(storedBits(uint(voxel)), gradientCode(uint(voxel)), colorAlpha, gradient);
+  gCellVisible = gCellVisible || colorAlpha.a > 0.0;
+}
+
+// The occupied index of the brick last looked up by pairIndices(): a cell's corners mostly share it.
+uint gPairBrick;
+int gPairK;
+
+// Voxel indices (or -1) of corners 2j (depth w) and 2j + 1 (depth w + 1) of a cell whose
+// corner 2j is voxel p. Both sit in one row (list) unless depth w is the brick's last, so one
+// row fetch serves the pair. Indices first, classification after: llvmpipe runs divergent
+// branches masked, so the expensive part is kept out of them.
+void pairIndices(ivec3 p, out int first, out int second) {
+  first = second = -1;
+  ivec3 q = p;
+  q[VXL_W] += 1;
+  bool firstInside = insideGrid(p, uDims), secondInside = insideGrid(q, uDims);
+  if (!firstInside && !secondInside) return;
+  ivec3 base = firstInside ? p : q;
+  ivec3 brick = base / VXL_N;
+  uint id = brickId(brick);
+  if (id != gPairBrick) {
+    gPairBrick = id;
+    gPairK = occupiedIndex(id);
+  }
+  ivec3 local = base - brick * VXL_N;
+  uint depth = uint(local[VXL_W]);
+  bool split = firstInside && secondInside && depth == uint(VXL_N - 1);
+  if (gPairK >= 0) {
+    Row row = fetchRow(uint(gPairK), rowOfLocal(local));
+    int atDepth = voxelInRow(row, depth);
+    if (firstInside) {
+      first = atDepth;
+      if (secondInside && !split) second = voxelInRow(row, depth + 1u);
+    } else {
+      second = atDepth;
+    }
+  }
+  // The second voxel of a pair split by a brick face lives in the next brick's row.
+  if (split) second = findVoxel(q);
+}
+
+void loadCorners(ivec3 cell) {
+  gCellVisible = false;
+  gPairBrick = 0xFFFFFFFFu;
+  int v0, v1, v2, v3, v4, v5, v6, v7;
+  pairIndices(cell + cornerOffset(0), v0, v1);
+  pairIndices(cell + cornerOffset(2), v2, v3);
+  pairIndices(cell + cornerOffset(4), v4, v5);
+  pairIndices(cell + cornerOffset(6), v6, v7);
+  storedCorner(v0, gA0, gL0);
+  storedCorner(v1, gA1, gL1);
+  storedCorner(v2, gA2, gL2);
+  storedCorner(v3, gA3, gL3);
+  storedCorner(v4, gA4, gL4);
+  storedCorner(v5, gA5, gL5);
+  storedCorner(v6, gA6, gL6);
+  storedCorner(v7, gA7, gL7);
+}
+
+void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
+                    inout float transmittance) {
+  ivec3 dualGrid = (uDims - 1) / VXL_N + 2;  // dual bricks -1 .. floor((dims - 1) / n), shifted by 1
+  Dda bricks = ddaInit((o - 0.5) / float(VXL_N) + 1.0, d / float(VXL_N), t0, ivec3(0), dualGrid - 1);
+  float t = t0;
+  int next = 0;  // first sample not taken yet
+  ivec3 cached = ivec3(-2147483647);
+  int limit = dualGrid.x + dualGrid.y + dualGrid.z + 3;
+  for (int i = 0; i < limit && t < t1; ++i) {
+    int axis = minAxis(bricks.tMax);
+    float tb = min(max(bricks.tMax[axis], t), t1);
+    if (tb > t && dualBrickActive(bricks.cell - 1)) {
+      int first = max(next, firstSampleNear(t, t0));
+      for (int k = first; k < first + 65536; ++k) {
+        float ts = t0 + (float(k) + 0.5) * uStep;
+        if (ts >= tb) break;
+        next = k + 1;
+        vec3 q = o + ts * d - 0.5;
+        vec3 fl = floor(q);
+        ivec3 cell = ivec3(fl);
+        if (cell != cached) {
+          cached = cell;
+          loadCorners(cell);
+        }
+        if (!gCellVisible) continue;
+        compositeSample(q, q - fl, toEye, color, transmittance);
+        if (transmittance <= uStopTransmittance) return;
+      }
+    }
+    t = tb;
+    ddaAdvance(bricks, axis);
+    if (bricks.cell[axis] < 0 || bricks.cell[axis] >= dualGrid[axis]) break;
+  }
+}

@@ -1,0 +1,20 @@
+// One headless EGL context per test binary, made on first use. GL tests fail (not skip) when
+// none can be made: CI renders on llvmpipe, so a missing context is a broken setup.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include "viewer/gl/gl_context.h"
+
+namespace voxlink::viewer::testing {
+
+// nullptr (and a test failure) when EGL gives no GL 4.5 context.
+GlContext* glContext();
+
+}  // namespace voxlink::viewer::testing
+
+#define VOXLINK_REQUIRE_GL()                                                   \
+  do {                                                                         \
+    if (::voxlink::viewer::testing::glContext() == nullptr)                    \
+      FAIL() << "no headless OpenGL 4.5 context (EGL surfaceless)";            \
+  } while (0)

@@ -1,0 +1,124 @@
+#include "viewer/core/image.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+namespace voxlink::viewer {
+namespace {
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool finitePixel(const float* p) {
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]) && std::isfinite(p[3]);
+}
+
+}  // namespace
+
+double srgbEncode(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+}
+
+double srgbDecode(double x) {
+  return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
+}
+
+Result<ImageError> compareImages(const Image& a, const Image& b, double threshold) {
+  if (a.width != b.width || a.height != b.height)
+    return makeError(ErrorCode::kSizeMismatch, "compareImages: sizes differ: ", a.width, "x",
+                     a.height, " vs ", b.width, "x", b.height);
+  ImageError e;
+  double sum = 0;
+  const size_t pixels = size_t{a.width} * a.height;
+  for (size_t i = 0; i < pixels; ++i) {
+    const float* pa = &a.rgba[i * 4];
+    const float* pb = &b.rgba[i * 4];
+    if (!finitePixel(pa) || !finitePixel(pb)) {
+      ++e.nonFinite;
+      continue;
+    }
+    double worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double d = std::clamp<double>(pa[c], 0, 1) - std::clamp<double>(pb[c], 0, 1);
+      sum += d * d;
+      worst = std::max(worst, std::abs(d));
+    }
+    e.maxError = std::max(e.maxError, worst);
+    if (worst > threshold) ++e.pixelsOver;
+  }
+  const double mse = pixels ? sum / (3.0 * pixels) : 0.0;
+  e.rmse = std::sqrt(mse);
+  e.psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
+  return e;
+}
+
+Status writeImage(const Image& image, const std::string& path) {
+  if (image.width == 0 || image.height == 0)
+    return makeError(ErrorCode::kInvalidArgument, path, ": cannot write an empty image");
+  const bool exr = lowerExtension(path) == ".exr";
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out)
+    return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (",
+                     OIIO::geterror(), ")");
+  // EXR keeps the coverage in alpha; 8-bit files are opaque (the background is composited).
+  const int channels = exr ? 4 : 3;
+  OIIO::ImageSpec spec(int(image.width), int(image.height), channels,
+                       exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", exr ? "Linear" : "sRGB");
+  if (!out->open(path, spec))
+    return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
+  bool ok = false;
+  if (exr) {
+    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
+  } else {
+    std::vector<uint8_t> bytes(size_t{image.width} * image.height * 3);
+    for (size_t i = 0; i < bytes.size(); ++i) {
+      const double v = srgbEncode(image.rgba[i / 3 * 4 + i % 3]);
+      bytes[i] = static_cast<uint8_t>(std::lround(std::isfinite(v) ? v * 255.0 : 0.0));
+    }
+    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  }
+  if (!ok) return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
+  if (!out->close()) return makeError(ErrorCode::kIo, path, ": close failed: ", out->geterror());
+  return Status::ok();
+}
+
+Result<Image> readImage(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return makeError(ErrorCode::kIo, path, ": cannot read image: ", OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  const int channels = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || channels < 1 || spec.depth > 1)
+    return makeError(ErrorCode::kUnsupported, path, ": not a 2D image");
+  std::vector<float> data(size_t(spec.width) * spec.height * channels);
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
+    return makeError(ErrorCode::kIo, path, ": read failed: ", in->geterror());
+  const bool linear = spec.format == OIIO::TypeDesc::HALF || spec.format == OIIO::TypeDesc::FLOAT;
+  Image img(uint32_t(spec.width), uint32_t(spec.height));
+  for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
+    for (int c = 0; c < 4; ++c) {
+      float v = c < channels ? data[i * channels + c] : (c == 3 ? 1.0f : data[i * channels]);
+      if (c < 3 && !linear) v = static_cast<float>(srgbDecode(v));
+      img.rgba[i * 4 + c] = v;
+    }
+  }
+  return img;
+}
+
+Image differenceImage(const Image& a, const Image& b, double gain) {
+  Image d(a.width, a.height);
+  if (a.width != b.width || a.height != b.height) return d;
+  for (size_t i = 0; i < a.rgba.size(); ++i)
+    d.rgba[i] = (i % 4 == 3) ? 1.0f : static_cast<float>(std::min(1.0, gain * std::abs(a.rgba[i] - b.rgba[i])));
+  return d;
+}
+
+}  // namespace voxlink::viewer

@@ -1,0 +1,27 @@
+// The dense source a VoxLink file was converted from, as its META section records it
+// ({"source": {"path", "format", "type", "dims", "open_options"}}): what the reference renderer,
+// the dense peer renderer and re-classification read.
+#pragma once
+
+#include <string>
+
+#include "convert/volume_source.h"
+#include "format/voxlink_file.h"
+#include "viewer/core/dense_volume.h"
+
+namespace voxlink::viewer {
+
+struct RecordedSource {
+  std::string path;  // resolved: as recorded, or relative to the .vxl file's directory
+  convert::OpenOptions options;
+};
+
+// Fails when META names no source or the file it names cannot be found.
+Result<RecordedSource> recordedSource(const format::VoxLinkFile& file);
+
+// Opens `overridePath` (with `options`) when given, else the recorded source, and checks that its
+// dims match the file's.
+Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file, const std::string& overridePath,
+                                     const convert::OpenOptions& options);
+
+}  // namespace voxlink::viewer

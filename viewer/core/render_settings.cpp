@@ -1,0 +1,51 @@
+#include "viewer/core/render_settings.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace voxlink::viewer {
+
+std::string_view samplingName(Sampling s) {
+  return s == Sampling::kVoxel ? "voxel" : "trilinear";
+}
+
+std::optional<Sampling> parseSampling(std::string_view name) {
+  if (name == "voxel" || name == "nearest") return Sampling::kVoxel;
+  if (name == "trilinear") return Sampling::kTrilinear;
+  return std::nullopt;
+}
+
+Status checkSettings(const RenderSettings& s, const std::string& where) {
+  constexpr uint32_t kMaxSide = 16384;
+  if (s.width == 0 || s.height == 0 || s.width > kMaxSide || s.height > kMaxSide)
+    return makeError(ErrorCode::kInvalidArgument, where, ": image size ", s.width, "x", s.height,
+                     " must be between 1x1 and ", kMaxSide, "x", kMaxSide);
+  if (!(s.stepVoxels >= 1.0 / 64 && s.stepVoxels <= 8))
+    return makeError(ErrorCode::kInvalidArgument, where, ": step ", s.stepVoxels,
+                     " voxels must lie in [1/64, 8]");
+  if (!(s.terminationAlpha > 0 && s.terminationAlpha <= 1))
+    return makeError(ErrorCode::kInvalidArgument, where, ": termination alpha ",
+                     s.terminationAlpha, " must lie in (0, 1]");
+  if (!(s.shadowTerminationTransmittance >= 0 && s.shadowTerminationTransmittance < 1))
+    return makeError(ErrorCode::kInvalidArgument, where, ": shadow termination ",
+                     s.shadowTerminationTransmittance, " must lie in [0, 1)");
+  const auto& l = s.shading.lightDirection;
+  if (!std::isfinite(l[0] + l[1] + l[2]) || l[0] * l[0] + l[1] * l[1] + l[2] * l[2] == 0)
+    return makeError(ErrorCode::kInvalidArgument, where, ": light direction must be finite and non-zero");
+  for (double c : s.background)
+    if (!(c >= 0 && c <= 1))
+      return makeError(ErrorCode::kInvalidArgument, where, ": background components must lie in [0, 1]");
+  return Status::ok();
+}
+
+Result<std::array<uint32_t, 2>> parseImageSize(const std::string& text) {
+  unsigned w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+      w == 0 || h == 0)
+    return makeError(ErrorCode::kInvalidArgument, "--size: expected WxH such as 512x512, got '",
+                     text, "'");
+  return std::array<uint32_t, 2>{w, h};
+}
+
+}  // namespace voxlink::viewer

@@ -1,0 +1,26 @@
+// The RGBA32F texture a renderer writes (one texel per pixel, row 0 = top row of the image).
+#pragma once
+
+#include <cstdint>
+
+#include "viewer/core/image.h"
+#include "viewer/gl/gl_objects.h"
+
+namespace voxlink::viewer {
+
+class RenderTarget {
+ public:
+  // Reallocates when the size changes.
+  void resize(uint32_t width, uint32_t height);
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
+  GLuint texture() const { return texture_.id(); }
+  // Reads the texture back (waits for the GPU).
+  Image read() const;
+
+ private:
+  GlTexture texture_;
+  uint32_t width_ = 0, height_ = 0;
+};
+
+}  // namespace voxlink::viewer

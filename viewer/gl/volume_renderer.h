@@ -1,0 +1,79 @@
+// What the GL ray casters share: the frame's uniforms (camera, settings, volume geometry), the
+// transfer-function and gradient-decoding tables, a cache of compiled program variants and the
+// dispatch. VoxLinkRenderer (the sparse file) and DenseRenderer (3D textures) fill in the data.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "format/transfer_function.h"
+#include "format/voxlink_file.h"
+#include "viewer/core/camera.h"
+#include "viewer/core/render_settings.h"
+#include "viewer/core/tf_table.h"
+#include "viewer/gl/gl_objects.h"
+#include "viewer/gl/render_target.h"
+#include "viewer/gl/shader_program.h"
+
+namespace voxlink::viewer {
+
+// The geometry and value mapping both renderers need, in the file's terms.
+struct VolumeGeometry {
+  std::array<uint32_t, 3> dims{0, 0, 0};
+  std::array<double, 3> spacing{1, 1, 1};
+  std::array<double, 3> origin{0, 0, 0};
+  StoredType valueType = StoredType::kU8;
+  double valueScale = 1.0;
+  double valueOffset = 0.0;
+
+  static VolumeGeometry of(const format::FileHeader& header);
+  Box worldBox() const;
+  double minSpacing() const;
+};
+
+// Storage-buffer bindings of the tables, above any the file's sections take.
+inline constexpr GLuint kTfBinding = 62;
+inline constexpr GLuint kGradientTableBinding = 63;
+
+class VolumeRenderer {
+ public:
+  virtual ~VolumeRenderer() = default;
+
+  void setTransferFunction(const format::TransferFunction& tf);
+  const format::TransferFunction& transferFunction() const { return tf_; }
+  // Renders into `target` (resized to the settings' size). Returns once the work is queued;
+  // call glFinish() or target.read() to wait for it.
+  Status render(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
+  // Compiles the program variant for these settings ahead of the first frame.
+  Status prepare(const RenderSettings& settings);
+  // GPU memory of the volume data, the tables and nothing else.
+  uint64_t gpuBytes() const { return dataBytes() + tfBytes_ + gradientTable_.bytes; }
+  const VolumeGeometry& geometry() const { return geometry_; }
+  virtual std::string name() const = 0;
+
+ protected:
+  explicit VolumeRenderer(const VolumeGeometry& geometry);
+  virtual std::string mainShader() const = 0;
+  virtual std::vector<ShaderDefine> dataDefines() const = 0;
+  virtual std::map<std::string, std::string> generatedFiles() const { return {}; }
+  virtual void bindData(const ComputeProgram& program) const = 0;
+  virtual uint64_t dataBytes() const = 0;
+
+ private:
+  Result<const ComputeProgram*> program(const RenderSettings& settings);
+  void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
+                        uint32_t width, uint32_t height) const;
+
+  VolumeGeometry geometry_;
+  format::TransferFunction tf_;
+  TfTable table_;
+  GlStorageBuffer tfBuffer_;
+  uint64_t tfBytes_ = 0;
+  GlStorageBuffer gradientTable_;
+  std::map<std::tuple<int, bool>, ComputeProgram> programs_;
+};
+
+}  // namespace voxlink::viewer

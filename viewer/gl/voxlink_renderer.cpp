@@ -1,0 +1,34 @@
+#include "viewer/gl/voxlink_renderer.h"
+
+namespace voxlink::viewer {
+
+std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
+  return {{"VXL_N", std::to_string(h.brickSize)},
+          {"VXL_AXIS", std::to_string(h.predominantAxis)},
+          {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))}};
+}
+
+Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(const format::VoxLinkFile& file,
+                                                                 const SectionBufferOptions& options) {
+  VOXLINK_ASSIGN_OR_RETURN(SectionBuffers sections, SectionBuffers::upload(file, options));
+  return std::unique_ptr<VoxLinkRenderer>(new VoxLinkRenderer(file, std::move(sections)));
+}
+
+VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections)
+    : VolumeRenderer(VolumeGeometry::of(file.header())),
+      sections_(std::move(sections)),
+      header_(file.header()) {}
+
+std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const { return voxlinkDefines(header_); }
+
+std::map<std::string, std::string> VoxLinkRenderer::generatedFiles() const {
+  return {{"voxlink_sections.glsl", sections_.glsl()}};
+}
+
+void VoxLinkRenderer::bindData(const ComputeProgram& program) const {
+  sections_.bind();
+  glUniform3i(program.uniform("uBrickGrid"), GLint(header_.brickGrid[0]),
+              GLint(header_.brickGrid[1]), GLint(header_.brickGrid[2]));
+}
+
+}  // namespace voxlink::viewer
