@@ -7,6 +7,7 @@
 #include "cli/progress_bar.h"
 #include "cli/source_options.h"
 #include "convert/converter.h"
+#include "convert/moments.h"
 #include "format/transfer_function.h"
 
 namespace voxlink::cli {
@@ -19,6 +20,7 @@ struct ConvertArgs {
   std::string tfPath;
   std::vector<double> keepOutside;
   std::optional<double> mean, sigma;
+  bool standardize = false;
   bool keepAll = false;
   uint32_t brick = 8;
   std::string axis = "z";
@@ -57,10 +59,23 @@ std::string humanCount(uint64_t v) {
 int runConvert(const ConvertArgs& a) {
   auto open = toOpenOptions(a.source);
   if (!open) return reportError(open.error());
-  auto classification = classificationFrom(a);
-  if (!classification) return reportError(classification.error());
   auto source = convert::openVolume(a.input, *open);
   if (!source) return reportError(source.error());
+  ConvertArgs args = a;
+  if (a.standardize) {
+    if (a.keepOutside.empty() || a.mean || a.sigma)
+      return reportError(makeError(ErrorCode::kInvalidArgument, "--standardize goes with --keep-outside and without --mean/--sigma"));
+    auto moments = convert::measureMoments(**source, a.slab);
+    if (!moments) return reportError(moments.error());
+    if (!(moments->sigma > 0))
+      return reportError(makeError(ErrorCode::kInvalidArgument, a.input, ": data: every value is ", moments->mean, "; sigma is 0, nothing to standardize"));
+    std::printf("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n", a.input.c_str(),
+                moments->mean, moments->sigma, (unsigned long long)moments->count, moments->min, moments->max);
+    args.mean = moments->mean;
+    args.sigma = moments->sigma;
+  }
+  auto classification = classificationFrom(args);
+  if (!classification) return reportError(classification.error());
 
   convert::ConvertOptions options;
   options.brickSize = a.brick;
@@ -109,6 +124,7 @@ CommandRunner addConvertCommand(CLI::App& app) {
   keep->add_flag("--keep-all", a->keepAll, "Keep every voxel");
   cmd->add_option("--mean", a->mean, "With --keep-outside: standardize z = (v - mean) / sigma first");
   cmd->add_option("--sigma", a->sigma, "With --keep-outside: see --mean");
+  cmd->add_flag("--standardize", a->standardize, "With --keep-outside: measure mean and sigma of the volume first");
   cmd->add_option("--brick", a->brick, "Brick edge in voxels")->check(CLI::IsMember({4, 8, 16, 32}))->capture_default_str();
   cmd->add_option("--axis", a->axis, "Predominant axis: rows of voxels run along it")->check(CLI::IsMember({"x", "y", "z"}))->capture_default_str();
   cmd->add_option("--value-type", a->valueType, "Stored value type (default: smallest lossless)")->check(CLI::IsMember({"u8", "u16", "f16", "f32"}));
