@@ -5,6 +5,7 @@
 // The output is byte-identical for any slab size and thread count.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -24,9 +25,11 @@ struct ConvertOptions {
   unsigned threads = 0;        // 0: all hardware threads
   uint32_t slabSlices = 64;    // z slices per slab; rounded up to a multiple of brickSize
   // Stored value type; empty chooses the smallest lossless type for the kept range (u8 stays u8).
-  std::optional<format::StoredType> storedType;
+  std::optional<StoredType> storedType;
   double errorBound = 0.0;     // max abs error allowed when a lossy stored type is asked for
-  std::string commandLine;     // recorded in META
+  // How the source was opened, recorded in META so the file can be re-classified later.
+  OpenOptions sourceOptions;
+  const std::atomic<bool>* cancel = nullptr;  // set to stop early (kCancelled)
   std::function<void(double fraction, const char* stage)> progress;  // may be empty
   // Sampling rate of the gradient-error measurement (1 in N kept voxels is decoded and compared).
   uint32_t errorSampleStride = 64;
@@ -41,7 +44,7 @@ struct ConvertSummary {
   double seconds = 0;                 // wall time, both passes
   double countSeconds = 0;            // pass 1
   double writeSeconds = 0;            // pass 2 + commit
-  format::StoredType storedType = format::StoredType::kU8;
+  StoredType storedType = StoredType::kU8;
   double valueMaxAbsError = 0;        // introduced by the stored type, source units
   double valueMaxRelError = 0;
   double gradientMeanErrorDeg = 0;    // polar16 quantization, measured on sampled voxels

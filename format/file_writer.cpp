@@ -79,9 +79,11 @@ const SectionEntry& SectionLayout::entry(SectionId id) const {
 }
 
 SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
+  // META goes last so a streaming writer can place every data section before it knows the
+  // metadata (which records measured errors).
   SectionLayout layout;
   uint64_t offset = alignUp(sizeof(FileHeader), kSectionAlignment);
-  for (SectionId id : kRequiredSections) {
+  auto place = [&](SectionId id) {
     SectionEntry e{};
     e.id = static_cast<uint32_t>(id);
     e.elementBytes = expectedElementBytes(header, id);
@@ -89,20 +91,22 @@ SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
     e.bytes = expectedSectionBytes(header, id, metaBytes);
     layout.entries.push_back(e);
     offset = alignUp(offset + e.bytes, kSectionAlignment);
-  }
+  };
+  for (SectionId id : kRequiredSections)
+    if (id != SectionId::kMeta) place(id);
+  place(SectionId::kMeta);
   layout.tableOffset = offset;
   layout.fileBytes = offset + layout.entries.size() * sizeof(SectionEntry);
   return layout;
 }
 
-Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header,
-                                      const std::string& metaJson) {
+Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header) {
   if (header.voxelCount > kMaxVoxels)
     return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount, " voxels exceed the format's limit of ", kMaxVoxels, "; classify more strictly or split the volume");
   FileWriter w;
   w.path_ = path;
   w.header_ = header;
-  w.layout_ = planSections(header, metaJson.size());
+  w.layout_ = planSections(header, 0);
   // The temporary file sits beside the destination so the final rename stays on one file system.
   std::string pattern = path + ".tmp-XXXXXX";
   w.fd_ = mkstemp(pattern.data());
@@ -110,9 +114,9 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
     return makeError(ErrorCode::kIo, path, ": cannot create output file: ", std::strerror(errno));
   w.tempPath_ = pattern;
   fchmod(w.fd_, 0644);
-  if (ftruncate(w.fd_, static_cast<off_t>(w.layout_.fileBytes)) != 0)
-    return makeError(ErrorCode::kIo, path, ": cannot size output to ", w.layout_.fileBytes, " bytes: ", std::strerror(errno));
-  VOXLINK_RETURN_IF_ERROR(w.write(SectionId::kMeta, 0, metaJson.data(), metaJson.size()));
+  const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
+  if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
+    return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd, " bytes: ", std::strerror(errno));
   return w;
 }
 
@@ -156,8 +160,12 @@ Status FileWriter::write(SectionId id, uint64_t offset, const void* data, size_t
   return writeRaw(e.offset + offset, data, bytes);
 }
 
-Status FileWriter::commit() {
+Status FileWriter::commit(const std::string& metaJson) {
   if (fd_ < 0) return makeError(ErrorCode::kInvalidArgument, path_, ": writer already finished");
+  layout_ = planSections(header_, metaJson.size());  // data offsets do not depend on META
+  if (ftruncate(fd_, static_cast<off_t>(layout_.fileBytes)) != 0)
+    return makeError(ErrorCode::kIo, path_, ": cannot size output to ", layout_.fileBytes, " bytes: ", std::strerror(errno));
+  VOXLINK_RETURN_IF_ERROR(write(SectionId::kMeta, 0, metaJson.data(), metaJson.size()));
   {
     // Checksum what actually reached the file, not what we meant to write.
     VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(tempPath_));
@@ -197,7 +205,7 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
   const size_t valueBytes = v.voxelCount() * storedSize(v.description.valueType);
   if (v.values.size() != valueBytes)
     return makeError(ErrorCode::kInvalidArgument, path, ": VALU has ", v.values.size(), " bytes, ", v.voxelCount(), " voxels need ", valueBytes);
-  VOXLINK_ASSIGN_OR_RETURN(FileWriter writer, FileWriter::create(path, header, v.metaJson));
+  VOXLINK_ASSIGN_OR_RETURN(FileWriter writer, FileWriter::create(path, header));
   auto put = [&](SectionId id, const auto& vec) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
     return writer.write(id, 0, vec.data(), vec.size() * sizeof(T));
@@ -209,7 +217,7 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
   VOXLINK_RETURN_IF_ERROR(put(SectionId::kRowMask, v.rowMasks));
   VOXLINK_RETURN_IF_ERROR(put(SectionId::kValues, v.values));
   VOXLINK_RETURN_IF_ERROR(put(SectionId::kGradients, v.gradients));
-  return writer.commit();
+  return writer.commit(v.metaJson);
 }
 
 BrickedVolumeBuilder::BrickedVolumeBuilder(VolumeDescription description)

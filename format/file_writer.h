@@ -44,14 +44,15 @@ struct SectionLayout {
   const SectionEntry& entry(SectionId id) const;
 };
 
-// Places the required sections one after another, each on a kSectionAlignment boundary.
+// Places the required sections one after another, each on a kSectionAlignment boundary, META
+// last.
 SectionLayout planSections(const FileHeader& header, uint64_t metaBytes);
 
 class FileWriter {
  public:
-  // `header` must come from makeHeader(); metaJson is stored in the META section.
-  static Result<FileWriter> create(const std::string& path, const FileHeader& header,
-                                   const std::string& metaJson);
+  // `header` must come from makeHeader(). Data sections may be written right away; the META
+  // section (placed last) is given to commit().
+  static Result<FileWriter> create(const std::string& path, const FileHeader& header);
   FileWriter(FileWriter&& other) noexcept;
   FileWriter& operator=(FileWriter&&) = delete;
   FileWriter(const FileWriter&) = delete;
@@ -63,8 +64,9 @@ class FileWriter {
 
   // Writes bytes at `offset` inside a section; thread-safe for disjoint ranges.
   Status write(SectionId id, uint64_t offset, const void* data, size_t bytes);
-  // Checksums every section as written, writes the table and the header, renames into place.
-  Status commit();
+  // Writes META, checksums every section as written, writes the table and the header, and
+  // renames the file into place.
+  Status commit(const std::string& metaJson);
 
  private:
   FileWriter() = default;

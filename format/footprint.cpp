@@ -31,6 +31,11 @@ FootprintReport computeFootprint(const VoxLinkFile& f) {
   r.ratioVsDense = double(r.bytesTotal) / double(r.denseSourceBytes);
   r.valueType = std::string(storedName(f.valueType()));
   r.sourceType = std::string(scalarName(f.sourceType()));
+  r.valueScale = h.valueScale;
+  r.valueOffset = h.valueOffset;
+  r.valueErrorBound = h.valueErrorBound;
+  r.valueMaxAbsError = h.valueMaxAbsError;
+  r.valueMaxRelError = h.valueMaxRelError;
   return r;
 }
 
@@ -47,7 +52,14 @@ std::string footprintTable(const FootprintReport& r) {
   std::snprintf(res, sizeof(res), "%ux%ux%u [%u]", r.dims[0], r.dims[1], r.dims[2], r.brickSize);
   add("  %-22s %-16llu %-12.3f %-12.2f %-11.2f %-10.3f\n", res, (unsigned long long)r.voxels,
       100.0 * r.occupancy, 100.0 * r.bricksNonemptyFraction, r.bytesTotal / 1e6, r.bytesPerVoxel);
-  add("  values %s (source %s)\n", r.valueType.c_str(), r.sourceType.c_str());
+  if (r.valueErrorBound == 0 && r.valueMaxAbsError == 0) {
+    add("  values %s (source %s), lossless: source = stored * %g + %g\n", r.valueType.c_str(), r.sourceType.c_str(),
+        r.valueScale, r.valueOffset);
+  } else {
+    add("  values %s (source %s): source = stored * %g + %g; error bound %g %s, measured max abs %g, max rel %g\n",
+        r.valueType.c_str(), r.sourceType.c_str(), r.valueScale, r.valueOffset, r.valueErrorBound,
+        r.valueMaxAbsError <= r.valueErrorBound ? "met" : "NOT met", r.valueMaxAbsError, r.valueMaxRelError);
+  }
   add("  %-22s %14s %10s\n", "section", "bytes", "B/voxel");
   for (const SectionFootprint& s : r.sections)
     add("  %-22s %14llu %10.3f\n", s.name.c_str(), (unsigned long long)s.bytes, s.bytesPerVoxel);
@@ -78,6 +90,11 @@ std::string footprintJson(const FootprintReport& r) {
   j["bytes_per_voxel"] = r.bytesPerVoxel;
   j["value_type"] = r.valueType;
   j["source_type"] = r.sourceType;
+  j["value_mapping"] = {{"scale", r.valueScale}, {"offset", r.valueOffset}};
+  j["value_error"] = {{"bound", r.valueErrorBound},
+                      {"bound_met", r.valueMaxAbsError <= r.valueErrorBound},
+                      {"max_abs", r.valueMaxAbsError},
+                      {"max_rel", r.valueMaxRelError}};
   nlohmann::ordered_json sections = nlohmann::ordered_json::object();
   for (const SectionFootprint& s : r.sections) sections[s.name] = s.bytes;
   j["sections"] = sections;

@@ -42,6 +42,10 @@ struct FootprintReport {
   double ratioVsDense = 0;           // bytesTotal / denseSourceBytes
   std::string valueType;
   std::string sourceType;
+  double valueScale = 1, valueOffset = 0;
+  double valueErrorBound = 0;    // what the stored type guarantees (0: lossless)
+  double valueMaxAbsError = 0;   // measured when the file was written
+  double valueMaxRelError = 0;
   std::optional<PeerFootprint> peer;
 };
 

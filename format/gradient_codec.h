@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace voxlink::format {
@@ -24,6 +25,12 @@ inline constexpr int kAzimuthSteps = 256;  // phi steps around the axis
 // components give kZeroGradient.
 uint16_t encodeGradient(float x, float y, float z);
 uint16_t encodeGradient(double x, double y, double z);
+
+// Encodes `count` directions at once: what the converter uses. The arithmetic is in float and
+// written so the compiler vectorizes it (AVX2 where the CPU has it, SSE2 otherwise); the result
+// equals encodeGradient() except for directions within float rounding of a cell boundary,
+// where either neighbouring cell may be chosen (deterministically: same input, same code).
+void encodeGradients(const float* x, const float* y, const float* z, uint16_t* codes, size_t count);
 
 // Unit vector of a code; (0, 0, 0) for kZeroGradient and the other reserved codes (t = 255).
 std::array<float, 3> decodeGradient(uint16_t code);

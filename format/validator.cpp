@@ -3,6 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "format/brick_rows.h"
@@ -132,8 +133,8 @@ Result<ValidationReport> validateFile(const VoxLinkFile& f) {
   VOXLINK_RETURN_IF_ERROR(checkBrickLevel(f));
   VOXLINK_RETURN_IF_ERROR(checkBricks(f, report));
   VOXLINK_RETURN_IF_ERROR(checkVoxels(f, report));
-  const std::string meta = f.metaJson();
-  if (meta.empty() || meta.front() != '{')
+  const nlohmann::json meta = nlohmann::json::parse(f.metaJson(), nullptr, /*allow_exceptions=*/false);
+  if (!meta.is_object())
     return makeError(ErrorCode::kCorrupt, f.path(), ": section META: not a JSON object");
   return report;
 }

@@ -20,10 +20,10 @@ std::string lowerExtension(const std::string& path) {
 const std::vector<ReaderEntry>& readerRegistry() {
   static const std::vector<ReaderEntry> registry = [] {
     std::vector<ReaderEntry> r;
-    auto hasExt = [](std::initializer_list<const char*> exts) {
-      return [exts](const std::string& path) {
+    auto hasExt = [](std::vector<std::string> exts) {
+      return [exts = std::move(exts)](const std::string& path) {
         const std::string ext = lowerExtension(path);
-        return std::any_of(exts.begin(), exts.end(), [&](const char* e) { return ext == e; });
+        return std::find(exts.begin(), exts.end(), ext) != exts.end();
       };
     };
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});

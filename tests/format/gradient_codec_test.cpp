@@ -108,3 +108,49 @@ TEST(GradientCodec, CanonicalForm) {
 
 }  // namespace
 }  // namespace voxlink::format
+
+namespace voxlink::format {
+namespace {
+
+TEST(GradientCodec, BatchEncoderAgreesWithScalarEncoder) {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_int_distribution<int> small(-255, 255);
+  const size_t count = 300000;
+  std::vector<float> x(count), y(count), z(count);
+  for (size_t i = 0; i < count; ++i) {
+    if (i % 2) {  // integer central differences, as from 8-bit CT
+      x[i] = float(small(rng)), y[i] = float(small(rng)), z[i] = float(small(rng));
+    } else {
+      x[i] = float(normal(rng)), y[i] = float(normal(rng)), z[i] = float(normal(rng));
+    }
+  }
+  // Specials: zero, non-finite, axes, huge and tiny.
+  const float inf = std::numeric_limits<float>::infinity();
+  const float specials[][3] = {{0, 0, 0}, {inf, 0, 0}, {0, std::nanf(""), 1}, {1, 0, 0}, {0, -1, 0},
+                               {0, 0, 1}, {0, 0, -1}, {3e38f, 3e38f, -3e38f}, {1e-44f, 0, 1e-44f}};
+  for (size_t k = 0; k < std::size(specials); ++k) {
+    x[k] = specials[k][0];
+    y[k] = specials[k][1];
+    z[k] = specials[k][2];
+  }
+  std::vector<uint16_t> codes(count);
+  encodeGradients(x.data(), y.data(), z.data(), codes.data(), count);
+  size_t differ = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const uint16_t scalar = encodeGradient(double(x[i]), double(y[i]), double(z[i]));
+    if (codes[i] == scalar) continue;
+    ++differ;
+    // A near-tie may go to either neighbouring cell; both are within the codec's bound.
+    const std::array<double, 3> v{x[i], y[i], z[i]};
+    EXPECT_NEAR(angleDegrees(v, decodeGradient(codes[i])), angleDegrees(v, decodeGradient(scalar)), 0.01) << i;
+    EXPECT_LE(angleDegrees(v, decodeGradient(codes[i])), 0.8) << i;
+  }
+  EXPECT_EQ(codes[0], kZeroGradient);
+  EXPECT_EQ(codes[1], kZeroGradient);
+  EXPECT_EQ(codes[2], kZeroGradient);
+  EXPECT_LT(differ, count / 1000) << differ << " of " << count << " differ";
+}
+
+}  // namespace
+}  // namespace voxlink::format

@@ -1,0 +1,139 @@
+// voxlink convert INPUT -o OUT.vxl --threshold 60: pre-classify a dense volume and write a
+// VoxLink file, with a progress bar and a one-line summary of size, speed and error.
+#include <cstdio>
+#include <thread>
+
+#include "cli/command.h"
+#include "cli/progress_bar.h"
+#include "cli/source_options.h"
+#include "convert/converter.h"
+#include "convert/moments.h"
+#include "format/transfer_function.h"
+
+namespace voxlink::cli {
+namespace {
+
+struct ConvertArgs {
+  std::string input, output;
+  SourceArgs source;
+  std::vector<std::string> thresholds;
+  std::string tfPath;
+  std::vector<double> keepOutside;
+  std::optional<double> mean, sigma;
+  bool standardize = false;
+  bool keepAll = false;
+  uint32_t brick = 8;
+  std::string axis = "z";
+  std::string valueType;
+  double errorBound = 0;
+  unsigned threads = 0;
+  uint32_t slab = 64;
+  bool quiet = false, progress = false;
+};
+
+Result<convert::Classification> classificationFrom(const ConvertArgs& a) {
+  const int given = !a.thresholds.empty() + !a.tfPath.empty() + !a.keepOutside.empty() + a.keepAll;
+  if (given == 0)
+    return makeError(ErrorCode::kInvalidArgument, a.input, ": say what to keep: --threshold LO[,HI], --tf TF.json, --keep-outside LO,HI or --keep-all");
+  if (given > 1)
+    return makeError(ErrorCode::kInvalidArgument, "give only one of --threshold, --tf, --keep-outside, --keep-all");
+  if (!a.thresholds.empty()) return convert::thresholdClassification(a.thresholds);
+  if (!a.tfPath.empty()) {
+    VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf, format::loadTransferFunction(a.tfPath));
+    return convert::tfClassification(tf);
+  }
+  if (!a.keepOutside.empty()) return convert::keepOutsideClassification(a.keepOutside[0], a.keepOutside[1], a.mean, a.sigma);
+  return convert::keepAllClassification();
+}
+
+std::string humanCount(uint64_t v) {
+  const std::string digits = std::to_string(v);
+  std::string out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+int runConvert(const ConvertArgs& a) {
+  auto open = toOpenOptions(a.source);
+  if (!open) return reportError(open.error());
+  auto source = convert::openVolume(a.input, *open);
+  if (!source) return reportError(source.error());
+  ConvertArgs args = a;
+  if (a.standardize) {
+    if (a.keepOutside.empty() || a.mean || a.sigma)
+      return reportError(makeError(ErrorCode::kInvalidArgument, "--standardize goes with --keep-outside and without --mean/--sigma"));
+    auto moments = convert::measureMoments(**source, a.slab);
+    if (!moments) return reportError(moments.error());
+    if (!(moments->sigma > 0))
+      return reportError(makeError(ErrorCode::kInvalidArgument, a.input, ": data: every value is ", moments->mean, "; sigma is 0, nothing to standardize"));
+    std::printf("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n", a.input.c_str(),
+                moments->mean, moments->sigma, (unsigned long long)moments->count, moments->min, moments->max);
+    args.mean = moments->mean;
+    args.sigma = moments->sigma;
+  }
+  auto classification = classificationFrom(args);
+  if (!classification) return reportError(classification.error());
+
+  convert::ConvertOptions options;
+  options.brickSize = a.brick;
+  options.axis = static_cast<format::Axis>(a.axis[0] - 'x');
+  options.classification = *classification;
+  options.threads = a.threads;
+  options.slabSlices = a.slab;
+  options.errorBound = a.errorBound;
+  options.sourceOptions = *open;
+  if (!a.valueType.empty()) options.storedType = parseStoredName(a.valueType);
+  ProgressBar bar(!a.quiet && (a.progress || stderrIsTerminal()));
+  options.progress = [&bar](double f, const char* stage) { bar.update(f, stage); };
+  auto summary = convert::convertVolume(**source, options, a.output);
+  bar.finish();
+  if (!summary) return reportError(summary.error());
+  const convert::ConvertSummary& s = *summary;
+  const convert::VolumeInfo& info = (*source)->info();
+  const double denseBytes = double(info.voxelCount()) * scalarSize(info.type);
+  std::printf(
+      "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx smaller than "
+      "the dense %s source | values %s, max abs error %g | gradients polar16, error mean %.3f max %.3f deg "
+      "(%s sampled) | %.2f s (classify %.2f, write %.2f)\n",
+      a.output.c_str(), humanCount(s.voxels).c_str(), humanCount(s.sourceVoxels).c_str(),
+      100.0 * s.voxels / double(s.sourceVoxels), humanCount(s.occupiedBricks).c_str(),
+      humanCount(s.bricks).c_str(), 100.0 * s.occupiedBricks / double(s.bricks), s.bytes / 1e6,
+      s.voxels ? double(s.bytes) / s.voxels : 0.0, denseBytes / s.bytes,
+      std::string(scalarName(info.type)).c_str(), std::string(storedName(s.storedType)).c_str(),
+      s.valueMaxAbsError, s.gradientMeanErrorDeg, s.gradientMaxErrorDeg,
+      humanCount(s.gradientSamples).c_str(), s.seconds, s.countSeconds, s.writeSeconds);
+  for (const std::string& note : info.notes) std::printf("  note: %s\n", note.c_str());
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner addConvertCommand(CLI::App& app) {
+  auto a = std::make_shared<ConvertArgs>();
+  auto* cmd = app.add_subcommand("convert", "Pre-classify a dense volume and write a VoxLink file");
+  cmd->add_option("input", a->input, "Dense volume: NRRD, MetaImage, NIfTI, DICOM folder, image stack, VDB, raw, ...")->required();
+  cmd->add_option("-o,--output", a->output, "Output VoxLink file (.vxl)")->required();
+  addSourceOptions(*cmd, a->source);
+  auto* keep = cmd->add_option_group("classification", "What to keep (exactly one)");
+  keep->add_option("--threshold", a->thresholds, "Keep values >= LO, or in [LO,HI]; repeat for a union")->allow_extra_args(false);
+  keep->add_option("--tf", a->tfPath, "Keep values the transfer function (JSON) gives opacity > 0")->check(CLI::ExistingFile);
+  keep->add_option("--keep-outside", a->keepOutside, "Keep values outside [LO,HI], e.g. -1.96,1.96")->delimiter(',')->expected(2);
+  keep->add_flag("--keep-all", a->keepAll, "Keep every voxel");
+  cmd->add_option("--mean", a->mean, "With --keep-outside: standardize z = (v - mean) / sigma first");
+  cmd->add_option("--sigma", a->sigma, "With --keep-outside: see --mean");
+  cmd->add_flag("--standardize", a->standardize, "With --keep-outside: measure mean and sigma of the volume first");
+  cmd->add_option("--brick", a->brick, "Brick edge in voxels")->check(CLI::IsMember({4, 8, 16, 32}))->capture_default_str();
+  cmd->add_option("--axis", a->axis, "Predominant axis: rows of voxels run along it")->check(CLI::IsMember({"x", "y", "z"}))->capture_default_str();
+  cmd->add_option("--value-type", a->valueType, "Stored value type (default: smallest lossless)")->check(CLI::IsMember({"u8", "u16", "f16", "f32"}));
+  cmd->add_option("--error-bound", a->errorBound, "Largest absolute value error allowed; picks the smallest type within it");
+  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")->capture_default_str();
+  cmd->add_flag("-q,--quiet", a->quiet, "No progress bar");
+  cmd->add_flag("--progress", a->progress, "Progress bar even when stderr is not a terminal");
+  return [a] { return runConvert(*a); };
+}
+
+}  // namespace voxlink::cli

@@ -1,0 +1,273 @@
+// The per-brick-row work of the converter's two passes, templated on the source element type
+// T and the keep test. A job is one row of bricks (fixed bz, by; all bx), so the split of work
+// does not depend on slab size or thread count, and neither does the output.
+#pragma once
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+#include <vector>
+
+#include "convert/slab_window.h"
+#include "convert/value_mapping.h"
+#include "format/gradient_codec.h"
+#include "format/layout.h"
+
+namespace voxlink::convert {
+
+struct GridShape {
+  uint32_t dims[3];
+  uint32_t n;
+  uint32_t grid[3];
+  format::AxisFrame frame;
+  double spacing[3];
+};
+
+// Pass 1 output of one job.
+struct CountResult {
+  double keptMin = std::numeric_limits<double>::infinity();
+  double keptMax = -std::numeric_limits<double>::infinity();
+  bool nonFinite = false;
+  uint32_t nonFiniteAt[3] = {0, 0, 0};
+  double nonFiniteValue = 0;
+};
+
+// Counts kept voxels of the bricks in row (bz, by) into counts[bx]. `trackRange` asks for the
+// min and max kept value (not needed for 8-bit sources, whose mapping does not depend on it).
+// The keep flags of all n*n x-lines of the brick row are summed per x first (a loop the
+// compiler vectorizes), then per brick.
+template <class T, class Keep>
+void countBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, uint32_t by,
+                   const Keep& keep, bool trackRange, uint16_t* counts, CountResult& result) {
+  const uint32_t n = g.n, nx = g.dims[0];
+  const uint32_t z0 = bz * n, z1 = std::min(g.dims[2], z0 + n);
+  const uint32_t y0 = by * n, y1 = std::min(g.dims[1], y0 + n);
+  thread_local std::vector<uint16_t> perX;  // up to n*n = 1024 flags per x: fits 16 bits
+  perX.assign(nx, 0);
+  uint16_t* __restrict acc = perX.data();
+  const Keep test = keep;  // a local copy: stores to acc cannot alias it
+  T keptMin = std::numeric_limits<T>::max(), keptMax = std::numeric_limits<T>::lowest();
+  for (uint32_t z = z0; z < z1; ++z) {
+    const T* slice = reinterpret_cast<const T*>(window.slice(z));
+    for (uint32_t y = y0; y < y1; ++y) {
+      const T* __restrict row = slice + uint64_t{y} * nx;
+      if constexpr (std::is_floating_point_v<T>) {
+        bool finite = true;
+        for (uint32_t x = 0; x < nx; ++x) finite &= std::isfinite(row[x]);
+        if (!finite && !result.nonFinite) {
+          uint32_t x = 0;
+          while (std::isfinite(row[x])) ++x;
+          result.nonFinite = true;
+          result.nonFiniteAt[0] = x;
+          result.nonFiniteAt[1] = y;
+          result.nonFiniteAt[2] = z;
+          result.nonFiniteValue = static_cast<double>(row[x]);
+        }
+        if (result.nonFinite) return;
+      }
+      for (uint32_t x = 0; x < nx; ++x) acc[x] = static_cast<uint16_t>(acc[x] + (test(row[x]) ? 1 : 0));
+      if (trackRange) {
+        for (uint32_t x = 0; x < nx; ++x) {
+          const bool k = test(row[x]);
+          keptMin = k && row[x] < keptMin ? row[x] : keptMin;
+          keptMax = k && row[x] > keptMax ? row[x] : keptMax;
+        }
+      }
+    }
+  }
+  for (uint32_t bx = 0, x0 = 0; x0 < nx; ++bx, x0 += n) {
+    const uint32_t x1 = std::min(nx, x0 + n);
+    uint32_t c = 0;
+    for (uint32_t x = x0; x < x1; ++x) c += acc[x];
+    counts[bx] = static_cast<uint16_t>(counts[bx] + c);
+    if (trackRange && c) {
+      result.keptMin = std::min(result.keptMin, static_cast<double>(keptMin));
+      result.keptMax = std::max(result.keptMax, static_cast<double>(keptMax));
+    }
+  }
+}
+
+// Where pass 2 writes the bricks of one slab: occupied bricks [k0, k0 + ...) and voxels
+// [v0, v0 + ...) of the final sections.
+struct SlabOutput {
+  uint64_t k0 = 0, v0 = 0;
+  uint16_t* rows = nullptr;
+  uint32_t* masks = nullptr;
+  uint8_t* values = nullptr;
+  uint16_t* gradients = nullptr;
+};
+
+// Pass 2 statistics of one worker; sums are integers so totals do not depend on job order.
+struct EncodeStats {
+  double valueMin = std::numeric_limits<double>::infinity();  // decoded, source units
+  double valueMax = -std::numeric_limits<double>::infinity();
+  double maxAbsError = 0, maxRelError = 0;
+  uint64_t gradientSamples = 0;
+  uint64_t gradientErrorNanoDeg = 0;
+  double gradientMaxErrorDeg = 0;
+  uint64_t zeroGradients = 0;
+  bool countMismatch = false;  // the source changed between the passes
+};
+
+// Angle in degrees between an exact direction and a decoded code (atan2 form: accurate for
+// small angles, unlike acos of the dot product).
+inline double gradientErrorDeg(double gx, double gy, double gz, uint16_t code) {
+  const auto d = format::decodeGradient(code);
+  const double len = std::sqrt(gx * gx + gy * gy + gz * gz);
+  if (len == 0 || code == format::kZeroGradient) return 0.0;
+  gx /= len;
+  gy /= len;
+  gz /= len;
+  const double cx = gy * d[2] - gz * d[1], cy = gz * d[0] - gx * d[2], cz = gx * d[1] - gy * d[0];
+  const double dot = gx * d[0] + gy * d[1] + gz * d[2];
+  return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot) * (180.0 / 3.14159265358979323846);
+}
+
+// Encodes one occupied brick: its row starts, row masks, values and gradients. `Interior`
+// says the brick and a one-voxel margin lie inside the volume, so no border tests are needed.
+template <class T, class Keep, bool Interior>
+uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t dims[3],
+                     const int64_t stride[3], const format::AxisFrame frame, uint32_t n,
+                     const Keep keep, const ValueMapping& mapping, bool lossless, const double half[3],
+                     const double full[3], uint32_t expected, uint16_t* rows, uint32_t* mask,
+                     uint8_t* values, float* gx, float* gy, float* gz, EncodeStats& stats) {
+  const int su = frame.u, sv = frame.v, sw = frame.w;
+  const uint32_t extentU = Interior ? n : std::min(n, dims[su] - origin[su]);
+  const uint32_t extentV = Interior ? n : std::min(n, dims[sv] - origin[sv]);
+  const uint32_t extentW = Interior ? n : std::min(n, dims[sw] - origin[sw]);
+  const size_t valueSize = storedSize(mapping.type);
+  const int64_t intOffset = static_cast<int64_t>(mapping.offset);
+  T rawMin = std::numeric_limits<T>::max(), rawMax = std::numeric_limits<T>::lowest();
+  uint32_t count = 0;
+  for (uint32_t row = 0; row < n * n; ++row) {
+    rows[row] = static_cast<uint16_t>(count);
+    const uint32_t u = row % n, v = row / n;
+    if (!Interior && (u >= extentU || v >= extentV)) continue;
+    const T* line = brick + u * stride[su] + v * stride[sv];
+    // The row's occupancy bits, branch-free; then visit the set bits.
+    uint32_t bits = 0;
+    for (uint32_t d = 0; d < extentW; ++d) bits |= uint32_t{keep(line[d * stride[sw]])} << d;
+    if (bits == 0) continue;
+    if (count + static_cast<uint32_t>(std::popcount(bits)) > expected) return UINT32_MAX;
+    const uint32_t bit0 = row * n;
+    mask[bit0 >> 5] |= bits << (bit0 & 31);
+    while (bits) {
+      const uint32_t d = static_cast<uint32_t>(std::countr_zero(bits));
+      bits &= bits - 1;
+      const T* cell = line + d * stride[sw];
+      const T raw = *cell;
+      // Value.
+      uint32_t stored;
+      if (lossless) {
+        stored = static_cast<uint32_t>(static_cast<int64_t>(raw) - intOffset);
+        rawMin = std::min(rawMin, raw);
+        rawMax = std::max(rawMax, raw);
+      } else {
+        const double exact = static_cast<double>(raw);
+        stored = mapping.encode(exact);
+        const double decoded = mapping.decode(stored);
+        const double err = std::abs(decoded - exact);
+        stats.maxAbsError = std::max(stats.maxAbsError, err);
+        if (exact != 0) stats.maxRelError = std::max(stats.maxRelError, err / std::abs(exact));
+        stats.valueMin = std::min(stats.valueMin, decoded);
+        stats.valueMax = std::max(stats.valueMax, decoded);
+      }
+      std::memcpy(values + count * valueSize, &stored, valueSize);  // little-endian host
+      // Gradient: central differences, one-sided at the volume border.
+      double grad[3];
+      if constexpr (Interior) {
+        for (int a = 0; a < 3; ++a)
+          grad[a] = (static_cast<double>(cell[stride[a]]) - static_cast<double>(cell[-stride[a]])) * half[a];
+      } else {
+        uint32_t p[3];
+        p[su] = origin[su] + u;
+        p[sv] = origin[sv] + v;
+        p[sw] = origin[sw] + d;
+        for (int a = 0; a < 3; ++a) {
+          const bool hasLo = p[a] > 0, hasHi = p[a] + 1 < dims[a];
+          const double lo = static_cast<double>(hasLo ? cell[-stride[a]] : raw);
+          const double hi = static_cast<double>(hasHi ? cell[stride[a]] : raw);
+          grad[a] = (hi - lo) * (hasLo && hasHi ? half[a] : full[a]);
+        }
+      }
+      if constexpr (std::is_floating_point_v<T>) {  // keep huge differences inside float range
+        const double big = std::max({std::abs(grad[0]), std::abs(grad[1]), std::abs(grad[2])});
+        if (big > 1e30) grad[0] /= big, grad[1] /= big, grad[2] /= big;
+      }
+      gx[count] = static_cast<float>(grad[0]);
+      gy[count] = static_cast<float>(grad[1]);
+      gz[count] = static_cast<float>(grad[2]);
+      ++count;
+    }
+  }
+  if (lossless && count) {
+    stats.valueMin = std::min(stats.valueMin, static_cast<double>(rawMin));
+    stats.valueMax = std::max(stats.valueMax, static_cast<double>(rawMax));
+  }
+  return count;
+}
+
+template <class T, class Keep>
+void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, uint32_t by,
+                    const Keep& keep, const ValueMapping& mapping, const uint16_t* counts,
+                    uint64_t firstOccupied, const uint32_t* voxelBase, const SlabOutput& out,
+                    uint32_t errorStride, EncodeStats& stats) {
+  const uint32_t n = g.n;
+  const uint32_t maskWords = format::maskWordsPerBrick(n);
+  const uint32_t dims[3] = {g.dims[0], g.dims[1], g.dims[2]};
+  const size_t valueSize = storedSize(mapping.type);
+  const bool lossless = mapping.errorBound == 0.0 && !std::is_floating_point_v<T> &&
+                        (mapping.type == StoredType::kU8 || mapping.type == StoredType::kU16);
+  // The window's slices are contiguous: element strides along x, y, z.
+  const int64_t stride[3] = {1, int64_t{dims[0]}, int64_t{dims[0]} * dims[1]};
+  const double half[3] = {0.5 / g.spacing[0], 0.5 / g.spacing[1], 0.5 / g.spacing[2]};
+  const double full[3] = {1.0 / g.spacing[0], 1.0 / g.spacing[1], 1.0 / g.spacing[2]};
+  thread_local struct {
+    std::vector<float> gx, gy, gz;
+  } scratch;
+  const size_t cells = uint64_t{n} * n * n;
+  scratch.gx.resize(cells);
+  scratch.gy.resize(cells);
+  scratch.gz.resize(cells);
+
+  uint64_t k = firstOccupied;
+  for (uint32_t bx = 0; bx < g.grid[0]; ++bx) {
+    if (counts[bx] == 0) continue;
+    const uint64_t vbase = voxelBase[k];
+    uint16_t* rows = out.rows + (k - out.k0) * n * n;
+    uint32_t* mask = out.masks + (k - out.k0) * maskWords;
+    uint8_t* values = out.values + (vbase - out.v0) * valueSize;
+    uint16_t* grads = out.gradients + (vbase - out.v0);
+    const uint32_t origin[3] = {bx * n, by * n, bz * n};
+    const T* brick = reinterpret_cast<const T*>(window.slice(origin[2])) +
+                     int64_t{origin[1]} * stride[1] + origin[0];
+    bool interior = true;
+    for (int a = 0; a < 3; ++a) interior &= origin[a] > 0 && origin[a] + n < dims[a];
+    const uint32_t count =
+        interior ? encodeBrick<T, Keep, true>(brick, origin, dims, stride, g.frame, n, keep, mapping, lossless, half, full,
+                                              counts[bx], rows, mask, values, scratch.gx.data(), scratch.gy.data(), scratch.gz.data(), stats)
+                 : encodeBrick<T, Keep, false>(brick, origin, dims, stride, g.frame, n, keep, mapping, lossless, half, full,
+                                               counts[bx], rows, mask, values, scratch.gx.data(), scratch.gy.data(), scratch.gz.data(), stats);
+    if (count != counts[bx]) {
+      stats.countMismatch = true;
+      return;
+    }
+    format::encodeGradients(scratch.gx.data(), scratch.gy.data(), scratch.gz.data(), grads, count);
+    for (uint32_t i = 0; i < count; ++i) stats.zeroGradients += grads[i] == format::kZeroGradient;
+    // Sample the quantization error at every errorStride-th voxel of the file.
+    for (uint64_t i = (errorStride - vbase % errorStride) % errorStride; i < count; i += errorStride) {
+      if (grads[i] == format::kZeroGradient) continue;
+      const double e = gradientErrorDeg(scratch.gx[i], scratch.gy[i], scratch.gz[i], grads[i]);
+      ++stats.gradientSamples;
+      stats.gradientErrorNanoDeg += static_cast<uint64_t>(std::llround(e * 1e9));
+      stats.gradientMaxErrorDeg = std::max(stats.gradientMaxErrorDeg, e);
+    }
+    ++k;
+  }
+}
+
+}  // namespace voxlink::convert

@@ -1,0 +1,22 @@
+// Mean, standard deviation and range of a whole volume, streamed slab by slab: what
+// `--keep-outside LO,HI --standardize` needs to classify z = (v - mean) / sigma.
+#pragma once
+
+#include <cstdint>
+
+#include "convert/volume_source.h"
+
+namespace voxlink::convert {
+
+struct Moments {
+  uint64_t count = 0;
+  double mean = 0;
+  double sigma = 0;  // population standard deviation
+  double min = 0, max = 0;
+};
+
+// Per-slice sums in double merged with Chan et al.'s pairwise update, in slice order: stable
+// for large offsets (UTM-like means) and deterministic. Fails on NaN/Inf, naming the voxel.
+Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices = 64);
+
+}  // namespace voxlink::convert

@@ -1,0 +1,54 @@
+#include "convert/slab_window.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace voxlink::convert {
+
+SlabWindow::SlabWindow(VolumeSource& source, uint32_t halo)
+    : source_(source), halo_(halo), sliceBytes_(source.info().sliceBytes()), depth_(source.info().dims[2]) {}
+
+Status SlabWindow::rewind() {
+  release();
+  first_ = end_ = 0;
+  base_ = nullptr;
+  buffer_.clear();
+  return source_.rewind();
+}
+
+Status SlabWindow::load(uint32_t z0, uint32_t z1) {
+  const uint32_t first = z0 > halo_ ? z0 - halo_ : 0;
+  const uint32_t end = std::min(depth_, z1 + halo_);
+  if (const void* p = source_.map(first, end - first)) {
+    release();
+    base_ = static_cast<const uint8_t*>(p);
+    mapped_ = true;
+    first_ = first;
+    end_ = end;
+    return Status::ok();
+  }
+  // Keep the slices already read that the new window still needs, read only the rest.
+  const uint32_t keepFrom = std::max(first, first_);
+  uint32_t kept = (!mapped_ && base_ && first >= first_ && end_ > keepFrom) ? end_ - keepFrom : 0;
+  kept = std::min(kept, end - first);
+  mapped_ = false;
+  const uint64_t needed = uint64_t{end - first} * sliceBytes_;
+  if (kept > 0) {
+    std::memmove(buffer_.data(), buffer_.data() + (keepFrom - first_) * sliceBytes_, kept * sliceBytes_);
+  }
+  if (buffer_.size() < needed) buffer_.resize(needed);
+  const uint32_t readFrom = first + kept;
+  if (end > readFrom)
+    VOXLINK_RETURN_IF_ERROR(source_.read(readFrom, end - readFrom, buffer_.data() + uint64_t{kept} * sliceBytes_));
+  base_ = buffer_.data();
+  first_ = first;
+  end_ = end;
+  return Status::ok();
+}
+
+void SlabWindow::release() {
+  if (mapped_ && end_ > first_) source_.unmap(first_, end_ - first_);
+  mapped_ = false;
+}
+
+}  // namespace voxlink::convert

@@ -1,0 +1,40 @@
+// A window of consecutive z slices of a source, plus a halo of slices on either side for
+// central differences. Uses the source's zero-copy mapping when it has one, else a buffer that
+// keeps the halo slices it already read, so streamed sources are read exactly once per pass.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "convert/volume_source.h"
+
+namespace voxlink::convert {
+
+class SlabWindow {
+ public:
+  SlabWindow(VolumeSource& source, uint32_t halo);
+
+  // Starts a new pass over the source.
+  Status rewind();
+  // Makes slices [z0 - halo, z1 + halo) (clipped to the volume) available. Successive loads
+  // within a pass must move forward: z0 >= the previous z1.
+  Status load(uint32_t z0, uint32_t z1);
+  // Slice z, which must lie in the loaded range.
+  const uint8_t* slice(uint32_t z) const { return base_ + (z - first_) * sliceBytes_; }
+  uint32_t first() const { return first_; }
+  uint32_t end() const { return end_; }
+  // Lets go of mapped pages of the current window.
+  void release();
+
+ private:
+  VolumeSource& source_;
+  uint32_t halo_;
+  uint64_t sliceBytes_;
+  uint32_t depth_;
+  const uint8_t* base_ = nullptr;
+  uint32_t first_ = 0, end_ = 0;  // loaded slices [first_, end_)
+  bool mapped_ = false;
+  std::vector<uint8_t> buffer_;
+};
+
+}  // namespace voxlink::convert

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The main job on the bundled sample, from a fresh Debian 12 machine (as root):
+# installs packages, builds, converts samples/headsq, prints the footprint report, validates
+# the file and renders a PNG. Results go to ./out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh
+mkdir -p out
+voxlink=build/cli/voxlink
+$voxlink convert samples/headsq/headsq.nrrd --tf samples/headsq/skin-bone.tf.json -o out/headsq.vxl
+$voxlink info out/headsq.vxl
+$voxlink validate out/headsq.vxl

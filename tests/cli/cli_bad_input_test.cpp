@@ -1,0 +1,107 @@
+// Bad input through the command line: one line on stderr naming the file and the field, a
+// non-zero exit status, and no output file (not even a temporary one) left behind.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "tests/cli/run_command.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::testing {
+namespace {
+
+int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+
+class CliBadInput : public ::testing::Test {
+ protected:
+  // A 20x20x20 u8 raw volume.
+  std::string rawVolume(size_t bytes = 8000) {
+    std::vector<uint8_t> data(bytes);
+    for (size_t i = 0; i < data.size(); ++i) data[i] = static_cast<uint8_t>(i * 7);
+    const std::string path = dir_.file("in.raw");
+    writeBytes(path, data);
+    return path;
+  }
+  void expectCleanFailure(const CommandResult& r, const std::string& mentions) {
+    EXPECT_NE(r.status, 0);
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(mentions), std::string::npos) << r.err;
+    for (const std::string& name : listDir(dir_.path()))
+      EXPECT_EQ(name.find(".vxl"), std::string::npos) << "left behind: " << name;
+  }
+  TempDir dir_;
+};
+
+TEST_F(CliBadInput, TruncatedRawFile) {
+  const std::string in = rawVolume(7999);
+  auto r = runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "10", "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "in.raw: data:");
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
+}
+
+TEST_F(CliBadInput, WrongDims) {
+  const std::string in = rawVolume();
+  auto r = runVoxlink({"convert", in, "--dims", "20,20,19", "--type", "u8", "--threshold", "10", "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "check --dims");
+}
+
+TEST_F(CliBadInput, UnsupportedTypeName) {
+  const std::string in = rawVolume();
+  auto r = runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u12", "--threshold", "10", "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "--type u12");
+  EXPECT_EQ(r.status, 2);
+}
+
+TEST_F(CliBadInput, NaNInFloatData) {
+  std::vector<float> data(1000, 1.0f);
+  data[123] = std::nanf("");
+  std::vector<uint8_t> bytes(data.size() * 4);
+  std::memcpy(bytes.data(), data.data(), bytes.size());
+  writeBytes(dir_.file("f.raw"), bytes);
+  auto r = runVoxlink({"convert", dir_.file("f.raw"), "--dims", "10,10,10", "--type", "f32", "--keep-all", "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "f.raw: data: value nan at voxel (3, 2, 1)");
+}
+
+TEST_F(CliBadInput, OutputThatCannotBeWritten) {
+  const std::string in = rawVolume();
+  auto r = runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "10", "-o", dir_.file("nope/o.vxl")});
+  expectCleanFailure(r, "nope/o.vxl: cannot create output file");
+  EXPECT_EQ(r.status, 3);
+}
+
+TEST_F(CliBadInput, NoClassificationGiven) {
+  const std::string in = rawVolume();
+  auto r = runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "say what to keep");
+}
+
+TEST_F(CliBadInput, DamagedVoxLinkFilesForInfoAndValidate) {
+  const std::string in = rawVolume();
+  const std::string out = dir_.file("ok.vxl");
+  ASSERT_EQ(runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "100", "-o", out, "-q"}).status, 0);
+  auto bytes = readBytes(out);
+  // Truncated file.
+  writeBytes(dir_.file("cut.vxl"), std::vector<uint8_t>(bytes.begin(), bytes.begin() + 1000));
+  auto r = runVoxlink({"validate", dir_.file("cut.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(lines(r.err), 1);
+  EXPECT_NE(r.err.find("cut.vxl"), std::string::npos) << r.err;
+  r = runVoxlink({"info", dir_.file("cut.vxl")});
+  EXPECT_NE(r.status, 0);
+  // One flipped byte inside the values.
+  bytes[bytes.size() / 2] ^= 0x40;
+  writeBytes(dir_.file("flip.vxl"), bytes);
+  r = runVoxlink({"validate", dir_.file("flip.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("flip.vxl: section"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("checksum mismatch"), std::string::npos) << r.err;
+  // Not a VoxLink file at all.
+  r = runVoxlink({"info", in});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("header.magic"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace voxlink::testing

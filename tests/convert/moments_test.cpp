@@ -1,0 +1,48 @@
+#include "convert/moments.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/convert/volume_fixtures.h"
+
+namespace voxlink::convert {
+namespace {
+
+TEST(Moments, StableAroundALargeOffset) {
+  // Values 1e6 + small noise: a one-pass sum of squares would lose every digit of sigma.
+  auto v = testing::makeVolume<double>({31, 29, 27}, [](uint32_t x, uint32_t y, uint32_t z) {
+    return 1e6 + 1e-3 * std::sin(x * 1.3 + y * 0.7 + z * 0.11);
+  });
+  long double sum = 0;
+  const auto* data = reinterpret_cast<const double*>(v->bytes().data());
+  const size_t n = v->info().voxelCount();
+  for (size_t i = 0; i < n; ++i) sum += data[i];
+  const long double mean = sum / n;
+  long double m2 = 0;
+  for (size_t i = 0; i < n; ++i) m2 += (data[i] - mean) * (data[i] - mean);
+  const double sigma = static_cast<double>(std::sqrt(m2 / n));
+  for (uint32_t slab : {1u, 5u, 64u}) {
+    auto m = measureMoments(*v, slab);
+    ASSERT_TRUE(m) << m.message();
+    EXPECT_EQ(m->count, n);
+    EXPECT_NEAR(m->mean, static_cast<double>(mean), 1e-9);
+    EXPECT_NEAR(m->sigma, sigma, sigma * 1e-6);
+  }
+}
+
+TEST(Moments, ConstantVolumeHasZeroSigmaAndNaNIsRefused) {
+  auto c = testing::makeVolume<float>({5, 5, 5}, [](uint32_t, uint32_t, uint32_t) { return 2.5f; });
+  auto m = measureMoments(*c);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->sigma, 0.0);
+  EXPECT_EQ(m->mean, 2.5);
+  auto bad = testing::makeVolume<float>({5, 5, 5}, [](uint32_t x, uint32_t, uint32_t z) { return x == 2 && z == 4 ? NAN : 1.0f; });
+  auto e = measureMoments(*bad);
+  ASSERT_FALSE(e);
+  EXPECT_EQ(e.code(), ErrorCode::kNonFinite);
+  EXPECT_NE(e.message().find("(2, 0, 4)"), std::string::npos) << e.message();
+}
+
+}  // namespace
+}  // namespace voxlink::convert
