@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "voxlink 0.1.0");
   const CommandFactory factories[] = {addConvertCommand, addInfoCommand, addValidateCommand,
 #ifdef VOXLINK_WITH_VIEWER
-                                      addRenderCommand, addBenchRenderCommand,
+                                      addRenderCommand, addBenchRenderCommand, addViewCommand,
 #endif
   };
   std::vector<std::pair<CLI::App*, CommandRunner>> commands;

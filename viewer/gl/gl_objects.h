@@ -31,8 +31,10 @@ class GlName {
 
 inline void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
 inline void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
+inline void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 using GlBuffer = GlName<deleteBuffer>;
 using GlTexture = GlName<deleteTexture>;
+using GlFramebuffer = GlName<deleteFramebuffer>;
 
 inline GlBuffer createBuffer() {
   GLuint id = 0;

@@ -1,0 +1,23 @@
+// Shows a render target in the window, scaled to the framebuffer (a reduced-resolution frame
+// while the user drags fills the window too).
+#pragma once
+
+#include "viewer/gl/render_target.h"
+#include "viewer/gl/shader_program.h"
+
+namespace voxlink::viewer {
+
+class Display {
+ public:
+  static Result<Display> create();
+  // Draws `target` over the whole default framebuffer.
+  void show(const RenderTarget& target, int framebufferWidth, int framebufferHeight);
+
+ private:
+  ComputeProgram program_;
+  GlTexture texture_;
+  GlFramebuffer framebuffer_;
+  uint32_t width_ = 0, height_ = 0;
+};
+
+}  // namespace voxlink::viewer

@@ -1,0 +1,46 @@
+// The transfer function editor (Dear ImGui): opacity points over a histogram of the stored
+// values, a colour bar with colour points, the value ranges the file's pre-classification
+// removed shaded, presets, and load/save of TF JSON and ParaView colour-map presets.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "format/transfer_function.h"
+#include "format/value_interval.h"
+#include "viewer/core/value_histogram.h"
+
+namespace voxlink::viewer {
+
+struct TfEditorContext {
+  const ValueHistogram* histogram = nullptr;
+  std::vector<format::ValueInterval> removed;  // values the file does not hold
+  double valueMin = 0, valueMax = 1;           // stored range, for presets
+};
+
+class TfEditor {
+ public:
+  // Draws into the current ImGui window; true when `tf` changed.
+  bool draw(format::TransferFunction& tf, const TfEditorContext& context);
+  // The value range the editor shows; the app sets it once from the file.
+  void setView(double lo, double hi) {
+    viewLo_ = lo;
+    viewHi_ = hi;
+  }
+
+ private:
+  bool drawOpacity(format::TransferFunction& tf, const TfEditorContext& context);
+  bool drawColorBar(format::TransferFunction& tf);
+  bool drawSelection(format::TransferFunction& tf);
+  bool drawFiles(format::TransferFunction& tf, const TfEditorContext& context);
+
+  double viewLo_ = 0, viewHi_ = 1;
+  float alphaMax_ = 1.0f;
+  int selectedOpacity_ = -1, selectedColor_ = -1;
+  int draggingOpacity_ = -1, draggingColor_ = -1;
+  char path_[512] = "transfer_function.json";
+  char paraviewName_[128] = "";
+  std::string message_;
+};
+
+}  // namespace voxlink::viewer

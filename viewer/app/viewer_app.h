@@ -1,0 +1,30 @@
+// `voxlink view FILE.vxl`: the interactive viewer. A GLFW window, the VoxLink ray tracer, the
+// transfer function editor, camera control, reduced resolution while the user drags, frame time
+// and GPU memory on screen, screenshots, re-classification from the recorded source.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "format/transfer_function.h"
+#include "viewer/core/camera.h"
+#include "viewer/core/render_settings.h"
+
+namespace voxlink::viewer {
+
+struct ViewerOptions {
+  std::string path;
+  int windowWidth = 1100, windowHeight = 800;
+  RenderSettings settings;  // width and height follow the window
+  CameraSpec camera;
+  std::optional<format::TransferFunction> tf;
+  // Smoke tests: quit after this many frames (0: run until the window closes), writing a
+  // full-resolution screenshot of the last view first when a path is given.
+  int maxFrames = 0;
+  std::string screenshotOnExit;
+  std::string windowCaptureOnExit;  // the whole window, panels included (documentation pictures)
+};
+
+Status runViewer(const ViewerOptions& options);
+
+}  // namespace voxlink::viewer

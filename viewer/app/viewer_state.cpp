@@ -1,0 +1,132 @@
+#include "viewer/app/viewer_state.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "viewer/core/tf_presets.h"
+
+namespace voxlink::viewer {
+
+Status ViewerState::load(const std::string& path, bool keepTf) {
+  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, format::VoxLinkFile::open(path));
+  auto next = std::make_unique<format::VoxLinkFile>(std::move(opened));
+  VOXLINK_ASSIGN_OR_RETURN(auto r, VoxLinkRenderer::create(*next));
+  file = std::move(next);
+  renderer = std::move(r);
+  if (!keepTf) tf = defaultTransferFunction(*file);
+  classification = fileClassification(*file);
+  removed = removedValues(classification);
+  const auto& h = file->header();
+  // Show the stored range and the TF's points, with a margin, so removed ranges are visible too.
+  double lo = h.valueMin, hi = h.valueMax;
+  for (const auto& p : tf.opacity) lo = std::min(lo, p.value), hi = std::max(hi, p.value);
+  if (!(lo < hi)) hi = lo + 1;
+  const double margin = 0.1 * (hi - lo);
+  editor.setView(lo - margin, hi + margin);
+  histogram = valueHistogram(*file, lo - margin, hi + margin, 256);
+  transferFunctionChanged();
+  return Status::ok();
+}
+
+void ViewerState::transferFunctionChanged() {
+  if (renderer) renderer->setTransferFunction(tf);
+  if (file) visibleButRemoved = viewer::visibleButRemoved(tf, classification);
+}
+
+bool drawStatsPanel(ViewerState& s, const std::string& glDescription, uint32_t width, uint32_t height) {
+  const auto& h = s.file->header();
+  ImGui::Text("%s", s.file->path().c_str());
+  ImGui::Text("%ux%ux%u, brick %u, %llu voxels in %llu of %llu bricks", h.dims[0], h.dims[1], h.dims[2],
+              h.brickSize, (unsigned long long)h.voxelCount, (unsigned long long)h.occupiedBrickCount,
+              (unsigned long long)s.file->gridBrickCount());
+  ImGui::Text("frame %.1f ms at %ux%u%s", s.lastRenderMs, width, height,
+              s.lastFrameReduced ? " (reduced while moving)" : "");
+  ImGui::Text("GPU buffers %.2f MiB (sections, TF, gradient table)", s.renderer->gpuBytes() / 1048576.0);
+  ImGui::TextDisabled("%s", glDescription.c_str());
+  ImGui::TextDisabled("drag: orbit | right/shift drag: pan | wheel, +/-: zoom | arrows | R reset | P screenshot | V sampling | H hide UI | Q quit");
+  if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
+  return false;
+}
+
+bool drawSettingsPanel(ViewerState& s) {
+  bool changed = false;
+  RenderSettings& r = s.settings;
+  int sampling = r.sampling == Sampling::kVoxel ? 0 : 1;
+  changed |= ImGui::RadioButton("voxel", &sampling, 0);
+  ImGui::SameLine();
+  changed |= ImGui::RadioButton("trilinear", &sampling, 1);
+  r.sampling = sampling == 0 ? Sampling::kVoxel : Sampling::kTrilinear;
+  if (r.sampling == Sampling::kTrilinear) {
+    float step = float(r.stepVoxels);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::SliderFloat("step (voxels)", &step, 0.125f, 2.0f, "%.3f")) {
+      r.stepVoxels = step;
+      changed = true;
+    }
+  }
+  changed |= ImGui::Checkbox("shading", &r.shading.enabled);
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("shadows", &r.shading.shadows);
+  float phong[4] = {float(r.shading.ambient), float(r.shading.diffuse), float(r.shading.specular),
+                    float(r.shading.shininess)};
+  ImGui::SetNextItemWidth(260);
+  if (ImGui::DragFloat4("ka kd ks shininess", phong, 0.01f, 0.0f, 128.0f, "%.2f")) {
+    r.shading.ambient = phong[0];
+    r.shading.diffuse = phong[1];
+    r.shading.specular = phong[2];
+    r.shading.shininess = std::max(phong[3], 1.0f);
+    changed = true;
+  }
+  float light[3] = {float(r.shading.lightDirection[0]), float(r.shading.lightDirection[1]),
+                    float(r.shading.lightDirection[2])};
+  ImGui::SetNextItemWidth(260);
+  if (ImGui::DragFloat3("light (camera space)", light, 0.02f, -1.0f, 1.0f, "%.2f") &&
+      light[0] * light[0] + light[1] * light[1] + light[2] * light[2] > 1e-6f) {
+    r.shading.lightDirection = {light[0], light[1], light[2]};
+    changed = true;
+  }
+  float bg[3] = {float(r.background[0]), float(r.background[1]), float(r.background[2])};
+  if (ImGui::ColorEdit3("background", bg, ImGuiColorEditFlags_Float)) {
+    r.background = {bg[0], bg[1], bg[2]};
+    changed = true;
+  }
+  float scale = float(s.interactiveScale);
+  ImGui::SetNextItemWidth(120);
+  if (ImGui::SliderFloat("resolution while moving", &scale, 0.1f, 1.0f, "%.2f")) s.interactiveScale = scale;
+  return changed;
+}
+
+bool drawTransferFunctionPanel(ViewerState& s) {
+  const auto& h = s.file->header();
+  const TfEditorContext context{&s.histogram, s.removed, h.valueMin, h.valueMax};
+  bool changed = s.editor.draw(s.tf, context);
+  if (changed) s.transferFunctionChanged();
+  ImGui::Separator();
+  ImGui::Text("pre-classification: %s", s.classification.description.c_str());
+  if (!s.visibleButRemoved.empty()) {
+    ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.3f, 1.0f),
+                       "The transfer function gives opacity to %s, which this file's pre-classification "
+                       "removed: those voxels cannot show.",
+                       format::describeIntervals(s.visibleButRemoved).c_str());
+  }
+  if (s.reclassifier.running()) {
+    ImGui::ProgressBar(float(s.reclassifier.progress()), ImVec2(240, 0), s.reclassifier.stage().c_str());
+    ImGui::SameLine();
+    if (ImGui::Button("cancel")) s.reclassifier.cancel();
+  } else if (!s.visibleButRemoved.empty()) {
+    const std::string out = Reclassifier::outputPathFor(s.file->path());
+    if (ImGui::Button("Re-classify from the source")) {
+      Status started = s.reclassifier.start(*s.file, s.tf, out);
+      s.message = started ? "re-classifying into " + out : started.message();
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("converts the source recorded in the file again, keeping what this TF shows,\n"
+                        "writes %s and reloads it", out.c_str());
+  }
+  return changed;
+}
+
+}  // namespace voxlink::viewer
