@@ -15,15 +15,17 @@ float correctedAlpha(float alpha, float len) {
 }
 
 // Phong terms of a sample with (premultiplied) colour c and opacity alpha: colour = ambient +
-// shadow * lit. The surface normal is -gradient; a zero gradient (or shading off) is unlit.
-// Mirrors shadeSample() in viewer/core/render_model.h.
+// shadow * lit. `gradient` is the opacity-weighted sum of unit gradient directions; the normal
+// is -gradient, and shading is weighted by m = |gradient| / alpha, so a sample whose blended
+// normals cancel fades to unlit colour. Mirrors shadeSample() in viewer/core/render_model.h.
 void shadeSample(vec3 c, float alpha, vec3 gradient, vec3 toEye, out vec3 ambient, out vec3 lit) {
   float len = length(gradient);
-  if (!uShadingEnabled || !(len > 0.0)) {
+  if (!uShadingEnabled || !(len > 0.0) || !(alpha > 0.0)) {
     ambient = c;
     lit = vec3(0.0);
     return;
   }
+  float m = min(len / alpha, 1.0);
   vec3 n = -gradient / len;
   float ndl = dot(n, uToLight);
   float diffuse = 0.0, specular = 0.0;
@@ -32,8 +34,8 @@ void shadeSample(vec3 c, float alpha, vec3 gradient, vec3 toEye, out vec3 ambien
     vec3 r = 2.0 * ndl * n - uToLight;
     specular = pow(max(dot(r, toEye), 0.0), uPhong.w);
   }
-  ambient = c * uPhong.x;
-  lit = c * (uPhong.y * diffuse) + vec3(alpha * uPhong.z * specular);
+  ambient = c * (1.0 - m + m * uPhong.x);
+  lit = m * (c * (uPhong.y * diffuse) + vec3(alpha * uPhong.z * specular));
 }
 
 // A trilinear corner: colour and gradient direction weighted by the voxel's opacity.

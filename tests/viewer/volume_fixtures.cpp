@@ -3,6 +3,9 @@
 #include <cmath>
 #include <cstring>
 
+#include <gtest/gtest.h>
+
+#include "convert/converter.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "tests/support/test_util.h"
@@ -75,13 +78,45 @@ format::TransferFunction rampTf(double threshold, double width, double alpha, do
   return tf;
 }
 
-Result<DenseVolume> loadTooth() {
-  const std::string path = voxlink::testing::dataPath("ct/tooth_103x94x161_uint8.raw");
+std::string toothPath() { return voxlink::testing::dataPath("ct/tooth_103x94x161_uint8.raw"); }
+
+convert::OpenOptions toothOpenOptions() {
   convert::OpenOptions options;
   options.dims = std::array<uint32_t, 3>{103, 94, 161};
   options.type = ScalarType::kU8;
   options.format = "raw";
-  return loadDenseVolume(path, options);
+  return options;
+}
+
+Result<DenseVolume> loadTooth() { return loadDenseVolume(toothPath(), toothOpenOptions()); }
+
+Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
+                                                 const convert::OpenOptions& open,
+                                                 const std::string& threshold, const std::string& output,
+                                                 uint32_t brickSize, format::Axis axis) {
+  VOXLINK_ASSIGN_OR_RETURN(auto volume, convert::openVolume(source, open));
+  convert::ConvertOptions options;
+  options.brickSize = brickSize;
+  options.axis = axis;
+  options.threads = 2;
+  options.sourceOptions = open;
+  VOXLINK_ASSIGN_OR_RETURN(options.classification, convert::thresholdClassification({threshold}));
+  VOXLINK_RETURN_IF_ERROR(convert::convertVolume(*volume, options, output).status());
+  return format::VoxLinkFile::open(output);
+}
+
+RenderPair renderBoth(VolumeRenderer& renderer, const ReferenceRenderer& reference,
+                      const Camera& camera, const RenderSettings& settings) {
+  RenderPair pair;
+  RenderTarget target;
+  const Status s = renderer.render(camera, settings, target);
+  EXPECT_TRUE(s.isOk()) << (s ? "" : s.message());
+  pair.gl = target.read();
+  pair.reference = reference.render(camera, settings);
+  auto e = compareImages(pair.gl, pair.reference);
+  EXPECT_TRUE(e.isOk());
+  if (e) pair.error = *e;
+  return pair;
 }
 
 }  // namespace voxlink::viewer::testing

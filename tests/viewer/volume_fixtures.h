@@ -12,6 +12,9 @@
 #include "format/transfer_function.h"
 #include "format/voxlink_file.h"
 #include "viewer/core/dense_volume.h"
+#include "viewer/core/image.h"
+#include "viewer/core/reference_renderer.h"
+#include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer::testing {
 
@@ -40,5 +43,22 @@ format::TransferFunction rampTf(double threshold, double width, double alpha, do
 
 // The tooth CT (103x94x161 u8) from the shared data, or an error when it is missing.
 Result<DenseVolume> loadTooth();
+convert::OpenOptions toothOpenOptions();
+std::string toothPath();
+
+// Runs the project's converter (convert::convertVolume) on a source, keeping values >= threshold.
+Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
+                                                 const convert::OpenOptions& open,
+                                                 const std::string& threshold, const std::string& output,
+                                                 uint32_t brickSize = 8,
+                                                 format::Axis axis = format::Axis::kZ);
+
+// Renders with the GL VoxLink renderer and with the reference; fails the test on GL errors.
+struct RenderPair {
+  Image gl, reference;
+  ImageError error;
+};
+RenderPair renderBoth(VolumeRenderer& renderer, const ReferenceRenderer& reference,
+                      const Camera& camera, const RenderSettings& settings);
 
 }  // namespace voxlink::viewer::testing

@@ -79,6 +79,19 @@ Camera Camera::framing(const Box& box, const CameraSpec& spec) {
   return c;
 }
 
+Camera Camera::lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up,
+                      double fovYDeg) {
+  Camera c;
+  c.target_ = target;
+  c.fovYDeg_ = fovYDeg;
+  c.distance_ = glm::length(eye - target);
+  const glm::dvec3 back = glm::normalize(eye - target);
+  const glm::dvec3 right = glm::normalize(glm::cross(up, back));
+  c.orientation_ = glm::dmat3(right, glm::cross(back, right), back);
+  c.worldUp_ = glm::normalize(up);
+  return c;
+}
+
 glm::dvec2 Camera::planeHalfExtent(uint32_t width, uint32_t height) const {
   const double halfY = std::tan(radians(fovYDeg_) / 2);
   return {halfY * double(width) / double(height), halfY};

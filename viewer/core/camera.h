@@ -39,6 +39,9 @@ class Camera {
  public:
   // Looks at the box's centre from the spec's direction, far enough to see all of it.
   static Camera framing(const Box& box, const CameraSpec& spec);
+  // A camera at `eye` looking at `target`; `up` must not be parallel to the view direction.
+  static Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up,
+                       double fovYDeg);
 
   glm::dvec3 eye() const { return target_ + distance_ * back(); }
   glm::dvec3 right() const { return orientation_[0]; }

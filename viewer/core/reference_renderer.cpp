@@ -93,7 +93,8 @@ void ReferenceRenderer::traceVoxels(const glm::dvec3& o, const glm::dvec3& d, do
     const double a = correctedAlpha(tf_.opacityAt(v), tb - ta, f.unit);
     if (a > 0) {
       const auto rgb = tf_.colorAt(v);
-      const ShadedTerms s = shadeSample({rgb[0], rgb[1], rgb[2]}, 1.0, volume_.gradient(c.x, c.y, c.z),
+      const ShadedTerms s = shadeSample({rgb[0], rgb[1], rgb[2]}, 1.0,
+                                        gradientDirection(volume_.gradient(c.x, c.y, c.z)),
                                         f.toLight, toEye, f.settings.shading);
       double shadow = 1.0;
       if (f.settings.shading.shadows && f.settings.shading.enabled) {

@@ -48,14 +48,17 @@ struct ShadedTerms {
 };
 
 // `c` is the colour (premultiplied by `alpha` for blended trilinear samples; voxel samples pass
-// their plain colour and alpha 1), `gradient` any length; the surface normal is -gradient. A
-// zero gradient (or shading off) leaves the colour unlit: ambient = c, lit = 0. Specular light
-// is white, weighted by the opacity.
+// their plain colour and alpha 1); `gradient` is the opacity-weighted sum of unit gradient
+// directions (a voxel's own unit direction, or zero), so |gradient| <= alpha. The surface normal
+// is -gradient. Shading is weighted by m = |gradient| / alpha, the agreement of the blended
+// normals: where they cancel (both sides of a thin shell, noise) or are zero, the sample fades
+// to unlit colour instead of jumping there. Specular light is white, weighted by the opacity.
 inline ShadedTerms shadeSample(const glm::dvec3& c, double alpha, const glm::dvec3& gradient,
                                const glm::dvec3& toLight, const glm::dvec3& toEye,
                                const Shading& s) {
   const double len = glm::length(gradient);
-  if (!s.enabled || !(len > 0)) return {c, glm::dvec3(0.0)};
+  if (!s.enabled || !(len > 0) || !(alpha > 0)) return {c, glm::dvec3(0.0)};
+  const double m = std::min(len / alpha, 1.0);
   const glm::dvec3 n = -gradient / len;
   const double ndl = glm::dot(n, toLight);
   double diffuse = 0, specular = 0;
@@ -64,7 +67,8 @@ inline ShadedTerms shadeSample(const glm::dvec3& c, double alpha, const glm::dve
     const glm::dvec3 r = 2.0 * ndl * n - toLight;
     specular = std::pow(std::max(glm::dot(r, toEye), 0.0), s.shininess);
   }
-  return {c * s.ambient, c * (s.diffuse * diffuse) + glm::dvec3(alpha * s.specular * specular)};
+  return {c * (1.0 - m + m * s.ambient),
+          m * (c * (s.diffuse * diffuse) + glm::dvec3(alpha * s.specular * specular))};
 }
 
 // The unit direction of a gradient, or zero (what the 16-bit codec stores, without rounding).

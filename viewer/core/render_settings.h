@@ -40,7 +40,7 @@ struct Shading {
 struct RenderSettings {
   uint32_t width = 512;
   uint32_t height = 512;
-  Sampling sampling = Sampling::kTrilinear;
+  Sampling sampling = Sampling::kVoxel;
   // Trilinear step in units of the smallest voxel spacing.
   double stepVoxels = 0.5;
   // Rays stop once their accumulated opacity exceeds this.

@@ -50,10 +50,11 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
     std::string accessor = cat("uint ", s.accessor, "(uint i) {\n");
     if (chunks > 1) accessor += cat("  uint c = i >> ", shift, "u;\n  uint j = i & ", chunkWords - 1, "u;\n");
     for (uint64_t c = 0; c < chunks; ++c) {
-      if (binding - options.firstBinding >= GLuint(std::max(maxBlocks, 0)))
+      const int available = maxBlocks - int(options.reservedBlocks);
+      if (int(binding - options.firstBinding) >= available)
         return makeError(ErrorCode::kTooLarge, file.path(), ": sections need more than the ",
-                         maxBlocks, " storage blocks a compute shader may use here (chunks of ",
-                         limit, " bytes)");
+                         available, " storage blocks left to them in a compute shader here (",
+                         maxBlocks, " in all, chunks of ", limit, " bytes)");
       const uint64_t first = c * chunkWords;
       const uint64_t count = std::min(chunkWords, words - first);
       std::vector<uint32_t> staging;

@@ -1,0 +1,107 @@
+// Camera framing, primary rays, orbit/pan/zoom and the controller that maps input onto them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "viewer/app/camera_controller.h"
+#include "viewer/core/camera.h"
+
+namespace voxlink::viewer {
+namespace {
+
+const Box kBox{{-1, -2, -3}, {5, 4, 9}};
+
+TEST(Camera, FramingSeesTheWholeBoundingSphere) {
+  for (double az : {0.0, 47.0, 180.0, -120.0})
+    for (double el : {-60.0, 0.0, 35.0}) {
+      CameraSpec spec;
+      spec.azimuthDeg = az;
+      spec.elevationDeg = el;
+      const Camera c = Camera::framing(kBox, spec);
+      const glm::dvec3 toCenter = kBox.center() - c.eye();
+      // The sphere's angular radius equals half the vertical field of view.
+      const double angular = std::asin(kBox.radius() / glm::length(toCenter)) * 180 / M_PI;
+      EXPECT_NEAR(angular, spec.fovYDeg / 2, 1e-9);
+      EXPECT_NEAR(glm::dot(glm::normalize(toCenter), -c.back()), 1.0, 1e-12);
+      EXPECT_NEAR(glm::dot(c.right(), c.up()), 0.0, 1e-12);
+    }
+}
+
+TEST(Camera, MiddlePixelOfAnOddImageLooksExactlyAlongTheAxis) {
+  const Camera c = Camera::lookAt({0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 40);
+  const Ray r = c.primaryRay(16, 15, 33, 31);
+  EXPECT_EQ(r.direction.x, 0.0);
+  EXPECT_EQ(r.direction.y, 0.0);
+  EXPECT_EQ(r.direction.z, -1.0);
+  // Row 0 is the top: its rays point up.
+  EXPECT_GT(c.primaryRay(16, 0, 33, 31).direction.y, 0.0);
+  EXPECT_GT(c.primaryRay(32, 15, 33, 31).direction.x, 0.0);
+}
+
+TEST(Camera, OrbitKeepsTheDistanceAndStopsAtThePole) {
+  Camera c = Camera::framing(kBox, {});
+  const double d = glm::length(c.eye() - c.target());
+  c.orbit(33, 20);
+  EXPECT_NEAR(glm::length(c.eye() - c.target()), d, 1e-9);
+  c.orbit(0, 500);  // far past the pole: clamped below it
+  EXPECT_LT(glm::dot(c.back(), glm::dvec3(0, 0, 1)), 1.0);
+  EXPECT_GT(glm::dot(c.up(), glm::dvec3(0, 0, 1)), 0.0);
+  c.rotateAboutWorldAxis({1, 0, 0}, 360);
+  EXPECT_NEAR(glm::length(c.eye() - c.target()), d, 1e-9);
+}
+
+TEST(Camera, PanAndZoom) {
+  Camera c = Camera::framing(kBox, {});
+  const glm::dvec3 t0 = c.target();
+  c.pan(0.5, 0);
+  EXPECT_LT(glm::dot(c.target() - t0, c.right()), 0.0);  // dragging right moves the scene right
+  const double d = c.distance();
+  c.zoom(2.0);
+  EXPECT_NEAR(c.distance(), d / 2, 1e-12);
+  c.zoom(0.0);  // ignored
+  c.zoom(NAN);
+  EXPECT_NEAR(c.distance(), d / 2, 1e-12);
+}
+
+TEST(Camera, ParseSpec) {
+  auto s = parseCameraSpec("30,-10,1.5,45");
+  ASSERT_TRUE(s);
+  EXPECT_EQ(s->azimuthDeg, 30);
+  EXPECT_EQ(s->elevationDeg, -10);
+  EXPECT_EQ(s->distanceScale, 1.5);
+  EXPECT_EQ(s->fovYDeg, 45);
+  EXPECT_FALSE(parseCameraSpec("30"));
+  EXPECT_FALSE(parseCameraSpec("30,abc"));
+  EXPECT_FALSE(parseCameraSpec("30,95"));      // past the pole
+  EXPECT_FALSE(parseCameraSpec("30,10,-1"));   // negative distance
+  EXPECT_FALSE(parseCameraSpec("30,10,1,180"));
+  EXPECT_EQ(parseCameraSpec("1,2,3,4,5").code(), ErrorCode::kInvalidArgument);
+}
+
+TEST(CameraController, DragOrbitsWheelZoomsResetReturnsHome) {
+  const Camera home = Camera::framing(kBox, {});
+  CameraController cc(home);
+  InputFrame in;
+  in.mouseX = 100;
+  in.mouseY = 100;
+  EXPECT_FALSE(cc.update(in, 600));
+  in.left = true;
+  EXPECT_FALSE(cc.update(in, 600));  // the press itself does not move
+  EXPECT_TRUE(cc.dragging());
+  in.mouseX = 150;
+  EXPECT_TRUE(cc.update(in, 600));
+  EXPECT_GT(glm::length(cc.camera().back() - home.back()), 0.1);
+  in.left = false;
+  cc.update(in, 600);
+  EXPECT_FALSE(cc.dragging());
+  in.scroll = 2;
+  EXPECT_TRUE(cc.update(in, 600));
+  EXPECT_LT(cc.camera().distance(), home.distance());
+  in = InputFrame{};
+  in.reset = true;
+  EXPECT_TRUE(cc.update(in, 600));
+  EXPECT_EQ(cc.camera().eye(), home.eye());
+}
+
+}  // namespace
+}  // namespace voxlink::viewer

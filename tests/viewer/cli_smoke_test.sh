@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Smoke test of the viewer's commands through the executable: convert the tooth CT, render PNG
+# and EXR headless (EGL) with the reference comparison, a tiny benchmark, and the interactive
+# viewer for a few frames under Xvfb. Exit 77 (skipped) when the data is missing.
+# usage: cli_smoke_test.sh VOXLINK DATA_DIR
+set -euo pipefail
+voxlink=$1
+data=$2
+tooth="$data/ct/tooth_103x94x161_uint8.raw"
+if [[ ! -f $tooth ]]; then echo "skipped: $tooth missing"; exit 77; fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+"$voxlink" convert "$tooth" --dims 103 94 161 --type u8 --threshold 121 -o tooth.vxl -q
+out=$("$voxlink" render tooth.vxl -o tooth.png --size 64x48 --reference --reference-output ref.png)
+echo "$out"
+grep -q "PSNR" <<<"$out"
+psnr=$(sed -n 's/.*PSNR \([0-9.]*\) dB.*/\1/p' <<<"$out")
+awk -v p="$psnr" 'BEGIN { exit !(p >= 45) }' || { echo "PSNR $psnr below 45 dB"; exit 1; }
+"$voxlink" render tooth.vxl -o tooth.exr --size 40x40 --sampling trilinear --camera 90,10,1.2 --shadows
+[[ -s tooth.png && -s ref.png && -s tooth.exr ]]
+
+# Bad input: one line, non-zero status, nothing written.
+if "$voxlink" render tooth.vxl -o bad.png --size 0x10 2>err.txt; then exit 1; fi
+[[ $(wc -l <err.txt) -eq 1 && ! -e bad.png ]]
+
+"$voxlink" bench-render tooth.vxl --sizes 32x32 --frames-per-turn 2 --samplings voxel | tee bench.txt
+grep -q "| voxlink | voxel | 32x32 |" bench.txt
+grep -q "| dense | voxel | 32x32 |" bench.txt
+
+if command -v xvfb-run >/dev/null; then
+  xvfb-run -a -s "-screen 0 800x600x24" "$voxlink" view tooth.vxl --window 320x240 --frames 3 \
+      --screenshot-on-exit view.png --capture-window-on-exit window.png
+  [[ -s view.png && -s window.png && ! -e imgui.ini ]]
+else
+  echo "xvfb-run not found: interactive viewer not tested"
+fi
+echo "viewer CLI smoke test passed"

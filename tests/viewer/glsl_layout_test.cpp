@@ -1,0 +1,179 @@
+// Keeps the GLSL side in step with the C++ layout: the shaders' gradient decoder against
+// format::decodeGradient, and their voxel lookups against format::VoxelLocator, for every brick
+// size, predominant axis and stored type, with sections split into several storage blocks.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "format/gradient_codec.h"
+#include "format/half.h"
+#include "format/voxel_locator.h"
+#include "tests/support/test_util.h"
+#include "tests/viewer/gl_test_context.h"
+#include "tests/viewer/volume_fixtures.h"
+#include "viewer/gl/section_buffers.h"
+#include "viewer/gl/shader_program.h"
+#include "viewer/gl/volume_renderer.h"
+#include "viewer/gl/voxlink_renderer.h"
+
+namespace voxlink::viewer {
+namespace {
+
+std::vector<float> gradientTableForTest() {
+  std::vector<float> t;
+  for (int theta = 0; theta <= format::kPolarSteps; ++theta) {
+    const auto v = format::decodeGradient(uint16_t(theta << 8));
+    t.push_back(v[0]);
+    t.push_back(v[2]);
+  }
+  for (int phi = 0; phi < format::kAzimuthSteps; ++phi) {
+    const auto v = format::decodeGradient(uint16_t((format::kPolarSteps / 2) << 8 | phi));
+    t.push_back(v[0]);
+    t.push_back(v[1]);
+  }
+  return t;
+}
+
+TEST(GlslLayout, GradientDecodeMatchesCppForEveryCode) {
+  VOXLINK_REQUIRE_GL();
+  auto program = ComputeProgram::build("test_gradient_decode.comp.glsl",
+                                       {{"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)}});
+  ASSERT_TRUE(program) << program.message();
+  const auto table = gradientTableForTest();
+  GlStorageBuffer tableBuffer = createStorageBuffer(table.data(), table.size() * sizeof(float));
+  GlBuffer out = createBuffer();
+  glNamedBufferStorage(out.id(), 65536 * 16, nullptr, GL_MAP_READ_BIT);
+  program->use();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGradientTableBinding, tableBuffer.buffer.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.id());
+  glDispatchCompute(65536 / 64, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> decoded(65536 * 4);
+  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(decoded.size() * 4), decoded.data());
+  int mismatches = 0;
+  for (uint32_t code = 0; code < 65536; ++code) {
+    const auto cpu = format::decodeGradient(uint16_t(code));
+    if (std::memcmp(cpu.data(), &decoded[code * 4], 12) != 0 && ++mismatches <= 5)
+      ADD_FAILURE() << "code 0x" << std::hex << code << ": GLSL (" << decoded[code * 4] << ", "
+                    << decoded[code * 4 + 1] << ", " << decoded[code * 4 + 2] << ") vs C++ (" << cpu[0]
+                    << ", " << cpu[1] << ", " << cpu[2] << ")";
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+struct LookupCase {
+  uint32_t brick;
+  format::Axis axis;
+  StoredType type;
+};
+
+class GlslLookup : public ::testing::TestWithParam<LookupCase> {};
+
+TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
+  VOXLINK_REQUIRE_GL();
+  const LookupCase c = GetParam();
+  std::mt19937 rng(c.brick * 131 + int(c.axis) * 17 + int(c.type));
+  // Dims that are multiples of no brick size; sparse random voxels plus a solid block.
+  const DenseVolume dense = testing::makeVolume({37, 21, 50}, {1, 1, 1}, [&](int x, int y, int z) {
+    if (x >= 3 && x < 12 && y >= 2 && y < 9 && z >= 30 && z < 41) return 200.0;
+    return (rng() % 9 == 0) ? double(1 + rng() % 250) : 0.0;
+  });
+  testing::SparseOptions o;
+  o.brickSize = c.brick;
+  o.axis = c.axis;
+  o.type = c.type;
+  auto sparse = testing::sparsify(dense, [](double v) { return v > 0; }, o);
+  ASSERT_TRUE(sparse) << sparse.message();
+  voxlink::testing::TempDir dir;
+  auto file = testing::writeAndOpen(*sparse, dir.file("lookup.vxl"));
+  ASSERT_TRUE(file) << file.message();
+
+  // Split the larger sections into two or three chunks: the chunked accessors get used.
+  uint64_t largest = 0;
+  for (const auto& e : file->sectionTable()) largest = std::max(largest, e.bytes);
+  SectionBufferOptions split;
+  split.maxChunkBytes = std::max<uint64_t>(largest / 2, 64);
+  split.reservedBlocks = 1;  // the results buffer
+  auto sections = SectionBuffers::upload(*file, split);
+  ASSERT_TRUE(sections) << sections.message();
+  EXPECT_GT(sections->bindingCount(), 7u) << "no section was split";
+
+  auto program = ComputeProgram::build("test_voxel_lookup.comp.glsl", voxlinkDefines(file->header()),
+                                       {{"voxlink_sections.glsl", sections->glsl()}});
+  ASSERT_TRUE(program) << program.message();
+  const auto& d = dense.dims;
+  const uint32_t total = d[0] * d[1] * d[2];
+  GlBuffer out = createBuffer();
+  glNamedBufferStorage(out.id(), GLsizeiptr(total) * 16, nullptr, GL_MAP_READ_BIT);
+  program->use();
+  sections->bind();
+  glUniform3i(program->uniform("uDims"), GLint(d[0]), GLint(d[1]), GLint(d[2]));
+  glUniform3i(program->uniform("uBrickGrid"), GLint(file->header().brickGrid[0]),
+              GLint(file->header().brickGrid[1]), GLint(file->header().brickGrid[2]));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, out.id());
+  glDispatchCompute((total + 63) / 64, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<int32_t> results(size_t(total) * 4);
+  glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(results.size() * 4), results.data());
+
+  const format::VoxelLocator locator(*file);
+  const size_t valueSize = storedSize(c.type);
+  const uint8_t* values = file->valueBytes();
+  const auto codes = file->gradientCodes();
+  const int w = int(c.axis);
+  int errors = 0;
+  for (uint32_t z = 0; z < d[2]; ++z)
+    for (uint32_t y = 0; y < d[1]; ++y)
+      for (uint32_t x = 0; x < d[0]; ++x) {
+        const int32_t* r = &results[size_t(dense.index(x, y, z)) * 4];
+        const int64_t expected = locator.find(x, y, z);
+        uint32_t bits = 0;
+        if (expected >= 0) std::memcpy(&bits, values + expected * valueSize, valueSize);
+        // The next stored voxel along w within the same brick row.
+        int64_t next = -1;
+        if (expected >= 0) {
+          uint32_t p[3] = {x, y, z};
+          const uint32_t end = std::min((p[w] / c.brick + 1) * c.brick, d[w]);
+          for (uint32_t q = p[w] + 1; q < end && next < 0; ++q) {
+            p[w] = q;
+            next = locator.find(p[0], p[1], p[2]);
+          }
+          if (next >= 0) {
+            EXPECT_EQ(next, expected + 1) << "the next list element is not index + 1";
+          }
+        }
+        const bool ok = r[0] == expected && uint32_t(r[1]) == bits &&
+                        (expected < 0 || uint32_t(r[2]) == codes[expected]) && r[3] == next;
+        if (!ok && ++errors <= 5)
+          ADD_FAILURE() << "cell (" << x << ", " << y << ", " << z << "): GLSL voxel " << r[0] << " bits "
+                        << r[1] << " code " << r[2] << " next " << r[3] << "; C++ voxel " << expected
+                        << " bits " << bits << " next " << next;
+      }
+  EXPECT_EQ(errors, 0);
+}
+
+std::vector<LookupCase> lookupCases() {
+  std::vector<LookupCase> cases;
+  for (uint32_t brick : {4u, 8u, 16u, 32u})
+    for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ})
+      cases.push_back({brick, axis, brick == 8 ? StoredType::kU16 : StoredType::kU8});
+  cases.push_back({8, format::Axis::kZ, StoredType::kF16});
+  cases.push_back({8, format::Axis::kY, StoredType::kF32});
+  return cases;
+}
+
+std::string lookupName(const ::testing::TestParamInfo<LookupCase>& param) {
+  std::string name = "n";
+  name += std::to_string(param.param.brick);
+  name += "_axis";
+  name.push_back("xyz"[int(param.param.axis)]);
+  name += "_";
+  name += storedName(param.param.type);
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllLayouts, GlslLookup, ::testing::ValuesIn(lookupCases()), lookupName);
+
+}  // namespace
+}  // namespace voxlink::viewer
