@@ -132,13 +132,21 @@ Status InflateStream::skip(uint64_t bytes) {
 }
 
 Status InflateStream::expectEnd() {
-  uint8_t probe = 0;
   const uint64_t at = produced_;
-  VOXLINK_ASSIGN_OR_RETURN(uint64_t got, decode(&probe, 1));
-  if (got != 0)
-    return makeError(ErrorCode::kSizeMismatch, label_, ": compressed stream holds more than the ",
-                     at, " bytes the header describes");
-  return Status::ok();
+  std::vector<uint8_t> scratch(1);
+  VOXLINK_ASSIGN_OR_RETURN(uint64_t got, decode(scratch.data(), 1));
+  if (got == 0) return Status::ok();
+  // More data: decode on (bounded) so a damaged stream is reported as corrupt (its check value
+  // fails at the end) rather than as a size disagreement.
+  const uint64_t limit = std::max<uint64_t>(at, uint64_t{64} << 20);
+  scratch.resize(std::min<uint64_t>(limit, uint64_t{1} << 20));
+  uint64_t extra = got;
+  while (got > 0 && extra < limit) {
+    VOXLINK_ASSIGN_OR_RETURN(got, decode(scratch.data(), scratch.size()));
+    extra += got;
+  }
+  return makeError(ErrorCode::kSizeMismatch, label_, ": compressed stream holds ",
+                   got == 0 ? "" : "more than ", at + extra, " bytes, the header describes ", at);
 }
 
 }  // namespace voxlink::convert

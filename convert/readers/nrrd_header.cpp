@@ -176,6 +176,7 @@ class NrrdParser {
       }
       h_.type = *t;
     } else if (field == "sizes") {
+      sizesText_ = std::string(value);
       VOXLINK_ASSIGN_OR_RETURN(std::vector<int64_t> s, parseIntegers(value, path_, field));
       for (int64_t v : s) {
         if (v <= 0) return badField(path_, field, "positive integers", value);
@@ -273,8 +274,7 @@ class NrrdParser {
         return makeError(ErrorCode::kCorrupt, path_, ": header field '", required, "' missing");
     const int d = h_.dimension;
     if (h_.sizes.size() != static_cast<size_t>(d))
-      return makeError(ErrorCode::kCorrupt, path_, ": header field 'sizes': ", h_.sizes.size(),
-                       " sizes for dimension ", d);
+      return badField(path_, "sizes", cat(d, " positive integers (dimension ", d, ")"), sizesText_);
     const bool fourWithStub = d == 4 && h_.sizes[0] == 1;
     if (d != 3 && !fourWithStub)
       return makeError(ErrorCode::kUnsupported, path_, ": header field 'dimension': ", d,
@@ -307,6 +307,7 @@ class NrrdParser {
   std::string path_;
   NrrdHeader h_;
   std::set<std::string> seen_;
+  std::string sizesText_;
   int spaceDimension_ = 0;
   bool listingFiles_ = false;
 };
