@@ -31,7 +31,7 @@ Error missingFile(const std::string& label, const std::string& path) {
       }
     }
   }
-  return makeError(ErrorCode::kIo, label, ": data file ", path, " does not exist", hint);
+  return makeError(ErrorCode::kIo, label, ": ", path, " does not exist", hint);
 }
 
 // Byte offset just after `lines` newlines, counted from `from`.
@@ -209,16 +209,17 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
       } else {
         rp.dataOffset += p.byteSkip;
         const uint64_t available = size > rp.dataOffset ? size - rp.dataOffset : 0;
+        // Attached data is already named by the label; a data file is named here.
+        const std::string file = p.path == info.path ? std::string() : p.path + ": ";
         const std::string shape = cat(info.dims[0], "x", info.dims[1], "x", p.slices, " ",
                                       scalarName(info.type));
         if (available < needed)
-          return makeError(ErrorCode::kTruncated, layout.label, ": ", p.path, ": ", shape,
-                           " needs ", needed, " bytes after byte ", rp.dataOffset,
-                           ", the file holds only ", available);
+          return makeError(ErrorCode::kTruncated, layout.label, ": ", file, shape, " needs ", needed,
+                           " bytes after byte ", rp.dataOffset, ", the file holds only ", available);
         if (layout.exactSize && available != needed)
-          return makeError(ErrorCode::kSizeMismatch, layout.label, ": ", p.path, ": ", shape,
-                           " needs ", needed, " bytes after byte ", rp.dataOffset,
-                           ", the file holds ", available, " (header sizes or type wrong?)");
+          return makeError(ErrorCode::kSizeMismatch, layout.label, ": ", file, shape, " needs ",
+                           needed, " bytes after byte ", rp.dataOffset, ", the file holds ", available,
+                           " (header sizes or type wrong?)");
       }
     } else if (p.dataAtEnd) {
       return makeError(ErrorCode::kUnsupported, layout.label,

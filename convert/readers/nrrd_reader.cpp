@@ -58,7 +58,7 @@ Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path, const Op
   PieceLayout layout;
   layout.encoding = h.encoding;
   layout.endian = h.endian.value_or(Endian::kLittle);
-  layout.label = cat(path, ": data");
+  layout.label = cat(path, h.attached ? ": data" : ": data file");
   DataPiece base;
   base.lineSkip = h.lineSkip;
   base.byteSkip = h.byteSkip > 0 ? static_cast<uint64_t>(h.byteSkip) : 0;

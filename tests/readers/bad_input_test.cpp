@@ -16,7 +16,7 @@ std::string nrrd(const std::string& fields) { return "NRRD0004\n" + fields + "\n
 TEST(BadInput, TruncatedAttachedData) {
   TempDir dir;
   writeWithHeader(dir.file("t.nrrd"), nrrd("type: uint8\ndimension: 3\nsizes: 10 10 10\nencoding: raw\n"), patternBytes(900));
-  expectError(openVolume(dir.file("t.nrrd")), ErrorCode::kTruncated, {"t.nrrd", "data", "needs 1000 bytes", "only 900"});
+  expectError(openVolume(dir.file("t.nrrd")), ErrorCode::kTruncated, {"t.nrrd: data: 10x10x10 u8 needs 1000 bytes", "only 900"});
 }
 
 TEST(BadInput, TruncatedSliceFileOfAList) {
@@ -26,7 +26,7 @@ TEST(BadInput, TruncatedSliceFileOfAList) {
   auto slice = readBytes(dir.file("quarter.40"));
   slice.resize(slice.size() - 100);
   writeBytes(dir.file("quarter.40"), slice);
-  expectError(openVolume(dir.file("quarter.nhdr")), ErrorCode::kTruncated, {"quarter.nhdr", "quarter.40", "only 8092"});
+  expectError(openVolume(dir.file("quarter.nhdr")), ErrorCode::kTruncated, {"quarter.nhdr: data file", "quarter.40", "only 8092"});
 }
 
 TEST(BadInput, TruncatedGzipStream) {
@@ -52,7 +52,7 @@ TEST(BadInput, HeaderSizesSmallerThanTheData) {
   // Raw: the header claims 60 slices of a 64-slice file.
   writeText(dir.file("short.nhdr"), nrrd("type: uint8\ndimension: 3\nsizes: 64 64 60\nencoding: raw\ndata file: " +
                                          dataPath("volume/neghip_64x64x64_uint8.raw") + "\n"));
-  expectError(openVolume(dir.file("short.nhdr")), ErrorCode::kSizeMismatch, {"short.nhdr", "data", "neghip_64x64x64_uint8.raw", "header sizes"});
+  expectError(openVolume(dir.file("short.nhdr")), ErrorCode::kSizeMismatch, {"short.nhdr: data file", "neghip_64x64x64_uint8.raw", "header sizes"});
   // Gzip: the stream holds more than the sizes say; found when the last slice is read.
   writeWithHeader(dir.file("long.nrrd"), nrrd("type: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: gzip\n"), gzipBytes(patternBytes(8 * 8 * 9)));
   expectError(openAndReadAll(dir.file("long.nrrd")), ErrorCode::kSizeMismatch, {"long.nrrd", "data", "holds 576 bytes, the header describes 512"});
@@ -122,7 +122,7 @@ TEST(BadInput, CorruptGzipStream) {
   auto bytes = readBytes(dataPath("ct/vtkjs_LIDC2/" + gz));
   for (size_t i = bytes.size() / 2; i < bytes.size() / 2 + 64; ++i) bytes[i] ^= 0x5a;
   writeBytes(dir.file(gz), bytes);
-  expectError(openAndReadAll(dir.file("LIDC2.nhdr")), ErrorCode::kCorrupt, {"LIDC2.nhdr", "data", gz, "corrupt"});
+  expectError(openAndReadAll(dir.file("LIDC2.nhdr")), ErrorCode::kCorrupt, {"LIDC2.nhdr: data file", gz, "corrupt"});
 }
 
 TEST(BadInput, CorruptZlibMetaImage) {
@@ -136,7 +136,7 @@ TEST(BadInput, CorruptZlibMetaImage) {
 TEST(BadInput, MissingDetachedDataFile) {
   TempDir dir;
   writeText(dir.file("gone.nhdr"), nrrd("type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\ndata file: gone.raw\n"));
-  expectError(openVolume(dir.file("gone.nhdr")), ErrorCode::kIo, {"gone.nhdr", "data", "gone.raw does not exist"});
+  expectError(openVolume(dir.file("gone.nhdr")), ErrorCode::kIo, {"gone.nhdr: data file", "gone.raw does not exist"});
   writeText(dir.file("gone.mhd"), "NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = gone.zraw\n");
   expectError(openVolume(dir.file("gone.mhd")), ErrorCode::kIo, {"gone.mhd", "ElementDataFile", "gone.zraw does not exist"});
 }
