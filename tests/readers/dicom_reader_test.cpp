@@ -128,6 +128,18 @@ TEST(DicomReader, TwoFilesAtOnePositionAreRefused) {
   expectError(openVolume(dir.path().string()), ErrorCode::kCorrupt, {"ImagePositionPatient", "CTHead7", "same slice position"});
 }
 
+TEST(DicomReader, TwoSeriesInOneFolderAreRefused) {
+  VOXLINK_REQUIRE_DATA(kSeries);
+  TempDir dir;
+  copySeries(dir, [](const std::string& name, gdcm::DataSet& ds) {
+    if (name != "CTHead3.dcm") return;
+    gdcm::Attribute<0x0020, 0x000e> uid;
+    uid.SetValue("1.2.3.4.5");
+    ds.Replace(uid.GetAsDataElement());
+  });
+  expectError(openVolume(dir.path().string()), ErrorCode::kUnsupported, {"SeriesInstanceUID", "holds 2 series"});
+}
+
 TEST(DicomReader, OtherFilesInTheFolderAreSkippedWithANote) {
   VOXLINK_REQUIRE_DATA(kSeries);
   TempDir dir;
