@@ -12,6 +12,7 @@
 #include "convert/readers/raw_reader.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/vdb_reader.h"
+#include "convert/readers/vti_reader.h"
 #include "convert/readers/vvd_reader.h"
 
 namespace voxlink::convert {
@@ -49,6 +50,7 @@ const std::vector<ReaderEntry>& readerRegistry() {
     r.push_back({"nifti", hasExt({".nii", ".nii.gz"}), openNifti});
     r.push_back({"vvd", hasExt({".vvd"}), openVvd});
     r.push_back({"vdb", hasExt({".vdb"}), openVdb});
+    r.push_back({"vti", hasExt({".vti"}), openVti});
     // Folders: DICOM when they hold DICOM files, else a stack of slice images.
     r.push_back({"dicom", [isDir](const std::string& p) { return isDir(p) && folderHoldsDicom(p); },
                  openDicomSeries});

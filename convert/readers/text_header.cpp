@@ -42,10 +42,12 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
 }
 
 Result<std::string> readFilePrefix(const std::string& path, size_t maxBytes) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open for reading");
-  std::string text(maxBytes, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(maxBytes));
+  const auto size = static_cast<size_t>(std::max<std::streamoff>(in.tellg(), 0));
+  in.seekg(0);
+  std::string text(std::min(maxBytes, size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
   if (in.bad()) return makeError(ErrorCode::kIo, path, ": read error");
   text.resize(static_cast<size_t>(in.gcount()));
   return text;

@@ -12,7 +12,7 @@ namespace {
 
 TEST(ReaderRegistry, EveryReaderIsRegistered) {
   const auto names = readerNames();
-  for (const char* name : {"nrrd", "metaimage", "nifti", "vvd", "vdb", "dicom", "image-stack", "raw"})
+  for (const char* name : {"nrrd", "metaimage", "nifti", "vvd", "vdb", "vti", "dicom", "image-stack", "raw"})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
 }
 
@@ -26,6 +26,7 @@ TEST(ReaderRegistry, PathsGoToTheirReaders) {
       {"mri/vtk_avg152T1_RL_nifti.nii.gz", "nifti"},
       {"ct/voreen_walnut/walnut.vvd", "vvd"},
       {"ct/slicer_CTHeadAxialDicom", "dicom"},
+      {"volume/vtk_hydrogen.vti", "vti"},
   };
   for (const auto& [path, format] : cases) {
     SCOPED_TRACE(path);

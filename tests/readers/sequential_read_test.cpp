@@ -16,6 +16,7 @@ const char* const kInputs[] = {
     "mri/vtk_avg152T1_RL_nifti.nii.gz",                        // gzip, big-endian header
     "ct/slicer_CTHeadAxialDicom",                              // one DICOM file per slice
     "ct/voreen_walnut/walnut.vvd",                             // mapped raw
+    "volume/vtk_hydrogen.vti",                                 // decoded at open, in memory
 };
 
 class SequentialRead : public ::testing::TestWithParam<const char*> {};
