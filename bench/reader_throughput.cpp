@@ -44,7 +44,8 @@ std::vector<uint8_t> fileBytes(const std::string& path, size_t skip = 0) {
 size_t afterBlankLine(const std::string& path) {
   const auto all = fileBytes(path);
   const char blank[] = "\n\n";
-  return static_cast<size_t>(std::search(all.begin(), all.end(), blank, blank + 2) - all.begin()) + 2;
+  return static_cast<size_t>(std::search(all.begin(), all.end(), blank, blank + 2) - all.begin()) +
+         2;
 }
 
 bool inflateAll(const std::vector<uint8_t>& in, std::vector<uint8_t>& out) {
@@ -73,11 +74,31 @@ struct Input {
 int main(int argc, char** argv) {
   const std::string data = argc > 1 ? argv[1] : VOXLINK_DATA_DIR;
   std::vector<Input> inputs = {
-      {"foot NRRD (attached gzip)", data + "/ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd", {}, 0, true},
-      {"carp NRRD (attached gzip, u16)", data + "/ct/openscivis_lossy/carp_128x128x256_uint16_lossy.nrrd", {}, 0, true},
-      {"LIDC2 NRRD (detached gzip)", data + "/ct/vtkjs_LIDC2/LIDC2.nhdr", {data + "/ct/vtkjs_LIDC2/b1ad142a1ebc80f957fcdc329e876d51.gz"}, 0, true},
-      {"frogtissue MetaImage (zlib)", data + "/volume/vtk_frogtissue/frogtissue.mhd", {data + "/volume/vtk_frogtissue/frogtissue.zraw"}, 0, true},
-      {"walnut Voreen (mapped raw)", data + "/ct/voreen_walnut/walnut.vvd", {data + "/ct/voreen_walnut/walnut.raw"}, 0, false},
+      {"foot NRRD (attached gzip)",
+       data + "/ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd",
+       {},
+       0,
+       true},
+      {"carp NRRD (attached gzip, u16)",
+       data + "/ct/openscivis_lossy/carp_128x128x256_uint16_lossy.nrrd",
+       {},
+       0,
+       true},
+      {"LIDC2 NRRD (detached gzip)",
+       data + "/ct/vtkjs_LIDC2/LIDC2.nhdr",
+       {data + "/ct/vtkjs_LIDC2/b1ad142a1ebc80f957fcdc329e876d51.gz"},
+       0,
+       true},
+      {"frogtissue MetaImage (zlib)",
+       data + "/volume/vtk_frogtissue/frogtissue.mhd",
+       {data + "/volume/vtk_frogtissue/frogtissue.zraw"},
+       0,
+       true},
+      {"walnut Voreen (mapped raw)",
+       data + "/ct/voreen_walnut/walnut.vvd",
+       {data + "/ct/voreen_walnut/walnut.raw"},
+       0,
+       false},
       {"headsq NRRD (93 raw files)", data + "/ct/vtk_headsq/quarter.nhdr", {}, 0, false},
       {"CT head DICOM (93 files, GDCM)", data + "/ct/slicer_CTHeadAxialDicom", {}, 0, false},
   };
@@ -89,10 +110,12 @@ int main(int argc, char** argv) {
   }
   for (int i = 1; i <= 93; ++i) {
     inputs[5].peerFiles.push_back(data + "/ct/vtk_headsq/quarter." + std::to_string(i));
-    inputs[6].peerFiles.push_back(data + "/ct/slicer_CTHeadAxialDicom/CTHead" + std::to_string(i) + ".dcm");
+    inputs[6].peerFiles.push_back(data + "/ct/slicer_CTHeadAxialDicom/CTHead" + std::to_string(i) +
+                                  ".dcm");
   }
 
-  std::printf("%-32s %10s %12s %12s %8s  %s\n", "input", "MB decoded", "ours MB/s", "peer MB/s", "ours/peer", "peer");
+  std::printf("%-32s %10s %12s %12s %8s  %s\n", "input", "MB decoded", "ours MB/s", "peer MB/s",
+              "ours/peer", "peer");
   for (const Input& in : inputs) {
     auto opened = voxlink::convert::openVolume(in.path);
     if (!opened) {
@@ -107,7 +130,9 @@ int main(int argc, char** argv) {
     const double ours = medianSeconds([&] {
       if (!source.rewind()) return false;
       for (uint32_t z = 0; z < info.dims[2]; z += slab)
-        if (!source.read(z, std::min(slab, info.dims[2] - z), out.data() + uint64_t{z} * info.sliceBytes())) return false;
+        if (!source.read(z, std::min(slab, info.dims[2] - z),
+                         out.data() + uint64_t{z} * info.sliceBytes()))
+          return false;
       return true;
     });
     double peer = 0;
@@ -127,7 +152,8 @@ int main(int argc, char** argv) {
       peerName = "ifstream read of the files";
     }
     const double mb = static_cast<double>(bytes) / 1e6;
-    std::printf("%-32s %10.1f %12.0f %12.0f %8.2f  %s\n", in.name, mb, mb / ours, mb / peer, peer / ours, peerName);
+    std::printf("%-32s %10.1f %12.0f %12.0f %8.2f  %s\n", in.name, mb, mb / ours, mb / peer,
+                peer / ours, peerName);
   }
   return 0;
 }

@@ -50,8 +50,8 @@ Result<uint64_t> skipLines(const std::string& path, uint64_t from, uint64_t line
   }
   std::fclose(f);
   if (seen < lines)
-    return makeError(ErrorCode::kTruncated, label, ": line skip ", lines, ": ", path,
-                     " has only ", seen, " lines after byte ", from);
+    return makeError(ErrorCode::kTruncated, label, ": line skip ", lines, ": ", path, " has only ",
+                     seen, " lines after byte ", from);
   return offset;
 }
 
@@ -66,7 +66,8 @@ class PieceSource final : public VolumeSource {
   PieceSource(VolumeInfo info, std::vector<ResolvedPiece> pieces, PieceLayout layout)
       : pieces_(std::move(pieces)), layout_(std::move(layout)) {
     info_ = std::move(info);
-    swap_ = scalarSize(info_.type) > 1 && ((layout_.endian == Endian::kLittle) != kHostIsLittleEndian);
+    swap_ =
+        scalarSize(info_.type) > 1 && ((layout_.endian == Endian::kLittle) != kHostIsLittleEndian);
   }
   ~PieceSource() override { closeFile(); }
 
@@ -103,8 +104,9 @@ class PieceSource final : public VolumeSource {
 
  private:
   size_t pieceOf(uint32_t z) const {
-    auto it = std::upper_bound(pieces_.begin(), pieces_.end(), z,
-                               [](uint32_t v, const ResolvedPiece& rp) { return v < rp.firstSlice; });
+    auto it =
+        std::upper_bound(pieces_.begin(), pieces_.end(), z,
+                         [](uint32_t v, const ResolvedPiece& rp) { return v < rp.firstSlice; });
     return static_cast<size_t>(it - pieces_.begin()) - 1;
   }
 
@@ -128,8 +130,8 @@ class PieceSource final : public VolumeSource {
       const ssize_t got = ::pread(fd_, out, std::min<uint64_t>(left, uint64_t{1} << 30),
                                   static_cast<off_t>(offset));
       if (got <= 0)
-        return makeError(got == 0 ? ErrorCode::kTruncated : ErrorCode::kIo, layout_.label,
-                         ": ", rp.piece.path, " ends or fails at byte ", offset);
+        return makeError(got == 0 ? ErrorCode::kTruncated : ErrorCode::kIo, layout_.label, ": ",
+                         rp.piece.path, " ends or fails at byte ", offset);
       out += got;
       offset += static_cast<uint64_t>(got);
       left -= static_cast<uint64_t>(got);
@@ -154,7 +156,8 @@ class PieceSource final : public VolumeSource {
       streamPiece_ = p;
     }
     const uint64_t want = rp.piece.byteSkip + uint64_t{inPiece} * info_.sliceBytes();
-    if (stream_->position() < want) VOXLINK_RETURN_IF_ERROR(stream_->skip(want - stream_->position()));
+    if (stream_->position() < want)
+      VOXLINK_RETURN_IF_ERROR(stream_->skip(want - stream_->position()));
     VOXLINK_RETURN_IF_ERROR(stream_->read(out, uint64_t{n} * info_.sliceBytes()));
     nextSlice_ = z + n;
     if (inPiece + n == rp.piece.slices) {
@@ -197,7 +200,8 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
     }
     ResolvedPiece rp{p, p.startOffset, first};
     if (p.lineSkip > 0) {
-      VOXLINK_ASSIGN_OR_RETURN(rp.dataOffset, skipLines(p.path, p.startOffset, p.lineSkip, layout.label));
+      VOXLINK_ASSIGN_OR_RETURN(rp.dataOffset,
+                               skipLines(p.path, p.startOffset, p.lineSkip, layout.label));
     }
     const uint64_t needed = uint64_t{p.slices} * info.sliceBytes();
     if (layout.encoding == PieceEncoding::kRaw) {
@@ -211,15 +215,16 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
         const uint64_t available = size > rp.dataOffset ? size - rp.dataOffset : 0;
         // Attached data is already named by the label; a data file is named here.
         const std::string file = p.path == info.path ? std::string() : p.path + ": ";
-        const std::string shape = cat(info.dims[0], "x", info.dims[1], "x", p.slices, " ",
-                                      scalarName(info.type));
+        const std::string shape =
+            cat(info.dims[0], "x", info.dims[1], "x", p.slices, " ", scalarName(info.type));
         if (available < needed)
-          return makeError(ErrorCode::kTruncated, layout.label, ": ", file, shape, " needs ", needed,
-                           " bytes after byte ", rp.dataOffset, ", the file holds only ", available);
+          return makeError(ErrorCode::kTruncated, layout.label, ": ", file, shape, " needs ",
+                           needed, " bytes after byte ", rp.dataOffset, ", the file holds only ",
+                           available);
         if (layout.exactSize && available != needed)
           return makeError(ErrorCode::kSizeMismatch, layout.label, ": ", file, shape, " needs ",
-                           needed, " bytes after byte ", rp.dataOffset, ", the file holds ", available,
-                           " (header sizes or type wrong?)");
+                           needed, " bytes after byte ", rp.dataOffset, ", the file holds ",
+                           available, " (header sizes or type wrong?)");
       }
     } else if (p.dataAtEnd) {
       return makeError(ErrorCode::kUnsupported, layout.label,
@@ -233,7 +238,8 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
   if (layout.encoding == PieceEncoding::kRaw && resolved.size() == 1)
     return openRawData(resolved[0].piece.path, std::move(info), layout.endian,
                        resolved[0].dataOffset, false);
-  return std::unique_ptr<VolumeSource>(new PieceSource(std::move(info), std::move(resolved), std::move(layout)));
+  return std::unique_ptr<VolumeSource>(
+      new PieceSource(std::move(info), std::move(resolved), std::move(layout)));
 }
 
 }  // namespace voxlink::convert

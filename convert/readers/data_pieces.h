@@ -17,11 +17,11 @@ enum class PieceEncoding { kRaw, kDeflate };  // kDeflate: zlib or gzip framing
 
 struct DataPiece {
   std::string path;
-  uint64_t startOffset = 0;   // bytes before everything else (an attached header)
-  uint64_t lineSkip = 0;      // then this many text lines of the file are skipped (NRRD line skip)
-  uint64_t byteSkip = 0;      // raw: file bytes after the lines; deflate: decoded bytes
-  bool dataAtEnd = false;     // raw only: the data is the last bytes of the file (byte skip -1)
-  uint32_t slices = 0;        // z slices this piece holds
+  uint64_t startOffset = 0;  // bytes before everything else (an attached header)
+  uint64_t lineSkip = 0;     // then this many text lines of the file are skipped (NRRD line skip)
+  uint64_t byteSkip = 0;     // raw: file bytes after the lines; deflate: decoded bytes
+  bool dataAtEnd = false;    // raw only: the data is the last bytes of the file (byte skip -1)
+  uint32_t slices = 0;       // z slices this piece holds
 };
 
 struct PieceLayout {

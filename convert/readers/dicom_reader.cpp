@@ -33,10 +33,11 @@ class DicomSource final : public VolumeSource {
       const DicomSlice& slice = series_.slices[z];
       uint8_t* target = out + uint64_t{z - z0} * info_.sliceBytes();
       if (rescale_) scratch_.resize(storedBytes);
-      VOXLINK_RETURN_IF_ERROR(readPixels(slice.path, rescale_ ? scratch_.data() : target, storedBytes));
+      VOXLINK_RETURN_IF_ERROR(
+          readPixels(slice.path, rescale_ ? scratch_.data() : target, storedBytes));
       if (rescale_)
-        convertRescaled(scratch_.data(), series_.storedType, target, info_.type, info_.sliceVoxels(),
-                        slice.slope, slice.intercept);
+        convertRescaled(scratch_.data(), series_.storedType, target, info_.type,
+                        info_.sliceVoxels(), slice.slope, slice.intercept);
     }
     return Status::ok();
   }
@@ -51,10 +52,12 @@ class DicomSource final : public VolumeSource {
       return makeError(ErrorCode::kSizeMismatch, file, ": pixel data is ", image.GetColumns(), "x",
                        image.GetRows(), ", the series is ", info_.dims[0], "x", info_.dims[1]);
     if (image.GetBufferLength() != bytes)
-      return makeError(ErrorCode::kSizeMismatch, file, ": tag PixelData (7FE0,0010): ",
-                       image.GetBufferLength(), " bytes decoded, ", bytes, " expected");
+      return makeError(ErrorCode::kSizeMismatch, file,
+                       ": tag PixelData (7FE0,0010): ", image.GetBufferLength(), " bytes decoded, ",
+                       bytes, " expected");
     if (!image.GetBuffer(reinterpret_cast<char*>(dst)))
-      return makeError(ErrorCode::kCorrupt, file, ": tag PixelData (7FE0,0010): GDCM cannot decode it");
+      return makeError(ErrorCode::kCorrupt, file,
+                       ": tag PixelData (7FE0,0010): GDCM cannot decode it");
     return Status::ok();
   }
 
@@ -67,7 +70,8 @@ bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+                                                      const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir));
   const std::array<uint64_t, 3> dims{series.columns, series.rows, series.slices.size()};
   VOXLINK_RETURN_IF_ERROR(checkDims(dims, dir, "Columns Rows slices"));
@@ -79,14 +83,15 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir, co
   info.spacing = {series.columnSpacing, series.rowSpacing, series.sliceSpacing};
   info.origin = series.slices.front().position;
   info.notes = series.notes;
-  const AxesSummary axes = summarizeAxes({series.rowDirection, series.columnDirection, series.normal},
-                                         "ImageOrientationPatient axes");
+  const AxesSummary axes = summarizeAxes(
+      {series.rowDirection, series.columnDirection, series.normal}, "ImageOrientationPatient axes");
   if (!axes.note.empty()) info.notes.push_back(axes.note);
 
   // Rescale: the value range of BitsStored through every slice's slope and intercept.
   const bool isSigned = voxlink::isSigned(series.storedType);
   const double storedMin = isSigned ? -std::ldexp(1.0, series.bitsStored - 1) : 0.0;
-  const double storedMax = isSigned ? std::ldexp(1.0, series.bitsStored - 1) - 1 : std::ldexp(1.0, series.bitsStored) - 1;
+  const double storedMax = isSigned ? std::ldexp(1.0, series.bitsStored - 1) - 1
+                                    : std::ldexp(1.0, series.bitsStored) - 1;
   bool identity = true, allIntegral = true;
   double lo = 0, hi = 0, minSlope = 0, maxSlope = 0, minIntercept = 0, maxIntercept = 0;
   for (size_t i = 0; i < series.slices.size(); ++i) {
@@ -101,18 +106,20 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir, co
     minIntercept = i ? std::min(minIntercept, s.intercept) : s.intercept;
     maxIntercept = i ? std::max(maxIntercept, s.intercept) : s.intercept;
   }
-  info.type = identity ? series.storedType : typeForValueRange(series.storedType, lo, hi, allIntegral);
+  info.type =
+      identity ? series.storedType : typeForValueRange(series.storedType, lo, hi, allIntegral);
   if (!identity) {
     const bool uniform = minSlope == maxSlope && minIntercept == maxIntercept;
     info.notes.push_back(uniform ? cat("RescaleSlope/RescaleIntercept applied: value = stored ",
-                                       scalarName(series.storedType), " * ", minSlope, " + ", minIntercept,
-                                       ", served as ", scalarName(info.type))
-                                 : cat("RescaleSlope/RescaleIntercept applied per slice (slopes ", minSlope,
-                                       "..", maxSlope, ", intercepts ", minIntercept, "..", maxIntercept,
-                                       "), served as ", scalarName(info.type)));
+                                       scalarName(series.storedType), " * ", minSlope, " + ",
+                                       minIntercept, ", served as ", scalarName(info.type))
+                                 : cat("RescaleSlope/RescaleIntercept applied per slice (slopes ",
+                                       minSlope, "..", maxSlope, ", intercepts ", minIntercept,
+                                       "..", maxIntercept, "), served as ", scalarName(info.type)));
   }
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
-  return std::unique_ptr<VolumeSource>(new DicomSource(std::move(info), std::move(series), !identity));
+  return std::unique_ptr<VolumeSource>(
+      new DicomSource(std::move(info), std::move(series), !identity));
 }
 
 }  // namespace voxlink::convert

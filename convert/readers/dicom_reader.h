@@ -9,6 +9,7 @@
 
 namespace voxlink::convert {
 
-Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+                                                      const OpenOptions& options);
 
 }  // namespace voxlink::convert

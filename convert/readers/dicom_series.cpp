@@ -4,8 +4,8 @@
 #include <gdcmReader.h>
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -44,8 +44,7 @@ std::string stringValue(const gdcm::DataSet& ds, uint16_t group, uint16_t elemen
 Result<std::vector<double>> decimals(const gdcm::DataSet& ds, uint16_t group, uint16_t element,
                                      const std::string& file, const char* name, size_t count) {
   std::string text = stringValue(ds, group, element);
-  if (text.empty())
-    return makeError(ErrorCode::kUnsupported, file, ": tag ", name, " missing");
+  if (text.empty()) return makeError(ErrorCode::kUnsupported, file, ": tag ", name, " missing");
   std::replace(text.begin(), text.end(), '\\', ' ');
   return parseDoubles(text, file, name, count);
 }
@@ -53,7 +52,8 @@ Result<std::vector<double>> decimals(const gdcm::DataSet& ds, uint16_t group, ui
 template <uint16_t G, uint16_t E>
 std::optional<uint16_t> ushortValue(const gdcm::DataSet& ds) {
   gdcm::Attribute<G, E> at;
-  if (!ds.FindDataElement(at.GetTag()) || ds.GetDataElement(at.GetTag()).IsEmpty()) return std::nullopt;
+  if (!ds.FindDataElement(at.GetTag()) || ds.GetDataElement(at.GetTag()).IsEmpty())
+    return std::nullopt;
   at.SetFromDataSet(ds);
   return static_cast<uint16_t>(at.GetValue());
 }
@@ -82,7 +82,9 @@ Result<SliceHeader> readSliceHeader(const std::string& file) {
   const auto columns = ushortValue<0x0028, 0x0011>(ds);
   const auto bitsAllocated = ushortValue<0x0028, 0x0100>(ds);
   if (!rows || !columns || !bitsAllocated || *rows == 0 || *columns == 0)
-    return makeError(ErrorCode::kUnsupported, file, ": tag Rows/Columns/BitsAllocated (0028,0010/0011/0100) missing; not an image");
+    return makeError(
+        ErrorCode::kUnsupported, file,
+        ": tag Rows/Columns/BitsAllocated (0028,0010/0011/0100) missing; not an image");
   h.rows = *rows;
   h.columns = *columns;
   h.bitsAllocated = *bitsAllocated;
@@ -97,18 +99,25 @@ Result<SliceHeader> readSliceHeader(const std::string& file) {
     return makeError(ErrorCode::kUnsupported, file, ": tag NumberOfFrames (0028,0008): ", frames,
                      " (multi-frame files are not supported)");
   h.photometric = stringValue(ds, 0x0028, 0x0004);
-  VOXLINK_ASSIGN_OR_RETURN(std::vector<double> ipp, decimals(ds, 0x0020, 0x0032, file, "ImagePositionPatient (0020,0032)", 3));
-  VOXLINK_ASSIGN_OR_RETURN(std::vector<double> iop, decimals(ds, 0x0020, 0x0037, file, "ImageOrientationPatient (0020,0037)", 6));
-  VOXLINK_ASSIGN_OR_RETURN(std::vector<double> ps, decimals(ds, 0x0028, 0x0030, file, "PixelSpacing (0028,0030)", 2));
+  VOXLINK_ASSIGN_OR_RETURN(
+      std::vector<double> ipp,
+      decimals(ds, 0x0020, 0x0032, file, "ImagePositionPatient (0020,0032)", 3));
+  VOXLINK_ASSIGN_OR_RETURN(
+      std::vector<double> iop,
+      decimals(ds, 0x0020, 0x0037, file, "ImageOrientationPatient (0020,0037)", 6));
+  VOXLINK_ASSIGN_OR_RETURN(std::vector<double> ps,
+                           decimals(ds, 0x0028, 0x0030, file, "PixelSpacing (0028,0030)", 2));
   h.slice.position = {ipp[0], ipp[1], ipp[2]};
   std::copy(iop.begin(), iop.end(), h.orientation.begin());
   h.pixelSpacing = {ps[0], ps[1]};
   if (!stringValue(ds, 0x0028, 0x1053).empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(std::vector<double> s, decimals(ds, 0x0028, 0x1053, file, "RescaleSlope (0028,1053)", 1));
+    VOXLINK_ASSIGN_OR_RETURN(std::vector<double> s,
+                             decimals(ds, 0x0028, 0x1053, file, "RescaleSlope (0028,1053)", 1));
     h.slice.slope = s[0];
   }
   if (!stringValue(ds, 0x0028, 0x1052).empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(std::vector<double> i, decimals(ds, 0x0028, 0x1052, file, "RescaleIntercept (0028,1052)", 1));
+    VOXLINK_ASSIGN_OR_RETURN(std::vector<double> i,
+                             decimals(ds, 0x0028, 0x1052, file, "RescaleIntercept (0028,1052)", 1));
     h.slice.intercept = i[0];
   }
   if (!std::isfinite(h.slice.slope) || h.slice.slope == 0)
@@ -124,32 +133,40 @@ Result<SliceHeader> readSliceHeader(const std::string& file) {
 Result<ScalarType> storedType(const SliceHeader& h) {
   const bool s = h.pixelRepresentation == 1;
   switch (h.bitsAllocated) {
-    case 8: return s ? ScalarType::kI8 : ScalarType::kU8;
-    case 16: return s ? ScalarType::kI16 : ScalarType::kU16;
-    case 32: return s ? ScalarType::kI32 : ScalarType::kU32;
+    case 8:
+      return s ? ScalarType::kI8 : ScalarType::kU8;
+    case 16:
+      return s ? ScalarType::kI16 : ScalarType::kU16;
+    case 32:
+      return s ? ScalarType::kI32 : ScalarType::kU32;
     default:
-      return makeError(ErrorCode::kUnsupported, h.slice.path, ": tag BitsAllocated (0028,0100): ",
-                       h.bitsAllocated, " (8, 16 or 32 are supported)");
+      return makeError(ErrorCode::kUnsupported, h.slice.path,
+                       ": tag BitsAllocated (0028,0100): ", h.bitsAllocated,
+                       " (8, 16 or 32 are supported)");
   }
 }
 
 Status checkSameGeometry(const SliceHeader& first, const SliceHeader& h) {
   const std::string other = fs::path(first.slice.path).filename().string();
   if (h.rows != first.rows || h.columns != first.columns)
-    return makeError(ErrorCode::kSizeMismatch, h.slice.path, ": tag Rows x Columns (0028,0010/0011): ",
-                     h.columns, "x", h.rows, " differs from ", first.columns, "x", first.rows, " in ", other);
+    return makeError(ErrorCode::kSizeMismatch, h.slice.path,
+                     ": tag Rows x Columns (0028,0010/0011): ", h.columns, "x", h.rows,
+                     " differs from ", first.columns, "x", first.rows, " in ", other);
   if (h.bitsAllocated != first.bitsAllocated || h.pixelRepresentation != first.pixelRepresentation)
-    return makeError(ErrorCode::kSizeMismatch, h.slice.path, ": tag BitsAllocated/PixelRepresentation (0028,0100/0103): ",
-                     h.bitsAllocated, "/", h.pixelRepresentation, " differs from ", first.bitsAllocated,
-                     "/", first.pixelRepresentation, " in ", other);
+    return makeError(ErrorCode::kSizeMismatch, h.slice.path,
+                     ": tag BitsAllocated/PixelRepresentation (0028,0100/0103): ", h.bitsAllocated,
+                     "/", h.pixelRepresentation, " differs from ", first.bitsAllocated, "/",
+                     first.pixelRepresentation, " in ", other);
   for (int i = 0; i < 6; ++i)
     if (std::fabs(h.orientation[i] - first.orientation[i]) > 1e-4)
-      return makeError(ErrorCode::kUnsupported, h.slice.path, ": tag ImageOrientationPatient (0020,0037) differs from ", other);
+      return makeError(ErrorCode::kUnsupported, h.slice.path,
+                       ": tag ImageOrientationPatient (0020,0037) differs from ", other);
   for (int i = 0; i < 2; ++i)
     if (std::fabs(h.pixelSpacing[i] - first.pixelSpacing[i]) > 1e-4 * first.pixelSpacing[i])
-      return makeError(ErrorCode::kSizeMismatch, h.slice.path, ": tag PixelSpacing (0028,0030): ",
-                       h.pixelSpacing[0], "\\", h.pixelSpacing[1], " differs from ", first.pixelSpacing[0],
-                       "\\", first.pixelSpacing[1], " in ", other);
+      return makeError(ErrorCode::kSizeMismatch, h.slice.path,
+                       ": tag PixelSpacing (0028,0030): ", h.pixelSpacing[0], "\\",
+                       h.pixelSpacing[1], " differs from ", first.pixelSpacing[0], "\\",
+                       first.pixelSpacing[1], " in ", other);
   return Status::ok();
 }
 
@@ -169,7 +186,8 @@ Status sliceSpacing(DicomSeries& s, const std::string& dir) {
     if (gap <= 1e-6 * std::max(1.0, std::fabs(mean)))
       return makeError(ErrorCode::kCorrupt, dir, ": tag ImagePositionPatient (0020,0032): ",
                        fs::path(s.slices[i].path).filename().string(), " and ",
-                       fs::path(s.slices[i + 1].path).filename().string(), " lie at the same slice position");
+                       fs::path(s.slices[i + 1].path).filename().string(),
+                       " lie at the same slice position");
     if (std::fabs(gap - mean) > worst) {
       worst = std::fabs(gap - mean);
       worstAt = i;
@@ -178,12 +196,15 @@ Status sliceSpacing(DicomSeries& s, const std::string& dir) {
   const double relative = worst / mean;
   if (relative > 1e-2) {
     const double gap = s.slices[worstAt + 1].along - s.slices[worstAt].along;
-    return makeError(ErrorCode::kUnsupported, dir, ": tag ImagePositionPatient (0020,0032): slice gaps ",
-                     "are not uniform: ", gap, " mm between ", fs::path(s.slices[worstAt].path).filename().string(),
-                     " and ", fs::path(s.slices[worstAt + 1].path).filename().string(), ", mean ", mean, " mm");
+    return makeError(
+        ErrorCode::kUnsupported, dir, ": tag ImagePositionPatient (0020,0032): slice gaps ",
+        "are not uniform: ", gap, " mm between ",
+        fs::path(s.slices[worstAt].path).filename().string(), " and ",
+        fs::path(s.slices[worstAt + 1].path).filename().string(), ", mean ", mean, " mm");
   }
   if (relative > 1e-3)
-    s.notes.push_back(cat("slice gaps vary by up to ", worst, " mm around the mean ", mean, " mm used as z spacing"));
+    s.notes.push_back(cat("slice gaps vary by up to ", worst, " mm around the mean ", mean,
+                          " mm used as z spacing"));
   s.sliceSpacing = mean;
   return Status::ok();
 }
@@ -221,12 +242,17 @@ Result<DicomSeries> scanDicomSeries(const std::string& dir) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     if (!entry.is_regular_file(ec)) continue;
-    if (looksLikeDicom(entry.path())) files.push_back(entry.path().string());
-    else ++skipped;
+    if (looksLikeDicom(entry.path()))
+      files.push_back(entry.path().string());
+    else
+      ++skipped;
   }
   if (ec) return makeError(ErrorCode::kIo, dir, ": cannot list the folder (", ec.message(), ")");
-  if (files.empty()) return makeError(ErrorCode::kCorrupt, dir, ": no DICOM files (.dcm or DICM magic) in the folder");
-  std::sort(files.begin(), files.end(), [](const std::string& a, const std::string& b) { return naturalLess(a, b); });
+  if (files.empty())
+    return makeError(ErrorCode::kCorrupt, dir,
+                     ": no DICOM files (.dcm or DICM magic) in the folder");
+  std::sort(files.begin(), files.end(),
+            [](const std::string& a, const std::string& b) { return naturalLess(a, b); });
 
   std::vector<SliceHeader> headers;
   std::map<std::string, size_t> seriesCount;
@@ -236,8 +262,9 @@ Result<DicomSeries> scanDicomSeries(const std::string& dir) {
     headers.push_back(std::move(h));
   }
   if (seriesCount.size() > 1)
-    return makeError(ErrorCode::kUnsupported, dir, ": tag SeriesInstanceUID (0020,000E): the folder holds ",
-                     seriesCount.size(), " series; point at a folder holding one");
+    return makeError(ErrorCode::kUnsupported, dir,
+                     ": tag SeriesInstanceUID (0020,000E): the folder holds ", seriesCount.size(),
+                     " series; point at a folder holding one");
 
   DicomSeries s;
   const SliceHeader& first = headers.front();
@@ -251,15 +278,19 @@ Result<DicomSeries> scanDicomSeries(const std::string& dir) {
   s.normal = cross(s.rowDirection, s.columnDirection);
   const double normalLength = length(s.normal);
   if (normalLength < 0.5)
-    return makeError(ErrorCode::kCorrupt, first.slice.path, ": tag ImageOrientationPatient (0020,0037): row and column directions are parallel");
+    return makeError(
+        ErrorCode::kCorrupt, first.slice.path,
+        ": tag ImageOrientationPatient (0020,0037): row and column directions are parallel");
   for (double& c : s.normal) c /= normalLength;
   s.rowSpacing = first.pixelSpacing[0];
   s.columnSpacing = first.pixelSpacing[1];
   if (!(s.rowSpacing > 0) || !(s.columnSpacing > 0))
-    return makeError(ErrorCode::kCorrupt, first.slice.path, ": tag PixelSpacing (0028,0030): ",
-                     s.rowSpacing, "\\", s.columnSpacing, ", expected positive numbers");
+    return makeError(ErrorCode::kCorrupt, first.slice.path,
+                     ": tag PixelSpacing (0028,0030): ", s.rowSpacing, "\\", s.columnSpacing,
+                     ", expected positive numbers");
   if (first.photometric == "MONOCHROME1")
-    s.notes.push_back("PhotometricInterpretation MONOCHROME1: values kept as stored (high = dark on display)");
+    s.notes.push_back(
+        "PhotometricInterpretation MONOCHROME1: values kept as stored (high = dark on display)");
   if (skipped > 0) s.notes.push_back(cat(skipped, " non-DICOM files in the folder skipped"));
 
   for (SliceHeader& h : headers) {

@@ -14,11 +14,11 @@ namespace voxlink::convert {
 
 struct DicomSlice {
   std::string path;
-  Vec3 position{0, 0, 0};   // ImagePositionPatient
-  double along = 0;         // position . slice normal
-  int64_t instance = 0;     // InstanceNumber (0 when absent)
-  double slope = 1;         // RescaleSlope
-  double intercept = 0;     // RescaleIntercept
+  Vec3 position{0, 0, 0};  // ImagePositionPatient
+  double along = 0;        // position . slice normal
+  int64_t instance = 0;    // InstanceNumber (0 when absent)
+  double slope = 1;        // RescaleSlope
+  double intercept = 0;    // RescaleIntercept
 };
 
 struct DicomSeries {

@@ -42,7 +42,8 @@ Result<NumberFormat> parseNumberFormat(const std::string& pattern, const std::st
       if (f.width > 32) return badField(file, field, "a field width up to 32", pattern);
       ++j;
     }
-    if (seen || j >= pattern.size() || (pattern[j] != 'd' && pattern[j] != 'i' && pattern[j] != 'u'))
+    if (seen || j >= pattern.size() ||
+        (pattern[j] != 'd' && pattern[j] != 'i' && pattern[j] != 'u'))
       return badField(file, field, "a file name format with one %d", pattern);
     seen = true;
     out = &f.suffix;

@@ -19,15 +19,25 @@ using OIIO::TypeDesc;
 Result<ScalarType> scalarFromOiio(TypeDesc format, const std::string& file, bool& halfFloat) {
   halfFloat = false;
   switch (format.basetype) {
-    case TypeDesc::UINT8: return ScalarType::kU8;
-    case TypeDesc::INT8: return ScalarType::kI8;
-    case TypeDesc::UINT16: return ScalarType::kU16;
-    case TypeDesc::INT16: return ScalarType::kI16;
-    case TypeDesc::UINT32: return ScalarType::kU32;
-    case TypeDesc::INT32: return ScalarType::kI32;
-    case TypeDesc::HALF: halfFloat = true; return ScalarType::kF32;
-    case TypeDesc::FLOAT: return ScalarType::kF32;
-    case TypeDesc::DOUBLE: return ScalarType::kF64;
+    case TypeDesc::UINT8:
+      return ScalarType::kU8;
+    case TypeDesc::INT8:
+      return ScalarType::kI8;
+    case TypeDesc::UINT16:
+      return ScalarType::kU16;
+    case TypeDesc::INT16:
+      return ScalarType::kI16;
+    case TypeDesc::UINT32:
+      return ScalarType::kU32;
+    case TypeDesc::INT32:
+      return ScalarType::kI32;
+    case TypeDesc::HALF:
+      halfFloat = true;
+      return ScalarType::kF32;
+    case TypeDesc::FLOAT:
+      return ScalarType::kF32;
+    case TypeDesc::DOUBLE:
+      return ScalarType::kF64;
     default:
       return makeError(ErrorCode::kUnsupported, file, ": pixel format ", format.c_str(),
                        " (8/16/32-bit integers and floats are supported)");
@@ -36,21 +46,31 @@ Result<ScalarType> scalarFromOiio(TypeDesc format, const std::string& file, bool
 
 TypeDesc oiioType(ScalarType type) {
   switch (type) {
-    case ScalarType::kU8: return TypeDesc::UINT8;
-    case ScalarType::kI8: return TypeDesc::INT8;
-    case ScalarType::kU16: return TypeDesc::UINT16;
-    case ScalarType::kI16: return TypeDesc::INT16;
-    case ScalarType::kU32: return TypeDesc::UINT32;
-    case ScalarType::kI32: return TypeDesc::INT32;
-    case ScalarType::kF32: return TypeDesc::FLOAT;
-    case ScalarType::kF64: break;
+    case ScalarType::kU8:
+      return TypeDesc::UINT8;
+    case ScalarType::kI8:
+      return TypeDesc::INT8;
+    case ScalarType::kU16:
+      return TypeDesc::UINT16;
+    case ScalarType::kI16:
+      return TypeDesc::INT16;
+    case ScalarType::kU32:
+      return TypeDesc::UINT32;
+    case ScalarType::kI32:
+      return TypeDesc::INT32;
+    case ScalarType::kF32:
+      return TypeDesc::FLOAT;
+    case ScalarType::kF64:
+      break;
   }
   return TypeDesc::DOUBLE;
 }
 
 Result<std::unique_ptr<ImageInput>> openImage(const std::string& file) {
   auto in = ImageInput::open(file);
-  if (!in) return makeError(ErrorCode::kCorrupt, file, ": OpenImageIO cannot open it (", OIIO::geterror(), ")");
+  if (!in)
+    return makeError(ErrorCode::kCorrupt, file, ": OpenImageIO cannot open it (", OIIO::geterror(),
+                     ")");
   return std::unique_ptr<ImageInput>(std::move(in));
 }
 
@@ -63,7 +83,8 @@ struct SliceShape {
 
 Status checkSlice(const OIIO::ImageSpec& spec, const std::string& where, SliceShape& shape) {
   if (spec.depth > 1)
-    return makeError(ErrorCode::kUnsupported, where, ": image depth ", spec.depth, " (only 2-D slices)");
+    return makeError(ErrorCode::kUnsupported, where, ": image depth ", spec.depth,
+                     " (only 2-D slices)");
   if (shape.from.empty()) {
     shape = {spec.width, spec.height, spec.nchannels, spec.format, where};
     return Status::ok();
@@ -99,7 +120,8 @@ class ImageStackSource final : public VolumeSource {
         VOXLINK_ASSIGN_OR_RETURN(input_, openImage(file));
       }
       const int subimage = multiPage_ ? static_cast<int>(z) : 0;
-      if (!input_->read_image(subimage, 0, 0, 1, oiioType(info_.type), out + uint64_t{z - z0} * info_.sliceBytes()))
+      if (!input_->read_image(subimage, 0, 0, 1, oiioType(info_.type),
+                              out + uint64_t{z - z0} * info_.sliceBytes()))
         return makeError(ErrorCode::kCorrupt, file, multiPage_ ? cat(": page ", z) : std::string(),
                          ": cannot read pixels (", input_->geterror(), ")");
       if (!multiPage_) input_.reset();
@@ -116,12 +138,15 @@ class ImageStackSource final : public VolumeSource {
 }  // namespace
 
 bool isSliceImageName(const std::string& path) {
-  static const char* kExtensions[] = {".tif", ".tiff", ".png", ".pgm", ".pnm", ".jpg", ".jpeg", ".bmp", ".exr"};
+  static const char* kExtensions[] = {".tif", ".tiff", ".png", ".pgm", ".pnm",
+                                      ".jpg", ".jpeg", ".bmp", ".exr"};
   const std::string ext = lowerExtension(path);
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions), [&](const char* e) { return ext == e; });
+  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
+                     [&](const char* e) { return ext == e; });
 }
 
-Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
+                                                     const OpenOptions& options) {
   std::vector<std::string> files;
   SliceShape shape;
   uint64_t slices = 0;
@@ -132,7 +157,8 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path, co
       if (entry.is_regular_file(ec) && isSliceImageName(entry.path().string()))
         files.push_back(entry.path().string());
     if (files.empty())
-      return makeError(ErrorCode::kCorrupt, path, ": no slice images (.tif, .png, ...) in the folder");
+      return makeError(ErrorCode::kCorrupt, path,
+                       ": no slice images (.tif, .png, ...) in the folder");
     std::sort(files.begin(), files.end(), [](const std::string& a, const std::string& b) {
       return naturalLess(fs::path(a).filename().string(), fs::path(b).filename().string());
     });
@@ -149,7 +175,8 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path, co
       ++slices;
     }
     if (slices < 2)
-      return makeError(ErrorCode::kUnsupported, path, ": one page: a 2-D image, not a volume (give a "
+      return makeError(ErrorCode::kUnsupported, path,
+                       ": one page: a 2-D image, not a volume (give a "
                        "multi-page TIFF or a folder of slices)");
   }
 
@@ -158,8 +185,10 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path, co
   info.format = "image-stack";
   bool halfFloat = false;
   VOXLINK_ASSIGN_OR_RETURN(info.type, scalarFromOiio(shape.format, shape.from, halfFloat));
-  VOXLINK_RETURN_IF_ERROR(checkDims({uint64_t(shape.width), uint64_t(shape.height), slices}, path, "image size"));
-  info.dims = {static_cast<uint32_t>(shape.width), static_cast<uint32_t>(shape.height), static_cast<uint32_t>(slices)};
+  VOXLINK_RETURN_IF_ERROR(
+      checkDims({uint64_t(shape.width), uint64_t(shape.height), slices}, path, "image size"));
+  info.dims = {static_cast<uint32_t>(shape.width), static_cast<uint32_t>(shape.height),
+               static_cast<uint32_t>(slices)};
   info.notes.push_back(folder ? cat(slices, " slice images ordered by the numbers in their names, ",
                                     fs::path(files.front()).filename().string(), " first")
                               : cat(slices, " pages of one file"));
@@ -168,7 +197,8 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path, co
   if (halfFloat) info.notes.push_back("half-float pixels are served as f32");
   info.notes.push_back("image files carry no voxel spacing: 1 1 1 unless --spacing is given");
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
-  return std::unique_ptr<VolumeSource>(new ImageStackSource(std::move(info), std::move(files), !folder));
+  return std::unique_ptr<VolumeSource>(
+      new ImageStackSource(std::move(info), std::move(files), !folder));
 }
 
 }  // namespace voxlink::convert

@@ -12,6 +12,7 @@ namespace voxlink::convert {
 // File name endings treated as 2-D slice images.
 bool isSliceImageName(const std::string& path);
 
-Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
+                                                     const OpenOptions& options);
 
 }  // namespace voxlink::convert

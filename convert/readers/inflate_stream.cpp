@@ -20,8 +20,8 @@ constexpr size_t kInputChunk = size_t{1} << 20;
 constexpr uInt kMaxOutputChunk = uInt{1} << 30;
 }  // namespace
 
-Result<std::unique_ptr<InflateStream>> InflateStream::open(const std::string& path,
-                                                           uint64_t offset, std::string label) {
+Result<std::unique_ptr<InflateStream>> InflateStream::open(const std::string& path, uint64_t offset,
+                                                           std::string label) {
   std::unique_ptr<InflateStream> stream(new InflateStream());
   stream->path_ = path;
   stream->label_ = std::move(label);
@@ -101,9 +101,11 @@ Result<uint64_t> InflateStream::decode(uint8_t* dst, uint64_t bytes) {
       continue;
     }
     if (rc == Z_DATA_ERROR || rc == Z_NEED_DICT || rc == Z_STREAM_ERROR)
-      return makeError(ErrorCode::kCorrupt, label_, ": compressed data is corrupt after ", produced_,
-                       " decoded bytes (zlib: ", z_->s.msg ? z_->s.msg : "invalid data", ")");
-    if (rc == Z_MEM_ERROR) return makeError(ErrorCode::kTooLarge, label_, ": zlib ran out of memory");
+      return makeError(ErrorCode::kCorrupt, label_, ": compressed data is corrupt after ",
+                       produced_, " decoded bytes (zlib: ", z_->s.msg ? z_->s.msg : "invalid data",
+                       ")");
+    if (rc == Z_MEM_ERROR)
+      return makeError(ErrorCode::kTooLarge, label_, ": zlib ran out of memory");
     if (rc == Z_BUF_ERROR && !haveInput && made == 0)
       return makeError(ErrorCode::kTruncated, label_, ": compressed stream is cut off after ",
                        produced_, " decoded bytes",

@@ -51,7 +51,8 @@ class MetaImageParser {
       }
       VOXLINK_RETURN_IF_ERROR(parseField(key, value));
     }
-    if (!sawDataFile) return makeError(ErrorCode::kCorrupt, path_, ": header field 'ElementDataFile' missing");
+    if (!sawDataFile)
+      return makeError(ErrorCode::kCorrupt, path_, ": header field 'ElementDataFile' missing");
     VOXLINK_RETURN_IF_ERROR(validate());
     return h_;
   }
@@ -60,7 +61,8 @@ class MetaImageParser {
   Status parseField(const std::string& key, std::string_view value) {
     if (key == "ObjectType") {
       if (value != "Image")
-        return makeError(ErrorCode::kUnsupported, path_, ": header field 'ObjectType': ", value, " (only Image)");
+        return makeError(ErrorCode::kUnsupported, path_, ": header field 'ObjectType': ", value,
+                         " (only Image)");
     } else if (key == "NDims") {
       VOXLINK_ASSIGN_OR_RETURN(int64_t n, parseInteger(value, path_, key));
       if (n < 1 || n > 16) return badField(path_, key, "an integer from 1 to 16", value);
@@ -76,8 +78,9 @@ class MetaImageParser {
     } else if (key == "ElementNumberOfChannels") {
       VOXLINK_ASSIGN_OR_RETURN(int64_t n, parseInteger(value, path_, key));
       if (n != 1)
-        return makeError(ErrorCode::kUnsupported, path_, ": header field 'ElementNumberOfChannels': ",
-                         n, " (only scalar images, 1 channel)");
+        return makeError(ErrorCode::kUnsupported, path_,
+                         ": header field 'ElementNumberOfChannels': ", n,
+                         " (only scalar images, 1 channel)");
     } else if (key == "ElementSpacing") {
       VOXLINK_ASSIGN_OR_RETURN(h_.spacing, parseDoubles(value, path_, key));
       h_.spacingFromElementSize = false;
@@ -92,15 +95,18 @@ class MetaImageParser {
       h_.offset = Vec3{v[0], v[1], v[2]};
     } else if (key == "TransformMatrix" || key == "Rotation" || key == "Orientation") {
       VOXLINK_ASSIGN_OR_RETURN(std::vector<double> m, parseDoubles(value, path_, key));
-      if (m.size() == 9) h_.axes = std::array<Vec3, 3>{{{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}}};
-      else if (m.size() != 16) return badField(path_, key, "9 numbers", value);
+      if (m.size() == 9)
+        h_.axes = std::array<Vec3, 3>{{{m[0], m[1], m[2]}, {m[3], m[4], m[5]}, {m[6], m[7], m[8]}}};
+      else if (m.size() != 16)
+        return badField(path_, key, "9 numbers", value);
     } else if (key == "ElementByteOrderMSB" || key == "BinaryDataByteOrderMSB") {
       VOXLINK_ASSIGN_OR_RETURN(bool msb, parseBool(value, path_, key));
       h_.endian = msb ? Endian::kBig : Endian::kLittle;
     } else if (key == "BinaryData") {
       VOXLINK_ASSIGN_OR_RETURN(bool binary, parseBool(value, path_, key));
       if (!binary)
-        return makeError(ErrorCode::kUnsupported, path_, ": header field 'BinaryData': False (ASCII data is not supported)");
+        return makeError(ErrorCode::kUnsupported, path_,
+                         ": header field 'BinaryData': False (ASCII data is not supported)");
     } else if (key == "CompressedData") {
       VOXLINK_ASSIGN_OR_RETURN(h_.compressed, parseBool(value, path_, key));
     } else if (key == "CompressedDataSize") {
@@ -118,7 +124,8 @@ class MetaImageParser {
 
   Status parseDataFile(std::string_view value, LineCursor& lines) {
     const std::vector<std::string> words = splitWords(value);
-    if (words.empty()) return badField(path_, "ElementDataFile", "LOCAL, a file name or LIST", value);
+    if (words.empty())
+      return badField(path_, "ElementDataFile", "LOCAL, a file name or LIST", value);
     if (words[0] == "LOCAL") {
       h_.local = true;
       h_.localOffset = lines.offset();
@@ -126,12 +133,15 @@ class MetaImageParser {
     }
     if (words[0] == "LIST") {
       while (auto line = lines.next(true))
-        for (const std::string& name : splitWords(*line)) h_.dataFiles.push_back(besideHeader(path_, name));
-      if (h_.dataFiles.empty()) return badField(path_, "ElementDataFile", "file names after LIST", "");
+        for (const std::string& name : splitWords(*line))
+          h_.dataFiles.push_back(besideHeader(path_, name));
+      if (h_.dataFiles.empty())
+        return badField(path_, "ElementDataFile", "file names after LIST", "");
       return Status::ok();
     }
     if (words[0].find('%') != std::string::npos && words.size() == 4) {
-      VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names, expandNumberedFiles(words, path_, "ElementDataFile"));
+      VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names,
+                               expandNumberedFiles(words, path_, "ElementDataFile"));
       for (const auto& n : names) h_.dataFiles.push_back(besideHeader(path_, n));
       return Status::ok();
     }
@@ -140,9 +150,12 @@ class MetaImageParser {
   }
 
   Status validate() {
-    if (h_.ndims == 0) return makeError(ErrorCode::kCorrupt, path_, ": header field 'NDims' missing");
-    if (!seen_.count("DimSize")) return makeError(ErrorCode::kCorrupt, path_, ": header field 'DimSize' missing");
-    if (!seen_.count("ElementType")) return makeError(ErrorCode::kCorrupt, path_, ": header field 'ElementType' missing");
+    if (h_.ndims == 0)
+      return makeError(ErrorCode::kCorrupt, path_, ": header field 'NDims' missing");
+    if (!seen_.count("DimSize"))
+      return makeError(ErrorCode::kCorrupt, path_, ": header field 'DimSize' missing");
+    if (!seen_.count("ElementType"))
+      return makeError(ErrorCode::kCorrupt, path_, ": header field 'ElementType' missing");
     if (h_.dimSize.size() != static_cast<size_t>(h_.ndims))
       return makeError(ErrorCode::kCorrupt, path_, ": header field 'DimSize': ", h_.dimSize.size(),
                        " sizes for NDims ", h_.ndims);
@@ -152,10 +165,11 @@ class MetaImageParser {
                        " (a volume needs 3, or 4 with a last size of 1)");
     if (!h_.spacing.empty() && h_.spacing.size() < 3)
       return makeError(ErrorCode::kCorrupt, path_, ": header field '",
-                       h_.spacingFromElementSize ? "ElementSize" : "ElementSpacing", "': ",
-                       h_.spacing.size(), " values for NDims ", h_.ndims);
+                       h_.spacingFromElementSize ? "ElementSize" : "ElementSpacing",
+                       "': ", h_.spacing.size(), " values for NDims ", h_.ndims);
     if (h_.headerSize == -1 && h_.compressed)
-      return makeError(ErrorCode::kUnsupported, path_, ": header field 'HeaderSize': -1 with compressed data");
+      return makeError(ErrorCode::kUnsupported, path_,
+                       ": header field 'HeaderSize': -1 with compressed data");
     return Status::ok();
   }
 

@@ -18,17 +18,17 @@ struct MetaImageHeader {
   int ndims = 0;
   std::vector<uint64_t> dimSize;
   ScalarType type = ScalarType::kU8;
-  std::vector<double> spacing;                 // ElementSpacing, else ElementSize, else empty
+  std::vector<double> spacing;  // ElementSpacing, else ElementSize, else empty
   bool spacingFromElementSize = false;
-  std::optional<Vec3> offset;                  // Offset / Origin / Position
-  std::optional<std::array<Vec3, 3>> axes;     // TransformMatrix / Rotation / Orientation rows
+  std::optional<Vec3> offset;               // Offset / Origin / Position
+  std::optional<std::array<Vec3, 3>> axes;  // TransformMatrix / Rotation / Orientation rows
   Endian endian = Endian::kLittle;
   bool compressed = false;
-  std::optional<uint64_t> compressedSize;      // CompressedDataSize
-  int64_t headerSize = 0;                      // bytes before the data in each data file; -1: at end
-  bool local = false;                          // ElementDataFile = LOCAL
-  uint64_t localOffset = 0;                    // LOCAL: first byte after the ElementDataFile line
-  std::vector<std::string> dataFiles;          // paths beside the header
+  std::optional<uint64_t> compressedSize;  // CompressedDataSize
+  int64_t headerSize = 0;                  // bytes before the data in each data file; -1: at end
+  bool local = false;                      // ElementDataFile = LOCAL
+  uint64_t localOffset = 0;                // LOCAL: first byte after the ElementDataFile line
+  std::vector<std::string> dataFiles;      // paths beside the header
 };
 
 Result<MetaImageHeader> parseMetaImageHeader(const std::string& path);

@@ -8,7 +8,8 @@
 
 namespace voxlink::convert {
 
-Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
+                                                    const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(MetaImageHeader h, parseMetaImageHeader(path));
   const std::array<uint64_t, 3> dims{h.dimSize[0], h.dimSize[1], h.dimSize[2]};
   VOXLINK_RETURN_IF_ERROR(checkDims(dims, path, "DimSize"));
@@ -23,8 +24,10 @@ Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path, con
     info.notes.push_back("no ElementSpacing: spacing 1 1 1");
   } else {
     for (int a = 0; a < 3; ++a) info.spacing[a] = h.spacing[a];
-    if (h.spacingFromElementSize) info.notes.push_back("no ElementSpacing: spacing taken from ElementSize");
-    VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, path, h.spacingFromElementSize ? "ElementSize" : "ElementSpacing"));
+    if (h.spacingFromElementSize)
+      info.notes.push_back("no ElementSpacing: spacing taken from ElementSize");
+    VOXLINK_RETURN_IF_ERROR(checkSpacing(
+        info.spacing, path, h.spacingFromElementSize ? "ElementSize" : "ElementSpacing"));
   }
   if (h.offset) info.origin = *h.offset;
   if (h.axes) {
@@ -65,7 +68,8 @@ Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path, con
     const uint64_t start = layout.pieces[0].startOffset;
     if (!ec && size >= start && size - start != *h.compressedSize)
       info.notes.push_back(cat("CompressedDataSize ", *h.compressedSize, " disagrees with the ",
-                               size - start, " compressed bytes in the file; the stream was read to its end"));
+                               size - start,
+                               " compressed bytes in the file; the stream was read to its end"));
   }
   return openDataPieces(std::move(info), std::move(layout));
 }

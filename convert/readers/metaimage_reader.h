@@ -8,6 +8,7 @@
 
 namespace voxlink::convert {
 
-Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
+                                                    const OpenOptions& options);
 
 }  // namespace voxlink::convert

@@ -24,15 +24,24 @@ struct NiftiDeleter {
 
 std::optional<ScalarType> niftiType(int datatype) {
   switch (datatype) {
-    case DT_UINT8: return ScalarType::kU8;
-    case DT_INT8: return ScalarType::kI8;
-    case DT_UINT16: return ScalarType::kU16;
-    case DT_INT16: return ScalarType::kI16;
-    case DT_UINT32: return ScalarType::kU32;
-    case DT_INT32: return ScalarType::kI32;
-    case DT_FLOAT32: return ScalarType::kF32;
-    case DT_FLOAT64: return ScalarType::kF64;
-    default: return std::nullopt;
+    case DT_UINT8:
+      return ScalarType::kU8;
+    case DT_INT8:
+      return ScalarType::kI8;
+    case DT_UINT16:
+      return ScalarType::kU16;
+    case DT_INT16:
+      return ScalarType::kI16;
+    case DT_UINT32:
+      return ScalarType::kU32;
+    case DT_INT32:
+      return ScalarType::kI32;
+    case DT_FLOAT32:
+      return ScalarType::kF32;
+    case DT_FLOAT64:
+      return ScalarType::kF64;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -69,30 +78,34 @@ void applyTransform(const nifti_image& nim, VolumeInfo& info) {
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path,
+                                                const OpenOptions& options) {
   static std::once_flag quiet;
   std::call_once(quiet, [] { nifti_set_debug_level(0); });  // errors come back as ours
   std::unique_ptr<nifti_image, NiftiDeleter> nim(nifti_image_read(path.c_str(), 0));
   if (!nim)
-    return makeError(ErrorCode::kCorrupt, path, ": not a readable NIfTI-1/NIfTI-2 header (libnifti2 refused it)");
+    return makeError(ErrorCode::kCorrupt, path,
+                     ": not a readable NIfTI-1/NIfTI-2 header (libnifti2 refused it)");
   if (nim->nifti_type == NIFTI_FTYPE_ASCII)
     return makeError(ErrorCode::kUnsupported, path, ": NIfTI ASCII files are not supported");
 
   const int64_t ndim = nim->dim[0];
   if (ndim < 3)
-    return makeError(ErrorCode::kUnsupported, path, ": header field 'dim[0]': ", ndim, " (a volume needs 3)");
+    return makeError(ErrorCode::kUnsupported, path, ": header field 'dim[0]': ", ndim,
+                     " (a volume needs 3)");
   for (int d = 4; d <= ndim && d < 8; ++d)
     if (nim->dim[d] > 1)
-      return makeError(ErrorCode::kUnsupported, path, ": header field 'dim[", d, "]': ", nim->dim[d],
-                       " (only a single 3-D volume is supported)");
+      return makeError(ErrorCode::kUnsupported, path, ": header field 'dim[", d,
+                       "]': ", nim->dim[d], " (only a single 3-D volume is supported)");
   const std::array<uint64_t, 3> dims{static_cast<uint64_t>(std::max<int64_t>(nim->dim[1], 0)),
                                      static_cast<uint64_t>(std::max<int64_t>(nim->dim[2], 0)),
                                      static_cast<uint64_t>(std::max<int64_t>(nim->dim[3], 0))};
   VOXLINK_RETURN_IF_ERROR(checkDims(dims, path, "dim"));
   const auto type = niftiType(nim->datatype);
   if (!type)
-    return makeError(ErrorCode::kUnsupported, path, ": header field 'datatype': ", nim->datatype, " (",
-                     nifti_datatype_string(nim->datatype), "; scalar uint8 .. float64 are supported)");
+    return makeError(ErrorCode::kUnsupported, path, ": header field 'datatype': ", nim->datatype,
+                     " (", nifti_datatype_string(nim->datatype),
+                     "; scalar uint8 .. float64 are supported)");
 
   VolumeInfo info;
   info.path = path;
@@ -104,8 +117,10 @@ Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path, const O
   }
   VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, path, "pixdim"));
   if (nim->xyz_units == NIFTI_UNITS_METER || nim->xyz_units == NIFTI_UNITS_MICRON)
-    info.notes.push_back(cat("spacing and origin are in ", nifti_units_string(nim->xyz_units), " (xyzt_units)"));
-  if (nim->nifti_type == NIFTI_FTYPE_ANALYZE) info.notes.push_back("Analyze 7.5 header: no orientation");
+    info.notes.push_back(
+        cat("spacing and origin are in ", nifti_units_string(nim->xyz_units), " (xyzt_units)"));
+  if (nim->nifti_type == NIFTI_FTYPE_ANALYZE)
+    info.notes.push_back("Analyze 7.5 header: no orientation");
   applyTransform(*nim, info);
 
   // NIfTI: scl_slope 0 means "no scaling"; 1 and 0 change nothing.
@@ -137,7 +152,8 @@ Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path, const O
   }
   layout.pieces.push_back(piece);
   nim.reset();
-  VOXLINK_ASSIGN_OR_RETURN(std::unique_ptr<VolumeSource> source, openDataPieces(std::move(info), std::move(layout)));
+  VOXLINK_ASSIGN_OR_RETURN(std::unique_ptr<VolumeSource> source,
+                           openDataPieces(std::move(info), std::move(layout)));
   if (!scaled) return source;
   return rescaleSource(std::move(source), slope, intercept, served, "scl_slope/scl_inter");
 }

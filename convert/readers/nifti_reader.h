@@ -10,6 +10,7 @@
 
 namespace voxlink::convert {
 
-Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path,
+                                                const OpenOptions& options);
 
 }  // namespace voxlink::convert

@@ -17,22 +17,51 @@ constexpr size_t kMaxHeaderBytes = size_t{1} << 20;
 // Every field spelling teem accepts, mapped to one canonical name.
 const std::map<std::string, std::string>& fieldNames() {
   static const std::map<std::string, std::string> names = {
-      {"content", "content"}, {"number", "number"}, {"type", "type"},
-      {"block size", "block size"}, {"blocksize", "block size"}, {"dimension", "dimension"},
-      {"space", "space"}, {"space dimension", "space dimension"},
-      {"spacedimension", "space dimension"}, {"sizes", "sizes"}, {"spacings", "spacings"},
-      {"thicknesses", "thicknesses"}, {"axis mins", "axis mins"}, {"axismins", "axis mins"},
-      {"axis maxs", "axis maxs"}, {"axismaxs", "axis maxs"}, {"centers", "centers"},
-      {"centerings", "centers"}, {"kinds", "kinds"}, {"labels", "labels"}, {"units", "units"},
-      {"min", "min"}, {"max", "max"}, {"old min", "old min"}, {"oldmin", "old min"},
-      {"old max", "old max"}, {"oldmax", "old max"}, {"endian", "endian"},
-      {"encoding", "encoding"}, {"line skip", "line skip"}, {"lineskip", "line skip"},
-      {"byte skip", "byte skip"}, {"byteskip", "byte skip"}, {"data file", "data file"},
-      {"datafile", "data file"}, {"space units", "space units"}, {"spaceunits", "space units"},
-      {"sample units", "sample units"}, {"sampleunits", "sample units"},
-      {"space origin", "space origin"}, {"spaceorigin", "space origin"},
-      {"space directions", "space directions"}, {"spacedirections", "space directions"},
-      {"measurement frame", "measurement frame"}, {"measurementframe", "measurement frame"},
+      {"content", "content"},
+      {"number", "number"},
+      {"type", "type"},
+      {"block size", "block size"},
+      {"blocksize", "block size"},
+      {"dimension", "dimension"},
+      {"space", "space"},
+      {"space dimension", "space dimension"},
+      {"spacedimension", "space dimension"},
+      {"sizes", "sizes"},
+      {"spacings", "spacings"},
+      {"thicknesses", "thicknesses"},
+      {"axis mins", "axis mins"},
+      {"axismins", "axis mins"},
+      {"axis maxs", "axis maxs"},
+      {"axismaxs", "axis maxs"},
+      {"centers", "centers"},
+      {"centerings", "centers"},
+      {"kinds", "kinds"},
+      {"labels", "labels"},
+      {"units", "units"},
+      {"min", "min"},
+      {"max", "max"},
+      {"old min", "old min"},
+      {"oldmin", "old min"},
+      {"old max", "old max"},
+      {"oldmax", "old max"},
+      {"endian", "endian"},
+      {"encoding", "encoding"},
+      {"line skip", "line skip"},
+      {"lineskip", "line skip"},
+      {"byte skip", "byte skip"},
+      {"byteskip", "byte skip"},
+      {"data file", "data file"},
+      {"datafile", "data file"},
+      {"space units", "space units"},
+      {"spaceunits", "space units"},
+      {"sample units", "sample units"},
+      {"sampleunits", "sample units"},
+      {"space origin", "space origin"},
+      {"spaceorigin", "space origin"},
+      {"space directions", "space directions"},
+      {"spacedirections", "space directions"},
+      {"measurement frame", "measurement frame"},
+      {"measurementframe", "measurement frame"},
   };
   return names;
 }
@@ -40,17 +69,25 @@ const std::map<std::string, std::string>& fieldNames() {
 // Fields that describe things a scalar volume does not use.
 const std::set<std::string>& ignorableFields() {
   static const std::set<std::string> names = {
-      "content", "number", "block size", "thicknesses", "axis mins", "axis maxs", "centers",
-      "kinds", "labels", "units", "min", "max", "old min", "old max", "space units",
-      "sample units", "measurement frame"};
+      "content",          "number",    "block size",  "thicknesses",
+      "axis mins",        "axis maxs", "centers",     "kinds",
+      "labels",           "units",     "min",         "max",
+      "old min",          "old max",   "space units", "sample units",
+      "measurement frame"};
   return names;
 }
 
 // Spaces of dimension 3 (teem's nrrdSpace names and abbreviations).
 bool isThreeDimensionalSpace(const std::string& lower) {
-  static const std::set<std::string> spaces = {
-      "right-anterior-superior", "ras", "left-anterior-superior", "las", "left-posterior-superior",
-      "lps", "scanner-xyz", "3d-right-handed", "3d-left-handed"};
+  static const std::set<std::string> spaces = {"right-anterior-superior",
+                                               "ras",
+                                               "left-anterior-superior",
+                                               "las",
+                                               "left-posterior-superior",
+                                               "lps",
+                                               "scanner-xyz",
+                                               "3d-right-handed",
+                                               "3d-left-handed"};
   return spaces.count(lower) > 0;
 }
 
@@ -97,11 +134,14 @@ class NrrdParser {
     VOXLINK_ASSIGN_OR_RETURN(std::string text, readFilePrefix(path_, kMaxHeaderBytes));
     LineCursor lines(text);
     const auto magic = lines.next(false);
-    if (!magic || magic->size() != 8 || !magic->starts_with("NRRD000") || !std::isdigit(static_cast<unsigned char>((*magic)[7])))
-      return makeError(ErrorCode::kCorrupt, path_, ": not a NRRD file (first line is not NRRD000X)");
+    if (!magic || magic->size() != 8 || !magic->starts_with("NRRD000") ||
+        !std::isdigit(static_cast<unsigned char>((*magic)[7])))
+      return makeError(ErrorCode::kCorrupt, path_,
+                       ": not a NRRD file (first line is not NRRD000X)");
     h_.version = (*magic)[7] - '0';
     if (h_.version < 1 || h_.version > 5)
-      return makeError(ErrorCode::kUnsupported, path_, ": NRRD version ", *magic, " (1 to 5 are known)");
+      return makeError(ErrorCode::kUnsupported, path_, ": NRRD version ", *magic,
+                       " (1 to 5 are known)");
 
     bool blankLine = false;
     while (auto line = lines.next(false)) {
@@ -119,16 +159,20 @@ class NrrdParser {
     if (!blankLine && !lines.atEnd()) {
       // A last header line without newline, or a header bigger than we read.
       if (text.size() >= kMaxHeaderBytes)
-        return makeError(ErrorCode::kCorrupt, path_, ": no blank line ending the header in the first ",
-                         kMaxHeaderBytes, " bytes");
+        return makeError(ErrorCode::kCorrupt, path_,
+                         ": no blank line ending the header in the first ", kMaxHeaderBytes,
+                         " bytes");
       if (auto last = lines.next(true); last && !last->empty() && last->front() != '#') {
-        if (listingFiles_) h_.dataFiles.push_back(besideHeader(path_, std::string(trim(*last))));
-        else VOXLINK_RETURN_IF_ERROR(parseLine(*last));
+        if (listingFiles_)
+          h_.dataFiles.push_back(besideHeader(path_, std::string(trim(*last))));
+        else
+          VOXLINK_RETURN_IF_ERROR(parseLine(*last));
       }
     }
     if (!seen_.count("data file")) {
       if (!blankLine)
-        return makeError(ErrorCode::kCorrupt, path_, ": header field 'data file' missing and no "
+        return makeError(ErrorCode::kCorrupt, path_,
+                         ": header field 'data file' missing and no "
                          "blank line before attached data");
       h_.attached = true;
       h_.dataOffset = lines.offset();
@@ -141,7 +185,8 @@ class NrrdParser {
   Status parseLine(std::string_view line) {
     const size_t colon = line.find(':');
     if (colon == std::string_view::npos)
-      return makeError(ErrorCode::kCorrupt, path_, ": header line '", line, "' is not 'field: value'");
+      return makeError(ErrorCode::kCorrupt, path_, ": header line '", line,
+                       "' is not 'field: value'");
     if (colon + 1 < line.size() && line[colon + 1] == '=') return Status::ok();  // key:=value
     const std::string name = toLower(trim(line.substr(0, colon)));
     const std::string_view value = trim(line.substr(colon + 1));
@@ -166,7 +211,8 @@ class NrrdParser {
     } else if (field == "type") {
       const std::string lower = toLower(value);
       if (lower == "block")
-        return makeError(ErrorCode::kUnsupported, path_, ": header field 'type': block (opaque records) is not a scalar type");
+        return makeError(ErrorCode::kUnsupported, path_,
+                         ": header field 'type': block (opaque records) is not a scalar type");
       const auto t = nrrdTypeFromName(lower);
       if (!t) {
         if (lower.find("long") != std::string::npos || lower.find("64") != std::string::npos)
@@ -219,9 +265,12 @@ class NrrdParser {
       }
     } else if (field == "endian") {
       const std::string lower = toLower(value);
-      if (lower == "little") h_.endian = Endian::kLittle;
-      else if (lower == "big") h_.endian = Endian::kBig;
-      else return badField(path_, field, "little or big", value);
+      if (lower == "little")
+        h_.endian = Endian::kLittle;
+      else if (lower == "big")
+        h_.endian = Endian::kBig;
+      else
+        return badField(path_, field, "little or big", value);
     } else if (field == "line skip") {
       VOXLINK_ASSIGN_OR_RETURN(int64_t n, parseInteger(value, path_, field));
       if (n < 0) return badField(path_, field, "a count of lines >= 0", value);
@@ -250,9 +299,12 @@ class NrrdParser {
     }
     if (words.size() >= 4 && words[0].find('%') != std::string::npos) {
       std::vector<std::string> list(words.begin(), words.begin() + 4);
-      if (words.size() == 5) VOXLINK_RETURN_IF_ERROR(parseSubdim(words[4]));
-      else if (words.size() > 5) return badField(path_, "data file", "'<format> <min> <max> <step> [<subdim>]'", value);
-      VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names, expandNumberedFiles(list, path_, "data file"));
+      if (words.size() == 5)
+        VOXLINK_RETURN_IF_ERROR(parseSubdim(words[4]));
+      else if (words.size() > 5)
+        return badField(path_, "data file", "'<format> <min> <max> <step> [<subdim>]'", value);
+      VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names,
+                               expandNumberedFiles(list, path_, "data file"));
       for (const auto& n : names) h_.dataFiles.push_back(besideHeader(path_, n));
       return Status::ok();
     }
@@ -277,30 +329,38 @@ class NrrdParser {
       return badField(path_, "sizes", cat(d, " positive integers (dimension ", d, ")"), sizesText_);
     const bool fourWithStub = d == 4 && h_.sizes[0] == 1;
     if (d != 3 && !fourWithStub)
-      return makeError(ErrorCode::kUnsupported, path_, ": header field 'dimension': ", d,
-                       d == 4 ? " with a first axis of size " + std::to_string(h_.sizes[0]) : std::string(),
-                       " (a volume needs dimension 3, or 4 with a first axis of size 1)");
+      return makeError(
+          ErrorCode::kUnsupported, path_, ": header field 'dimension': ", d,
+          d == 4 ? " with a first axis of size " + std::to_string(h_.sizes[0]) : std::string(),
+          " (a volume needs dimension 3, or 4 with a first axis of size 1)");
     if (!h_.spacings.empty() && h_.spacings.size() != static_cast<size_t>(d))
-      return makeError(ErrorCode::kCorrupt, path_, ": header field 'spacings': ", h_.spacings.size(),
-                       " values for dimension ", d);
+      return makeError(ErrorCode::kCorrupt, path_,
+                       ": header field 'spacings': ", h_.spacings.size(), " values for dimension ",
+                       d);
     if (!h_.directions.empty()) {
       if (!h_.spacings.empty())
-        return makeError(ErrorCode::kCorrupt, path_, ": header fields 'spacings' and 'space directions' both given");
+        return makeError(ErrorCode::kCorrupt, path_,
+                         ": header fields 'spacings' and 'space directions' both given");
       if (h_.directions.size() != static_cast<size_t>(d))
-        return makeError(ErrorCode::kCorrupt, path_, ": header field 'space directions': ",
-                         h_.directions.size(), " vectors for dimension ", d);
+        return makeError(ErrorCode::kCorrupt, path_,
+                         ": header field 'space directions': ", h_.directions.size(),
+                         " vectors for dimension ", d);
       if (spaceDimension_ == 0)
-        return makeError(ErrorCode::kCorrupt, path_, ": header field 'space directions' without 'space' or 'space dimension'");
+        return makeError(ErrorCode::kCorrupt, path_,
+                         ": header field 'space directions' without 'space' or 'space dimension'");
     }
     if (h_.origin && spaceDimension_ == 0)
-      return makeError(ErrorCode::kCorrupt, path_, ": header field 'space origin' without 'space' or 'space dimension'");
+      return makeError(ErrorCode::kCorrupt, path_,
+                       ": header field 'space origin' without 'space' or 'space dimension'");
     if (scalarSize(h_.type) > 1 && !h_.endian)
       return makeError(ErrorCode::kCorrupt, path_, ": header field 'endian' missing; type ",
                        scalarName(h_.type), " needs it");
     if (h_.byteSkip == -1 && h_.encoding != PieceEncoding::kRaw)
-      return makeError(ErrorCode::kUnsupported, path_, ": header field 'byte skip': -1 is only defined for raw encoding");
+      return makeError(ErrorCode::kUnsupported, path_,
+                       ": header field 'byte skip': -1 is only defined for raw encoding");
     if (seen_.count("data file") && h_.dataFiles.empty())
-      return makeError(ErrorCode::kCorrupt, path_, ": header field 'data file': LIST names no files");
+      return makeError(ErrorCode::kCorrupt, path_,
+                       ": header field 'data file': LIST names no files");
     return Status::ok();
   }
 
@@ -316,16 +376,34 @@ class NrrdParser {
 
 std::optional<ScalarType> nrrdTypeFromName(const std::string& name) {
   static const std::map<std::string, ScalarType> types = {
-      {"signed char", ScalarType::kI8}, {"int8", ScalarType::kI8}, {"int8_t", ScalarType::kI8},
-      {"uchar", ScalarType::kU8}, {"unsigned char", ScalarType::kU8}, {"uint8", ScalarType::kU8},
-      {"uint8_t", ScalarType::kU8}, {"short", ScalarType::kI16}, {"short int", ScalarType::kI16},
-      {"signed short", ScalarType::kI16}, {"signed short int", ScalarType::kI16},
-      {"int16", ScalarType::kI16}, {"int16_t", ScalarType::kI16}, {"ushort", ScalarType::kU16},
-      {"unsigned short", ScalarType::kU16}, {"unsigned short int", ScalarType::kU16},
-      {"uint16", ScalarType::kU16}, {"uint16_t", ScalarType::kU16}, {"int", ScalarType::kI32},
-      {"signed int", ScalarType::kI32}, {"int32", ScalarType::kI32}, {"int32_t", ScalarType::kI32},
-      {"uint", ScalarType::kU32}, {"unsigned int", ScalarType::kU32}, {"uint32", ScalarType::kU32},
-      {"uint32_t", ScalarType::kU32}, {"float", ScalarType::kF32}, {"double", ScalarType::kF64},
+      {"signed char", ScalarType::kI8},
+      {"int8", ScalarType::kI8},
+      {"int8_t", ScalarType::kI8},
+      {"uchar", ScalarType::kU8},
+      {"unsigned char", ScalarType::kU8},
+      {"uint8", ScalarType::kU8},
+      {"uint8_t", ScalarType::kU8},
+      {"short", ScalarType::kI16},
+      {"short int", ScalarType::kI16},
+      {"signed short", ScalarType::kI16},
+      {"signed short int", ScalarType::kI16},
+      {"int16", ScalarType::kI16},
+      {"int16_t", ScalarType::kI16},
+      {"ushort", ScalarType::kU16},
+      {"unsigned short", ScalarType::kU16},
+      {"unsigned short int", ScalarType::kU16},
+      {"uint16", ScalarType::kU16},
+      {"uint16_t", ScalarType::kU16},
+      {"int", ScalarType::kI32},
+      {"signed int", ScalarType::kI32},
+      {"int32", ScalarType::kI32},
+      {"int32_t", ScalarType::kI32},
+      {"uint", ScalarType::kU32},
+      {"unsigned int", ScalarType::kU32},
+      {"uint32", ScalarType::kU32},
+      {"uint32_t", ScalarType::kU32},
+      {"float", ScalarType::kF32},
+      {"double", ScalarType::kF64},
   };
   const auto it = types.find(toLower(name));
   if (it == types.end()) return std::nullopt;

@@ -17,22 +17,22 @@
 namespace voxlink::convert {
 
 struct NrrdHeader {
-  int version = 0;          // the digit of NRRD000X
+  int version = 0;  // the digit of NRRD000X
   int dimension = 0;
   ScalarType type = ScalarType::kU8;
   std::vector<uint64_t> sizes;
-  std::vector<double> spacings;                  // empty when absent
-  std::vector<std::optional<Vec3>> directions;   // per axis; nullopt for "none"; empty when absent
-  std::optional<Vec3> origin;                    // space origin
+  std::vector<double> spacings;                 // empty when absent
+  std::vector<std::optional<Vec3>> directions;  // per axis; nullopt for "none"; empty when absent
+  std::optional<Vec3> origin;                   // space origin
   PieceEncoding encoding = PieceEncoding::kRaw;
   std::optional<Endian> endian;
   uint64_t lineSkip = 0;
-  int64_t byteSkip = 0;                          // -1: raw data is the end of the file
-  std::vector<std::string> dataFiles;            // paths, resolved beside the header
-  int dataFileSubdim = 0;                        // the optional <subdim> of a file list
+  int64_t byteSkip = 0;                // -1: raw data is the end of the file
+  std::vector<std::string> dataFiles;  // paths, resolved beside the header
+  int dataFileSubdim = 0;              // the optional <subdim> of a file list
   bool attached = false;
-  uint64_t dataOffset = 0;                       // attached: first byte after the blank line
-  std::vector<std::string> ignoredFields;        // recognized, not needed for a scalar volume
+  uint64_t dataOffset = 0;                 // attached: first byte after the blank line
+  std::vector<std::string> ignoredFields;  // recognized, not needed for a scalar volume
 };
 
 // Parses the header of `path` (.nrrd or .nhdr).

@@ -22,7 +22,8 @@ Status applyGeometry(const NrrdHeader& h, int first, const std::string& path, Vo
       axes[a] = *h.directions[first + a];
     }
     if (first == 1 && h.directions[0])
-      return makeError(ErrorCode::kCorrupt, path, ": header field 'space directions': the first "
+      return makeError(ErrorCode::kCorrupt, path,
+                       ": header field 'space directions': the first "
                        "axis of a 4-D volume must be 'none'");
     const AxesSummary s = summarizeAxes(axes, "space directions");
     info.spacing = s.lengths;
@@ -40,7 +41,8 @@ Status applyGeometry(const NrrdHeader& h, int first, const std::string& path, Vo
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path,
+                                               const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(NrrdHeader h, parseNrrdHeader(path));
   const int first = h.dimension == 4 ? 1 : 0;
   const std::array<uint64_t, 3> dims{h.sizes[first], h.sizes[first + 1], h.sizes[first + 2]};
@@ -72,7 +74,8 @@ Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path, const Op
     const uint64_t files = h.dataFiles.size();
     // A <subdim> of 2 (or 3 for 4-D) means one z slice per file.
     const int sliceSubdim = h.dimension - 1;
-    if ((h.dataFileSubdim != 0 && h.dataFileSubdim != sliceSubdim && h.dataFileSubdim != h.dimension) ||
+    if ((h.dataFileSubdim != 0 && h.dataFileSubdim != sliceSubdim &&
+         h.dataFileSubdim != h.dimension) ||
         info.dims[2] % files != 0 || (h.dataFileSubdim == sliceSubdim && files != info.dims[2]))
       return makeError(ErrorCode::kSizeMismatch, path, ": header field 'data file': ", files,
                        " files cannot each hold whole z slices of ", info.dims[2]);

@@ -5,11 +5,13 @@
 
 namespace voxlink::convert {
 
-Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file, std::string_view field) {
+Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file,
+                 std::string_view field) {
   uint64_t voxels = 1;
   for (int a = 0; a < 3; ++a) {
     if (dims[a] == 0)
-      return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': axis ", a, " has size 0");
+      return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': axis ", a,
+                       " has size 0");
     if (dims[a] > UINT32_MAX || voxels > kMaxVoxels / dims[a])
       return makeError(ErrorCode::kTooLarge, file, ": header field '", field, "': ", dims[0], "x",
                        dims[1], "x", dims[2], " is more than ", kMaxVoxels, " voxels");
@@ -18,7 +20,8 @@ Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file, s
   return Status::ok();
 }
 
-Status checkSpacing(const std::array<double, 3>& spacing, const std::string& file, std::string_view field) {
+Status checkSpacing(const std::array<double, 3>& spacing, const std::string& file,
+                    std::string_view field) {
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(spacing[a]) || spacing[a] <= 0)
       return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': spacing of axis ",
@@ -35,8 +38,8 @@ Status applyOpenOptions(VolumeInfo& info, const OpenOptions& options) {
     return makeError(ErrorCode::kInvalidArgument, info.path, ": --type ", scalarName(*options.type),
                      " disagrees with the header's ", scalarName(info.type));
   if (options.spacing) {
-    info.notes.push_back(cat("spacing ", info.spacing[0], " ", info.spacing[1], " ", info.spacing[2],
-                             " from the file replaced by --spacing"));
+    info.notes.push_back(cat("spacing ", info.spacing[0], " ", info.spacing[1], " ",
+                             info.spacing[2], " from the file replaced by --spacing"));
     info.spacing = *options.spacing;
   }
   return Status::ok();

@@ -19,7 +19,8 @@ namespace voxlink::convert {
 
 std::string lowerExtension(const std::string& path) {
   std::string name = std::filesystem::path(path).filename().string();
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   const bool gz = name.size() > 3 && name.ends_with(".gz");
   if (gz) name.resize(name.size() - 3);
   const auto dot = name.rfind('.');
@@ -55,7 +56,9 @@ const std::vector<ReaderEntry>& readerRegistry() {
     r.push_back({"dicom", [isDir](const std::string& p) { return isDir(p) && folderHoldsDicom(p); },
                  openDicomSeries});
     r.push_back({"image-stack",
-                 [isDir, hasExt](const std::string& p) { return isDir(p) || hasExt({".tif", ".tiff"})(p); },
+                 [isDir, hasExt](const std::string& p) {
+                   return isDir(p) || hasExt({".tif", ".tiff"})(p);
+                 },
                  openImageStack});
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});
     return r;

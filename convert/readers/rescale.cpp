@@ -36,7 +36,8 @@ class RescaledSource final : public VolumeSource {
     try {
       scratch_.resize(voxels * scalarSize(in.type));
     } catch (const std::bad_alloc&) {
-      return makeError(ErrorCode::kTooLarge, info_.path, ": ", count, " slices do not fit in memory");
+      return makeError(ErrorCode::kTooLarge, info_.path, ": ", count,
+                       " slices do not fit in memory");
     }
     VOXLINK_RETURN_IF_ERROR(inner_->read(z0, count, scratch_.data()));
     convertRescaled(scratch_.data(), in.type, dst, info_.type, voxels, slope_, intercept_);
@@ -61,14 +62,16 @@ ScalarType typeForValueRange(ScalarType stored, double lo, double hi, bool integ
     if (holds<uint32_t>(lo, hi)) return ScalarType::kU32;
     if (holds<int32_t>(lo, hi)) return ScalarType::kI32;
   }
-  const bool wide = stored == ScalarType::kF64 || stored == ScalarType::kI32 || stored == ScalarType::kU32;
+  const bool wide =
+      stored == ScalarType::kF64 || stored == ScalarType::kI32 || stored == ScalarType::kU32;
   return wide ? ScalarType::kF64 : ScalarType::kF32;
 }
 
 ScalarType rescaledType(ScalarType stored, double storedMin, double storedMax, double slope,
                         double intercept) {
   const double a = storedMin * slope + intercept, b = storedMax * slope + intercept;
-  return typeForValueRange(stored, std::min(a, b), std::max(a, b), integral(slope) && integral(intercept));
+  return typeForValueRange(stored, std::min(a, b), std::max(a, b),
+                           integral(slope) && integral(intercept));
 }
 
 void convertRescaled(const void* src, ScalarType srcType, void* dst, ScalarType dstType,
@@ -81,7 +84,8 @@ void convertRescaled(const void* src, ScalarType srcType, void* dst, ScalarType 
       auto* out = static_cast<O*>(dst);
       if constexpr (std::is_integral_v<O>) {
         const auto m = static_cast<int64_t>(slope), b = static_cast<int64_t>(intercept);
-        for (uint64_t i = 0; i < count; ++i) out[i] = static_cast<O>(static_cast<int64_t>(in[i]) * m + b);
+        for (uint64_t i = 0; i < count; ++i)
+          out[i] = static_cast<O>(static_cast<int64_t>(in[i]) * m + b);
       } else {
         for (uint64_t i = 0; i < count; ++i)
           out[i] = static_cast<O>(static_cast<double>(in[i]) * slope + intercept);
@@ -96,7 +100,8 @@ std::unique_ptr<VolumeSource> rescaleSource(std::unique_ptr<VolumeSource> inner,
   const ScalarType storedType = inner->info().type;
   std::string note = cat(fieldNames, " applied: value = stored ", scalarName(storedType), " * ",
                          slope, " + ", intercept, ", served as ", scalarName(outType));
-  return std::make_unique<RescaledSource>(std::move(inner), slope, intercept, outType, std::move(note));
+  return std::make_unique<RescaledSource>(std::move(inner), slope, intercept, outType,
+                                          std::move(note));
 }
 
 }  // namespace voxlink::convert

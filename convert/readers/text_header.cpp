@@ -111,7 +111,8 @@ Result<std::vector<int64_t>> parseIntegers(std::string_view text, const std::str
   return parseNumbers<int64_t>(text, file, field, count, "integers", "an integer");
 }
 
-Result<int64_t> parseInteger(std::string_view text, const std::string& file, std::string_view field) {
+Result<int64_t> parseInteger(std::string_view text, const std::string& file,
+                             std::string_view field) {
   VOXLINK_ASSIGN_OR_RETURN(std::vector<int64_t> v, parseIntegers(text, file, field, 1));
   return v[0];
 }

@@ -48,7 +48,8 @@ Result<std::vector<int64_t>> parseIntegers(std::string_view text, const std::str
                                            std::optional<size_t> count = std::nullopt);
 
 // A single integer / boolean ("True"/"False", case-insensitive) field value.
-Result<int64_t> parseInteger(std::string_view text, const std::string& file, std::string_view field);
+Result<int64_t> parseInteger(std::string_view text, const std::string& file,
+                             std::string_view field);
 Result<bool> parseBool(std::string_view text, const std::string& file, std::string_view field);
 
 // The error every header parser returns for a malformed field value.

@@ -92,9 +92,11 @@ Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const Ope
       if (chosen.empty() && g->isType<FloatGrid>()) chosen = g->getName();
     }
     if (chosen.empty())
-      return makeError(ErrorCode::kUnsupported, path, ": no float grid among ", names.empty() ? "no grids" : names);
+      return makeError(ErrorCode::kUnsupported, path, ": no float grid among ",
+                       names.empty() ? "no grids" : names);
     if (!file.hasGrid(chosen))
-      return makeError(ErrorCode::kInvalidArgument, path, ": --vdb-grid '", chosen, "' not in the file; it holds ", names);
+      return makeError(ErrorCode::kInvalidArgument, path, ": --vdb-grid '", chosen,
+                       "' not in the file; it holds ", names);
     base = file.readGrid(chosen);
     file.close();
   } catch (const openvdb::Exception& e) {
@@ -108,13 +110,17 @@ Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const Ope
                      base->valueType(), " values; only float grids are supported");
 
   const CoordBBox box = grid->evalActiveVoxelBoundingBox();
-  if (box.empty()) return makeError(ErrorCode::kUnsupported, path, ": grid '", grid->getName(), "' has no active voxels");
+  if (box.empty())
+    return makeError(ErrorCode::kUnsupported, path, ": grid '", grid->getName(),
+                     "' has no active voxels");
   const openvdb::math::Transform& xform = grid->transform();
   if (!xform.isLinear())
     return makeError(ErrorCode::kUnsupported, path, ": grid '", grid->getName(), "': transform ",
                      xform.mapType(), " is not linear");
   const openvdb::Coord extent = box.dim();
-  VOXLINK_RETURN_IF_ERROR(checkDims({uint64_t(extent.x()), uint64_t(extent.y()), uint64_t(extent.z())}, path, "active voxel bounding box"));
+  VOXLINK_RETURN_IF_ERROR(
+      checkDims({uint64_t(extent.x()), uint64_t(extent.y()), uint64_t(extent.z())}, path,
+                "active voxel bounding box"));
 
   VolumeInfo info;
   info.path = path;
@@ -133,9 +139,10 @@ Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const Ope
   const AxesSummary s = summarizeAxes(axes, "grid transform axes");
   info.spacing = s.lengths;
   if (!s.note.empty()) info.notes.push_back(s.note);
-  info.notes.push_back(cat("grid '", grid->getName(), "': dense over the active voxel bounding box ",
-                           "from index (", box.min().x(), ",", box.min().y(), ",", box.min().z(),
-                           ") to (", box.max().x(), ",", box.max().y(), ",", box.max().z(),
+  info.notes.push_back(cat("grid '", grid->getName(),
+                           "': dense over the active voxel bounding box ", "from index (",
+                           box.min().x(), ",", box.min().y(), ",", box.min().z(), ") to (",
+                           box.max().x(), ",", box.max().y(), ",", box.max().z(),
                            "); inactive voxels read as the background ", grid->background()));
   VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, path, "grid transform"));
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));

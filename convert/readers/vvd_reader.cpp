@@ -16,9 +16,9 @@ constexpr size_t kMaxHeaderBytes = size_t{16} << 20;  // histograms and previews
 
 Result<ScalarType> voreenFormat(const std::string& format, const std::string& file) {
   static const std::map<std::string, ScalarType> formats = {
-      {"uint8", ScalarType::kU8},   {"int8", ScalarType::kI8},   {"uint16", ScalarType::kU16},
-      {"int16", ScalarType::kI16},  {"uint32", ScalarType::kU32}, {"int32", ScalarType::kI32},
-      {"float", ScalarType::kF32},  {"double", ScalarType::kF64}};
+      {"uint8", ScalarType::kU8},  {"int8", ScalarType::kI8},    {"uint16", ScalarType::kU16},
+      {"int16", ScalarType::kI16}, {"uint32", ScalarType::kU32}, {"int32", ScalarType::kI32},
+      {"float", ScalarType::kF32}, {"double", ScalarType::kF64}};
   const auto it = formats.find(format);
   if (it != formats.end()) return it->second;
   return makeError(ErrorCode::kUnsupported, file, ": RawData attribute 'format': ", format,
@@ -46,11 +46,14 @@ Result<std::optional<Vec3>> metaVector(std::string_view xml, const char* name, s
     if (!n || *n != name) continue;
     VOXLINK_ASSIGN_OR_RETURN(auto value, findTag(xml, "value", file, item->end, until));
     const std::string field = cat("MetaItem ", name);
-    if (!value) return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "' has no <value>");
+    if (!value)
+      return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "' has no <value>");
     Vec3 v{};
     for (int a = 0; a < 3; ++a) {
       const std::string* text = value->attribute(std::string(1, "xyz"[a]));
-      if (!text) return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': value has no ", "xyz"[a]);
+      if (!text)
+        return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': value has no ",
+                         "xyz"[a]);
       VOXLINK_ASSIGN_OR_RETURN(std::vector<double> d, parseDoubles(*text, file, field, 1));
       v[a] = d[0];
     }
@@ -63,17 +66,22 @@ Result<std::optional<Vec3>> metaVector(std::string_view xml, const char* name, s
 Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(std::string xml, readFilePrefix(path, kMaxHeaderBytes));
   if (xml.find("<VoreenData") == std::string::npos)
-    return makeError(ErrorCode::kCorrupt, path, ": not a Voreen .vvd file (no <VoreenData> element)");
+    return makeError(ErrorCode::kCorrupt, path,
+                     ": not a Voreen .vvd file (no <VoreenData> element)");
   VOXLINK_ASSIGN_OR_RETURN(auto volume, findTag(xml, "Volume", path));
   if (!volume) return makeError(ErrorCode::kCorrupt, path, ": no <Volume> element");
   const size_t volumeEnd = findEndTag(xml, "Volume", volume->end);
   VOXLINK_ASSIGN_OR_RETURN(auto raw, findTag(xml, "RawData", path, volume->end, volumeEnd));
-  if (!raw) return makeError(ErrorCode::kCorrupt, path, ": header field 'RawData' missing in the first <Volume>");
+  if (!raw)
+    return makeError(ErrorCode::kCorrupt, path,
+                     ": header field 'RawData' missing in the first <Volume>");
 
   const std::string* filename = raw->attribute("filename");
   const std::string* format = raw->attribute("format");
-  if (!filename || filename->empty()) return makeError(ErrorCode::kCorrupt, path, ": header field 'RawData filename' missing");
-  if (!format) return makeError(ErrorCode::kCorrupt, path, ": header field 'RawData format' missing");
+  if (!filename || filename->empty())
+    return makeError(ErrorCode::kCorrupt, path, ": header field 'RawData filename' missing");
+  if (!format)
+    return makeError(ErrorCode::kCorrupt, path, ": header field 'RawData format' missing");
 
   VolumeInfo info;
   info.path = path;
@@ -99,7 +107,9 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
     info.notes.push_back("RealWorldMapping meta item not applied: values are the raw file's");
   if (xml.find("name=\"Transformation\"") != std::string::npos)
     info.notes.push_back("Transformation meta item ignored: voxels stay in index order");
-  VOXLINK_ASSIGN_OR_RETURN(auto second, findTag(xml, "Volume", path, volumeEnd == std::string::npos ? xml.size() : volumeEnd));
+  VOXLINK_ASSIGN_OR_RETURN(
+      auto second,
+      findTag(xml, "Volume", path, volumeEnd == std::string::npos ? xml.size() : volumeEnd));
   if (second) info.notes.push_back("the file describes more than one volume; the first is read");
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
 

@@ -7,7 +7,8 @@ namespace voxlink::convert {
 namespace {
 
 bool isNameChar(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' || c == ':';
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' ||
+         c == ':';
 }
 
 std::string decodeEntities(std::string_view text) {
@@ -37,7 +38,8 @@ Result<XmlTag> parseTag(std::string_view xml, size_t begin, const std::string& f
   size_t i = begin + 1;
   while (i < xml.size() && isNameChar(xml[i])) tag.name += xml[i++];
   const auto fail = [&](const char* what) {
-    return makeError(ErrorCode::kCorrupt, file, ": XML tag <", tag.name, "> at byte ", begin, ": ", what);
+    return makeError(ErrorCode::kCorrupt, file, ": XML tag <", tag.name, "> at byte ", begin, ": ",
+                     what);
   };
   while (true) {
     while (i < xml.size() && std::isspace(static_cast<unsigned char>(xml[i]))) ++i;
@@ -57,7 +59,8 @@ Result<XmlTag> parseTag(std::string_view xml, size_t begin, const std::string& f
     if (key.empty() || i >= xml.size() || xml[i] != '=') return fail("malformed attribute");
     ++i;
     while (i < xml.size() && std::isspace(static_cast<unsigned char>(xml[i]))) ++i;
-    if (i >= xml.size() || (xml[i] != '"' && xml[i] != '\'')) return fail("attribute value not quoted");
+    if (i >= xml.size() || (xml[i] != '"' && xml[i] != '\''))
+      return fail("attribute value not quoted");
     const char quote = xml[i++];
     const size_t close = xml.find(quote, i);
     if (close == std::string_view::npos) return fail("attribute value not closed");
@@ -77,7 +80,8 @@ Result<std::optional<XmlTag>> findTag(std::string_view xml, std::string_view nam
     if (i == std::string_view::npos || i >= until) return std::optional<XmlTag>();
     if (xml.substr(i, 4) == "<!--") {
       const size_t close = xml.find("-->", i + 4);
-      if (close == std::string_view::npos) return makeError(ErrorCode::kCorrupt, file, ": XML comment not closed");
+      if (close == std::string_view::npos)
+        return makeError(ErrorCode::kCorrupt, file, ": XML comment not closed");
       i = close + 3;
       continue;
     }
@@ -95,7 +99,9 @@ size_t findEndTag(std::string_view xml, std::string_view name, size_t from) {
   size_t i = from;
   while ((i = xml.find(close, i)) != std::string_view::npos) {
     const size_t after = i + close.size();
-    if (after < xml.size() && (xml[after] == '>' || std::isspace(static_cast<unsigned char>(xml[after])))) return i;
+    if (after < xml.size() &&
+        (xml[after] == '>' || std::isspace(static_cast<unsigned char>(xml[after]))))
+      return i;
     i = after;
   }
   return std::string_view::npos;

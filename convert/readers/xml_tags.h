@@ -14,8 +14,8 @@ namespace voxlink::convert {
 struct XmlTag {
   std::string name;
   std::map<std::string, std::string> attributes;  // entity references decoded
-  size_t begin = 0;        // offset of '<'
-  size_t end = 0;          // offset just after '>'
+  size_t begin = 0;                               // offset of '<'
+  size_t end = 0;                                 // offset just after '>'
   bool selfClosing = false;
 
   const std::string* attribute(const std::string& key) const {

@@ -27,7 +27,8 @@ std::vector<uint8_t> headsqBytes() {
 }
 
 // Copies the series into `dir`, letting `edit` change each file's data set (by file name).
-void copySeries(const TempDir& dir, const std::function<void(const std::string&, gdcm::DataSet&)>& edit = {}) {
+void copySeries(const TempDir& dir,
+                const std::function<void(const std::string&, gdcm::DataSet&)>& edit = {}) {
   for (const auto& entry : fs::directory_iterator(dataPath(kSeries))) {
     const std::string name = entry.path().filename().string();
     if (!edit) {
@@ -76,7 +77,8 @@ TEST(DicomReader, RescaleInterceptIsAppliedAsExactIntegers) {
   ASSERT_TRUE(source);
   // BitsStored 16, signed: [-32768, 32767] - 1024 needs i32.
   EXPECT_EQ(source->info().type, ScalarType::kI32);
-  EXPECT_TRUE(hasNote(source->info(), "RescaleSlope/RescaleIntercept applied")) << notesOf(source->info());
+  EXPECT_TRUE(hasNote(source->info(), "RescaleSlope/RescaleIntercept applied"))
+      << notesOf(source->info());
   auto data = readAll(*source);
   ASSERT_TRUE(data) << data.message();
   const auto expected = flipZ(headsqBytes(), 64 * 64 * 2);
@@ -116,8 +118,9 @@ TEST(DicomReader, MissingSliceMakesGapsNonUniform) {
   TempDir dir;
   copySeries(dir);
   fs::remove(dir.file("CTHead50.dcm"));
-  expectError(openVolume(dir.path().string()), ErrorCode::kUnsupported,
-              {dir.path().string(), "ImagePositionPatient", "not uniform", "CTHead49.dcm", "CTHead51.dcm"});
+  expectError(
+      openVolume(dir.path().string()), ErrorCode::kUnsupported,
+      {dir.path().string(), "ImagePositionPatient", "not uniform", "CTHead49.dcm", "CTHead51.dcm"});
 }
 
 TEST(DicomReader, TwoFilesAtOnePositionAreRefused) {
@@ -125,7 +128,8 @@ TEST(DicomReader, TwoFilesAtOnePositionAreRefused) {
   TempDir dir;
   copySeries(dir);
   fs::copy_file(dir.file("CTHead7.dcm"), dir.file("CTHead7copy.dcm"));
-  expectError(openVolume(dir.path().string()), ErrorCode::kCorrupt, {"ImagePositionPatient", "CTHead7", "same slice position"});
+  expectError(openVolume(dir.path().string()), ErrorCode::kCorrupt,
+              {"ImagePositionPatient", "CTHead7", "same slice position"});
 }
 
 TEST(DicomReader, TwoSeriesInOneFolderAreRefused) {
@@ -137,7 +141,8 @@ TEST(DicomReader, TwoSeriesInOneFolderAreRefused) {
     uid.SetValue("1.2.3.4.5");
     ds.Replace(uid.GetAsDataElement());
   });
-  expectError(openVolume(dir.path().string()), ErrorCode::kUnsupported, {"SeriesInstanceUID", "holds 2 series"});
+  expectError(openVolume(dir.path().string()), ErrorCode::kUnsupported,
+              {"SeriesInstanceUID", "holds 2 series"});
 }
 
 TEST(DicomReader, OtherFilesInTheFolderAreSkippedWithANote) {

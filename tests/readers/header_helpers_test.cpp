@@ -21,8 +21,10 @@ TEST(HeaderHelpers, NumberListsNameFileAndField) {
   EXPECT_EQ((*ok)[2], 4);
   expectError(parseDoubles("1 2", "f.nrrd", "spacings", 3), ErrorCode::kCorrupt,
               {"f.nrrd: header field 'spacings': expected 3 numbers, got '1 2'"});
-  expectError(parseIntegers("1 2.5 3", "f.nrrd", "sizes"), ErrorCode::kCorrupt, {"'sizes'", "integers", "1 2.5 3"});
-  expectError(parseBool("yes", "f.mhd", "CompressedData"), ErrorCode::kCorrupt, {"'CompressedData'", "True or False"});
+  expectError(parseIntegers("1 2.5 3", "f.nrrd", "sizes"), ErrorCode::kCorrupt,
+              {"'sizes'", "integers", "1 2.5 3"});
+  expectError(parseBool("yes", "f.mhd", "CompressedData"), ErrorCode::kCorrupt,
+              {"'CompressedData'", "True or False"});
 }
 
 TEST(HeaderHelpers, NumberedFileLists) {
@@ -36,15 +38,21 @@ TEST(HeaderHelpers, NumberedFileLists) {
   ASSERT_TRUE(percent);
   EXPECT_EQ(percent->front(), "100%_ 1");
   for (const char* bad : {"x%s", "x%d%d", "plain", "x%n"})
-    expectError(expandNumberedFiles({bad, "1", "2", "1"}, "h.nhdr", "data file"), ErrorCode::kCorrupt, {"h.nhdr", "'data file'", bad});
-  expectError(expandNumberedFiles({"q.%d", "1", "5", "-1"}, "h.nhdr", "data file"), ErrorCode::kCorrupt, {"step"});
-  expectError(expandNumberedFiles({"q.%d", "1", "99999999", "1"}, "h.nhdr", "data file"), ErrorCode::kTooLarge, {"files listed"});
+    expectError(expandNumberedFiles({bad, "1", "2", "1"}, "h.nhdr", "data file"),
+                ErrorCode::kCorrupt, {"h.nhdr", "'data file'", bad});
+  expectError(expandNumberedFiles({"q.%d", "1", "5", "-1"}, "h.nhdr", "data file"),
+              ErrorCode::kCorrupt, {"step"});
+  expectError(expandNumberedFiles({"q.%d", "1", "99999999", "1"}, "h.nhdr", "data file"),
+              ErrorCode::kTooLarge, {"files listed"});
 }
 
 TEST(HeaderHelpers, NaturalOrder) {
-  std::vector<std::string> names = {"s10.png", "s2.png", "s1.png", "s02.png", "a.png", "s1b.png", "s100.png"};
-  std::sort(names.begin(), names.end(), [](const auto& a, const auto& b) { return naturalLess(a, b); });
-  EXPECT_EQ(names, (std::vector<std::string>{"a.png", "s1.png", "s1b.png", "s2.png", "s02.png", "s10.png", "s100.png"}));
+  std::vector<std::string> names = {"s10.png", "s2.png",  "s1.png",  "s02.png",
+                                    "a.png",   "s1b.png", "s100.png"};
+  std::sort(names.begin(), names.end(),
+            [](const auto& a, const auto& b) { return naturalLess(a, b); });
+  EXPECT_EQ(names, (std::vector<std::string>{"a.png", "s1.png", "s1b.png", "s2.png", "s02.png",
+                                             "s10.png", "s100.png"}));
   EXPECT_FALSE(naturalLess("x", "x"));
 }
 
@@ -55,7 +63,8 @@ TEST(HeaderHelpers, AxisNotes) {
   EXPECT_NE(flipped.note.find("-x +y +z"), std::string::npos) << flipped.note;
   const AxesSummary permuted = summarizeAxes({Vec3{0, 1, 0}, Vec3{1, 0, 0}, Vec3{0, 0, 1}}, "dirs");
   EXPECT_NE(permuted.note.find("+y +x +z"), std::string::npos) << permuted.note;
-  const AxesSummary oblique = summarizeAxes({Vec3{0.6, 0.8, 0}, Vec3{-0.8, 0.6, 0}, Vec3{0, 0, 1}}, "dirs");
+  const AxesSummary oblique =
+      summarizeAxes({Vec3{0.6, 0.8, 0}, Vec3{-0.8, 0.6, 0}, Vec3{0, 0, 1}}, "dirs");
   EXPECT_NEAR(oblique.lengths[0], 1.0, 1e-15);
   EXPECT_NE(oblique.note.find("oblique"), std::string::npos) << oblique.note;
 }
@@ -96,7 +105,8 @@ TEST(HeaderHelpers, GzipMembersConcatenateAndSkipWorks) {
   ASSERT_TRUE((*stream)->read(two, 2).isOk());
   EXPECT_EQ(two[0], a.back());
   EXPECT_EQ(two[1], b.front());
-  expectError((*stream)->read(got.data(), got.size()), ErrorCode::kTruncated, {"two.gz", "ends after 120000"});
+  expectError((*stream)->read(got.data(), got.size()), ErrorCode::kTruncated,
+              {"two.gz", "ends after 120000"});
 }
 
 }  // namespace

@@ -14,7 +14,8 @@ using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
-void writeImage(const std::string& path, int w, int h, int channels, TypeDesc type, const void* pixels) {
+void writeImage(const std::string& path, int w, int h, int channels, TypeDesc type,
+                const void* pixels) {
   auto out = ImageOutput::create(path);
   ASSERT_TRUE(out) << OIIO::geterror();
   ASSERT_TRUE(out->open(path, ImageSpec(w, h, channels, type))) << out->geterror();
@@ -31,7 +32,8 @@ TEST(ImageStackReader, PngFolderWithUnpaddedNumbersReadsBackTheTooth) {
   TempDir dir;
   const size_t slice = size_t{kToothX} * kToothY;
   for (int z = 0; z < kToothZ; ++z)
-    writeImage(dir.file(cat("tooth_", z + 1, ".png")), kToothX, kToothY, 1, TypeDesc::UINT8, tooth.data() + z * slice);
+    writeImage(dir.file(cat("tooth_", z + 1, ".png")), kToothX, kToothY, 1, TypeDesc::UINT8,
+               tooth.data() + z * slice);
   auto source = openOrDie(dir.path().string());
   ASSERT_TRUE(source);
   const VolumeInfo& info = source->info();
@@ -60,8 +62,12 @@ TEST(ImageStackReader, MultiPageUint16TiffReadsBackTheWalnut) {
   ASSERT_TRUE(out->supports("multiimage"));
   const ImageSpec spec(x, y, 1, TypeDesc::UINT16);
   for (int page = 0; page < z; ++page) {
-    ASSERT_TRUE(out->open(path, spec, page == 0 ? ImageOutput::Create : ImageOutput::AppendSubimage)) << out->geterror();
-    ASSERT_TRUE(out->write_image(TypeDesc::UINT16, walnut.data() + static_cast<size_t>(page) * x * y * 2)) << out->geterror();
+    ASSERT_TRUE(
+        out->open(path, spec, page == 0 ? ImageOutput::Create : ImageOutput::AppendSubimage))
+        << out->geterror();
+    ASSERT_TRUE(
+        out->write_image(TypeDesc::UINT16, walnut.data() + static_cast<size_t>(page) * x * y * 2))
+        << out->geterror();
   }
   ASSERT_TRUE(out->close());
   auto source = openOrDie(path);
@@ -99,7 +105,8 @@ TEST(ImageStackReader, SlicesOfDifferentSizesAreRefusedNamingTheFile) {
   writeImage(dir.file("s1.png"), 10, 10, 1, TypeDesc::UINT8, pixels.data());
   writeImage(dir.file("s2.png"), 10, 10, 1, TypeDesc::UINT8, pixels.data());
   writeImage(dir.file("s3.png"), 5, 10, 1, TypeDesc::UINT8, pixels.data());
-  expectError(openVolume(dir.path().string()), ErrorCode::kSizeMismatch, {"s3.png", "image size", "5x10", "10x10", "s1.png"});
+  expectError(openVolume(dir.path().string()), ErrorCode::kSizeMismatch,
+              {"s3.png", "image size", "5x10", "10x10", "s1.png"});
 }
 
 TEST(ImageStackReader, OnePageTiffIsNotAVolume) {

@@ -14,8 +14,9 @@ namespace {
 TEST(MetaImageReader, HeadMrMissingDataFileIsNamedWithAHint) {
   VOXLINK_REQUIRE_DATA("mri/vtk_HeadMRVolume.mhd");
   auto r = openVolume(dataPath("mri/vtk_HeadMRVolume.mhd"));
-  expectError(r, ErrorCode::kIo, {"vtk_HeadMRVolume.mhd", "ElementDataFile", "HeadMRVolume.raw does not exist",
-                                  "vtk_HeadMRVolume.raw is there"});
+  expectError(r, ErrorCode::kIo,
+              {"vtk_HeadMRVolume.mhd", "ElementDataFile", "HeadMRVolume.raw does not exist",
+               "vtk_HeadMRVolume.raw is there"});
 }
 
 TEST(MetaImageReader, HeadMrWithItsDataFileBesideItEqualsTheRawBytes) {
@@ -52,7 +53,8 @@ TEST(MetaImageReader, FrogtissueZrawEqualsZlibUncompress) {
   EXPECT_TRUE(*data == expected);
   // README: labels 0..29, 3.6 % non-zero.
   EXPECT_EQ(*std::max_element(data->begin(), data->end()), 29);
-  const double nonZero = static_cast<double>(std::count_if(data->begin(), data->end(), [](uint8_t v) { return v != 0; })) /
+  const double nonZero = static_cast<double>(std::count_if(data->begin(), data->end(),
+                                                           [](uint8_t v) { return v != 0; })) /
                          static_cast<double>(data->size());
   EXPECT_NEAR(nonZero, 0.036, 0.0005);
 }
@@ -75,7 +77,8 @@ TEST(MetaImageReader, NiivueMhaLocalZlibData) {
   const auto at = std::search(all.begin(), all.end(), marker.begin(), marker.end());
   ASSERT_NE(at, all.end());
   const size_t offset = static_cast<size_t>(at - all.begin()) + marker.size();
-  const auto expected = inflateBytes(all.data() + offset, all.size() - offset, info.voxelCount() * 2);
+  const auto expected =
+      inflateBytes(all.data() + offset, all.size() - offset, info.voxelCount() * 2);
   auto data = readAll(*source);
   ASSERT_TRUE(data) << data.message();
   EXPECT_TRUE(*data == expected);
@@ -84,15 +87,18 @@ TEST(MetaImageReader, NiivueMhaLocalZlibData) {
 TEST(MetaImageReader, ElementTypesByteOrderListsAndHeaderSize) {
   TempDir dir;
   const std::pair<const char*, ScalarType> types[] = {
-      {"MET_CHAR", ScalarType::kI8},   {"MET_UCHAR", ScalarType::kU8},   {"MET_SHORT", ScalarType::kI16},
-      {"MET_USHORT", ScalarType::kU16}, {"MET_INT", ScalarType::kI32},   {"MET_UINT", ScalarType::kU32},
-      {"MET_LONG", ScalarType::kI32},  {"MET_ULONG", ScalarType::kU32}, {"MET_FLOAT", ScalarType::kF32},
-      {"MET_DOUBLE", ScalarType::kF64}};
+      {"MET_CHAR", ScalarType::kI8},   {"MET_UCHAR", ScalarType::kU8},
+      {"MET_SHORT", ScalarType::kI16}, {"MET_USHORT", ScalarType::kU16},
+      {"MET_INT", ScalarType::kI32},   {"MET_UINT", ScalarType::kU32},
+      {"MET_LONG", ScalarType::kI32},  {"MET_ULONG", ScalarType::kU32},
+      {"MET_FLOAT", ScalarType::kF32}, {"MET_DOUBLE", ScalarType::kF64}};
   for (const auto& [name, type] : types) {
     SCOPED_TRACE(name);
     const auto data = patternBytes(3 * 2 * 2 * scalarSize(type), 11);
-    writeWithHeader(dir.file("t.mha"), cat("NDims = 3\nDimSize = 3 2 2\nElementType = ", name,
-                                           "\nBinaryDataByteOrderMSB = True\nElementDataFile = LOCAL\n"), data);
+    writeWithHeader(dir.file("t.mha"),
+                    cat("NDims = 3\nDimSize = 3 2 2\nElementType = ", name,
+                        "\nBinaryDataByteOrderMSB = True\nElementDataFile = LOCAL\n"),
+                    data);
     auto source = openOrDie(dir.file("t.mha"));
     ASSERT_TRUE(source);
     EXPECT_EQ(source->info().type, type);
@@ -107,10 +113,13 @@ TEST(MetaImageReader, ElementTypesByteOrderListsAndHeaderSize) {
     file.insert(file.end(), slices.begin() + z * 12, slices.begin() + (z + 1) * 12);
     writeBytes(dir.file(cat("img", z + 1, ".raw")), file);
   }
-  writeText(dir.file("list.mhd"), "ObjectType = Image\nNDims = 3\nDimSize = 4 3 4\nElementSize = 2 2 3\n"
-                                  "ElementType = MET_UCHAR\nHeaderSize = 10\nElementDataFile = LIST\nimg1.raw\nimg2.raw\nimg3.raw\nimg4.raw\n");
-  writeText(dir.file("pattern.mhd"), "NDims = 3\nDimSize = 4 3 4\nElementType = MET_UCHAR\nHeaderSize = -1\n"
-                                     "ElementDataFile = img%d.raw 1 4 1\n");
+  writeText(dir.file("list.mhd"),
+            "ObjectType = Image\nNDims = 3\nDimSize = 4 3 4\nElementSize = 2 2 3\n"
+            "ElementType = MET_UCHAR\nHeaderSize = 10\nElementDataFile = "
+            "LIST\nimg1.raw\nimg2.raw\nimg3.raw\nimg4.raw\n");
+  writeText(dir.file("pattern.mhd"),
+            "NDims = 3\nDimSize = 4 3 4\nElementType = MET_UCHAR\nHeaderSize = -1\n"
+            "ElementDataFile = img%d.raw 1 4 1\n");
   for (const char* name : {"list.mhd", "pattern.mhd"}) {
     SCOPED_TRACE(name);
     auto source = openOrDie(dir.file(name));

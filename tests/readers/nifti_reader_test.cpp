@@ -23,15 +23,19 @@ TEST(NiftiReader, Avg152BigEndianGzipMatchesHandDecodedHeaderAndBytes) {
   const std::string path = dataPath("mri/vtk_avg152T1_RL_nifti.nii.gz");
   const auto file = gunzipFile(path);
   ASSERT_GE(file.size(), 352u);
-  ASSERT_EQ(bigEndianAt<int32_t>(file, 0), 348);  // sizeof_hdr read big-endian: the file is MSB first
-  const std::array<uint32_t, 3> dims{uint32_t(bigEndianAt<int16_t>(file, 42)), uint32_t(bigEndianAt<int16_t>(file, 44)),
+  ASSERT_EQ(bigEndianAt<int32_t>(file, 0),
+            348);  // sizeof_hdr read big-endian: the file is MSB first
+  const std::array<uint32_t, 3> dims{uint32_t(bigEndianAt<int16_t>(file, 42)),
+                                     uint32_t(bigEndianAt<int16_t>(file, 44)),
                                      uint32_t(bigEndianAt<int16_t>(file, 46))};
-  const std::array<double, 3> pixdim{bigEndianAt<float>(file, 80), bigEndianAt<float>(file, 84), bigEndianAt<float>(file, 88)};
+  const std::array<double, 3> pixdim{bigEndianAt<float>(file, 80), bigEndianAt<float>(file, 84),
+                                     bigEndianAt<float>(file, 88)};
   const auto voxOffset = static_cast<size_t>(bigEndianAt<float>(file, 108));
-  const std::array<double, 3> translation{bigEndianAt<float>(file, 280 + 12), bigEndianAt<float>(file, 296 + 12),
+  const std::array<double, 3> translation{bigEndianAt<float>(file, 280 + 12),
+                                          bigEndianAt<float>(file, 296 + 12),
                                           bigEndianAt<float>(file, 312 + 12)};
-  EXPECT_EQ(bigEndianAt<int16_t>(file, 70), 2);   // DT_UINT8
-  EXPECT_EQ(bigEndianAt<int16_t>(file, 254), 4);  // sform_code MNI
+  EXPECT_EQ(bigEndianAt<int16_t>(file, 70), 2);    // DT_UINT8
+  EXPECT_EQ(bigEndianAt<int16_t>(file, 254), 4);   // sform_code MNI
   EXPECT_EQ(bigEndianAt<float>(file, 112), 0.0f);  // scl_slope 0: no scaling
 
   auto source = openOrDie(path);
@@ -79,7 +83,8 @@ std::vector<uint8_t> niftiHeader(std::array<int16_t, 8> dim, int16_t datatype, i
 TEST(NiftiReader, SclSlopeInterceptAreAppliedAndTheTypeFollowsThem) {
   TempDir dir;
   const auto raw = patternBytes(4 * 3 * 2 * 2, 21);  // int16 values
-  std::vector<uint8_t> file = niftiHeader({3, 4, 3, 2, 1, 1, 1, 1}, 4, 16, {0.5f, 0.5f, 2.0f}, 0.5f, -10.0f);
+  std::vector<uint8_t> file =
+      niftiHeader({3, 4, 3, 2, 1, 1, 1, 1}, 4, 16, {0.5f, 0.5f, 2.0f}, 0.5f, -10.0f);
   file.insert(file.end(), raw.begin(), raw.end());
   writeBytes(dir.file("s.nii"), file);
   writeBytes(dir.file("s.nii.gz"), gzipBytes(file));

@@ -71,7 +71,8 @@ void writeText(const std::string& path, const std::string& text) {
   writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
 }
 
-void writeWithHeader(const std::string& path, const std::string& header, const std::vector<uint8_t>& data) {
+void writeWithHeader(const std::string& path, const std::string& header,
+                     const std::vector<uint8_t>& data) {
   std::vector<uint8_t> all(header.begin(), header.end());
   all.insert(all.end(), data.begin(), data.end());
   writeBytes(path, all);
@@ -106,7 +107,8 @@ std::vector<uint8_t> flipZ(const std::vector<uint8_t>& data, uint64_t sliceBytes
 
 std::vector<uint8_t> swapped(std::vector<uint8_t> data, size_t elementBytes) {
   for (size_t i = 0; i + elementBytes <= data.size(); i += elementBytes)
-    std::reverse(data.begin() + static_cast<long>(i), data.begin() + static_cast<long>(i + elementBytes));
+    std::reverse(data.begin() + static_cast<long>(i),
+                 data.begin() + static_cast<long>(i + elementBytes));
   return data;
 }
 
@@ -121,11 +123,13 @@ std::string notesOf(const VolumeInfo& info) {
   return s;
 }
 
-void expectError(const Status& status, ErrorCode code, std::initializer_list<std::string> fragments) {
+void expectError(const Status& status, ErrorCode code,
+                 std::initializer_list<std::string> fragments) {
   ASSERT_FALSE(status.isOk()) << "expected " << errorCodeName(code);
   EXPECT_EQ(status.code(), code) << errorCodeName(status.code()) << ": " << status.message();
   for (const std::string& f : fragments)
-    EXPECT_NE(status.message().find(f), std::string::npos) << "'" << f << "' not in: " << status.message();
+    EXPECT_NE(status.message().find(f), std::string::npos)
+        << "'" << f << "' not in: " << status.message();
 }
 
 Status openAndReadAll(const std::string& path, const OpenOptions& options) {

@@ -33,7 +33,8 @@ std::vector<uint8_t> inflateBytes(const uint8_t* data, size_t size, size_t expec
 std::vector<uint8_t> gzipBytes(const std::vector<uint8_t>& data, bool gzipWrapper = true);
 void writeText(const std::string& path, const std::string& text);
 // A header followed by binary data in one file.
-void writeWithHeader(const std::string& path, const std::string& header, const std::vector<uint8_t>& data);
+void writeWithHeader(const std::string& path, const std::string& header,
+                     const std::vector<uint8_t>& data);
 // Deterministic test volume bytes (a value pattern that differs per voxel and slice).
 std::vector<uint8_t> patternBytes(size_t n, uint32_t seed = 1);
 
@@ -50,9 +51,11 @@ bool hasNote(const VolumeInfo& info, const std::string& fragment);
 std::string notesOf(const VolumeInfo& info);
 
 // Asserts code and that the message contains every fragment.
-void expectError(const Status& status, ErrorCode code, std::initializer_list<std::string> fragments);
+void expectError(const Status& status, ErrorCode code,
+                 std::initializer_list<std::string> fragments);
 template <class T>
-void expectError(const Result<T>& result, ErrorCode code, std::initializer_list<std::string> fragments) {
+void expectError(const Result<T>& result, ErrorCode code,
+                 std::initializer_list<std::string> fragments) {
   expectError(result.status(), code, fragments);
 }
 

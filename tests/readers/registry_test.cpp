@@ -12,7 +12,8 @@ namespace {
 
 TEST(ReaderRegistry, EveryReaderIsRegistered) {
   const auto names = readerNames();
-  for (const char* name : {"nrrd", "metaimage", "nifti", "vvd", "vdb", "vti", "dicom", "image-stack", "raw"})
+  for (const char* name :
+       {"nrrd", "metaimage", "nifti", "vvd", "vdb", "vti", "dicom", "image-stack", "raw"})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
 }
 
@@ -40,7 +41,9 @@ TEST(ReaderRegistry, MagicFormatOptionAndFallbacks) {
   VOXLINK_REQUIRE_DATA("volume/voreen_nucleon/nucleon.nrrd");
   TempDir dir;
   // A NRRD without its extension is found by its first bytes.
-  writeWithHeader(dir.file("volume.dat"), "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n", patternBytes(8));
+  writeWithHeader(dir.file("volume.dat"),
+                  "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n",
+                  patternBytes(8));
   auto magic = openOrDie(dir.file("volume.dat"));
   ASSERT_TRUE(magic);
   EXPECT_EQ(magic->info().format, "nrrd");
@@ -54,9 +57,11 @@ TEST(ReaderRegistry, MagicFormatOptionAndFallbacks) {
   EXPECT_EQ(forced->info().format, "raw");
   OpenOptions unknown;
   unknown.format = "bmp3d";
-  expectError(openVolume(dir.file("volume.dat"), unknown), ErrorCode::kInvalidArgument, {"bmp3d", "nrrd", "dicom"});
+  expectError(openVolume(dir.file("volume.dat"), unknown), ErrorCode::kInvalidArgument,
+              {"bmp3d", "nrrd", "dicom"});
   writeBytes(dir.file("mystery.xyz"), patternBytes(8));
-  expectError(openVolume(dir.file("mystery.xyz")), ErrorCode::kUnsupported, {"mystery.xyz", "unknown volume format"});
+  expectError(openVolume(dir.file("mystery.xyz")), ErrorCode::kUnsupported,
+              {"mystery.xyz", "unknown volume format"});
   // A folder without DICOM files is an image stack (here an empty one).
   std::filesystem::create_directory(dir.file("empty"));
   expectError(openVolume(dir.file("empty")), ErrorCode::kCorrupt, {"empty", "no slice images"});

@@ -45,7 +45,8 @@ TEST_P(SequentialRead, RewindAndSkippingAhead) {
   // Jump straight to the middle (a stream decodes and drops what lies before).
   ASSERT_TRUE(source->rewind().isOk());
   ASSERT_TRUE(source->read(mid, 2, slab.data()).isOk());
-  EXPECT_TRUE(std::equal(slab.begin(), slab.end(), whole->begin() + static_cast<long>(mid * info.sliceBytes())));
+  EXPECT_TRUE(std::equal(slab.begin(), slab.end(),
+                         whole->begin() + static_cast<long>(mid * info.sliceBytes())));
   // Going back: random-access sources allow it, streams ask for rewind().
   const Status back = source->read(1, 1, slab.data());
   if (source->randomAccess()) {
@@ -57,7 +58,8 @@ TEST_P(SequentialRead, RewindAndSkippingAhead) {
   }
   EXPECT_TRUE(std::equal(slab.begin(), slab.begin() + static_cast<long>(info.sliceBytes()),
                          whole->begin() + static_cast<long>(info.sliceBytes())));
-  expectError(source->read(info.dims[2] - 1, 2, slab.data()), ErrorCode::kInvalidArgument, {"beyond z size"});
+  expectError(source->read(info.dims[2] - 1, 2, slab.data()), ErrorCode::kInvalidArgument,
+              {"beyond z size"});
 }
 
 INSTANTIATE_TEST_SUITE_P(RealFiles, SequentialRead, ::testing::ValuesIn(kInputs),

@@ -25,7 +25,8 @@ constexpr float kTileValue = 1000.0f;
 class VdbReaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!std::filesystem::exists(dataPath("volume/neghip_64x64x64_uint8.raw"))) GTEST_SKIP() << "neghip missing";
+    if (!std::filesystem::exists(dataPath("volume/neghip_64x64x64_uint8.raw")))
+      GTEST_SKIP() << "neghip missing";
     openvdb::initialize();
     const auto neghip = readBytes(dataPath("volume/neghip_64x64x64_uint8.raw"));
     ASSERT_EQ(neghip.size(), size_t{kN} * kN * kN);
@@ -82,13 +83,16 @@ TEST_F(VdbReaderTest, ActiveBoxIsDenseWithBackgroundForInactiveVoxels) {
                                      static_cast<uint32_t>(hi.z() - lo.z() + 1)};
   EXPECT_EQ(info.dims, dims);
   EXPECT_EQ(info.spacing, (std::array<double, 3>{0.5, 0.5, 0.5}));
-  EXPECT_EQ(info.origin, (std::array<double, 3>{10 + 0.5 * lo.x(), 20 + 0.5 * lo.y(), 30 + 0.5 * lo.z()}));
+  EXPECT_EQ(info.origin,
+            (std::array<double, 3>{10 + 0.5 * lo.x(), 20 + 0.5 * lo.y(), 30 + 0.5 * lo.z()}));
   EXPECT_TRUE(hasNote(info, cat("grid 'density'"))) << notesOf(info);
-  EXPECT_TRUE(hasNote(info, cat("from index (", lo.x(), ",", lo.y(), ",", lo.z(), ")"))) << notesOf(info);
+  EXPECT_TRUE(hasNote(info, cat("from index (", lo.x(), ",", lo.y(), ",", lo.z(), ")")))
+      << notesOf(info);
 
   std::vector<float> expected(static_cast<size_t>(dims[0]) * dims[1] * dims[2], kBackground);
   for (const auto& [c, v] : active_)
-    expected[(size_t(c.z() - lo.z()) * dims[1] + (c.y() - lo.y())) * dims[0] + (c.x() - lo.x())] = v;
+    expected[(size_t(c.z() - lo.z()) * dims[1] + (c.y() - lo.y())) * dims[0] + (c.x() - lo.x())] =
+        v;
   for (uint32_t slab : {1u, 5u, 8u, dims[2]}) {
     SCOPED_TRACE(slab);
     const auto data = readInSlabs(*source, slab);
@@ -102,9 +106,11 @@ TEST_F(VdbReaderTest, GridSelectionByNameAndRefusals) {
   named.vdbGrid = "density";
   EXPECT_TRUE(openVolume(path_, named));
   named.vdbGrid = "nothere";
-  expectError(openVolume(path_, named), ErrorCode::kInvalidArgument, {"neghip.vdb", "nothere", "'density' (float)", "'velocity'"});
+  expectError(openVolume(path_, named), ErrorCode::kInvalidArgument,
+              {"neghip.vdb", "nothere", "'density' (float)", "'velocity'"});
   named.vdbGrid = "velocity";
-  expectError(openVolume(path_, named), ErrorCode::kUnsupported, {"neghip.vdb", "velocity", "vec3s", "float grids"});
+  expectError(openVolume(path_, named), ErrorCode::kUnsupported,
+              {"neghip.vdb", "velocity", "vec3s", "float grids"});
 }
 
 }  // namespace

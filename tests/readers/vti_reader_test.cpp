@@ -15,7 +15,8 @@ std::string base64(const std::vector<uint8_t>& bytes) {
   static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   for (size_t i = 0; i < bytes.size(); i += 3) {
-    const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+    const uint32_t n = uint32_t(bytes[i]) << 16 |
+                       (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
                        (i + 2 < bytes.size() ? bytes[i + 2] : 0);
     out += alphabet[n >> 18 & 63];
     out += alphabet[n >> 12 & 63];
@@ -67,12 +68,17 @@ TEST(VtiReader, UncompressedInlineBigEndianAndAppendedRawCompressed) {
   std::vector<uint8_t> otherArray(inline_.begin(), inline_.begin() + 4);  // same size, other values
   otherArray.resize(inline_.size(), 0x11);
   writeText(dir.file("inline.vti"),
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" byte_order=\"BigEndian\">\n"
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" "
+            "byte_order=\"BigEndian\">\n"
             "<ImageData WholeExtent=\"2 4 0 3 10 14\" Origin=\"1 2 3\" Spacing=\"0.5 0.5 2\">\n"
             "<Piece Extent=\"2 4 0 3 10 14\"><PointData Scalars=\"v\">\n"
-            "<DataArray type=\"Int16\" Name=\"other\" format=\"binary\">" + base64(otherArray) + "</DataArray>\n"
-            "<DataArray type=\"Int16\" Name=\"v\" format=\"binary\">\n  " + base64(inline_) + "\n</DataArray>\n"
-            "</PointData></Piece></ImageData></VTKFile>\n");
+            "<DataArray type=\"Int16\" Name=\"other\" format=\"binary\">" +
+                base64(otherArray) +
+                "</DataArray>\n"
+                "<DataArray type=\"Int16\" Name=\"v\" format=\"binary\">\n  " +
+                base64(inline_) +
+                "\n</DataArray>\n"
+                "</PointData></Piece></ImageData></VTKFile>\n");
   // Appended raw, zlib in blocks of 16 bytes, UInt64 header words.
   std::vector<uint8_t> blocksHeader, packed;
   const uint64_t blockSize = 16, blocks = (values.size() + blockSize - 1) / blockSize;
@@ -89,9 +95,12 @@ TEST(VtiReader, UncompressedInlineBigEndianAndAppendedRawCompressed) {
   }
   std::vector<uint8_t> file;
   const std::string head =
-      "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
-      "compressor=\"vtkZLibDataCompressor\">\n<ImageData WholeExtent=\"2 4 0 3 10 14\" Origin=\"1 2 3\" Spacing=\"0.5 0.5 2\">\n"
-      "<Piece Extent=\"2 4 0 3 10 14\"><PointData><DataArray type=\"Int16\" Name=\"v\" format=\"appended\" offset=\"0\"/>"
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" byte_order=\"LittleEndian\" "
+      "header_type=\"UInt64\" "
+      "compressor=\"vtkZLibDataCompressor\">\n<ImageData WholeExtent=\"2 4 0 3 10 14\" Origin=\"1 "
+      "2 3\" Spacing=\"0.5 0.5 2\">\n"
+      "<Piece Extent=\"2 4 0 3 10 14\"><PointData><DataArray type=\"Int16\" Name=\"v\" "
+      "format=\"appended\" offset=\"0\"/>"
       "</PointData></Piece></ImageData>\n<AppendedData encoding=\"raw\">\n   _";
   file.insert(file.end(), head.begin(), head.end());
   file.insert(file.end(), blocksHeader.begin(), blocksHeader.end());
@@ -107,7 +116,8 @@ TEST(VtiReader, UncompressedInlineBigEndianAndAppendedRawCompressed) {
     EXPECT_EQ(source->info().dims, (std::array<uint32_t, 3>{3, 4, 5}));
     EXPECT_EQ(source->info().type, ScalarType::kI16);
     EXPECT_EQ(source->info().spacing, (std::array<double, 3>{0.5, 0.5, 2}));
-    EXPECT_EQ(source->info().origin, (std::array<double, 3>{1 + 2 * 0.5, 2, 3 + 10 * 2}));  // extent minimum
+    EXPECT_EQ(source->info().origin,
+              (std::array<double, 3>{1 + 2 * 0.5, 2, 3 + 10 * 2}));  // extent minimum
     auto data = readAll(*source);
     ASSERT_TRUE(data) << data.message();
     EXPECT_TRUE(*data == values);
@@ -115,7 +125,8 @@ TEST(VtiReader, UncompressedInlineBigEndianAndAppendedRawCompressed) {
   auto cut = readBytes(dir.file("appended.vti"));
   cut[head.size() + blocksHeader.size() + 3] ^= 0xff;
   writeBytes(dir.file("bad.vti"), cut);
-  expectError(openVolume(dir.file("bad.vti")), ErrorCode::kCorrupt, {"bad.vti", "DataArray", "zlib block 0"});
+  expectError(openVolume(dir.file("bad.vti")), ErrorCode::kCorrupt,
+              {"bad.vti", "DataArray", "zlib block 0"});
 }
 
 }  // namespace

@@ -24,14 +24,16 @@ TEST(VvdReader, WalnutMatchesItsRawFile) {
   EXPECT_TRUE(*data == raw);
   // README: exact values 0..22526.
   uint16_t top = 0;
-  for (size_t i = 0; i < raw.size(); i += 2) top = std::max<uint16_t>(top, uint16_t(raw[i] | raw[i + 1] << 8));
+  for (size_t i = 0; i < raw.size(); i += 2)
+    top = std::max<uint16_t>(top, uint16_t(raw[i] | raw[i + 1] << 8));
   EXPECT_EQ(top, 22526);
 }
 
 TEST(VvdReader, BadHeadersNameTheField) {
   TempDir dir;
-  const std::string body = R"(<?xml version="1.0" ?><VoreenData version="1"><Volumes><Volume>)"
-                           R"(<RawData filename="v.raw" format="FORMAT" x="4" y="3" z="2" /></Volume></Volumes></VoreenData>)";
+  const std::string body =
+      R"(<?xml version="1.0" ?><VoreenData version="1"><Volumes><Volume>)"
+      R"(<RawData filename="v.raw" format="FORMAT" x="4" y="3" z="2" /></Volume></Volumes></VoreenData>)";
   auto header = [&](const std::string& format) {
     std::string s = body;
     s.replace(s.find("FORMAT"), 6, format);
@@ -43,11 +45,14 @@ TEST(VvdReader, BadHeadersNameTheField) {
   ASSERT_TRUE(ok);
   EXPECT_TRUE(hasNote(ok->info(), "no Spacing")) << notesOf(ok->info());
   writeText(dir.file("vec.vvd"), header("Vector3(uint8)"));
-  expectError(openVolume(dir.file("vec.vvd")), ErrorCode::kUnsupported, {"vec.vvd", "format", "Vector3(uint8)"});
+  expectError(openVolume(dir.file("vec.vvd")), ErrorCode::kUnsupported,
+              {"vec.vvd", "format", "Vector3(uint8)"});
   writeText(dir.file("big.vvd"), header("uint32"));  // 96 bytes needed, 48 present
-  expectError(openVolume(dir.file("big.vvd")), ErrorCode::kTruncated, {"big.vvd", "RawData filename", "v.raw"});
+  expectError(openVolume(dir.file("big.vvd")), ErrorCode::kTruncated,
+              {"big.vvd", "RawData filename", "v.raw"});
   std::filesystem::remove(dir.file("v.raw"));
-  expectError(openVolume(dir.file("ok.vvd")), ErrorCode::kIo, {"ok.vvd", "RawData filename", "v.raw does not exist"});
+  expectError(openVolume(dir.file("ok.vvd")), ErrorCode::kIo,
+              {"ok.vvd", "RawData filename", "v.raw does not exist"});
 }
 
 }  // namespace
