@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "convert/readers/gslib_reader.h"
+#include "convert/readers/npy_reader.h"
 #include "convert/readers/raw_reader.h"
 
 namespace voxlink::convert {
@@ -27,6 +29,8 @@ const std::vector<ReaderEntry>& readerRegistry() {
       };
     };
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});
+    r.push_back({"npy", [](const std::string& path) { return lowerExtension(path) == ".npy" || hasNpyMagic(path); }, openNpy});
+    r.push_back({"gslib", looksLikeGslib, openGslib});
     return r;
   }();
   return registry;
