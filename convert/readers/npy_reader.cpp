@@ -69,8 +69,8 @@ class DictParser {
   Error fail(const std::string& field, const std::string& what) const {
     return makeError(ErrorCode::kCorrupt, path_, ": npy header field '", field, "': ", what);
   }
-  Status expect(char c) {
-    if (peek() != c) return fail("header", cat("expected '", c, "' at offset ", pos_, ", got '", s_.substr(pos_, 8), "'"));
+  Status expect(char c, const char* field = "header") {
+    if (peek() != c) return fail(field, cat("expected '", c, "' at offset ", pos_, ", got '", s_.substr(pos_, 8), "'"));
     ++pos_;
     return Status::ok();
   }
@@ -84,7 +84,7 @@ class DictParser {
     return out;
   }
   Status parseShape(std::vector<uint64_t>& shape) {
-    VOXLINK_RETURN_IF_ERROR(expect('('));
+    VOXLINK_RETURN_IF_ERROR(expect('(', "shape"));
     for (;;) {
       skipSpace();
       if (peek() == ')') { ++pos_; return Status::ok(); }

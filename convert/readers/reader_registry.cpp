@@ -22,10 +22,11 @@ std::string lowerExtension(const std::string& path) {
 const std::vector<ReaderEntry>& readerRegistry() {
   static const std::vector<ReaderEntry> registry = [] {
     std::vector<ReaderEntry> r;
-    auto hasExt = [](std::initializer_list<const char*> exts) {
-      return [exts](const std::string& path) {
+    // The list is copied: an initializer_list's array dies with the full expression.
+    auto hasExt = [](std::initializer_list<const char*> list) {
+      return [exts = std::vector<std::string>(list.begin(), list.end())](const std::string& path) {
         const std::string ext = lowerExtension(path);
-        return std::any_of(exts.begin(), exts.end(), [&](const char* e) { return ext == e; });
+        return std::any_of(exts.begin(), exts.end(), [&](const std::string& e) { return ext == e; });
       };
     };
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});

@@ -36,7 +36,9 @@ Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> 
   const double sill = variogram.sill();
   // Without a correlated part the field is white noise: a one-voxel kernel.
   double wanted = variogram.params().psill > 0 ? std::ceil(distanceForCorrelation(variogram, options.covarianceTolerance)) : 1.0;
-  wanted = std::max(wanted, 4.0);
+  // Compactly supported models (spherical) need room beyond the range too, or the periodic
+  // square root cannot decay inside the period.
+  wanted = std::max({wanted, 2.0 * std::ceil(variogram.params().range), 4.0});
   const double maxPoints = static_cast<double>(options.maxEmbeddingBytes / sizeof(double));
   const double maxHalf = std::floor(std::pow(maxPoints, 1.0 / dimension)) - 1;
   const uint32_t H = static_cast<uint32_t>(std::min(wanted, maxHalf));

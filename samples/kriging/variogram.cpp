@@ -8,7 +8,8 @@
 namespace voxlink::kriging {
 namespace {
 
-constexpr double kPracticalCorrelation = 0.05;
+// exp(-3) ~ 0.0498: the factor 3 of the usual exponential and Gaussian practical ranges.
+const double kPracticalCorrelation = std::exp(-3.0);
 
 double maternCorrelation(double h, double scale, double nu, double norm) {
   const double x = h / scale;

@@ -2,12 +2,13 @@
 // implies (C(h) = nugget + psill - gamma(h) for h > 0, C(0) = nugget + psill).
 //
 // Range convention: `range` is always the PRACTICAL range, the distance at which the
-// correlated part reaches 95 % of its sill (spherical: exactly its sill). In gstat's terms:
+// correlation of the structured part falls to exp(-3) ~ 5 % (the usual factor 3 of the
+// exponential and Gaussian models; spherical: exactly its sill). In gstat's terms:
 //   exponential  vgm(psill, "Exp", range / 3, nugget)
 //   spherical    vgm(psill, "Sph", range, nugget)
 //   gaussian     vgm(psill, "Gau", range / sqrt(3), nugget)
 //   matern       vgm(psill, "Mat", scale(), nugget, kappa = smoothness)
-// where scale() is the Matern scale parameter solved so that correlation(range) = 0.05.
+// where scale() is the Matern scale parameter solved so that correlation(range) = exp(-3).
 #pragma once
 
 #include <string>
