@@ -1,6 +1,7 @@
 #include "samples/kriging/grid_writer.h"
 
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <filesystem>
 #include <vector>
@@ -8,11 +9,11 @@
 namespace voxlink::kriging {
 namespace {
 
-// Full precision: origins of UTM-sized grids must survive the header.
+// Shortest text that reads back to the same double: UTM-sized origins survive the header.
 std::string num(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
 
 bool endsWith(const std::string& s, const std::string& tail) {
