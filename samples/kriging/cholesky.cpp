@@ -42,10 +42,11 @@ void Cholesky::solve(double* b) const {
     for (size_t k = 0; k < i; ++k) s -= li[k] * b[k];
     b[i] = s / li[i];
   }
-  for (size_t i = n; i-- > 0;) {  // L^T x = y
-    double s = b[i];
-    for (size_t k = i + 1; k < n; ++k) s -= l_[k * n + i] * b[k];
-    b[i] = s / l_[i * n + i];
+  for (size_t i = n; i-- > 0;) {  // L^T x = y, by rows of L (contiguous) rather than columns
+    const double* li = &l_[i * n];
+    const double xi = b[i] / li[i];
+    b[i] = xi;
+    for (size_t k = 0; k < i; ++k) b[k] -= li[k] * xi;
   }
 }
 

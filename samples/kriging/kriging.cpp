@@ -8,6 +8,7 @@ namespace {
 
 constexpr double kFirstJitter = 1e-12;
 constexpr double kLastJitter = 1e-4;
+constexpr size_t kMaxSystemSize = 4096;  // 128 MiB of matrix per thread, O(n^3) per system
 
 double distance(const Point3& a, const Point3& b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -20,6 +21,10 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram, 
   if (points.size() == 0) return makeError(ErrorCode::kInvalidArgument, "kriging: no samples");
   if (options.kind == KrigingKind::kSimple && !std::isfinite(options.simpleMean))
     return makeError(ErrorCode::kInvalidArgument, "kriging: simple kriging needs a finite --mean");
+  const size_t systemSize = options.maxNeighbours == 0 ? points.size() : std::min(options.maxNeighbours, points.size());
+  if (systemSize > kMaxSystemSize)
+    return makeError(ErrorCode::kTooLarge, "kriging: ", options.maxNeighbours == 0 ? "global kriging of " : "neighbourhoods of ", systemSize,
+                     " samples need a dense ", systemSize, " x ", systemSize, " system (limit ", kMaxSystemSize, "); use --neighbours 16..256");
   if (!(options.maxDistance > 0))
     return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ", options.maxDistance);
   Point3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};

@@ -179,3 +179,18 @@ TEST(KrigingStability, RejectsNonFiniteInputAndSimpleKrigingWithoutMean) {
 
 }  // namespace
 }  // namespace voxlink::kriging
+
+namespace voxlink::kriging {
+namespace {
+
+TEST(KrigingStability, RefusesGlobalSystemsTooLargeToFactor) {
+  const PointSet s = test::randomPoints(5000, 12);
+  auto global = Kriger::make(s, test::model(VariogramType::kExponential, 0, 1, 5), {});
+  ASSERT_FALSE(global);
+  EXPECT_EQ(global.code(), ErrorCode::kTooLarge);
+  EXPECT_NE(global.message().find("--neighbours"), std::string::npos) << global.message();
+  EXPECT_TRUE(Kriger::make(s, test::model(VariogramType::kExponential, 0, 1, 5), {.maxNeighbours = 32}));
+}
+
+}  // namespace
+}  // namespace voxlink::kriging
