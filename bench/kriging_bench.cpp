@@ -21,7 +21,9 @@ using namespace voxlink::kriging;
 
 namespace {
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 double peakRssMiB() {
   std::ifstream status("/proc/self/status");
@@ -45,10 +47,11 @@ T orDie(Result<T> r) {
 std::vector<double> krigeToVector(const Kriger& k, const GridSpec& grid, KrigingSummary& summary) {
   std::vector<double> out;
   out.reserve(grid.nodeCount());
-  summary = orDie(krigeGrid(k, grid, [&](uint32_t, uint32_t count, const double* v, const double*) -> Status {
-    out.insert(out.end(), v, v + count * grid.sliceNodes());
-    return Status::ok();
-  }));
+  summary = orDie(
+      krigeGrid(k, grid, [&](uint32_t, uint32_t count, const double* v, const double*) -> Status {
+        out.insert(out.end(), v, v + count * grid.sliceNodes());
+        return Status::ok();
+      }));
   return out;
 }
 
@@ -62,16 +65,20 @@ void walkerLake(const std::string& dataDir) {
   }
   std::vector<double> truth(78000);
   for (size_t i = 0; i < truthPoints->size(); ++i)
-    truth[size_t(truthPoints->coords[i][1] - 1) * 260 + size_t(truthPoints->coords[i][0] - 1)] = truthPoints->values[i];
+    truth[size_t(truthPoints->coords[i][1] - 1) * 260 + size_t(truthPoints->coords[i][0] - 1)] =
+        truthPoints->values[i];
   const auto bins = orDie(experimentalVariogram(*samples));
-  const Variogram v = orDie(Variogram::make(orDie(fitVariogram(bins, {VariogramType::kSpherical}))));
+  const Variogram v =
+      orDie(Variogram::make(orDie(fitVariogram(bins, {VariogramType::kSpherical}))));
   const GridSpec grid{{260, 300, 1}, {1, 1, 0}, {1, 1, 1}};
   double sd = 0, mean = 0;
   for (double s : samples->values) mean += s / double(samples->size());
   for (double s : samples->values) sd += (s - mean) * (s - mean) / double(samples->size());
   sd = std::sqrt(sd);
-  std::printf("Walker Lake: %zu samples of V -> 260 x 300 grid, %s, 2 threads\n", samples->size(), v.describe().c_str());
-  std::printf("%6s %9s %8s %13s %13s %10s %10s %10s\n", "k", "time_s", "vs_all", "max|d|/sd", "rms|d|/sd", "RMSE", "ME", "worst_cond");
+  std::printf("Walker Lake: %zu samples of V -> 260 x 300 grid, %s, 2 threads\n", samples->size(),
+              v.describe().c_str());
+  std::printf("%6s %9s %8s %13s %13s %10s %10s %10s\n", "k", "time_s", "vs_all", "max|d|/sd",
+              "rms|d|/sd", "RMSE", "ME", "worst_cond");
   KrigingSummary globalSummary;
   const Kriger global = orDie(Kriger::make(*samples, v, {}));
   double t0 = now();
@@ -93,8 +100,9 @@ void walkerLake(const std::string& dataDir) {
       errSq += (pred[i] - truth[i]) * (pred[i] - truth[i]);
     }
     const double n = double(pred.size());
-    std::printf("%6s %9.3f %8.2f %13.3e %13.3e %10.2f %10.2f %10.3g\n", k ? std::to_string(k).c_str() : "all", t,
-                t / globalTime, maxDiff / sd, std::sqrt(sumSq / n) / sd, std::sqrt(errSq / n), err / n, summary.worstCondition);
+    std::printf("%6s %9.3f %8.2f %13.3e %13.3e %10.2f %10.2f %10.3g\n",
+                k ? std::to_string(k).c_str() : "all", t, t / globalTime, maxDiff / sd,
+                std::sqrt(sumSq / n) / sd, std::sqrt(errSq / n), err / n, summary.worstCondition);
   }
   std::printf("\n");
 }
@@ -112,13 +120,18 @@ void scaling() {
     return Status::ok();
   }));
   const Variogram v = orDie(Variogram::make(field.model));
-  std::printf("Scaling: samples of a 2048^2 random field (%s) kriged onto 512 x 512 nodes, 2 threads\n",
-              v.describe().c_str());
-  std::printf("%8s %4s %9s %12s %12s %10s\n", "samples", "k", "time_s", "nodes/s", "RMSE", "worst_cond");
+  std::printf(
+      "Scaling: samples of a 2048^2 random field (%s) kriged onto 512 x 512 nodes, 2 threads\n",
+      v.describe().c_str());
+  std::printf("%8s %4s %9s %12s %12s %10s\n", "samples", "k", "time_s", "nodes/s", "RMSE",
+              "worst_cond");
   for (size_t n : {size_t{10000}, size_t{100000}}) {
     PointSet s;
     uint64_t state = 12345;
-    auto next = [&] { state = state * 6364136223846793005ULL + 1442695040888963407ULL; return uint32_t(state >> 33) % 2048; };
+    auto next = [&] {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      return uint32_t(state >> 33) % 2048;
+    };
     for (size_t i = 0; i < n; ++i) {
       const uint32_t x = next(), y = next();
       s.coords.push_back({double(x), double(y), 0});
@@ -135,20 +148,23 @@ void scaling() {
       for (uint32_t j = 0; j < 512; ++j)
         for (uint32_t i = 0; i < 512; ++i) {
           // Nodes fall between lattice points: compare with the nearest lattice value.
-          const double truth = values[size_t(std::lround(1.5 + 4 * j)) * 2048 + size_t(std::lround(1.5 + 4 * i))];
+          const double truth =
+              values[size_t(std::lround(1.5 + 4 * j)) * 2048 + size_t(std::lround(1.5 + 4 * i))];
           errSq += (pred[j * 512 + i] - truth) * (pred[j * 512 + i] - truth);
         }
-      std::printf("%8zu %4zu %9.3f %12.0f %12.4f %10.3g\n", n, k, t, 512.0 * 512 / t, std::sqrt(errSq / (512.0 * 512)),
-                  summary.worstCondition);
+      std::printf("%8zu %4zu %9.3f %12.0f %12.4f %10.3g\n", n, k, t, 512.0 * 512 / t,
+                  std::sqrt(errSq / (512.0 * 512)), summary.worstCondition);
     }
   }
   std::printf("\n");
 }
 
 void randomFields() {
-  std::printf("Random fields, exponential practical range 32 voxels, sill 1, 2 threads, output discarded\n");
-  std::printf("%6s %9s %9s %12s %10s %10s %10s %9s\n", "size", "noise_s", "field_s", "Mvoxels/s", "vs_noise", "peak_MiB",
-              "out_MiB", "kernel_r");
+  std::printf(
+      "Random fields, exponential practical range 32 voxels, sill 1, 2 threads, output "
+      "discarded\n");
+  std::printf("%6s %9s %9s %12s %10s %10s %10s %9s\n", "size", "noise_s", "field_s", "Mvoxels/s",
+              "vs_noise", "peak_MiB", "out_MiB", "kernel_r");
   for (uint32_t n : {256u, 512u}) {
     // Floor: the hashed white noise for every output voxel, nothing else.
     double t0 = now();
@@ -163,14 +179,17 @@ void randomFields() {
     resetPeakRss();
     const double before = peakRssMiB();
     t0 = now();
-    const GrfReport r = orDie(generateGrf(spec, [&](uint32_t, uint32_t, const double* slab) -> Status {
-      sink += slab[0];
-      return Status::ok();
-    }));
+    const GrfReport r =
+        orDie(generateGrf(spec, [&](uint32_t, uint32_t, const double* slab) -> Status {
+          sink += slab[0];
+          return Status::ok();
+        }));
     const double t = now() - t0;
     const double voxels = double(n) * n * n;
-    std::printf("%6u %9.2f %9.2f %12.1f %10.2f %10.0f %10.0f %9u   (checksum %.3g, RSS before %.0f MiB)\n", n, noise, t,
-                voxels / t / 1e6, t / noise, peakRssMiB(), voxels * 8 / (1 << 20), r.kernel.radius, sink, before);
+    std::printf(
+        "%6u %9.2f %9.2f %12.1f %10.2f %10.0f %10.0f %9u   (checksum %.3g, RSS before %.0f MiB)\n",
+        n, noise, t, voxels / t / 1e6, t / noise, peakRssMiB(), voxels * 8 / (1 << 20),
+        r.kernel.radius, sink, before);
   }
 }
 

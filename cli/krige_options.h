@@ -9,7 +9,7 @@
 namespace voxlink::cli {
 
 // "1,2,3" -> {1, 2, 3}; between minCount and maxCount finite numbers.
-Result<std::vector<double>> parseNumberList(const std::string& option, const std::string& text, size_t minCount,
-                                            size_t maxCount);
+Result<std::vector<double>> parseNumberList(const std::string& option, const std::string& text,
+                                            size_t minCount, size_t maxCount);
 
 }  // namespace voxlink::cli

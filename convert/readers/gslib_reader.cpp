@@ -48,17 +48,24 @@ Result<GslibHeader> readHeader(TextStream& s) {
   VOXLINK_ASSIGN_OR_RETURN(bool ok, s.nextLine(line));
   if (!ok) return makeError(ErrorCode::kTruncated, s.name(), ": GSLIB header: empty file");
   if (line.find('\0') != std::string_view::npos)
-    return makeError(ErrorCode::kUnsupported, s.name(), ": GSLIB header: binary data (an SGeMS binary object file?); export the grid from SGeMS as GSLIB text");
+    return makeError(ErrorCode::kUnsupported, s.name(),
+                     ": GSLIB header: binary data (an SGeMS binary object file?); export the grid "
+                     "from SGeMS as GSLIB text");
   h.title = trimmed(line);
   VOXLINK_ASSIGN_OR_RETURN(ok, s.nextLine(line));
   const std::string count = ok ? trimmed(line) : "";
   char* end = nullptr;
   const long n = std::strtol(count.c_str(), &end, 10);
   if (!ok || count.empty() || *end != '\0' || n < 1 || n > 10000)
-    return makeError(ErrorCode::kCorrupt, s.name(), ": GSLIB header line 2 'number of variables': expected an integer in 1..10000, got '", count, "'");
+    return makeError(
+        ErrorCode::kCorrupt, s.name(),
+        ": GSLIB header line 2 'number of variables': expected an integer in 1..10000, got '",
+        count, "'");
   for (long i = 0; i < n; ++i) {
     VOXLINK_ASSIGN_OR_RETURN(ok, s.nextLine(line));
-    if (!ok) return makeError(ErrorCode::kTruncated, s.name(), ": GSLIB header: ", n, " variable names announced, the file ends after ", i);
+    if (!ok)
+      return makeError(ErrorCode::kTruncated, s.name(), ": GSLIB header: ", n,
+                       " variable names announced, the file ends after ", i);
     h.names.push_back(trimmed(line));
   }
   h.headerLines = s.lineNumber();
@@ -67,7 +74,8 @@ Result<GslibHeader> readHeader(TextStream& s) {
 
 class GslibSource final : public VolumeSource {
  public:
-  GslibSource(VolumeInfo info, std::unique_ptr<TextStream> stream, GslibHeader header, size_t column)
+  GslibSource(VolumeInfo info, std::unique_ptr<TextStream> stream, GslibHeader header,
+              size_t column)
       : stream_(std::move(stream)), header_(std::move(header)), column_(column) {
     info_ = std::move(info);
   }
@@ -81,13 +89,15 @@ class GslibSource final : public VolumeSource {
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
     if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", z0 + count, ") beyond z size ", info_.dims[2]);
+      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", z0 + count,
+                       ") beyond z size ", info_.dims[2]);
     if (z0 < nextSlice_) VOXLINK_RETURN_IF_ERROR(rewind());
     while (nextSlice_ < z0) {  // skip to z0 (sequential format)
       VOXLINK_RETURN_IF_ERROR(parseValues(info_.sliceVoxels(), nullptr));
       ++nextSlice_;
     }
-    VOXLINK_RETURN_IF_ERROR(parseValues(uint64_t{count} * info_.sliceVoxels(), static_cast<double*>(dst)));
+    VOXLINK_RETURN_IF_ERROR(
+        parseValues(uint64_t{count} * info_.sliceVoxels(), static_cast<double*>(dst)));
     nextSlice_ += count;
     return Status::ok();
   }
@@ -98,8 +108,10 @@ class GslibSource final : public VolumeSource {
     for (uint64_t i = 0; i < n;) {
       VOXLINK_ASSIGN_OR_RETURN(const bool ok, stream_->nextLine(line));
       if (!ok)
-        return makeError(ErrorCode::kTruncated, stream_->name(), ": GSLIB data: the file ends at line ", stream_->lineNumber(), ", ",
-                         info_.voxelCount(), " rows (", info_.dims[0], "x", info_.dims[1], "x", info_.dims[2], ") expected");
+        return makeError(ErrorCode::kTruncated, stream_->name(),
+                         ": GSLIB data: the file ends at line ", stream_->lineNumber(), ", ",
+                         info_.voxelCount(), " rows (", info_.dims[0], "x", info_.dims[1], "x",
+                         info_.dims[2], ") expected");
       const char* p = line.data();
       const char* end = p + line.size();
       while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
@@ -110,13 +122,17 @@ class GslibSource final : public VolumeSource {
         const char* start = p;
         while (p < end && !std::isspace(static_cast<unsigned char>(*p))) ++p;
         if (start == p)
-          return makeError(ErrorCode::kCorrupt, stream_->name(), ": line ", stream_->lineNumber(), ": ", c, " values, column '", header_.names[column_], "' (", column_ + 1, ") missing");
+          return makeError(ErrorCode::kCorrupt, stream_->name(), ": line ", stream_->lineNumber(),
+                           ": ", c, " values, column '", header_.names[column_], "' (", column_ + 1,
+                           ") missing");
         if (c == column_) {
           const std::string field(start, p);
           char* stop = nullptr;
           v = std::strtod(field.c_str(), &stop);
           if (*stop != '\0')
-            return makeError(ErrorCode::kCorrupt, stream_->name(), ": line ", stream_->lineNumber(), ": column '", header_.names[column_], "': '", field, "' is not a number");
+            return makeError(ErrorCode::kCorrupt, stream_->name(), ": line ", stream_->lineNumber(),
+                             ": column '", header_.names[column_], "': '", field,
+                             "' is not a number");
         }
       }
       if (out) out[i] = v;
@@ -141,7 +157,8 @@ bool looksLikeGslib(const std::string& path) {
   return false;
 }
 
-Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
+                                                const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(std::unique_ptr<TextStream> stream, openTextStream(path));
   VOXLINK_ASSIGN_OR_RETURN(GslibHeader header, readHeader(*stream));
   std::string all;
@@ -153,29 +170,38 @@ Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path, const O
   }
   if (hasX && hasY)
     return makeError(ErrorCode::kUnsupported, path, ": GEO-EAS point set (columns ", all,
-                     "), not a grid: krige it onto a grid with `voxlink krige ", path, " --value NAME ...`");
+                     "), not a grid: krige it onto a grid with `voxlink krige ", path,
+                     " --value NAME ...`");
   size_t column = 0;
   VolumeInfo info;
   if (!options.variable.empty()) {
-    const auto it = std::find_if(header.names.begin(), header.names.end(),
-                                 [&](const std::string& n) { return lowerCopy(n) == lowerCopy(options.variable); });
+    const auto it = std::find_if(
+        header.names.begin(), header.names.end(),
+        [&](const std::string& n) { return lowerCopy(n) == lowerCopy(options.variable); });
     if (it == header.names.end())
-      return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB variable '", options.variable, "' not found (variables: ", all, ")");
+      return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB variable '", options.variable,
+                       "' not found (variables: ", all, ")");
     column = static_cast<size_t>(it - header.names.begin());
   } else if (header.names.size() > 1) {
-    info.notes.push_back(cat("GSLIB variables ", all, ": using the first, '", header.names[0], "'"));
+    info.notes.push_back(
+        cat("GSLIB variables ", all, ": using the first, '", header.names[0], "'"));
   }
   const auto titleDims = dimsFromTitle(header.title);
   if (titleDims && options.dims && *titleDims != *options.dims)
-    return makeError(ErrorCode::kSizeMismatch, path, ": GSLIB title '", header.title, "' gives dims ", (*titleDims)[0], "x", (*titleDims)[1], "x",
-                     (*titleDims)[2], ", --dims says ", (*options.dims)[0], "x", (*options.dims)[1], "x", (*options.dims)[2]);
+    return makeError(ErrorCode::kSizeMismatch, path, ": GSLIB title '", header.title,
+                     "' gives dims ", (*titleDims)[0], "x", (*titleDims)[1], "x", (*titleDims)[2],
+                     ", --dims says ", (*options.dims)[0], "x", (*options.dims)[1], "x",
+                     (*options.dims)[2]);
   if (!titleDims && !options.dims)
-    return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB title '", header.title, "' does not give the grid size (\"nx ny nz\"); pass --dims X,Y,Z");
+    return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB title '", header.title,
+                     "' does not give the grid size (\"nx ny nz\"); pass --dims X,Y,Z");
   info.dims = titleDims ? *titleDims : *options.dims;
   for (int a = 0; a < 3; ++a)
-    if (info.dims[a] == 0) return makeError(ErrorCode::kInvalidArgument, path, ": --dims: axis ", a, " is 0");
+    if (info.dims[a] == 0)
+      return makeError(ErrorCode::kInvalidArgument, path, ": --dims: axis ", a, " is 0");
   if (options.type && *options.type != ScalarType::kF64)
-    return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB values are read as f64; --type ", scalarName(*options.type), " cannot apply");
+    return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB values are read as f64; --type ",
+                     scalarName(*options.type), " cannot apply");
   info.type = ScalarType::kF64;
   if (options.spacing) info.spacing = *options.spacing;
   info.path = path;
@@ -189,11 +215,13 @@ Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path, const O
     if (line.find_first_not_of(" \t") != std::string_view::npos) ++rows;
   }
   if (rows != info.voxelCount())
-    return makeError(rows < info.voxelCount() ? ErrorCode::kTruncated : ErrorCode::kSizeMismatch, path, ": GSLIB data: ", rows,
-                     " rows, the grid ", info.dims[0], "x", info.dims[1], "x", info.dims[2], " needs ", info.voxelCount());
+    return makeError(rows < info.voxelCount() ? ErrorCode::kTruncated : ErrorCode::kSizeMismatch,
+                     path, ": GSLIB data: ", rows, " rows, the grid ", info.dims[0], "x",
+                     info.dims[1], "x", info.dims[2], " needs ", info.voxelCount());
   VOXLINK_RETURN_IF_ERROR(stream->rewind());
   VOXLINK_RETURN_IF_ERROR(readHeader(*stream).status());
-  return std::unique_ptr<VolumeSource>(new GslibSource(std::move(info), std::move(stream), std::move(header), column));
+  return std::unique_ptr<VolumeSource>(
+      new GslibSource(std::move(info), std::move(stream), std::move(header), column));
 }
 
 }  // namespace voxlink::convert

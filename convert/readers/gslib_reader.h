@@ -16,7 +16,8 @@
 
 namespace voxlink::convert {
 
-Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
+                                                const OpenOptions& options);
 
 // True for names ending in .sgems, .gslib, .geoeas, .gslib.zip or .sgems.zip (any case).
 bool looksLikeGslib(const std::string& path);

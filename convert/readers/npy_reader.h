@@ -19,12 +19,12 @@ namespace voxlink::convert {
 
 struct NpyHeader {
   int majorVersion = 1, minorVersion = 0;
-  uint64_t dataOffset = 0;      // bytes before the array data
-  std::string descr;            // as written, e.g. "<f8"
+  uint64_t dataOffset = 0;  // bytes before the array data
+  std::string descr;        // as written, e.g. "<f8"
   ScalarType type = ScalarType::kU8;
   Endian endian = Endian::kLittle;
   bool fortranOrder = false;
-  std::vector<uint64_t> shape;  // as written
+  std::vector<uint64_t> shape;            // as written
   std::array<uint32_t, 3> dims{1, 1, 1};  // x, y, z
 };
 

@@ -15,7 +15,8 @@ namespace {
 bool endsWithZip(const std::string& path) {
   if (path.size() < 4) return false;
   std::string tail = path.substr(path.size() - 4);
-  std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(tail.begin(), tail.end(), tail.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return tail == ".zip";
 }
 
@@ -26,7 +27,9 @@ std::string_view stripCr(std::string_view s) {
 
 class MappedTextStream final : public TextStream {
  public:
-  MappedTextStream(format::MappedFile file, std::string name) : file_(std::move(file)) { name_ = std::move(name); }
+  MappedTextStream(format::MappedFile file, std::string name) : file_(std::move(file)) {
+    name_ = std::move(name);
+  }
   Result<bool> nextLine(std::string_view& line) override {
     const char* data = reinterpret_cast<const char*>(file_.data());
     if (pos_ >= file_.size()) return false;
@@ -72,8 +75,9 @@ class ZipTextStream final : public TextStream {
       names += (names.empty() ? "" : ", ") + std::string(n);
     }
     if (files.size() != 1)
-      return makeError(ErrorCode::kUnsupported, path, ": zip archive holds ", files.size(), " files (", names,
-                       "); only an archive with exactly one member is read: unzip it and name the file");
+      return makeError(
+          ErrorCode::kUnsupported, path, ": zip archive holds ", files.size(), " files (", names,
+          "); only an archive with exactly one member is read: unzip it and name the file");
     s->index_ = files[0];
     s->name_ = path + ":" + names;
     VOXLINK_RETURN_IF_ERROR(s->rewind());
@@ -98,7 +102,9 @@ class ZipTextStream final : public TextStream {
       pos_ = 0;
       char chunk[1 << 16];
       const zip_int64_t got = zip_fread(member_, chunk, sizeof chunk);
-      if (got < 0) return makeError(ErrorCode::kCorrupt, name_, ": decompression failed: ", zip_file_strerror(member_));
+      if (got < 0)
+        return makeError(ErrorCode::kCorrupt, name_,
+                         ": decompression failed: ", zip_file_strerror(member_));
       if (got == 0) eof_ = true;
       buffer_.append(chunk, static_cast<size_t>(got));
     }
@@ -106,7 +112,9 @@ class ZipTextStream final : public TextStream {
   Status rewind() override {
     if (member_) zip_fclose(member_);
     member_ = zip_fopen_index(archive_, index_, 0);
-    if (!member_) return makeError(ErrorCode::kUnsupported, name_, ": cannot open the member: ", zip_strerror(archive_));
+    if (!member_)
+      return makeError(ErrorCode::kUnsupported, name_,
+                       ": cannot open the member: ", zip_strerror(archive_));
     buffer_.clear();
     pos_ = 0;
     eof_ = false;

@@ -22,8 +22,8 @@ class Cholesky {
 
  private:
   size_t n_ = 0;
-  double norm1_ = 0;        // ||A + jitter I||_1
-  std::vector<double> l_;   // lower factor, row-major
+  double norm1_ = 0;       // ||A + jitter I||_1
+  std::vector<double> l_;  // lower factor, row-major
   mutable std::vector<double> work_, work2_;
 };
 

@@ -27,11 +27,15 @@ Result<CrossValidation> leaveOneOut(const Kriger& kriger) {
       sumStd += err * err / pred.variance;
       ++withVariance;
     }
-    sp += pred.value; so += observed; spp += pred.value * pred.value;
-    soo += observed * observed; spo += pred.value * observed;
+    sp += pred.value;
+    so += observed;
+    spp += pred.value * pred.value;
+    soo += observed * observed;
+    spo += pred.value * observed;
   }
   if (cv.evaluated == 0)
-    return makeError(ErrorCode::kInvalidArgument, "cross-validation: no sample has a neighbour in reach");
+    return makeError(ErrorCode::kInvalidArgument,
+                     "cross-validation: no sample has a neighbour in reach");
   const double m = static_cast<double>(cv.evaluated);
   cv.meanError = sumErr / m;
   cv.rmse = std::sqrt(sumSq / m);

@@ -12,10 +12,10 @@ namespace voxlink::kriging {
 struct CrossValidation {
   std::vector<double> predicted, variance;  // per sample after merging (NaN where none in reach)
   size_t evaluated = 0;
-  double meanError = 0;                  // mean(predicted - observed)
+  double meanError = 0;  // mean(predicted - observed)
   double rmse = 0;
   double meanStandardizedSquaredError = 0;  // mean((predicted - observed)^2 / variance)
-  double correlation = 0;                // between predicted and observed
+  double correlation = 0;                   // between predicted and observed
 };
 
 // Needs the samples the kriger was built from (after merging they are the kriger's own;

@@ -5,8 +5,8 @@
 
 namespace voxlink::kriging {
 
-FieldStatistics::FieldStatistics(std::array<uint32_t, 3> dims, std::vector<uint32_t> lags, double outsideLow,
-                                 double outsideHigh)
+FieldStatistics::FieldStatistics(std::array<uint32_t, 3> dims, std::vector<uint32_t> lags,
+                                 double outsideLow, double outsideHigh)
     : dims_(dims), lags_(std::move(lags)), low_(outsideLow), high_(outsideHigh) {
   for (int a = 0; a < 3; ++a) {
     gammaSum_[a].assign(lags_.size(), 0.0);
@@ -20,7 +20,10 @@ void FieldStatistics::add(uint32_t /*z0*/, uint32_t count, const double* slab) {
   const uint32_t maxLag = lags_.empty() ? 0 : *std::max_element(lags_.begin(), lags_.end());
   for (uint32_t s = 0; s < count; ++s) {
     const double* v = slab + s * sliceSize;
-    if (!haveShift_) { shift_ = v[0]; haveShift_ = true; }
+    if (!haveShift_) {
+      shift_ = v[0];
+      haveShift_ = true;
+    }
     for (uint64_t i = 0; i < sliceSize; ++i) {
       const double d = v[i] - shift_;
       sum_ += d;

@@ -15,8 +15,8 @@ namespace voxlink::kriging {
 
 class FieldStatistics {
  public:
-  FieldStatistics(std::array<uint32_t, 3> dims, std::vector<uint32_t> lags, double outsideLow = -1.96,
-                  double outsideHigh = 1.96);
+  FieldStatistics(std::array<uint32_t, 3> dims, std::vector<uint32_t> lags,
+                  double outsideLow = -1.96, double outsideHigh = 1.96);
   void add(uint32_t z0, uint32_t count, const double* slab);
 
   uint64_t count() const { return count_; }

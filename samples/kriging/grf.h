@@ -23,9 +23,9 @@ struct GrfSpec {
   double mean = 0;
   uint64_t seed = 1;
   GrfKernelOptions kernel;
-  uint32_t fftSize = 0;   // 0: chosen per axis for speed within maxBlockBytes
+  uint32_t fftSize = 0;  // 0: chosen per axis for speed within maxBlockBytes
   uint64_t maxBlockBytes = uint64_t{512} << 20;  // in-place FFT buffer of one thread
-  unsigned threads = 0;   // 0: hardware concurrency
+  unsigned threads = 0;                          // 0: hardware concurrency
 };
 
 struct GrfReport {

@@ -20,7 +20,10 @@ double distanceForCorrelation(const Variogram& v, double tol) {
   double lo = 0;
   for (int i = 0; i < 100; ++i) {
     const double mid = 0.5 * (lo + hi);
-    if (v.correlation(mid) > tol) lo = mid; else hi = mid;
+    if (v.correlation(mid) > tol)
+      lo = mid;
+    else
+      hi = mid;
   }
   return hi;
 }
@@ -32,25 +35,33 @@ Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> 
   GrfKernel k;
   k.active = active;
   const int dimension = int{active[0]} + int{active[1]} + int{active[2]};
-  if (dimension == 0) return makeError(ErrorCode::kInvalidArgument, "random field: the grid has one voxel; nothing to correlate");
+  if (dimension == 0)
+    return makeError(ErrorCode::kInvalidArgument,
+                     "random field: the grid has one voxel; nothing to correlate");
   const double sill = variogram.sill();
   // Without a correlated part the field is white noise: a one-voxel kernel.
-  double wanted = variogram.params().psill > 0 ? std::ceil(distanceForCorrelation(variogram, options.covarianceTolerance)) : 1.0;
+  double wanted = variogram.params().psill > 0
+                      ? std::ceil(distanceForCorrelation(variogram, options.covarianceTolerance))
+                      : 1.0;
   // Compactly supported models (spherical) need room beyond the range too, or the periodic
   // square root cannot decay inside the period.
   wanted = std::max({wanted, 2.0 * std::ceil(variogram.params().range), 4.0});
   const double maxPoints = static_cast<double>(options.maxEmbeddingBytes / sizeof(double));
   const double maxHalf = std::floor(std::pow(maxPoints, 1.0 / dimension)) - 1;
   const uint32_t H = static_cast<uint32_t>(std::min(wanted, maxHalf));
-  if (H < 2) return makeError(ErrorCode::kTooLarge, "random field: no room for the covariance embedding");
+  if (H < 2)
+    return makeError(ErrorCode::kTooLarge, "random field: no room for the covariance embedding");
   k.embeddingHalfSize = H;
   k.covarianceAtHalfSize = variogram.correlation(H) * variogram.params().psill / sill;
   const uint32_t n = H + 1;
   const uint32_t nx = active[0] ? n : 1, ny = active[1] ? n : 1, nz = active[2] ? n : 1;
   const uint64_t count = uint64_t{nx} * ny * nz;
   k.embeddingBytes = count * sizeof(double);
-  std::unique_ptr<double, FftwFree> buffer(static_cast<double*>(fftw_malloc(count * sizeof(double))));
-  if (!buffer) return makeError(ErrorCode::kTooLarge, "random field: cannot allocate ", k.embeddingBytes, " bytes for the covariance embedding");
+  std::unique_ptr<double, FftwFree> buffer(
+      static_cast<double*>(fftw_malloc(count * sizeof(double))));
+  if (!buffer)
+    return makeError(ErrorCode::kTooLarge, "random field: cannot allocate ", k.embeddingBytes,
+                     " bytes for the covariance embedding");
   double* c = buffer.get();
   for (uint32_t z = 0; z < nz; ++z)
     for (uint32_t y = 0; y < ny; ++y)
@@ -68,7 +79,10 @@ Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> 
   double negative = 0, total = 0;
   for (uint64_t i = 0; i < count; ++i) {
     total += std::fabs(c[i]);
-    if (c[i] < 0) { negative += -c[i]; c[i] = 0; }
+    if (c[i] < 0) {
+      negative += -c[i];
+      c[i] = 0;
+    }
     c[i] = std::sqrt(c[i]);
   }
   k.negativeEigenvalueMass = total > 0 ? negative / total : 0;
@@ -85,7 +99,8 @@ Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> 
         double& g = c[(uint64_t{z} * ny + y) * nx + x];
         g *= scale;
         double images = 1;
-        for (uint32_t d : {active[0] ? x : 0u, active[1] ? y : 0u, active[2] ? z : 0u}) images *= (d == 0 || d == H) ? 1 : 2;
+        for (uint32_t d : {active[0] ? x : 0u, active[1] ? y : 0u, active[2] ? z : 0u})
+          images *= (d == 0 || d == H) ? 1 : 2;
         const double e = images * g * g;
         shell[std::max({x, y, z})] += e;
         energy += e;

@@ -18,8 +18,8 @@ struct GrfKernel {
   uint32_t radius = 0;                           // truncation half-width (voxels, active axes)
   // Octant values g(|dx|, |dy|, |dz|) for 0 <= d <= radius on active axes (x fastest).
   std::vector<double> octant;
-  uint32_t embeddingHalfSize = 0;   // H: the periodic embedding has period 2H per active axis
-  double covarianceAtHalfSize = 0;  // C(H) / sill: what periodization neglects
+  uint32_t embeddingHalfSize = 0;     // H: the periodic embedding has period 2H per active axis
+  double covarianceAtHalfSize = 0;    // C(H) / sill: what periodization neglects
   double negativeEigenvalueMass = 0;  // clipped |negative eigenvalues| / sum |eigenvalues|
   double truncatedEnergy = 0;         // fraction of sum g^2 outside the cube, before rescaling
   uint64_t embeddingBytes = 0;
@@ -27,12 +27,14 @@ struct GrfKernel {
   uint32_t side() const { return radius + 1; }
   double at(uint32_t dx, uint32_t dy, uint32_t dz) const {
     const uint32_t s = side();
-    return octant[(uint64_t{active[2] ? dz : 0} * (active[1] ? s : 1) + (active[1] ? dy : 0)) * (active[0] ? s : 1) + (active[0] ? dx : 0)];
+    return octant[(uint64_t{active[2] ? dz : 0} * (active[1] ? s : 1) + (active[1] ? dy : 0)) *
+                      (active[0] ? s : 1) +
+                  (active[0] ? dx : 0)];
   }
 };
 
 struct GrfKernelOptions {
-  double tolerance = 1e-4;          // energy fraction allowed outside the truncated kernel
+  double tolerance = 1e-4;            // energy fraction allowed outside the truncated kernel
   double covarianceTolerance = 1e-6;  // C(H)/sill wanted at the embedding's half period
   uint64_t maxEmbeddingBytes = uint64_t{2} << 30;
 };

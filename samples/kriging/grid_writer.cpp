@@ -23,8 +23,9 @@ bool endsWith(const std::string& s, const std::string& tail) {
 }  // namespace
 
 std::string npyHeader(ScalarType type, std::array<uint32_t, 3> dims) {
-  std::string dict = cat("{'descr': '", type == ScalarType::kF32 ? "<f4" : "<f8", "', 'fortran_order': False, 'shape': (",
-                         dims[2], ", ", dims[1], ", ", dims[0], "), }");
+  std::string dict =
+      cat("{'descr': '", type == ScalarType::kF32 ? "<f4" : "<f8",
+          "', 'fortran_order': False, 'shape': (", dims[2], ", ", dims[1], ", ", dims[0], "), }");
   const size_t fixed = 10;  // magic (6) + version (2) + header length (2)
   size_t total = fixed + dict.size() + 1;
   total = (total + 63) / 64 * 64;
@@ -36,9 +37,11 @@ std::string npyHeader(ScalarType type, std::array<uint32_t, 3> dims) {
   return header + dict;
 }
 
-Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path, const GridFileInfo& info) {
+Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
+                                                       const GridFileInfo& info) {
   if (info.type != ScalarType::kF64 && info.type != ScalarType::kF32)
-    return makeError(ErrorCode::kInvalidArgument, path, ": output type must be f32 or f64, got ", scalarName(info.type));
+    return makeError(ErrorCode::kInvalidArgument, path, ": output type must be f32 or f64, got ",
+                     scalarName(info.type));
   std::unique_ptr<GridWriter> w(new GridWriter);
   w->path_ = path;
   w->info_ = info;
@@ -48,11 +51,13 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path, 
   } else if (endsWith(path, ".npy")) {
     w->dataPath_ = path;
   } else {
-    return makeError(ErrorCode::kInvalidArgument, path, ": output name must end in .nhdr (raw + NRRD header) or .npy");
+    return makeError(ErrorCode::kInvalidArgument, path,
+                     ": output name must end in .nhdr (raw + NRRD header) or .npy");
   }
   w->tempPath_ = w->dataPath_ + ".tmp";
   w->file_ = std::fopen(w->tempPath_.c_str(), "wb");
-  if (!w->file_) return makeError(ErrorCode::kIo, w->tempPath_, ": cannot create: ", std::strerror(errno));
+  if (!w->file_)
+    return makeError(ErrorCode::kIo, w->tempPath_, ": cannot create: ", std::strerror(errno));
   if (!w->nrrd_) {
     const std::string header = npyHeader(info.type, info.dims);
     if (std::fwrite(header.data(), 1, header.size(), w->file_) != header.size())
@@ -77,35 +82,38 @@ Status GridWriter::append(uint32_t count, const double* slices) {
     std::vector<float> f(slices, slices + n);
     written = std::fwrite(f.data(), sizeof(float), n, file_);
   }
-  if (written != n) return makeError(ErrorCode::kIo, tempPath_, ": write failed: ", std::strerror(errno));
+  if (written != n)
+    return makeError(ErrorCode::kIo, tempPath_, ": write failed: ", std::strerror(errno));
   slicesWritten_ += count;
   return Status::ok();
 }
 
 Status GridWriter::finish() {
   if (slicesWritten_ != info_.dims[2])
-    return makeError(ErrorCode::kInvalidArgument, path_, ": ", slicesWritten_, " slices written, ", info_.dims[2], " expected");
+    return makeError(ErrorCode::kInvalidArgument, path_, ": ", slicesWritten_, " slices written, ",
+                     info_.dims[2], " expected");
   const bool ok = std::fclose(file_) == 0;
   file_ = nullptr;
   if (!ok) return makeError(ErrorCode::kIo, tempPath_, ": close failed: ", std::strerror(errno));
   std::error_code ec;
   std::filesystem::rename(tempPath_, dataPath_, ec);
-  if (ec) return makeError(ErrorCode::kIo, dataPath_, ": cannot rename from ", tempPath_, ": ", ec.message());
+  if (ec)
+    return makeError(ErrorCode::kIo, dataPath_, ": cannot rename from ", tempPath_, ": ",
+                     ec.message());
   if (nrrd_) {
     std::FILE* h = std::fopen(path_.c_str(), "w");
     if (!h) return makeError(ErrorCode::kIo, path_, ": cannot create: ", std::strerror(errno));
     const auto& d = info_.dims;
     const auto& s = info_.spacing;
     const auto& o = info_.origin;
-    const std::string text = cat(
-        "NRRD0004\n# written by voxlink krige\n",
-        "type: ", info_.type == ScalarType::kF32 ? "float" : "double", "\n",
-        "dimension: 3\nsizes: ", d[0], " ", d[1], " ", d[2], "\n",
-        "space dimension: 3\n",
-        "space directions: (", num(s[0]), ",0,0) (0,", num(s[1]), ",0) (0,0,", num(s[2]), ")\n",
-        "space origin: (", num(o[0]), ",", num(o[1]), ",", num(o[2]), ")\n",
-        "endian: little\nencoding: raw\n",
-        "data file: ", std::filesystem::path(dataPath_).filename().string(), "\n");
+    const std::string text =
+        cat("NRRD0004\n# written by voxlink krige\n",
+            "type: ", info_.type == ScalarType::kF32 ? "float" : "double", "\n",
+            "dimension: 3\nsizes: ", d[0], " ", d[1], " ", d[2], "\n", "space dimension: 3\n",
+            "space directions: (", num(s[0]), ",0,0) (0,", num(s[1]), ",0) (0,0,", num(s[2]), ")\n",
+            "space origin: (", num(o[0]), ",", num(o[1]), ",", num(o[2]), ")\n",
+            "endian: little\nencoding: raw\n",
+            "data file: ", std::filesystem::path(dataPath_).filename().string(), "\n");
     const bool wrote = std::fputs(text.c_str(), h) >= 0;
     if (std::fclose(h) != 0 || !wrote) return makeError(ErrorCode::kIo, path_, ": write failed");
   }

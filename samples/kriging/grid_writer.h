@@ -23,7 +23,8 @@ struct GridFileInfo {
 class GridWriter {
  public:
   // `path` ends in .nhdr or .npy. Data goes to a temporary name and is renamed by finish().
-  static Result<std::unique_ptr<GridWriter>> create(const std::string& path, const GridFileInfo& info);
+  static Result<std::unique_ptr<GridWriter>> create(const std::string& path,
+                                                    const GridFileInfo& info);
   ~GridWriter();
   GridWriter(const GridWriter&) = delete;
   GridWriter& operator=(const GridWriter&) = delete;

@@ -83,7 +83,8 @@ void KdTree::search(int32_t nodeId, const Point3& q, size_t k, double& worst2,
   if (diff * diff <= worst2) search(farSide, q, k, worst2, heap);
 }
 
-void KdTree::nearest(const Point3& q, size_t k, double maxDistance, std::vector<Neighbour>& out) const {
+void KdTree::nearest(const Point3& q, size_t k, double maxDistance,
+                     std::vector<Neighbour>& out) const {
   out.clear();
   if (k == 0 || nodes_.empty()) return;
   double worst2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : INFINITY;

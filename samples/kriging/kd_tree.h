@@ -30,7 +30,8 @@ class KdTree {
     double split = 0;
   };
   int32_t build(uint32_t begin, uint32_t end, int depth);
-  void search(int32_t node, const Point3& q, size_t k, double& worst2, std::vector<Neighbour>& heap) const;
+  void search(int32_t node, const Point3& q, size_t k, double& worst2,
+              std::vector<Neighbour>& heap) const;
 
   std::vector<Point3> points_;  // own copy: the tree outlives moves of its creator
   std::vector<uint32_t> order_;

@@ -17,7 +17,8 @@ std::string KrigingSummary::text() const {
       << "systems: " << systemsFactored << " factored, " << systemsReused
       << " nodes reused the previous neighbour set; mean neighbours " << meanNeighbours << "\n"
       << "worst condition estimate (1-norm): " << worstCondition << "\n"
-      << "regularized nodes: " << regularizedNodes << " (largest diagonal jitter " << largestJitter << ")\n"
+      << "regularized nodes: " << regularizedNodes << " (largest diagonal jitter " << largestJitter
+      << ")\n"
       << "time: " << seconds << " s\n";
   return out.str();
 }
@@ -25,7 +26,8 @@ std::string KrigingSummary::text() const {
 Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,
                                  const GridKrigingOptions& options) {
   for (int a = 0; a < 3; ++a)
-    if (grid.dims[a] == 0) return makeError(ErrorCode::kInvalidArgument, "kriging grid: axis ", a, " has size 0");
+    if (grid.dims[a] == 0)
+      return makeError(ErrorCode::kInvalidArgument, "kriging grid: axis ", a, " has size 0");
   const uint32_t batch = std::max<uint32_t>(1, options.slicesPerBatch);
   const uint64_t batchNodes = grid.sliceNodes() * batch;
   std::vector<double> values, variances;
@@ -33,9 +35,11 @@ Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, con
     values.resize(batchNodes);
     variances.resize(batchNodes);
   } catch (const std::bad_alloc&) {
-    return makeError(ErrorCode::kTooLarge, "kriging grid: a batch of ", batchNodes, " nodes does not fit in memory");
+    return makeError(ErrorCode::kTooLarge, "kriging grid: a batch of ", batchNodes,
+                     " nodes does not fit in memory");
   }
-  const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads =
+      options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   KrigingSummary summary;
   const auto start = std::chrono::steady_clock::now();
   double neighbourSum = 0;

@@ -37,7 +37,8 @@ struct KrigingSummary {
 };
 
 // Receives finished slices [z0, z0 + count): values and variances, x fastest.
-using SliceSink = std::function<Status(uint32_t z0, uint32_t count, const double* values, const double* variances)>;
+using SliceSink = std::function<Status(uint32_t z0, uint32_t count, const double* values,
+                                       const double* variances)>;
 
 struct GridKrigingOptions {
   unsigned threads = 0;         // 0: hardware concurrency

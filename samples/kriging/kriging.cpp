@@ -17,21 +17,27 @@ double distance(const Point3& a, const Point3& b) {
 
 }  // namespace
 
-Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram, const KrigingOptions& options) {
+Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
+                            const KrigingOptions& options) {
   if (points.size() == 0) return makeError(ErrorCode::kInvalidArgument, "kriging: no samples");
   if (options.kind == KrigingKind::kSimple && !std::isfinite(options.simpleMean))
     return makeError(ErrorCode::kInvalidArgument, "kriging: simple kriging needs a finite --mean");
-  const size_t systemSize = options.maxNeighbours == 0 ? points.size() : std::min(options.maxNeighbours, points.size());
+  const size_t systemSize =
+      options.maxNeighbours == 0 ? points.size() : std::min(options.maxNeighbours, points.size());
   if (systemSize > kMaxSystemSize)
-    return makeError(ErrorCode::kTooLarge, "kriging: ", options.maxNeighbours == 0 ? "global kriging of " : "neighbourhoods of ", systemSize,
-                     " samples need a dense ", systemSize, " x ", systemSize, " system (limit ", kMaxSystemSize, "); use --neighbours 16..256");
+    return makeError(ErrorCode::kTooLarge, "kriging: ",
+                     options.maxNeighbours == 0 ? "global kriging of " : "neighbourhoods of ",
+                     systemSize, " samples need a dense ", systemSize, " x ", systemSize,
+                     " system (limit ", kMaxSystemSize, "); use --neighbours 16..256");
   if (!(options.maxDistance > 0))
-    return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ", options.maxDistance);
+    return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ",
+                     options.maxDistance);
   Point3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = 0; i < points.size(); ++i) {
     for (int a = 0; a < 3; ++a) {
       if (!std::isfinite(points.coords[i][a]))
-        return makeError(ErrorCode::kNonFinite, "kriging: sample ", i, " has a non-finite coordinate");
+        return makeError(ErrorCode::kNonFinite, "kriging: sample ", i,
+                         " has a non-finite coordinate");
       lo[a] = std::min(lo[a], points.coords[i][a]);
       hi[a] = std::max(hi[a], points.coords[i][a]);
     }
@@ -79,7 +85,8 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram, 
     k.coords_.push_back(sum);
     k.values_.push_back(valueSum / static_cast<double>(count));
   }
-  k.dataMean_ = std::accumulate(k.values_.begin(), k.values_.end(), 0.0) / static_cast<double>(k.values_.size());
+  k.dataMean_ = std::accumulate(k.values_.begin(), k.values_.end(), 0.0) /
+                static_cast<double>(k.values_.size());
   if (options.kind == KrigingKind::kSimple) k.dataMean_ = options.simpleMean;
   k.tree_ = std::make_shared<KdTree>(k.coords_);
   return k;
@@ -110,8 +117,9 @@ Status Kriger::solveSystem(KrigingWorkspace& ws, size_t n) const {
     jitter = jitter == 0 ? kFirstJitter * sill : jitter * 10;
     if (jitter > kLastJitter * sill * 1.0000001)
       return makeError(ErrorCode::kInvalidArgument, "kriging: the covariance matrix of ", n,
-                       " samples stays singular (condition > ", options_.maxCondition, ") even with a diagonal jitter of ",
-                       kLastJitter, " x sill; merge near-duplicate samples (--merge-distance) or add a nugget");
+                       " samples stays singular (condition > ", options_.maxCondition,
+                       ") even with a diagonal jitter of ", kLastJitter,
+                       " x sill; merge near-duplicate samples (--merge-distance) or add a nugget");
   }
   ws.onesSolved.assign(n, 1.0);
   ws.factor.solve(ws.onesSolved.data());
@@ -132,7 +140,8 @@ Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_
   Prediction out;
   if (!global && ws.neighbours.size() > options_.maxNeighbours) {
     const double kth = ws.neighbours[options_.maxNeighbours - 1].distance;
-    out.tieAtCutoff = ws.neighbours[options_.maxNeighbours].distance - kth <= 1e-12 * std::max(kth, 1.0);
+    out.tieAtCutoff =
+        ws.neighbours[options_.maxNeighbours].distance - kth <= 1e-12 * std::max(kth, 1.0);
     ws.neighbours.resize(options_.maxNeighbours);
   }
   const size_t n = ws.neighbours.size();
@@ -161,7 +170,8 @@ Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_
   double estimate = dataMean_, variance = variogram_.sill();
   ws.weights.resize(n);
   if (options_.kind == KrigingKind::kOrdinary) {
-    const double mu = (std::accumulate(a.begin(), a.begin() + static_cast<long>(n), 0.0) - 1.0) / ws.onesSum;
+    const double mu =
+        (std::accumulate(a.begin(), a.begin() + static_cast<long>(n), 0.0) - 1.0) / ws.onesSum;
     for (size_t i = 0; i < n; ++i) {
       const double w = a[i] - mu * ws.onesSolved[i];
       ws.weights[i] = w;
@@ -183,7 +193,8 @@ Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_
   out.jitter = ws.cachedJitter;
   out.hasData = true;
   if (!std::isfinite(out.value) || !std::isfinite(out.variance))
-    return makeError(ErrorCode::kNonFinite, "kriging: non-finite prediction at (", p[0], ", ", p[1], ", ", p[2], ") from ", n, " samples");
+    return makeError(ErrorCode::kNonFinite, "kriging: non-finite prediction at (", p[0], ", ", p[1],
+                     ", ", p[2], ") from ", n, " samples");
   return out;
 }
 

@@ -28,8 +28,8 @@ enum class KrigingKind { kOrdinary, kSimple };
 
 struct KrigingOptions {
   KrigingKind kind = KrigingKind::kOrdinary;
-  double simpleMean = 0.0;      // known mean for simple kriging
-  size_t maxNeighbours = 0;     // 0: all samples (global kriging)
+  double simpleMean = 0.0;   // known mean for simple kriging
+  size_t maxNeighbours = 0;  // 0: all samples (global kriging)
   double maxDistance = INFINITY;
   double mergeDistance = -1.0;  // < 0: 1e-9 times the bounding-box diagonal
   double maxCondition = 1e12;
@@ -64,7 +64,8 @@ class Kriger {
   static Result<Kriger> make(const PointSet& points, const Variogram& variogram,
                              const KrigingOptions& options);
 
-  // Prediction at p (in the input's coordinates). `exclude` leaves one sample out (cross-validation).
+  // Prediction at p (in the input's coordinates). `exclude` leaves one sample out
+  // (cross-validation).
   Result<Prediction> predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude = -1) const;
 
   size_t sampleCount() const { return values_.size(); }

@@ -16,7 +16,8 @@ std::string trim(const std::string& s) {
   while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
   std::string t = s.substr(b, e - b);
-  if (t.size() >= 2 && (t.front() == '"' || t.front() == '\'') && t.back() == t.front()) t = t.substr(1, t.size() - 2);
+  if (t.size() >= 2 && (t.front() == '"' || t.front() == '\'') && t.back() == t.front())
+    t = t.substr(1, t.size() - 2);
   return t;
 }
 
@@ -38,14 +39,18 @@ bool parseNumber(const std::string& field, double& out) {
 }
 
 // Indices of the selected columns in `names`; z is -1 for 2-D data.
-Result<std::array<int, 4>> findColumns(const std::string& path, const std::vector<std::string>& names,
+Result<std::array<int, 4>> findColumns(const std::string& path,
+                                       const std::vector<std::string>& names,
                                        const ColumnSelection& columns) {
   if (columns.value.empty())
-    return makeError(ErrorCode::kInvalidArgument, path, ": no value column selected (one of: ", [&] {
-      std::string all;
-      for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
-      return all;
-    }(), ")");
+    return makeError(
+        ErrorCode::kInvalidArgument, path, ": no value column selected (one of: ",
+        [&] {
+          std::string all;
+          for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+          return all;
+        }(),
+        ")");
   std::array<int, 4> index{-1, -1, -1, -1};
   const std::string wanted[4] = {columns.x, columns.y, columns.z, columns.value};
   const char* role[4] = {"x", "y", "z", "value"};
@@ -56,7 +61,8 @@ Result<std::array<int, 4>> findColumns(const std::string& path, const std::vecto
     if (index[r] < 0) {
       std::string all;
       for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
-      return makeError(ErrorCode::kInvalidArgument, path, ": ", role[r], " column '", wanted[r], "' not found (columns: ", all, ")");
+      return makeError(ErrorCode::kInvalidArgument, path, ": ", role[r], " column '", wanted[r],
+                       "' not found (columns: ", all, ")");
     }
   }
   return index;
@@ -68,20 +74,24 @@ Status addRow(const std::string& path, size_t line, const std::vector<std::strin
               PointSet& out, size_t& skipped) {
   const int needed = *std::max_element(col.begin(), col.end());
   if (static_cast<int>(fields.size()) <= needed)
-    return makeError(ErrorCode::kTruncated, path, ": line ", line, ": ", fields.size(), " fields, expected ", names.size());
+    return makeError(ErrorCode::kTruncated, path, ": line ", line, ": ", fields.size(),
+                     " fields, expected ", names.size());
   double v = 0;
   const std::string& valueField = fields[col[3]];
-  if (isMissing(valueField) || (parseNumber(valueField, v) && geoEas && (v == kSgemsNoData || v <= -1e21))) {
+  if (isMissing(valueField) ||
+      (parseNumber(valueField, v) && geoEas && (v == kSgemsNoData || v <= -1e21))) {
     ++skipped;
     return Status::ok();
   }
   if (!parseNumber(valueField, v))
-    return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": column '", names[col[3]], "': '", valueField, "' is not a number");
+    return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": column '",
+                     names[col[3]], "': '", valueField, "' is not a number");
   Point3 p{0, 0, 0};
   for (int a = 0; a < 3; ++a) {
     if (col[a] < 0) continue;
     if (!parseNumber(fields[col[a]], p[a]))
-      return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": coordinate column '", names[col[a]], "': '", fields[col[a]], "' is not a finite number");
+      return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": coordinate column '",
+                       names[col[a]], "': '", fields[col[a]], "' is not a finite number");
   }
   out.coords.push_back(p);
   out.values.push_back(v);
@@ -93,9 +103,13 @@ std::vector<std::string> splitCsv(const std::string& line) {
   std::string field;
   bool quoted = false;
   for (char c : line) {
-    if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) { fields.push_back(trim(field)); field.clear(); }
-    else if (c != '\r') field += c;
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted) {
+      fields.push_back(trim(field));
+      field.clear();
+    } else if (c != '\r')
+      field += c;
   }
   fields.push_back(trim(field));
   return fields;
@@ -109,9 +123,12 @@ std::vector<std::string> splitWhitespace(const std::string& line) {
   return fields;
 }
 
-void finish(PointSet& set, const ColumnSelection& columns, size_t skipped, const std::string& path) {
+void finish(PointSet& set, const ColumnSelection& columns, size_t skipped,
+            const std::string& path) {
   set.dimension = columns.z.empty() ? 2 : 3;
-  if (skipped > 0) set.notes.push_back(cat(path, ": ", skipped, " rows with a missing value (NA/NaN/no-data) skipped"));
+  if (skipped > 0)
+    set.notes.push_back(
+        cat(path, ": ", skipped, " rows with a missing value (NA/NaN/no-data) skipped"));
 }
 
 }  // namespace
@@ -120,7 +137,8 @@ Result<PointSet> readCsvPoints(const std::string& path, const ColumnSelection& c
   std::ifstream in(path);
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
   std::string line;
-  if (!std::getline(in, line)) return makeError(ErrorCode::kTruncated, path, ": empty file, expected a header row");
+  if (!std::getline(in, line))
+    return makeError(ErrorCode::kTruncated, path, ": empty file, expected a header row");
   const std::vector<std::string> names = splitCsv(line);
   VOXLINK_ASSIGN_OR_RETURN(const auto col, findColumns(path, names, columns));
   PointSet set;
@@ -139,16 +157,21 @@ Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
   std::string title, countLine;
   if (!std::getline(in, title) || !std::getline(in, countLine))
-    return makeError(ErrorCode::kTruncated, path, ": GEO-EAS header: expected a title line and a variable count");
+    return makeError(ErrorCode::kTruncated, path,
+                     ": GEO-EAS header: expected a title line and a variable count");
   char* end = nullptr;
   const long count = std::strtol(trim(countLine).c_str(), &end, 10);
   if (*end != '\0' || count < 1 || count > 10000)
-    return makeError(ErrorCode::kInvalidArgument, path, ": GEO-EAS header: line 2 'number of variables': expected an integer in 1..10000, got '", trim(countLine), "'");
+    return makeError(
+        ErrorCode::kInvalidArgument, path,
+        ": GEO-EAS header: line 2 'number of variables': expected an integer in 1..10000, got '",
+        trim(countLine), "'");
   std::vector<std::string> names;
   std::string line;
   for (long i = 0; i < count; ++i) {
     if (!std::getline(in, line))
-      return makeError(ErrorCode::kTruncated, path, ": GEO-EAS header: ", count, " variable names announced, file ends after ", i);
+      return makeError(ErrorCode::kTruncated, path, ": GEO-EAS header: ", count,
+                       " variable names announced, file ends after ", i);
     names.push_back(trim(line));
   }
   VOXLINK_ASSIGN_OR_RETURN(const auto col, findColumns(path, names, columns));

@@ -22,10 +22,14 @@ double maternCorrelation(double h, double scale, double nu, double norm) {
 
 const char* variogramTypeName(VariogramType type) {
   switch (type) {
-    case VariogramType::kExponential: return "exponential";
-    case VariogramType::kSpherical: return "spherical";
-    case VariogramType::kGaussian: return "gaussian";
-    case VariogramType::kMatern: return "matern";
+    case VariogramType::kExponential:
+      return "exponential";
+    case VariogramType::kSpherical:
+      return "spherical";
+    case VariogramType::kGaussian:
+      return "gaussian";
+    case VariogramType::kMatern:
+      return "matern";
   }
   return "?";
 }
@@ -33,25 +37,33 @@ const char* variogramTypeName(VariogramType type) {
 Result<Variogram> Variogram::make(const VariogramParams& p) {
   const char* name = variogramTypeName(p.type);
   if (!std::isfinite(p.nugget) || p.nugget < 0)
-    return makeError(ErrorCode::kInvalidArgument, "variogram ", name, ": nugget must be finite and >= 0, got ", p.nugget);
+    return makeError(ErrorCode::kInvalidArgument, "variogram ", name,
+                     ": nugget must be finite and >= 0, got ", p.nugget);
   if (!std::isfinite(p.psill) || p.psill < 0)
-    return makeError(ErrorCode::kInvalidArgument, "variogram ", name, ": psill must be finite and >= 0, got ", p.psill);
+    return makeError(ErrorCode::kInvalidArgument, "variogram ", name,
+                     ": psill must be finite and >= 0, got ", p.psill);
   if (!(p.nugget + p.psill > 0))
-    return makeError(ErrorCode::kInvalidArgument, "variogram ", name, ": sill (nugget + psill) must be > 0");
+    return makeError(ErrorCode::kInvalidArgument, "variogram ", name,
+                     ": sill (nugget + psill) must be > 0");
   if (!std::isfinite(p.range) || p.range <= 0)
-    return makeError(ErrorCode::kInvalidArgument, "variogram ", name, ": range must be finite and > 0, got ", p.range);
+    return makeError(ErrorCode::kInvalidArgument, "variogram ", name,
+                     ": range must be finite and > 0, got ", p.range);
   Variogram v;
   v.params_ = p;
   if (p.type == VariogramType::kMatern) {
     if (!std::isfinite(p.smoothness) || p.smoothness < 0.05 || p.smoothness > 50)
-      return makeError(ErrorCode::kInvalidArgument, "variogram matern: smoothness nu must be in [0.05, 50], got ", p.smoothness);
+      return makeError(ErrorCode::kInvalidArgument,
+                       "variogram matern: smoothness nu must be in [0.05, 50], got ", p.smoothness);
     const double nu = p.smoothness;
     v.maternNorm_ = std::exp((1.0 - nu) * std::log(2.0) - std::lgamma(nu));
     // rho(range; scale) decreases as range/scale grows: bisect x = range/scale in log space.
     double lo = 1e-6, hi = 1e3;
     for (int i = 0; i < 200; ++i) {
       const double mid = std::sqrt(lo * hi);
-      if (maternCorrelation(mid, 1.0, nu, v.maternNorm_) > kPracticalCorrelation) lo = mid; else hi = mid;
+      if (maternCorrelation(mid, 1.0, nu, v.maternNorm_) > kPracticalCorrelation)
+        lo = mid;
+      else
+        hi = mid;
     }
     v.maternScale_ = p.range / std::sqrt(lo * hi);
   }
@@ -61,14 +73,17 @@ Result<Variogram> Variogram::make(const VariogramParams& p) {
 double Variogram::correlation(double h) const {
   const double a = params_.range;
   switch (params_.type) {
-    case VariogramType::kExponential: return std::exp(-3.0 * h / a);
+    case VariogramType::kExponential:
+      return std::exp(-3.0 * h / a);
     case VariogramType::kSpherical: {
       if (h >= a) return 0.0;
       const double t = h / a;
       return 1.0 - 1.5 * t + 0.5 * t * t * t;
     }
-    case VariogramType::kGaussian: return std::exp(-3.0 * (h / a) * (h / a));
-    case VariogramType::kMatern: return maternCorrelation(h, maternScale_, params_.smoothness, maternNorm_);
+    case VariogramType::kGaussian:
+      return std::exp(-3.0 * (h / a) * (h / a));
+    case VariogramType::kMatern:
+      return maternCorrelation(h, maternScale_, params_.smoothness, maternNorm_);
   }
   return 0.0;
 }
@@ -76,8 +91,8 @@ double Variogram::correlation(double h) const {
 std::string Variogram::describe() const {
   std::ostringstream out;
   out.precision(6);
-  out << variogramTypeName(params_.type) << "(nugget=" << params_.nugget << ", psill=" << params_.psill
-      << ", range=" << params_.range;
+  out << variogramTypeName(params_.type) << "(nugget=" << params_.nugget
+      << ", psill=" << params_.psill << ", range=" << params_.range;
   if (params_.type == VariogramType::kMatern)
     out << ", nu=" << params_.smoothness << ", scale=" << maternScale_;
   out << ")";
@@ -94,7 +109,8 @@ Result<VariogramParams> parseVariogram(const std::string& text) {
       {"mat", VariogramType::kMatern},      {"matern", VariogramType::kMatern}};
   const auto type = kTypes.find(typeName);
   if (type == kTypes.end())
-    return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': model '", typeName, "' is not one of exp, sph, gau, mat");
+    return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': model '", typeName,
+                     "' is not one of exp, sph, gau, mat");
   VariogramParams p;
   p.type = type->second;
   bool haveRange = false;
@@ -108,17 +124,26 @@ Result<VariogramParams> parseVariogram(const std::string& text) {
     char* end = nullptr;
     const double value = std::strtod(valueText.c_str(), &end);
     if (valueText.empty() || *end != '\0')
-      return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': '", item, "' is not key=number");
-    if (key == "nugget") p.nugget = value;
-    else if (key == "psill") p.psill = value;
-    else if (key == "sill") totalSill = value;
-    else if (key == "range") { p.range = value; haveRange = true; }
-    else if (key == "nu" || key == "smoothness") p.smoothness = value;
+      return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': '", item,
+                       "' is not key=number");
+    if (key == "nugget")
+      p.nugget = value;
+    else if (key == "psill")
+      p.psill = value;
+    else if (key == "sill")
+      totalSill = value;
+    else if (key == "range") {
+      p.range = value;
+      haveRange = true;
+    } else if (key == "nu" || key == "smoothness")
+      p.smoothness = value;
     else
-      return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': unknown key '", key, "' (nugget, psill, sill, range, nu)");
+      return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': unknown key '", key,
+                       "' (nugget, psill, sill, range, nu)");
   }
   if (!haveRange)
-    return makeError(ErrorCode::kInvalidArgument, "--variogram '", text, "': range=... is required");
+    return makeError(ErrorCode::kInvalidArgument, "--variogram '", text,
+                     "': range=... is required");
   if (totalSill) p.psill = *totalSill - p.nugget;
   VOXLINK_RETURN_IF_ERROR(Variogram::make(p).status());
   return p;

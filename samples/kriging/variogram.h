@@ -41,7 +41,9 @@ class Variogram {
   double correlation(double h) const;
   // Covariance of two samples at distance h; h == 0 includes the nugget.
   double covariance(double h) const { return h == 0.0 ? sill() : params_.psill * correlation(h); }
-  double gamma(double h) const { return h == 0.0 ? 0.0 : params_.nugget + params_.psill * (1.0 - correlation(h)); }
+  double gamma(double h) const {
+    return h == 0.0 ? 0.0 : params_.nugget + params_.psill * (1.0 - correlation(h));
+  }
   // Matern scale parameter (phi in rho(h) = 2^(1-nu)/Gamma(nu) (h/phi)^nu K_nu(h/phi)).
   double maternScale() const { return maternScale_; }
   // "matern(nugget=0, psill=1, range=30, nu=1.5)"-style description for summaries.

@@ -15,14 +15,14 @@ struct VariogramBin {
 };
 
 struct ExperimentalVariogramOptions {
-  double cutoff = -1;    // < 0: a third of the bounding-box diagonal (gstat's default)
-  double width = -1;     // < 0: cutoff / 15 (gstat's default)
+  double cutoff = -1;        // < 0: a third of the bounding-box diagonal (gstat's default)
+  double width = -1;         // < 0: cutoff / 15 (gstat's default)
   size_t maxSamples = 5000;  // larger sets use an evenly strided subset (O(n^2) pairs)
 };
 
 // Bins with at least one pair, in order of lag.
-Result<std::vector<VariogramBin>> experimentalVariogram(const PointSet& points,
-                                                        const ExperimentalVariogramOptions& options = {});
+Result<std::vector<VariogramBin>> experimentalVariogram(
+    const PointSet& points, const ExperimentalVariogramOptions& options = {});
 
 struct VariogramFitOptions {
   VariogramType type = VariogramType::kSpherical;
@@ -34,6 +34,7 @@ struct VariogramFitOptions {
 // (pairs / lag^2, fit.method = 7). For a fixed range the model is linear in nugget and psill,
 // which are solved exactly (non-negative); the range is found by a log-spaced scan refined
 // by golden-section search. Refuses when the variogram is flat zero (all values equal).
-Result<VariogramParams> fitVariogram(const std::vector<VariogramBin>& bins, const VariogramFitOptions& options);
+Result<VariogramParams> fitVariogram(const std::vector<VariogramBin>& bins,
+                                     const VariogramFitOptions& options);
 
 }  // namespace voxlink::kriging

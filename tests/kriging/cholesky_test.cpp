@@ -1,8 +1,8 @@
+#include "samples/kriging/cholesky.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "samples/kriging/cholesky.h"
 
 namespace voxlink::kriging {
 namespace {
@@ -31,7 +31,10 @@ TEST(Cholesky, ConditionEstimateIsWithinAFactorOfThreeOfTheTruthForHilbert) {
     double e[5] = {0, 0, 0, 0, 0}, colA = 0, colInv = 0;
     e[j] = 1;
     c.solve(e);
-    for (int i = 0; i < 5; ++i) { colInv += std::fabs(e[i]); colA += h[i * 5 + j]; }
+    for (int i = 0; i < 5; ++i) {
+      colInv += std::fabs(e[i]);
+      colA += h[i * 5 + j];
+    }
     normA = std::max(normA, colA);
     normInv = std::max(normInv, colInv);
   }

@@ -1,12 +1,13 @@
 // Random fields: the empirical mean, variance and axis variograms must match the model within
 // tolerances derived from the sample size and the model's own correlation (a correlated
 // field's statistics fluctuate far more than N independent draws would).
+#include "samples/kriging/grf.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "samples/kriging/field_statistics.h"
-#include "samples/kriging/grf.h"
 
 namespace voxlink::kriging {
 namespace {
@@ -36,7 +37,8 @@ double pairSum(std::array<uint32_t, 3> n, F f) {
   for (int64_t dz = -int64_t(n[2]) + 1; dz < n[2]; ++dz)
     for (int64_t dy = -int64_t(n[1]) + 1; dy < n[1]; ++dy)
       for (int64_t dx = -int64_t(n[0]) + 1; dx < n[0]; ++dx) {
-        const double count = double(n[0] - std::abs(dx)) * (n[1] - std::abs(dy)) * (n[2] - std::abs(dz));
+        const double count =
+            double(n[0] - std::abs(dx)) * (n[1] - std::abs(dy)) * (n[2] - std::abs(dz));
         total += count * f(dx, dy, dz);
       }
   return total;
@@ -48,12 +50,19 @@ void checkStatistics(const GrfSpec& spec, const Variogram& v) {
   FieldStatistics stats(spec.dims, lags);
   stats.add(0, spec.dims[2], c.values.data());
   const double n = double(stats.count());
-  auto cov = [&](double dx, double dy, double dz) { return v.covariance(std::sqrt(dx * dx + dy * dy + dz * dz)); };
-  const double varMean = pairSum(spec.dims, [&](double x, double y, double z) { return cov(x, y, z); }) / (n * n);
-  const double varVar = 2 * pairSum(spec.dims, [&](double x, double y, double z) { return std::pow(cov(x, y, z), 2); }) / (n * n);
+  auto cov = [&](double dx, double dy, double dz) {
+    return v.covariance(std::sqrt(dx * dx + dy * dy + dz * dz));
+  };
+  const double varMean =
+      pairSum(spec.dims, [&](double x, double y, double z) { return cov(x, y, z); }) / (n * n);
+  const double varVar =
+      2 *
+      pairSum(spec.dims, [&](double x, double y, double z) { return std::pow(cov(x, y, z), 2); }) /
+      (n * n);
   EXPECT_NEAR(stats.mean(), spec.mean, 5 * std::sqrt(varMean)) << v.describe();
   // E[sample variance] = sill - Var(mean).
-  EXPECT_NEAR(stats.sigma() * stats.sigma(), v.sill() - varMean, 5 * std::sqrt(varVar)) << v.describe();
+  EXPECT_NEAR(stats.sigma() * stats.sigma(), v.sill() - varMean, 5 * std::sqrt(varVar))
+      << v.describe();
   for (int axis = 0; axis < 3; ++axis) {
     if (spec.dims[axis] == 1) continue;
     for (size_t l = 0; l < lags.size(); ++l) {
@@ -68,10 +77,13 @@ void checkStatistics(const GrfSpec& spec, const Variogram& v) {
         d[axis] += s;
         return cov(d[0], d[1], d[2]);
       };
-      const double var = pairSum(m, [&](double x, double y, double z) {
-        const double cd = 2 * cov(x, y, z) - shifted(x, y, z, h) - shifted(x, y, z, -h);
-        return cd * cd;
-      }) / (2 * pairs * pairs);
+      const double var =
+          pairSum(m,
+                  [&](double x, double y, double z) {
+                    const double cd = 2 * cov(x, y, z) - shifted(x, y, z, h) - shifted(x, y, z, -h);
+                    return cd * cd;
+                  }) /
+          (2 * pairs * pairs);
       EXPECT_NEAR(stats.gamma(axis, l), v.gamma(h), 5 * std::sqrt(var) + 1e-3 * v.sill())
           << v.describe() << " axis " << axis << " lag " << h;
     }
@@ -117,7 +129,8 @@ TEST(RandomField, DoesNotDependOnBlockSizeOrThreadsAndDependsOnTheSeed) {
   ASSERT_GT(small.report.blocks, big.report.blocks);
   ASSERT_EQ(big.values.size(), small.values.size());
   double maxDiff = 0;
-  for (size_t i = 0; i < big.values.size(); ++i) maxDiff = std::max(maxDiff, std::fabs(big.values[i] - small.values[i]));
+  for (size_t i = 0; i < big.values.size(); ++i)
+    maxDiff = std::max(maxDiff, std::fabs(big.values[i] - small.values[i]));
   EXPECT_LT(maxDiff, 1e-12);
   spec.seed = 8;
   const Collected other = generate(spec);

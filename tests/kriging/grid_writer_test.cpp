@@ -1,3 +1,5 @@
+#include "samples/kriging/grid_writer.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -5,7 +7,6 @@
 #include <sstream>
 
 #include "convert/volume_source.h"
-#include "samples/kriging/grid_writer.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::kriging {
@@ -25,7 +26,8 @@ TEST(GridWriter, WritesRawDataWithADetachedNrrdHeader) {
   header << std::ifstream(dir.file("k.nhdr")).rdbuf();
   EXPECT_NE(header.str().find("sizes: 4 3 2\n"), std::string::npos) << header.str();
   EXPECT_NE(header.str().find("type: double\n"), std::string::npos);
-  EXPECT_NE(header.str().find("space origin: (512345.678901,4250000,-7)\n"), std::string::npos) << header.str();
+  EXPECT_NE(header.str().find("space origin: (512345.678901,4250000,-7)\n"), std::string::npos)
+      << header.str();
   EXPECT_NE(header.str().find("data file: k.raw\n"), std::string::npos);
   convert::OpenOptions o;
   o.dims = info.dims;
@@ -42,7 +44,8 @@ TEST(GridWriter, RefusesUnknownEndingsAndIncompleteGrids) {
   auto bad = GridWriter::create(dir.file("k.tif"), {});
   ASSERT_FALSE(bad);
   EXPECT_NE(bad.message().find(".nhdr"), std::string::npos);
-  auto w = GridWriter::create(dir.file("k.npy"), {{2, 2, 2}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF64});
+  auto w =
+      GridWriter::create(dir.file("k.npy"), {{2, 2, 2}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF64});
   ASSERT_TRUE(w);
   const double slice[4] = {1, 2, 3, 4};
   ASSERT_TRUE((*w)->append(1, slice));

@@ -1,10 +1,11 @@
 // GSLIB / GEO-EAS grids: the real SGeMS exports (zipped) and files written here.
+#include "convert/readers/gslib_reader.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 
-#include "convert/readers/gslib_reader.h"
 #include "convert/volume_source.h"
 #include "tests/support/test_util.h"
 
@@ -27,7 +28,8 @@ TEST(GslibReader, ReadsTheZippedMaulesCreekFaciesGrid) {
   // Facies are 0 or 1; the first data rows of the file are 1 1 1 1 1 1 1 1 0 0 1.
   std::vector<double> slice(info.sliceVoxels());
   ASSERT_TRUE((*s)->read(0, 1, slice.data()));
-  EXPECT_EQ(std::vector<double>(slice.begin(), slice.begin() + 9), (std::vector<double>{1, 1, 1, 1, 1, 1, 1, 1, 0}));
+  EXPECT_EQ(std::vector<double>(slice.begin(), slice.begin() + 9),
+            (std::vector<double>{1, 1, 1, 1, 1, 1, 1, 1, 0}));
   uint64_t ones = 0;
   for (uint32_t z = 1; z < info.dims[2]; ++z) {  // sequential reads through the archive
     ASSERT_TRUE((*s)->read(z, 1, slice.data()));
@@ -69,7 +71,9 @@ TEST(GslibReader, RefusesThePointSetAndSuggestsKriging) {
 TEST(GslibReader, DimsFromOptionsAndVariableSelection) {
   testing::TempDir dir;
   const std::string path = dir.file("grid.gslib");
-  writeText(path, "SGSIM realizations\r\n2\r\nporosity\r\nperm\r\n1 10\r\n2 20\r\n\r\n3 30\r\n4 40\r\n5 50\r\n6 60\r\n");
+  writeText(path,
+            "SGSIM realizations\r\n2\r\nporosity\r\nperm\r\n1 10\r\n2 20\r\n\r\n3 30\r\n4 40\r\n5 "
+            "50\r\n6 60\r\n");
   auto noDims = openVolume(path);
   ASSERT_FALSE(noDims);
   EXPECT_EQ(noDims.code(), ErrorCode::kInvalidArgument);
@@ -106,7 +110,8 @@ TEST(GslibReader, BadInputNamesTheFileAndTheField) {
       {"long.sgems", "2 1 1\n1\nv\n1\n2\n3\n", ErrorCode::kSizeMismatch, "3 rows"},
       {"count.sgems", "2 1 1\nthree\nv\n1\n2\n", ErrorCode::kCorrupt, "number of variables"},
       {"names.sgems", "2 1 1\n3\nv\n", ErrorCode::kTruncated, "variable names"},
-      {"binary.sgems", std::string("\xb2\x11\x17\x5d\0\0\0\x0bPoint_set", 17), ErrorCode::kUnsupported, "binary"},
+      {"binary.sgems", std::string("\xb2\x11\x17\x5d\0\0\0\x0bPoint_set", 17),
+       ErrorCode::kUnsupported, "binary"},
   };
   for (const Case& c : cases) {
     const std::string path = dir.file(c.name);

@@ -26,7 +26,8 @@ std::string full(double v) {
 }
 
 bool haveGstat() {
-  return std::system("Rscript -e 'suppressPackageStartupMessages(library(gstat))' >/dev/null 2>&1") == 0;
+  return std::system(
+             "Rscript -e 'suppressPackageStartupMessages(library(gstat))' >/dev/null 2>&1") == 0;
 }
 
 struct Table {
@@ -54,10 +55,18 @@ struct Case {
 std::string gstatModel(const Variogram& v, double& gstatRange) {
   const VariogramParams& p = v.params();
   switch (p.type) {
-    case VariogramType::kExponential: gstatRange = p.range / 3; return "Exp";
-    case VariogramType::kSpherical: gstatRange = p.range; return "Sph";
-    case VariogramType::kGaussian: gstatRange = p.range / std::sqrt(3.0); return "Gau";
-    case VariogramType::kMatern: gstatRange = v.maternScale(); return "Mat";
+    case VariogramType::kExponential:
+      gstatRange = p.range / 3;
+      return "Exp";
+    case VariogramType::kSpherical:
+      gstatRange = p.range;
+      return "Sph";
+    case VariogramType::kGaussian:
+      gstatRange = p.range / std::sqrt(3.0);
+      return "Gau";
+    case VariogramType::kMatern:
+      gstatRange = v.maternScale();
+      return "Mat";
   }
   return "";
 }
@@ -66,16 +75,18 @@ class GstatOracle : public ::testing::TestWithParam<Case> {};
 
 TEST_P(GstatOracle, PredictionsVariancesAndCrossValidationAgree) {
   VOXLINK_REQUIRE_DATA(test::kWalkerSamples);
-  if (!haveGstat()) GTEST_SKIP() << "Rscript with gstat not installed (apt-get install r-cran-gstat)";
+  if (!haveGstat())
+    GTEST_SKIP() << "Rscript with gstat not installed (apt-get install r-cran-gstat)";
   const Case& c = GetParam();
   const Variogram v = Variogram::make(c.params).value();
   double gstatRange = 0;
   const std::string model = gstatModel(v, gstatRange);
   testing::TempDir dir;
-  const std::string command = cat("Rscript ", VOXLINK_GSTAT_ORACLE_SCRIPT, " ", testing::dataPath(test::kWalkerSamples), " V ",
-                                  dir.path().string(), " ", model, " ", full(c.params.nugget), " ", full(c.params.psill), " ",
-                                  full(gstatRange), " ", c.params.smoothness, " ", c.neighbours, " ", c.stride,
-                                  " > ", dir.file("log.txt"), " 2>&1");
+  const std::string command =
+      cat("Rscript ", VOXLINK_GSTAT_ORACLE_SCRIPT, " ", testing::dataPath(test::kWalkerSamples),
+          " V ", dir.path().string(), " ", model, " ", full(c.params.nugget), " ",
+          full(c.params.psill), " ", full(gstatRange), " ", c.params.smoothness, " ", c.neighbours,
+          " ", c.stride, " > ", dir.file("log.txt"), " 2>&1");
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
 
   const PointSet samples = test::walkerSamples();
@@ -92,7 +103,10 @@ TEST_P(GstatOracle, PredictionsVariancesAndCrossValidationAgree) {
   for (size_t i = 0; i < grid.at.size(); ++i) {
     auto p = k.predict(grid.at[i], ws);
     ASSERT_TRUE(p) << p.message();
-    if (p->tieAtCutoff) { ++ties; continue; }  // either neighbour set is right
+    if (p->tieAtCutoff) {
+      ++ties;
+      continue;
+    }  // either neighbour set is right
     ++compared;
     worstPred = std::max(worstPred, std::fabs(p->value - grid.pred[i]) / sd);
     worstVar = std::max(worstVar, std::fabs(p->variance - grid.var[i]) / v.sill());
@@ -100,8 +114,11 @@ TEST_P(GstatOracle, PredictionsVariancesAndCrossValidationAgree) {
   EXPECT_LE(worstPred, kPredictionTolerance) << c.name;
   EXPECT_LE(worstVar, kVarianceTolerance) << c.name;
   EXPECT_LT(ties, grid.at.size() / 5) << c.name;
-  std::printf("[ gstat    ] %s: %zu nodes compared (%zu with a distance tie at the k-th neighbour skipped), "
-              "max |dpred|/sd %.2e, max |dvar|/sill %.2e\n", c.name, compared, ties, worstPred, worstVar);
+  std::printf(
+      "[ gstat    ] %s: %zu nodes compared (%zu with a distance tie at the k-th neighbour "
+      "skipped), "
+      "max |dpred|/sd %.2e, max |dvar|/sill %.2e\n",
+      c.name, compared, ties, worstPred, worstVar);
 
   // Leave-one-out, sample by sample.
   const Table cv = readTable(dir.file("cv.csv"));
@@ -112,7 +129,7 @@ TEST_P(GstatOracle, PredictionsVariancesAndCrossValidationAgree) {
   double cvWorst = 0;
   for (size_t i = 0; i < cv.at.size(); ++i) {
     ASSERT_EQ(k.sample(i), cv.at[i]);  // same order: no sample was merged
-    if (c.neighbours > 0) {  // global kriging has no neighbour ties
+    if (c.neighbours > 0) {            // global kriging has no neighbour ties
       auto p = k.predict(k.sample(i), ws, int64_t(i));
       ASSERT_TRUE(p);
       if (p->tieAtCutoff) continue;
@@ -129,8 +146,9 @@ TEST(GstatOracleVariogram, ExperimentalVariogramAndFitAgree) {
   VOXLINK_REQUIRE_DATA(test::kWalkerSamples);
   if (!haveGstat()) GTEST_SKIP() << "Rscript with gstat not installed";
   testing::TempDir dir;
-  const std::string command = cat("Rscript ", VOXLINK_GSTAT_ORACLE_SCRIPT, " ", testing::dataPath(test::kWalkerSamples), " V ",
-                                  dir.path().string(), " Sph 0 1 30 0.5 8 20 > ", dir.file("log.txt"), " 2>&1");
+  const std::string command =
+      cat("Rscript ", VOXLINK_GSTAT_ORACLE_SCRIPT, " ", testing::dataPath(test::kWalkerSamples),
+          " V ", dir.path().string(), " Sph 0 1 30 0.5 8 20 > ", dir.file("log.txt"), " 2>&1");
   ASSERT_EQ(std::system(command.c_str()), 0);
   const PointSet samples = test::walkerSamples();
   auto bins = experimentalVariogram(samples);
@@ -154,10 +172,11 @@ TEST(GstatOracleVariogram, ExperimentalVariogramAndFitAgree) {
 
 INSTANTIATE_TEST_SUITE_P(
     WalkerLake, GstatOracle,
-    ::testing::Values(Case{"sph_k16", {VariogramType::kSpherical, 22141, 70210, 35.08, 0.5}, 16, 1},
-                      Case{"exp_global", {VariogramType::kExponential, 15000, 80000, 60, 0.5}, 0, 4},
-                      Case{"gau_nugget_k24", {VariogramType::kGaussian, 20000, 72000, 30, 0.5}, 24, 4},
-                      Case{"matern15_k32", {VariogramType::kMatern, 18000, 75000, 45, 1.5}, 32, 4}),
+    ::testing::Values(
+        Case{"sph_k16", {VariogramType::kSpherical, 22141, 70210, 35.08, 0.5}, 16, 1},
+        Case{"exp_global", {VariogramType::kExponential, 15000, 80000, 60, 0.5}, 0, 4},
+        Case{"gau_nugget_k24", {VariogramType::kGaussian, 20000, 72000, 30, 0.5}, 24, 4},
+        Case{"matern15_k32", {VariogramType::kMatern, 18000, 75000, 45, 1.5}, 32, 4}),
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 }  // namespace

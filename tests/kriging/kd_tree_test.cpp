@@ -1,18 +1,20 @@
+#include "samples/kriging/kd_tree.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 
-#include "samples/kriging/kd_tree.h"
-
 namespace voxlink::kriging {
 namespace {
 
-std::vector<Neighbour> bruteForce(const std::vector<Point3>& pts, const Point3& q, size_t k, double maxDistance) {
+std::vector<Neighbour> bruteForce(const std::vector<Point3>& pts, const Point3& q, size_t k,
+                                  double maxDistance) {
   std::vector<Neighbour> all;
   for (uint32_t i = 0; i < pts.size(); ++i) {
-    const double d = std::sqrt((pts[i][0] - q[0]) * (pts[i][0] - q[0]) + (pts[i][1] - q[1]) * (pts[i][1] - q[1]) +
+    const double d = std::sqrt((pts[i][0] - q[0]) * (pts[i][0] - q[0]) +
+                               (pts[i][1] - q[1]) * (pts[i][1] - q[1]) +
                                (pts[i][2] - q[2]) * (pts[i][2] - q[2]));
     if (d <= maxDistance) all.push_back({i, d});
   }

@@ -29,7 +29,8 @@ TEST_P(Exactness, InterpolatesSamplesWithZeroVarianceWhenThereIsNoNugget) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, Exactness,
-                         ::testing::Combine(::testing::Values(VariogramType::kExponential, VariogramType::kSpherical,
+                         ::testing::Combine(::testing::Values(VariogramType::kExponential,
+                                                              VariogramType::kSpherical,
                                                               VariogramType::kMatern),
                                             ::testing::Values(size_t{0}, size_t{16})));
 
@@ -47,7 +48,8 @@ TEST(Kriging, WithANuggetSamplesStillGetTheirOwnValueAndZeroVariance) {
 TEST(Kriging, OrdinaryWeightsSumToOneSimpleWeightsNeedNot) {
   const PointSet s = randomPoints(120, 3);
   KrigingWorkspace ws;
-  const Kriger ok = kriger(s, model(VariogramType::kExponential, 0.5, 8, 25), {.maxNeighbours = 24});
+  const Kriger ok =
+      kriger(s, model(VariogramType::kExponential, 0.5, 8, 25), {.maxNeighbours = 24});
   const Kriger sk = kriger(s, model(VariogramType::kExponential, 0.5, 8, 25),
                            {.kind = KrigingKind::kSimple, .simpleMean = 10, .maxNeighbours = 24});
   for (const Point3& q : {Point3{50, 50, 0}, Point3{1, 99, 0}, Point3{170, 40, 0}}) {
@@ -69,7 +71,8 @@ TEST(Kriging, SymmetricConfigurationGivesEqualWeightsAndTheMean) {
   PointSet s;
   s.coords = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}};
   s.values = {1, 2, 3, 6};
-  for (VariogramType t : {VariogramType::kExponential, VariogramType::kGaussian, VariogramType::kSpherical}) {
+  for (VariogramType t :
+       {VariogramType::kExponential, VariogramType::kGaussian, VariogramType::kSpherical}) {
     const Kriger k = kriger(s, model(t, 0.1, 1, 3));
     KrigingWorkspace ws;
     auto p = k.predict({0, 0, 0}, ws);
@@ -87,7 +90,8 @@ TEST(Kriging, SymmetricConfigurationGivesEqualWeightsAndTheMean) {
 TEST(Kriging, LocalEqualsGlobalWhenTheNeighbourhoodHoldsEverySample) {
   const PointSet s = randomPoints(40, 8, 100, 3);
   const Kriger global = kriger(s, model(VariogramType::kSpherical, 0.2, 5, 60));
-  const Kriger local = kriger(s, model(VariogramType::kSpherical, 0.2, 5, 60), {.maxNeighbours = 40});
+  const Kriger local =
+      kriger(s, model(VariogramType::kSpherical, 0.2, 5, 60), {.maxNeighbours = 40});
   KrigingWorkspace wg, wl;
   for (const Point3& q : {Point3{10, 20, 30}, Point3{77, 3, 50}}) {
     auto g = global.predict(q, wg);

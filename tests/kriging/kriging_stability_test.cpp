@@ -17,12 +17,15 @@ using test::randomPoints;
 // Kriges a 21 x 21 grid over the samples; every node must be finite.
 KrigingSummary krigeSmallGrid(const Kriger& k, double x0, double y0, double step) {
   GridSpec grid{{21, 21, 1}, {x0, y0, 0}, {step, step, 1}};
-  auto summary = krigeGrid(k, grid, [](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
-    for (uint64_t i = 0; i < 21ull * 21 * count; ++i) {
-      EXPECT_TRUE(std::isfinite(v[i]) && std::isfinite(s[i]) && s[i] >= 0) << i;
-    }
-    return Status::ok();
-  }, {.threads = 2});
+  auto summary =
+      krigeGrid(k, grid,
+                [](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
+                  for (uint64_t i = 0; i < 21ull * 21 * count; ++i) {
+                    EXPECT_TRUE(std::isfinite(v[i]) && std::isfinite(s[i]) && s[i] >= 0) << i;
+                  }
+                  return Status::ok();
+                },
+                {.threads = 2});
   EXPECT_TRUE(summary) << summary.message();
   return summary ? *summary : KrigingSummary{};
 }
@@ -84,7 +87,8 @@ TEST(KrigingStability, RefusesWhenEvenTheLargestJitterCannotHelp) {
   PointSet s = randomPoints(20, 6);
   s.coords.push_back({s.coords[0][0] + 1e-9, s.coords[0][1], 0});
   s.values.push_back(1.0);
-  const Kriger k = kriger(s, model(VariogramType::kGaussian, 0, 1, 50), {.mergeDistance = 0, .maxCondition = 10});
+  const Kriger k = kriger(s, model(VariogramType::kGaussian, 0, 1, 50),
+                          {.mergeDistance = 0, .maxCondition = 10});
   KrigingWorkspace ws;
   auto p = k.predict({50, 50, 0}, ws);
   ASSERT_FALSE(p);
@@ -96,7 +100,10 @@ TEST(KrigingStability, RefusesWhenEvenTheLargestJitterCannotHelp) {
 TEST(KrigingStability, UtmSizedCoordinatesGiveTheSameAnswerAsSmallOnes) {
   const PointSet s = randomPoints(80, 7, 1000);
   PointSet shifted = s;
-  for (auto& c : shifted.coords) { c[0] += 4.5e6; c[1] += 5.2e6; }
+  for (auto& c : shifted.coords) {
+    c[0] += 4.5e6;
+    c[1] += 5.2e6;
+  }
   for (VariogramType t : {VariogramType::kExponential, VariogramType::kGaussian}) {
     const Variogram v = model(t, t == VariogramType::kGaussian ? 0.0 : 0.5, 9, 400);
     const Kriger a = kriger(s, v, {.maxNeighbours = 20});
@@ -135,13 +142,15 @@ TEST(KrigingStability, SingleSampleAndAllEqualValues) {
   PointSet one;
   one.coords = {{5, 5, 0}};
   one.values = {3};
-  const KrigingSummary s1 = krigeSmallGrid(kriger(one, model(VariogramType::kGaussian, 0, 1, 10)), 0, 0, 1);
+  const KrigingSummary s1 =
+      krigeSmallGrid(kriger(one, model(VariogramType::kGaussian, 0, 1, 10)), 0, 0, 1);
   EXPECT_EQ(s1.systemsFactored + s1.systemsReused, s1.nodes);
   EXPECT_LE(s1.systemsFactored, 2u);  // at most one per thread: the set never changes
 
   PointSet flat = randomPoints(60, 9);
   for (double& v : flat.values) v = 7.25;
-  const Kriger k = kriger(flat, model(VariogramType::kExponential, 0, 1, 20), {.maxNeighbours = 12});
+  const Kriger k =
+      kriger(flat, model(VariogramType::kExponential, 0, 1, 20), {.maxNeighbours = 12});
   KrigingWorkspace ws;
   for (const Point3& q : {Point3{1, 1, 0}, Point3{50, 50, 0}, Point3{300, -40, 0}}) {
     auto p = k.predict(q, ws);
@@ -155,10 +164,12 @@ TEST(KrigingStability, NodesOutOfReachAreCountedNotSilentNaN) {
   const Kriger k = kriger(s, model(VariogramType::kExponential, 0, 1, 5), {.maxDistance = 3});
   GridSpec grid{{50, 1, 1}, {0, 5, 0}, {1, 1, 1}};
   uint64_t noData = 0;
-  auto summary = krigeGrid(k, grid, [&](uint32_t, uint32_t, const double* v, const double*) -> Status {
-    for (int i = 0; i < 50; ++i) noData += v[i] == -999;
-    return Status::ok();
-  }, {.noData = -999});
+  auto summary = krigeGrid(k, grid,
+                           [&](uint32_t, uint32_t, const double* v, const double*) -> Status {
+                             for (int i = 0; i < 50; ++i) noData += v[i] == -999;
+                             return Status::ok();
+                           },
+                           {.noData = -999});
   ASSERT_TRUE(summary);
   EXPECT_GT(summary->nodesWithoutData, 30u);  // x > 13 is beyond reach of every sample
   EXPECT_EQ(noData, summary->nodesWithoutData);
@@ -189,7 +200,8 @@ TEST(KrigingStability, RefusesGlobalSystemsTooLargeToFactor) {
   ASSERT_FALSE(global);
   EXPECT_EQ(global.code(), ErrorCode::kTooLarge);
   EXPECT_NE(global.message().find("--neighbours"), std::string::npos) << global.message();
-  EXPECT_TRUE(Kriger::make(s, test::model(VariogramType::kExponential, 0, 1, 5), {.maxNeighbours = 32}));
+  EXPECT_TRUE(
+      Kriger::make(s, test::model(VariogramType::kExponential, 0, 1, 5), {.maxNeighbours = 32}));
 }
 
 }  // namespace

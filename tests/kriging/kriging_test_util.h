@@ -20,7 +20,8 @@ inline PointSet randomPoints(size_t n, uint32_t seed, double extent = 100.0, int
   return s;
 }
 
-inline Variogram model(VariogramType type, double nugget, double psill, double range, double nu = 0.5) {
+inline Variogram model(VariogramType type, double nugget, double psill, double range,
+                       double nu = 0.5) {
   return Variogram::make({type, nugget, psill, range, nu}).value();
 }
 

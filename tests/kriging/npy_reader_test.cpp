@@ -1,8 +1,9 @@
 // Every .npy variant the reader accepts, written here per the specification, must load as
 // the same volume: logical a[z][y][x] = 100 z + 10 y + x (mod the type's range).
+#include "convert/readers/npy_reader.h"
+
 #include <gtest/gtest.h>
 
-#include "convert/readers/npy_reader.h"
 #include "convert/volume_source.h"
 #include "samples/kriging/grid_writer.h"
 #include "tests/kriging/npy_test_util.h"
@@ -24,22 +25,26 @@ std::vector<uint8_t> arrayData(bool fortran, bool bigEndian, int shift) {
   if (!fortran) {
     for (uint32_t z = 0; z < kNz; ++z)
       for (uint32_t y = 0; y < kNy; ++y)
-        for (uint32_t x = 0; x < kNx; ++x) appendValue<T>(out, static_cast<T>(expected(x, y, z) - shift), bigEndian);
+        for (uint32_t x = 0; x < kNx; ++x)
+          appendValue<T>(out, static_cast<T>(expected(x, y, z) - shift), bigEndian);
   } else {  // first index (z) fastest
     for (uint32_t x = 0; x < kNx; ++x)
       for (uint32_t y = 0; y < kNy; ++y)
-        for (uint32_t z = 0; z < kNz; ++z) appendValue<T>(out, static_cast<T>(expected(x, y, z) - shift), bigEndian);
+        for (uint32_t z = 0; z < kNz; ++z)
+          appendValue<T>(out, static_cast<T>(expected(x, y, z) - shift), bigEndian);
   }
   return out;
 }
 
 template <class T>
-void checkVariant(const std::string& code, ScalarType type, int major, bool fortran, bool bigEndian) {
+void checkVariant(const std::string& code, ScalarType type, int major, bool fortran,
+                  bool bigEndian) {
   testing::TempDir dir;
   const int shift = std::is_signed_v<T> && sizeof(T) == 1 ? 128 : 0;  // i1 holds -128..127
   const char order = sizeof(T) == 1 ? '|' : bigEndian ? '>' : '<';
-  const std::string dict = cat("{'descr': '", order, code, "', 'fortran_order': ", fortran ? "True" : "False",
-                               ", 'shape': (", kNz, ", ", kNy, ", ", kNx, "), }");
+  const std::string dict =
+      cat("{'descr': '", order, code, "', 'fortran_order': ", fortran ? "True" : "False",
+          ", 'shape': (", kNz, ", ", kNy, ", ", kNx, "), }");
   const std::string path = dir.file("a.npy");
   testing::writeBytes(path, npyBytes(major, dict, arrayData<T>(fortran, bigEndian, shift)));
   const std::string what = cat(code, " v", major, fortran ? " F" : " C", bigEndian ? " BE" : " LE");
@@ -55,7 +60,8 @@ void checkVariant(const std::string& code, ScalarType type, int major, bool fort
   for (uint32_t z = 0; z < kNz; ++z)
     for (uint32_t y = 0; y < kNy; ++y)
       for (uint32_t x = 0; x < kNx; ++x)
-        ASSERT_EQ(v[(z * kNy + y) * kNx + x], static_cast<T>(expected(x, y, z) - shift)) << what << " at " << x << "," << y << "," << z;
+        ASSERT_EQ(v[(z * kNy + y) * kNx + x], static_cast<T>(expected(x, y, z) - shift))
+            << what << " at " << x << "," << y << "," << z;
   // Reading one middle slice alone gives the same values.
   std::vector<T> slice(kNx * kNy);
   ASSERT_TRUE((*source)->read(1, 1, slice.data()));
@@ -85,7 +91,9 @@ TEST(NpyReader, TwoDimensionalAndOneDimensionalShapes) {
   std::vector<uint8_t> data;
   for (int i = 0; i < 6; ++i) appendValue<uint16_t>(data, static_cast<uint16_t>(i), false);
   // (2, 3) in Fortran order: a[r][c] at r + 2 c, so the bytes 0..5 are a = [[0, 2, 4], [1, 3, 5]].
-  testing::writeBytes(dir.file("f.npy"), npyBytes(1, "{'descr': '<u2', 'fortran_order': True, 'shape': (2, 3), }", data));
+  testing::writeBytes(
+      dir.file("f.npy"),
+      npyBytes(1, "{'descr': '<u2', 'fortran_order': True, 'shape': (2, 3), }", data));
   auto f = openVolume(dir.file("f.npy"));
   ASSERT_TRUE(f) << f.message();
   EXPECT_EQ((*f)->info().dims, (std::array<uint32_t, 3>{3, 2, 1}));
@@ -94,11 +102,15 @@ TEST(NpyReader, TwoDimensionalAndOneDimensionalShapes) {
   const auto* v = reinterpret_cast<const uint16_t*>(all->data());
   EXPECT_EQ(std::vector<uint16_t>(v, v + 6), (std::vector<uint16_t>{0, 2, 4, 1, 3, 5}));
   // 1-D, Python 2 long literal, leading axes of size 1, unaligned header: all accepted.
-  testing::writeBytes(dir.file("l.npy"), npyBytes(1, "{'descr': '<u2', 'fortran_order': False, 'shape': (1L, 1, 6L), }", data, 16));
+  testing::writeBytes(
+      dir.file("l.npy"),
+      npyBytes(1, "{'descr': '<u2', 'fortran_order': False, 'shape': (1L, 1, 6L), }", data, 16));
   auto l = openVolume(dir.file("l.npy"));
   ASSERT_TRUE(l) << l.message();
   EXPECT_EQ((*l)->info().dims, (std::array<uint32_t, 3>{6, 1, 1}));
-  testing::writeBytes(dir.file("o.npy"), npyBytes(2, "{\"shape\": (6,), \"fortran_order\": False, \"descr\": \"<u2\"}", data));
+  testing::writeBytes(
+      dir.file("o.npy"),
+      npyBytes(2, "{\"shape\": (6,), \"fortran_order\": False, \"descr\": \"<u2\"}", data));
   auto o = openVolume(dir.file("o.npy"));
   ASSERT_TRUE(o) << o.message();
   EXPECT_EQ((*o)->info().dims, (std::array<uint32_t, 3>{6, 1, 1}));
@@ -115,18 +127,66 @@ TEST(NpyReader, BadInputNamesTheFileAndTheField) {
   };
   const std::string good = "{'descr': '<f8', 'fortran_order': False, 'shape': (3,), }";
   std::vector<Case> cases = {
-      {"dtype.npy", "{'descr': '<i8', 'fortran_order': False, 'shape': (3,), }", {}, ErrorCode::kUnsupported, "'descr': '<i8'"},
-      {"complex.npy", "{'descr': '<c16', 'fortran_order': False, 'shape': (3,), }", {}, ErrorCode::kUnsupported, "'descr'"},
-      {"struct.npy", "{'descr': [('a', '<f4')], 'fortran_order': False, 'shape': (3,), }", {}, ErrorCode::kCorrupt, "structured"},
-      {"order.npy", "{'descr': '<f8', 'fortran_order': 0, 'shape': (3,), }", {}, ErrorCode::kCorrupt, "'fortran_order'"},
-      {"shape.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': [3], }", {}, ErrorCode::kCorrupt, "'shape'"},
-      {"neg.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (-3,), }", {}, ErrorCode::kCorrupt, "'shape'"},
-      {"key.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (3,), 'extra': 1}", {}, ErrorCode::kCorrupt, "'extra'"},
-      {"missing.npy", "{'descr': '<f8', 'shape': (3,), }", {}, ErrorCode::kCorrupt, "'fortran_order': missing"},
-      {"scalar.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (), }", {}, ErrorCode::kUnsupported, "scalar"},
-      {"4d.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3, 1, 1), }", {}, ErrorCode::kUnsupported, "'shape'"},
-      {"zero.npy", "{'descr': '<f8', 'fortran_order': False, 'shape': (0,), }", {}, ErrorCode::kInvalidArgument, "'shape'"},
-      {"nobyteorder.npy", "{'descr': '|f8', 'fortran_order': False, 'shape': (3,), }", {}, ErrorCode::kUnsupported, "byte order"},
+      {"dtype.npy",
+       "{'descr': '<i8', 'fortran_order': False, 'shape': (3,), }",
+       {},
+       ErrorCode::kUnsupported,
+       "'descr': '<i8'"},
+      {"complex.npy",
+       "{'descr': '<c16', 'fortran_order': False, 'shape': (3,), }",
+       {},
+       ErrorCode::kUnsupported,
+       "'descr'"},
+      {"struct.npy",
+       "{'descr': [('a', '<f4')], 'fortran_order': False, 'shape': (3,), }",
+       {},
+       ErrorCode::kCorrupt,
+       "structured"},
+      {"order.npy",
+       "{'descr': '<f8', 'fortran_order': 0, 'shape': (3,), }",
+       {},
+       ErrorCode::kCorrupt,
+       "'fortran_order'"},
+      {"shape.npy",
+       "{'descr': '<f8', 'fortran_order': False, 'shape': [3], }",
+       {},
+       ErrorCode::kCorrupt,
+       "'shape'"},
+      {"neg.npy",
+       "{'descr': '<f8', 'fortran_order': False, 'shape': (-3,), }",
+       {},
+       ErrorCode::kCorrupt,
+       "'shape'"},
+      {"key.npy",
+       "{'descr': '<f8', 'fortran_order': False, 'shape': (3,), 'extra': 1}",
+       {},
+       ErrorCode::kCorrupt,
+       "'extra'"},
+      {"missing.npy",
+       "{'descr': '<f8', 'shape': (3,), }",
+       {},
+       ErrorCode::kCorrupt,
+       "'fortran_order': missing"},
+      {"scalar.npy",
+       "{'descr': '<f8', 'fortran_order': False, 'shape': (), }",
+       {},
+       ErrorCode::kUnsupported,
+       "scalar"},
+      {"4d.npy",
+       "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3, 1, 1), }",
+       {},
+       ErrorCode::kUnsupported,
+       "'shape'"},
+      {"zero.npy",
+       "{'descr': '<f8', 'fortran_order': False, 'shape': (0,), }",
+       {},
+       ErrorCode::kInvalidArgument,
+       "'shape'"},
+      {"nobyteorder.npy",
+       "{'descr': '|f8', 'fortran_order': False, 'shape': (3,), }",
+       {},
+       ErrorCode::kUnsupported,
+       "byte order"},
   };
   for (Case& c : cases) c.bytes = npyBytes(1, c.dict, data);
   std::vector<uint8_t> truncated = npyBytes(1, good, data);
@@ -158,7 +218,9 @@ TEST(NpyReader, BadInputNamesTheFileAndTheField) {
 TEST(NpyReader, OptionsMustAgreeWithTheHeader) {
   testing::TempDir dir;
   std::vector<uint8_t> data(24, 0);
-  testing::writeBytes(dir.file("a.npy"), npyBytes(1, "{'descr': '<f8', 'fortran_order': False, 'shape': (3,), }", data));
+  testing::writeBytes(
+      dir.file("a.npy"),
+      npyBytes(1, "{'descr': '<f8', 'fortran_order': False, 'shape': (3,), }", data));
   OpenOptions o;
   o.dims = std::array<uint32_t, 3>{4, 1, 1};
   auto r = openVolume(dir.file("a.npy"), o);

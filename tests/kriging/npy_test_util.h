@@ -9,15 +9,16 @@
 
 namespace voxlink::testing {
 
-inline std::vector<uint8_t> npyBytes(int major, const std::string& dict, const std::vector<uint8_t>& data,
-                                     size_t align = 64) {
+inline std::vector<uint8_t> npyBytes(int major, const std::string& dict,
+                                     const std::vector<uint8_t>& data, size_t align = 64) {
   const size_t lengthBytes = major == 1 ? 2 : 4;
   std::string header = dict;
   const size_t fixed = 8 + lengthBytes;
   while ((fixed + header.size() + 1) % align != 0) header += ' ';
   header += '\n';
   std::vector<uint8_t> out = {0x93, 'N', 'U', 'M', 'P', 'Y', static_cast<uint8_t>(major), 0};
-  for (size_t i = 0; i < lengthBytes; ++i) out.push_back(static_cast<uint8_t>((header.size() >> (8 * i)) & 0xff));
+  for (size_t i = 0; i < lengthBytes; ++i)
+    out.push_back(static_cast<uint8_t>((header.size() >> (8 * i)) & 0xff));
   out.insert(out.end(), header.begin(), header.end());
   out.insert(out.end(), data.begin(), data.end());
   return out;

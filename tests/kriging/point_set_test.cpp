@@ -1,8 +1,9 @@
+#include "samples/kriging/point_set.h"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
-#include "samples/kriging/point_set.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::kriging {
@@ -25,7 +26,8 @@ TEST(PointSet, ReadsWalkerLakeCsvSkippingNA) {
 
 TEST(PointSet, ReadsTheGeoEasSampleFile) {
   VOXLINK_REQUIRE_DATA("geostat/vtk_b_100sampledatawl.sgems");
-  auto p = readPoints(testing::dataPath("geostat/vtk_b_100sampledatawl.sgems"), {"X", "Y", "Z", "U-random-samplingtrans"});
+  auto p = readPoints(testing::dataPath("geostat/vtk_b_100sampledatawl.sgems"),
+                      {"X", "Y", "Z", "U-random-samplingtrans"});
   ASSERT_TRUE(p) << p.message();
   EXPECT_EQ(p->size(), 100u);
   EXPECT_EQ(p->dimension, 3);

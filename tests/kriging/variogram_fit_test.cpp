@@ -1,19 +1,20 @@
+#include "samples/kriging/variogram_fit.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "samples/kriging/variogram_fit.h"
 
 namespace voxlink::kriging {
 namespace {
 
 TEST(VariogramFit, RecoversTheModelFromItsOwnBins) {
-  for (VariogramType t : {VariogramType::kExponential, VariogramType::kSpherical, VariogramType::kGaussian,
-                          VariogramType::kMatern}) {
+  for (VariogramType t : {VariogramType::kExponential, VariogramType::kSpherical,
+                          VariogramType::kGaussian, VariogramType::kMatern}) {
     const VariogramParams truth{t, 0.3, 2.0, 37.0, 1.5};
     const Variogram v = Variogram::make(truth).value();
     std::vector<VariogramBin> bins;
-    for (int i = 1; i <= 20; ++i) bins.push_back({i * 4.0, v.gamma(i * 4.0), uint64_t(100 + 10 * i)});
+    for (int i = 1; i <= 20; ++i)
+      bins.push_back({i * 4.0, v.gamma(i * 4.0), uint64_t(100 + 10 * i)});
     auto fit = fitVariogram(bins, {t, 1.5, true});
     ASSERT_TRUE(fit) << fit.message();
     EXPECT_NEAR(fit->nugget, 0.3, 1e-4) << variogramTypeName(t);

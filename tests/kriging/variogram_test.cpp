@@ -1,8 +1,8 @@
+#include "samples/kriging/variogram.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "samples/kriging/variogram.h"
 
 namespace voxlink::kriging {
 namespace {
@@ -14,7 +14,8 @@ Variogram make(VariogramType type, double nugget, double psill, double range, do
 }
 
 TEST(Variogram, PracticalRangeIsWhereCorrelationFallsToExpMinusThree) {
-  for (VariogramType t : {VariogramType::kExponential, VariogramType::kGaussian, VariogramType::kMatern}) {
+  for (VariogramType t :
+       {VariogramType::kExponential, VariogramType::kGaussian, VariogramType::kMatern}) {
     for (double nu : {0.3, 0.5, 1.5, 3.0}) {
       const Variogram v = make(t, 0, 2, 30, nu);
       EXPECT_NEAR(v.correlation(30), std::exp(-3.0), 1e-9) << variogramTypeName(t) << " nu " << nu;
@@ -29,7 +30,8 @@ TEST(Variogram, PracticalRangeIsWhereCorrelationFallsToExpMinusThree) {
 TEST(Variogram, MaternWithHalfSmoothnessIsExponential) {
   const Variogram m = make(VariogramType::kMatern, 0.1, 1, 25, 0.5);
   const Variogram e = make(VariogramType::kExponential, 0.1, 1, 25);
-  for (double h : {0.01, 1.0, 5.0, 12.5, 25.0, 60.0}) EXPECT_NEAR(m.gamma(h), e.gamma(h), 1e-9) << h;
+  for (double h : {0.01, 1.0, 5.0, 12.5, 25.0, 60.0})
+    EXPECT_NEAR(m.gamma(h), e.gamma(h), 1e-9) << h;
   EXPECT_NEAR(m.maternScale(), 25.0 / 3.0, 1e-6);  // gstat range of the exponential
 }
 
@@ -51,11 +53,15 @@ TEST(Variogram, ParsesModelsAndRejectsBadOnes) {
   auto m = parseVariogram("mat:psill=2,range=10,nu=1.5");
   ASSERT_TRUE(m);
   EXPECT_DOUBLE_EQ(m->smoothness, 1.5);
-  struct Bad { const char* text; const char* mentions; };
-  for (const Bad& bad : {Bad{"cubic:range=3", "cubic"}, Bad{"exp:psill=1", "range"}, Bad{"exp:range=-1", "range"},
-                         Bad{"exp:range=3,nugget=-1", "nugget"}, Bad{"exp:range=3,foo=2", "foo"},
-                         Bad{"exp:range=abc", "abc"}, Bad{"mat:range=3,nu=0", "smoothness"},
-                         Bad{"exp:range=3,psill=0,nugget=0", "sill"}}) {
+  struct Bad {
+    const char* text;
+    const char* mentions;
+  };
+  for (const Bad& bad :
+       {Bad{"cubic:range=3", "cubic"}, Bad{"exp:psill=1", "range"}, Bad{"exp:range=-1", "range"},
+        Bad{"exp:range=3,nugget=-1", "nugget"}, Bad{"exp:range=3,foo=2", "foo"},
+        Bad{"exp:range=abc", "abc"}, Bad{"mat:range=3,nu=0", "smoothness"},
+        Bad{"exp:range=3,psill=0,nugget=0", "sill"}}) {
     auto r = parseVariogram(bad.text);
     ASSERT_FALSE(r) << bad.text;
     EXPECT_EQ(r.code(), ErrorCode::kInvalidArgument);

@@ -44,13 +44,15 @@ TEST(WalkerLake, KrigingBeatsTheMeanAndNearestNeighbourOnTheExhaustiveGrid) {
   const Kriger k = Kriger::make(samples, v, {.maxNeighbours = 16}).value();
   std::vector<double> kriged;
   GridSpec grid{{260, 300, 1}, {1, 1, 0}, {1, 1, 1}};
-  auto summary = krigeGrid(k, grid, [&](uint32_t, uint32_t, const double* val, const double*) -> Status {
-    kriged.assign(val, val + 78000);
-    return Status::ok();
-  });
+  auto summary =
+      krigeGrid(k, grid, [&](uint32_t, uint32_t, const double* val, const double*) -> Status {
+        kriged.assign(val, val + 78000);
+        return Status::ok();
+      });
   ASSERT_TRUE(summary) << summary.message();
   EXPECT_EQ(summary->regularizedNodes, 0u);
-  const Errors krig = compare(truth, [&](uint32_t x, uint32_t y) { return kriged[(y - 1) * 260 + x - 1]; });
+  const Errors krig =
+      compare(truth, [&](uint32_t x, uint32_t y) { return kriged[(y - 1) * 260 + x - 1]; });
 
   double sampleMean = 0;
   for (double s : samples.values) sampleMean += s;
@@ -74,7 +76,8 @@ TEST(WalkerLake, LeaveOneOutIsConsistentWithTheKrigingVariance) {
   const PointSet samples = test::walkerSamples();
   auto bins = experimentalVariogram(samples);
   ASSERT_TRUE(bins);
-  const Variogram v = Variogram::make(fitVariogram(*bins, {VariogramType::kSpherical}).value()).value();
+  const Variogram v =
+      Variogram::make(fitVariogram(*bins, {VariogramType::kSpherical}).value()).value();
   const Kriger k = Kriger::make(samples, v, {.maxNeighbours = 16}).value();
   auto cv = leaveOneOut(k);
   ASSERT_TRUE(cv) << cv.message();
