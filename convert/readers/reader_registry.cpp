@@ -9,6 +9,8 @@
 #include "convert/readers/metaimage_reader.h"
 #include "convert/readers/nifti_reader.h"
 #include "convert/readers/nrrd_reader.h"
+#include "convert/readers/gslib_reader.h"
+#include "convert/readers/npy_reader.h"
 #include "convert/readers/raw_reader.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/vdb_reader.h"
@@ -61,6 +63,8 @@ const std::vector<ReaderEntry>& readerRegistry() {
                  },
                  openImageStack});
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});
+    r.push_back({"npy", [](const std::string& path) { return lowerExtension(path) == ".npy" || hasNpyMagic(path); }, openNpy});
+    r.push_back({"gslib", looksLikeGslib, openGslib});
     return r;
   }();
   return registry;
