@@ -8,6 +8,8 @@ void addSourceOptions(CLI::App& cmd, SourceArgs& args) {
   cmd.add_option("--endian", args.endian, "Raw input: byte order")->check(CLI::IsMember({"little", "big"}));
   cmd.add_option("--header-bytes", args.headerBytes, "Raw input: bytes to skip before the data");
   cmd.add_option("--spacing", args.spacing, "Voxel size along x,y,z (overrides the file's)")->delimiter(',')->expected(3);
+  cmd.add_option("--vdb-grid", args.vdbGrid, ".vdb input: the grid to read (default: the first float grid)");
+  cmd.add_option("--variable", args.variable, "GSLIB/GEO-EAS input: the column to read (default: the first)");
   cmd.add_option("--format", args.format, "Force a reader: " + [] {
     std::string names;
     for (const std::string& n : convert::readerNames()) names += (names.empty() ? "" : ", ") + n;
@@ -31,6 +33,8 @@ Result<convert::OpenOptions> toOpenOptions(const SourceArgs& args) {
     o.spacing = std::array<double, 3>{args.spacing[0], args.spacing[1], args.spacing[2]};
   }
   o.format = args.format;
+  o.vdbGrid = args.vdbGrid;
+  o.variable = args.variable;
   return o;
 }
 

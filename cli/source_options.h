@@ -18,6 +18,8 @@ struct SourceArgs {
   uint64_t headerBytes = 0;
   std::vector<double> spacing;
   std::string format;
+  std::string vdbGrid;
+  std::string variable;
 };
 
 void addSourceOptions(CLI::App& cmd, SourceArgs& args);

@@ -127,6 +127,32 @@ inline double gradientErrorDeg(double gx, double gy, double gz, uint16_t code) {
   return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot) * (180.0 / 3.14159265358979323846);
 }
 
+// Differences of two source values without losing precision: integers exactly, floats in
+// their own precision (a float of 1e6 + 1e-3 would lose it), then one conversion to float.
+template <class T>
+using DifferenceType = std::conditional_t<std::is_integral_v<T>, std::conditional_t<(sizeof(T) <= 2), int32_t, int64_t>, T>;
+
+// Central differences of every cell of an interior brick, in source order (x fastest), into
+// g[0..2][(z*n + y)*n + x]: n-long contiguous loops the compiler vectorizes. Float and integer
+// sources only (double sources take the per-voxel path, which guards float overflow).
+template <class T>
+void denseBrickGradients(const T* brick, const int64_t stride[3], uint32_t n, const float scale[3],
+                         float* __restrict gx, float* __restrict gy, float* __restrict gz) {
+  using D = DifferenceType<T>;
+  const int64_t sy = stride[1], sz = stride[2];
+  for (uint32_t z = 0; z < n; ++z) {
+    for (uint32_t y = 0; y < n; ++y) {
+      const T* __restrict p = brick + z * sz + y * sy;
+      const size_t o = (size_t{z} * n + y) * n;
+      for (int64_t x = 0; x < int64_t{n}; ++x) {
+        gx[o + x] = static_cast<float>(static_cast<D>(p[x + 1]) - static_cast<D>(p[x - 1])) * scale[0];
+        gy[o + x] = static_cast<float>(static_cast<D>(p[x + sy]) - static_cast<D>(p[x - sy])) * scale[1];
+        gz[o + x] = static_cast<float>(static_cast<D>(p[x + sz]) - static_cast<D>(p[x - sz])) * scale[2];
+      }
+    }
+  }
+}
+
 // Encodes one occupied brick: its row starts, row masks, values and gradients. `Interior`
 // says the brick and a one-voxel margin lie inside the volume, so no border tests are needed.
 template <class T, class Keep, bool Interior>
@@ -134,7 +160,8 @@ uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t di
                      const int64_t stride[3], const format::AxisFrame frame, uint32_t n,
                      const Keep keep, const ValueMapping& mapping, bool lossless, const double half[3],
                      const double full[3], uint32_t expected, uint16_t* rows, uint32_t* mask,
-                     uint8_t* values, float* gx, float* gy, float* gz, EncodeStats& stats) {
+                     uint8_t* values, float* gx, float* gy, float* gz, const float* const dense[3],
+                     EncodeStats& stats) {
   const int su = frame.u, sv = frame.v, sw = frame.w;
   const uint32_t extentU = Interior ? n : std::min(n, dims[su] - origin[su]);
   const uint32_t extentV = Interior ? n : std::min(n, dims[sv] - origin[sv]);
@@ -178,6 +205,18 @@ uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t di
       }
       std::memcpy(values + count * valueSize, &stored, valueSize);  // little-endian host
       // Gradient: central differences, one-sided at the volume border.
+      if (dense[0]) {  // computed for the whole brick already
+        uint32_t local[3];
+        local[su] = u;
+        local[sv] = v;
+        local[sw] = d;
+        const size_t index = (size_t{local[2]} * n + local[1]) * n + local[0];
+        gx[count] = dense[0][index];
+        gy[count] = dense[1][index];
+        gz[count] = dense[2][index];
+        ++count;
+        continue;
+      }
       double grad[3];
       if constexpr (Interior) {
         for (int a = 0; a < 3; ++a)
@@ -227,12 +266,20 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
   const double half[3] = {0.5 / g.spacing[0], 0.5 / g.spacing[1], 0.5 / g.spacing[2]};
   const double full[3] = {1.0 / g.spacing[0], 1.0 / g.spacing[1], 1.0 / g.spacing[2]};
   thread_local struct {
-    std::vector<float> gx, gy, gz;
+    std::vector<float> gx, gy, gz;           // gradients of the brick's kept voxels
+    std::vector<float> denseX, denseY, denseZ;  // gradients of every cell of an interior brick
   } scratch;
   const size_t cells = uint64_t{n} * n * n;
   scratch.gx.resize(cells);
   scratch.gy.resize(cells);
   scratch.gz.resize(cells);
+  constexpr bool kDense = !std::is_same_v<T, double>;
+  if (kDense) {
+    scratch.denseX.resize(cells);
+    scratch.denseY.resize(cells);
+    scratch.denseZ.resize(cells);
+  }
+  const float halfF[3] = {static_cast<float>(half[0]), static_cast<float>(half[1]), static_cast<float>(half[2])};
 
   uint64_t k = firstOccupied;
   for (uint32_t bx = 0; bx < g.grid[0]; ++bx) {
@@ -247,11 +294,19 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
                      int64_t{origin[1]} * stride[1] + origin[0];
     bool interior = true;
     for (int a = 0; a < 3; ++a) interior &= origin[a] > 0 && origin[a] + n < dims[a];
+    const float* dense[3] = {nullptr, nullptr, nullptr};
+    if (kDense && interior) {
+      denseBrickGradients(brick, stride, n, halfF, scratch.denseX.data(), scratch.denseY.data(), scratch.denseZ.data());
+      dense[0] = scratch.denseX.data();
+      dense[1] = scratch.denseY.data();
+      dense[2] = scratch.denseZ.data();
+    }
+    float* const out3[3] = {scratch.gx.data(), scratch.gy.data(), scratch.gz.data()};
     const uint32_t count =
         interior ? encodeBrick<T, Keep, true>(brick, origin, dims, stride, g.frame, n, keep, mapping, lossless, half, full,
-                                              counts[bx], rows, mask, values, scratch.gx.data(), scratch.gy.data(), scratch.gz.data(), stats)
+                                              counts[bx], rows, mask, values, out3[0], out3[1], out3[2], dense, stats)
                  : encodeBrick<T, Keep, false>(brick, origin, dims, stride, g.frame, n, keep, mapping, lossless, half, full,
-                                               counts[bx], rows, mask, values, scratch.gx.data(), scratch.gy.data(), scratch.gz.data(), stats);
+                                               counts[bx], rows, mask, values, out3[0], out3[1], out3[2], dense, stats);
     if (count != counts[bx]) {
       stats.countMismatch = true;
       return;

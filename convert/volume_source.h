@@ -63,6 +63,8 @@ struct OpenOptions {
   uint64_t headerBytes = 0;  // raw: bytes to skip before the data
   std::optional<std::array<double, 3>> spacing;  // overrides the file's spacing
   std::string format;        // force a reader ("raw", "nrrd", ...) instead of guessing
+  std::string vdbGrid;       // .vdb: the grid to read (default: the first float grid)
+  std::string variable;      // multi-variable inputs (GSLIB/GEO-EAS): which column to read
 };
 
 // Opens `path` with the reader its name or content calls for.

@@ -111,26 +111,33 @@ uint16_t encodeGradient(double x, double y, double z) {
 
 namespace {
 
-// Per-direction intermediate results of the vectorized half of encodeGradients().
-struct EncodeScratch {
-  std::vector<float> zn, ratio;
-  std::vector<int32_t> theta, j, flags;
-  void resize(size_t n) {
-    zn.resize(n);
-    ratio.resize(n);
-    theta.resize(n);
-    j.resize(n);
-    flags.resize(n);
-  }
-};
 
-enum : int32_t { kValid = 1, kSteep = 2, kNegX = 4, kNegY = 8 };
 
-// Branch-free float arithmetic: first guesses of the polar and azimuth steps.
-__attribute__((target_clones("avx2", "default"))) void guessSteps(
-    const float* __restrict gx, const float* __restrict gy, const float* __restrict gz, size_t count,
-    float* __restrict znOut, float* __restrict ratioOut, int32_t* __restrict thetaOut,
-    int32_t* __restrict jOut, int32_t* __restrict flagsOut) {
+// Float arcsine on [0, 1] and arctangent on [0, 1] accurate to a few float ulps (Cephes-style
+// minimax polynomials with range reduction), branch-free so loops over them vectorize.
+inline float asinUnit(float a) {  // a in [0, 1]
+  const bool big = a > 0.5f;
+  const float z = big ? 0.5f * (1.0f - a) : a * a;
+  const float x = big ? std::sqrt(z) : a;
+  const float p = ((((4.2163199048e-2f * z + 2.4181311049e-2f) * z + 4.5470025998e-2f) * z + 7.4953002686e-2f) * z +
+                   1.6666752422e-1f) * z * x + x;
+  return big ? 1.5707963267948966f - 2.0f * p : p;
+}
+
+inline float atanUnit(float r) {  // r in [0, 1]
+  const bool big = r > 0.4142135623730950f;  // tan(pi/8)
+  const float x = big ? (r - 1.0f) / (r + 1.0f) : r;
+  const float z = x * x;
+  const float p = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) * z * x + x;
+  return big ? 0.7853981633974483f + p : p;
+}
+
+// The whole batch encoder: branch-free float arithmetic the compiler vectorizes (AVX2 clone
+// where the CPU has it). Rounding to the nearest step is exact up to float rounding.
+__attribute__((target_clones("avx2", "default"))) void encodeBatch(const float* __restrict gx,
+                                                                 const float* __restrict gy,
+                                                                 const float* __restrict gz,
+                                                                 uint16_t* __restrict codes, size_t count) {
   constexpr float kPi = 3.14159265358979323846f;
   constexpr float kMaxFloat = std::numeric_limits<float>::max();
   for (size_t i = 0; i < count; ++i) {
@@ -148,44 +155,29 @@ __attribute__((target_clones("avx2", "default"))) void guessSteps(
     y *= inv;
     z = valid ? z * inv : 1.0f;
     const float zn = std::min(1.0f, std::max(-1.0f, z / std::sqrt(x * x + y * y + z * z)));
-    const float a = std::abs(zn);
-    const float r = std::sqrt(1.0f - a) * (1.5707288f + a * (-0.2121144f + a * (0.0742610f - 0.0187293f * a)));
-    const float polar = zn >= 0.0f ? r : kPi - r;
+    // Polar angle from +z: acos(zn) = pi/2 - asin(zn).
+    const float asinAbs = asinUnit(std::abs(zn));
+    const float polar = zn >= 0.0f ? 1.5707963267948966f - asinAbs : 1.5707963267948966f + asinAbs;
+    int32_t theta = static_cast<int32_t>(polar * (kPolarSteps / kPi) + 0.5f);
+    theta = std::min(std::max(theta, 0), int32_t{kPolarSteps});
+    // Azimuth: the first-octant angle, unfolded by the signs and the larger component.
     const float sx = std::abs(x), sy = std::abs(y);
     const float lo = std::min(sx, sy), hi = std::max(sx, sy);
     const float ratio = lo / (hi > 0.0f ? hi : 1.0f);
-    const float azimuth = ratio * (kPi / 4) - ratio * (ratio - 1.0f) * (0.2447f + 0.0663f * ratio);
-    znOut[i] = zn;
-    ratioOut[i] = ratio;
-    thetaOut[i] = static_cast<int32_t>(polar * (kPolarSteps / kPi) + 0.5f);
-    jOut[i] = static_cast<int32_t>(azimuth * (kAzimuthSteps / (2 * kPi)) + 0.5f);
-    flagsOut[i] = (valid ? kValid : 0) | (sy > sx ? kSteep : 0) | (x < 0 ? kNegX : 0) | (y < 0 ? kNegY : 0);
+    int32_t j = static_cast<int32_t>(atanUnit(ratio) * (kAzimuthSteps / (2 * kPi)) + 0.5f);
+    j = std::min(std::max(j, 0), int32_t{kAzimuthSteps / 8});
+    int32_t phi = sy > sx ? kAzimuthSteps / 4 - j : j;
+    phi = x < 0 ? kAzimuthSteps / 2 - phi : phi;
+    phi = y < 0 ? (kAzimuthSteps - phi) & 0xFF : phi;
+    phi = (theta == 0 || theta == kPolarSteps) ? 0 : phi;
+    codes[i] = static_cast<uint16_t>(valid ? (theta << 8 | phi) : kZeroGradient);
   }
 }
 
 }  // namespace
 
 void encodeGradients(const float* x, const float* y, const float* z, uint16_t* codes, size_t count) {
-  thread_local EncodeScratch s;
-  s.resize(count);
-  guessSteps(x, y, z, count, s.zn.data(), s.ratio.data(), s.theta.data(), s.j.data(), s.flags.data());
-  const PolarTables& t = tables();
-  constexpr int kOctant = kAzimuthSteps / 8;
-  for (size_t i = 0; i < count; ++i) {
-    const int32_t flags = s.flags[i];
-    const double zn = s.zn[i], ratio = s.ratio[i];
-    int theta = std::clamp(s.theta[i], 0, kPolarSteps);
-    theta += zn < t.cosBoundary[theta + 1];
-    theta -= !(zn < t.cosBoundary[theta]);
-    int j = std::clamp(s.j[i], 0, kOctant);
-    j += ratio > t.tanBoundary[j + 1];
-    j -= !(ratio > t.tanBoundary[j]);
-    int phi = (flags & kSteep) ? kAzimuthSteps / 4 - j : j;
-    phi = (flags & kNegX) ? kAzimuthSteps / 2 - phi : phi;
-    phi = (flags & kNegY) ? (kAzimuthSteps - phi) & 0xFF : phi;
-    phi = (theta == 0 || theta == kPolarSteps) ? 0 : phi;
-    codes[i] = (flags & kValid) ? static_cast<uint16_t>(theta << 8 | phi) : kZeroGradient;
-  }
+  encodeBatch(x, y, z, codes, count);
 }
 
 uint16_t encodeGradient(float x, float y, float z) {

@@ -13,6 +13,8 @@ packages=(
   libglfw3-dev libglm-dev libepoxy-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0
   libimgui-dev xvfb xauth
   python3 time
+  libfftw3-dev libzip-dev
+  r-cran-gstat
 )
 apt-get update
 apt-get install -y --no-install-recommends "${packages[@]}"

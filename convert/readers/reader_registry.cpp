@@ -3,13 +3,26 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "convert/readers/dicom_reader.h"
+#include "convert/readers/dicom_series.h"
+#include "convert/readers/image_stack_reader.h"
+#include "convert/readers/metaimage_reader.h"
+#include "convert/readers/nifti_reader.h"
+#include "convert/readers/nrrd_reader.h"
+#include "convert/readers/gslib_reader.h"
+#include "convert/readers/npy_reader.h"
 #include "convert/readers/raw_reader.h"
+#include "convert/readers/reader_common.h"
+#include "convert/readers/vdb_reader.h"
+#include "convert/readers/vti_reader.h"
+#include "convert/readers/vvd_reader.h"
 
 namespace voxlink::convert {
 
 std::string lowerExtension(const std::string& path) {
   std::string name = std::filesystem::path(path).filename().string();
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   const bool gz = name.size() > 3 && name.ends_with(".gz");
   if (gz) name.resize(name.size() - 3);
   const auto dot = name.rfind('.');
@@ -26,7 +39,32 @@ const std::vector<ReaderEntry>& readerRegistry() {
         return std::find(exts.begin(), exts.end(), ext) != exts.end();
       };
     };
+    const auto isDir = [](const std::string& path) {
+      std::error_code ec;
+      return std::filesystem::is_directory(path, ec);
+    };
+    // Names first, then content: a NRRD without its extension still starts with "NRRD000".
+    r.push_back({"nrrd",
+                 [hasExt](const std::string& p) {
+                   return hasExt({".nrrd", ".nhdr"})(p) || fileStartsWith(p, "NRRD000");
+                 },
+                 openNrrd});
+    r.push_back({"metaimage", hasExt({".mhd", ".mha"}), openMetaImage});
+    r.push_back({"nifti", hasExt({".nii", ".nii.gz"}), openNifti});
+    r.push_back({"vvd", hasExt({".vvd"}), openVvd});
+    r.push_back({"vdb", hasExt({".vdb"}), openVdb});
+    r.push_back({"vti", hasExt({".vti"}), openVti});
+    // Folders: DICOM when they hold DICOM files, else a stack of slice images.
+    r.push_back({"dicom", [isDir](const std::string& p) { return isDir(p) && folderHoldsDicom(p); },
+                 openDicomSeries});
+    r.push_back({"image-stack",
+                 [isDir, hasExt](const std::string& p) {
+                   return isDir(p) || hasExt({".tif", ".tiff"})(p);
+                 },
+                 openImageStack});
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});
+    r.push_back({"npy", [](const std::string& path) { return lowerExtension(path) == ".npy" || hasNpyMagic(path); }, openNpy});
+    r.push_back({"gslib", looksLikeGslib, openGslib});
     return r;
   }();
   return registry;

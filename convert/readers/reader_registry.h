@@ -11,8 +11,8 @@
 namespace voxlink::convert {
 
 struct ReaderEntry {
-  std::string name;                                  // --format value
-  std::function<bool(const std::string&)> matches;   // claims a path by name or content
+  std::string name;                                 // --format value
+  std::function<bool(const std::string&)> matches;  // claims a path by name or content
   std::function<Result<std::unique_ptr<VolumeSource>>(const std::string&, const OpenOptions&)> open;
 };
 

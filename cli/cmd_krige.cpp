@@ -1,0 +1,217 @@
+// voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary or simple kriging of scattered samples
+// (CSV or GEO-EAS) onto a regular grid, with the kriging variance as a second grid, the
+// variogram given or fitted, and a summary of the solver's numerical health.
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "cli/command.h"
+#include "cli/krige_options.h"
+#include "samples/kriging/cross_validation.h"
+#include "samples/kriging/grid_writer.h"
+#include "samples/kriging/krige_grid.h"
+#include "samples/kriging/variogram_fit.h"
+
+namespace voxlink::cli {
+namespace {
+
+using namespace voxlink::kriging;
+
+struct KrigeArgs {
+  std::string input, output, varianceOutput;
+  std::string xColumn = "X", yColumn = "Y", zColumn, valueColumn;
+  std::string variogram, fit, kind = "ok", type = "f64";
+  double nu = 0.5, mean = NAN, maxDistance = INFINITY, mergeDistance = -1, noData = NAN,
+         maxCondition = 1e12;
+  bool fixNuggetZero = false, crossValidate = false;
+  size_t neighbours = 0;
+  unsigned threads = 0;
+  std::string dims, origin, spacing;
+};
+
+Result<GridSpec> gridFromArgs(const KrigeArgs& a, const PointSet& points) {
+  const size_t axes = points.dimension;
+  GridSpec grid;
+  Point3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (const Point3& p : points.coords)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  std::vector<double> dims, origin, spacing;
+  if (!a.dims.empty()) {
+    VOXLINK_ASSIGN_OR_RETURN(dims, parseNumberList("--dims", a.dims, axes, axes));
+  }
+  if (!a.origin.empty()) {
+    VOXLINK_ASSIGN_OR_RETURN(origin, parseNumberList("--origin", a.origin, axes, axes));
+  }
+  if (!a.spacing.empty()) {
+    VOXLINK_ASSIGN_OR_RETURN(spacing, parseNumberList("--spacing", a.spacing, axes, axes));
+  }
+  if (dims.empty() && spacing.empty())
+    return makeError(ErrorCode::kInvalidArgument,
+                     "krige: give --dims or --spacing (the grid covers the samples' bounding box "
+                     "unless --origin is given)");
+  for (size_t i = 0; i < axes; ++i) {
+    grid.origin[i] = origin.empty() ? lo[i] : origin[i];
+    if (!dims.empty()) {
+      if (dims[i] < 1 || dims[i] > 1e6 || dims[i] != std::floor(dims[i]))
+        return makeError(ErrorCode::kInvalidArgument, "--dims: axis ", i,
+                         " must be an integer in 1..1000000, got ", dims[i]);
+      grid.dims[i] = static_cast<uint32_t>(dims[i]);
+    }
+    if (!spacing.empty()) {
+      if (!(spacing[i] > 0))
+        return makeError(ErrorCode::kInvalidArgument, "--spacing: axis ", i, " must be > 0");
+      grid.spacing[i] = spacing[i];
+      if (dims.empty())
+        grid.dims[i] =
+            static_cast<uint32_t>(std::floor((hi[i] - grid.origin[i]) / spacing[i] + 1e-9)) + 1;
+    } else {
+      grid.spacing[i] = grid.dims[i] > 1 ? (hi[i] - grid.origin[i]) / (grid.dims[i] - 1) : 1.0;
+      if (!(grid.spacing[i] > 0)) grid.spacing[i] = 1.0;
+    }
+  }
+  return grid;
+}
+
+std::string variancePath(const std::string& out) {
+  const auto dot = out.rfind('.');
+  return out.substr(0, dot) + "_variance" + out.substr(dot);
+}
+
+int runKrige(const KrigeArgs& a) {
+  ColumnSelection columns{a.xColumn, a.yColumn, a.zColumn, a.valueColumn};
+  auto points = readPoints(a.input, columns);
+  if (!points) return reportError(points.error());
+  for (const auto& note : points->notes) std::printf("note: %s\n", note.c_str());
+  std::printf("samples: %zu (%d-D)\n", points->size(), points->dimension);
+
+  VariogramParams params;
+  if (!a.variogram.empty()) {
+    auto parsed = parseVariogram(a.variogram);
+    if (!parsed) return reportError(parsed.error());
+    params = *parsed;
+  } else {
+    auto p = parseVariogram(a.fit + ":range=1");
+    if (!p)
+      return reportError(makeError(ErrorCode::kInvalidArgument,
+                                   "krige: give --variogram MODEL or --fit exp|sph|gau|mat"));
+    auto bins = experimentalVariogram(*points);
+    if (!bins) return reportError(bins.error());
+    auto fitted = fitVariogram(*bins, {p->type, a.nu, !a.fixNuggetZero});
+    if (!fitted) return reportError(fitted.error());
+    params = *fitted;
+    std::printf("experimental variogram: %zu bins; fitted by WLS (pairs/lag^2)\n", bins->size());
+  }
+  auto variogram = Variogram::make(params);
+  if (!variogram) return reportError(variogram.error());
+  std::printf("variogram: %s\n", variogram->describe().c_str());
+
+  KrigingOptions options;
+  options.kind = a.kind == "sk" ? KrigingKind::kSimple : KrigingKind::kOrdinary;
+  options.simpleMean = a.mean;
+  options.maxNeighbours = a.neighbours;
+  options.maxDistance = a.maxDistance;
+  options.mergeDistance = a.mergeDistance;
+  options.maxCondition = a.maxCondition;
+  auto kriger = Kriger::make(*points, *variogram, options);
+  if (!kriger) return reportError(kriger.error());
+  if (kriger->mergedSamples())
+    std::printf("merged: %zu samples closer than %g to another (largest value spread %g)\n",
+                kriger->mergedSamples(), kriger->options().mergeDistance,
+                kriger->largestMergedSpread());
+  if (a.crossValidate) {
+    auto cv = leaveOneOut(*kriger);
+    if (!cv) return reportError(cv.error());
+    std::printf(
+        "leave-one-out: %zu samples, mean error %.6g, RMSE %.6g, mean standardized squared error "
+        "%.4f, r %.4f\n",
+        cv->evaluated, cv->meanError, cv->rmse, cv->meanStandardizedSquaredError, cv->correlation);
+  }
+  if (a.output.empty()) return 0;
+
+  auto grid = gridFromArgs(a, *points);
+  if (!grid) return reportError(grid.error());
+  GridFileInfo info{grid->dims, grid->origin, grid->spacing,
+                    a.type == "f32" ? ScalarType::kF32 : ScalarType::kF64};
+  auto values = GridWriter::create(a.output, info);
+  if (!values) return reportError(values.error());
+  auto variances = GridWriter::create(
+      a.varianceOutput.empty() ? variancePath(a.output) : a.varianceOutput, info);
+  if (!variances) return reportError(variances.error());
+  GridKrigingOptions gridOptions;
+  gridOptions.threads = a.threads;
+  gridOptions.noData = a.noData;
+  auto summary = krigeGrid(
+      *kriger, *grid,
+      [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
+        VOXLINK_RETURN_IF_ERROR((*values)->append(count, v));
+        return (*variances)->append(count, s);
+      },
+      gridOptions);
+  if (!summary) return reportError(summary.error());
+  if (auto st = (*values)->finish(); !st) return reportError(st);
+  if (auto st = (*variances)->finish(); !st) return reportError(st);
+  std::printf("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid->dims[0],
+              grid->dims[1], grid->dims[2], grid->origin[0], grid->origin[1], grid->origin[2],
+              grid->spacing[0], grid->spacing[1], grid->spacing[2], summary->text().c_str());
+  std::printf("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
+              (a.varianceOutput.empty() ? variancePath(a.output) : a.varianceOutput).c_str());
+  return 0;
+}
+
+}  // namespace
+
+CommandRunner addKrigeCommand(CLI::App& app) {
+  auto a = std::make_shared<KrigeArgs>();
+  auto* cmd = app.add_subcommand(
+      "krige", "Krige scattered samples (CSV or GEO-EAS) onto a grid, with kriging variance");
+  cmd->add_option("samples", a->input, "CSV with a header row, or GEO-EAS point file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option(
+      "-o,--output", a->output,
+      "Grid file: NAME.nhdr (raw + NRRD header) or NAME.npy; omit to only fit/cross-validate");
+  cmd->add_option("--variance-output", a->varianceOutput,
+                  "Kriging variance grid (default: NAME_variance.nhdr/.npy)");
+  cmd->add_option("--x", a->xColumn, "x column name")->capture_default_str();
+  cmd->add_option("--y", a->yColumn, "y column name")->capture_default_str();
+  cmd->add_option("--z", a->zColumn, "z column name (omit for 2-D samples)");
+  cmd->add_option("--value", a->valueColumn, "value column name")->required();
+  cmd->add_option("--variogram", a->variogram,
+                  "Model, e.g. sph:nugget=0.1,psill=0.9,range=40 (exp|sph|gau|mat; range = "
+                  "practical range; mat takes nu=)");
+  cmd->add_option("--fit", a->fit,
+                  "Fit this model type to the experimental variogram instead (exp|sph|gau|mat)");
+  cmd->add_option("--nu", a->nu, "Matern smoothness for --fit mat")->capture_default_str();
+  cmd->add_flag("--no-nugget", a->fixNuggetZero, "With --fit: keep the nugget at 0");
+  cmd->add_option("--kind", a->kind, "ok (ordinary) or sk (simple, needs --mean)")
+      ->check(CLI::IsMember({"ok", "sk"}))
+      ->capture_default_str();
+  cmd->add_option("--mean", a->mean, "Known mean for simple kriging");
+  cmd->add_option("-k,--neighbours", a->neighbours,
+                  "Nearest samples per node (0: all, global kriging)")
+      ->capture_default_str();
+  cmd->add_option("--max-distance", a->maxDistance, "Search radius (default: unlimited)");
+  cmd->add_option("--merge-distance", a->mergeDistance,
+                  "Merge samples closer than this (default 1e-9 x bounding-box diagonal)");
+  cmd->add_option("--max-condition", a->maxCondition,
+                  "Regularize systems whose condition estimate exceeds this")
+      ->capture_default_str();
+  cmd->add_option("--dims", a->dims, "Grid nodes per axis, e.g. 260,300");
+  cmd->add_option("--origin", a->origin,
+                  "Coordinates of the first node (default: samples' minimum)");
+  cmd->add_option("--spacing", a->spacing,
+                  "Node spacing per axis (default: bounding box / (dims - 1))");
+  cmd->add_option("--type", a->type, "Stored value type")
+      ->check(CLI::IsMember({"f64", "f32"}))
+      ->capture_default_str();
+  cmd->add_option("--nodata", a->noData,
+                  "Value written where no sample is within --max-distance (default NaN)");
+  cmd->add_flag("--cross-validate", a->crossValidate, "Print leave-one-out statistics");
+  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)");
+  return [a] { return runKrige(*a); };
+}
+
+}  // namespace voxlink::cli

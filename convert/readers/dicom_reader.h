@@ -1,0 +1,15 @@
+// DICOM series from a folder (GDCM 3): one file per z slice, ordered by position along the
+// slice normal, RescaleSlope/RescaleIntercept applied.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "convert/volume_source.h"
+
+namespace voxlink::convert {
+
+Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+                                                      const OpenOptions& options);
+
+}  // namespace voxlink::convert

@@ -1,0 +1,32 @@
+// Checks every header-driven reader applies to the VolumeInfo it built: sane dims, and the
+// command line's --dims/--type (must agree with the header) and --spacing (overrides it).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "convert/volume_source.h"
+
+namespace voxlink::convert {
+
+// Largest volume any reader accepts (2^40 voxels), so hostile headers fail before allocating.
+constexpr uint64_t kMaxVoxels = uint64_t{1} << 40;
+
+// kCorrupt for a zero axis, kTooLarge beyond kMaxVoxels; `field` names the header field.
+Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file,
+                 std::string_view field);
+
+// Applies OpenOptions to a header's VolumeInfo: kInvalidArgument when --dims or --type
+// disagree with the header; --spacing replaces the header spacing (with a note).
+Status applyOpenOptions(VolumeInfo& info, const OpenOptions& options);
+
+// Spacing must be finite and positive; `field` names where it came from.
+Status checkSpacing(const std::array<double, 3>& spacing, const std::string& file,
+                    std::string_view field);
+
+// True when the first bytes of `path` are `magic` (false for unreadable files and directories).
+bool fileStartsWith(const std::string& path, std::string_view magic);
+
+}  // namespace voxlink::convert

@@ -1,0 +1,30 @@
+// Dense Cholesky factorization of a symmetric positive definite matrix with a 1-norm condition
+// estimate (Hager/Higham), the solver behind every kriging system. Small systems only
+// (neighbourhoods of a few hundred points; global kriging of a few thousand).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace voxlink::kriging {
+
+class Cholesky {
+ public:
+  // Factors a + jitter * I (row-major n x n, only the lower triangle is read).
+  // Returns false when the matrix is not numerically positive definite.
+  bool factor(const std::vector<double>& a, size_t n, double jitter);
+  // Solves (A + jitter I) x = b in place.
+  void solve(double* b) const;
+  // Estimate of the 1-norm condition number ||A|| ||A^-1|| of the factored matrix (a lower
+  // bound that is almost always within a factor of 3 of the truth).
+  double conditionEstimate() const;
+  size_t size() const { return n_; }
+
+ private:
+  size_t n_ = 0;
+  double norm1_ = 0;       // ||A + jitter I||_1
+  std::vector<double> l_;  // lower factor, row-major
+  mutable std::vector<double> work_, work2_;
+};
+
+}  // namespace voxlink::kriging

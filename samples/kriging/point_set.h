@@ -1,0 +1,44 @@
+// Scattered samples (2-D or 3-D coordinates with one value each) and the readers for the
+// text tables they come in: CSV with a header row, and GEO-EAS / GSLIB point files.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "format/error.h"
+
+namespace voxlink::kriging {
+
+using Point3 = std::array<double, 3>;
+
+struct PointSet {
+  int dimension = 2;  // 2: z is 0 for every point
+  std::vector<Point3> coords;
+  std::vector<double> values;
+  std::vector<std::string> notes;  // rows skipped and why, for the command's summary
+
+  size_t size() const { return values.size(); }
+};
+
+struct ColumnSelection {
+  std::string x = "X";
+  std::string y = "Y";
+  std::string z;      // empty: 2-D data
+  std::string value;  // required
+};
+
+// Reads a CSV table with a header row. Names are matched case-insensitively and may be quoted.
+// Rows whose value is NA, NaN or empty are skipped (counted in notes); a missing or non-numeric
+// coordinate is an error naming the line and column.
+Result<PointSet> readCsvPoints(const std::string& path, const ColumnSelection& columns);
+
+// Reads a GEO-EAS point file (title line, variable count, one name per line, whitespace
+// separated rows), as SGeMS and GSLIB write them. Values <= -1e21 or equal to SGeMS's
+// no-data marker -9966699 are skipped.
+Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection& columns);
+
+// Picks the reader by content: a first line with a comma is CSV, anything else GEO-EAS.
+Result<PointSet> readPoints(const std::string& path, const ColumnSelection& columns);
+
+}  // namespace voxlink::kriging

@@ -1,0 +1,117 @@
+// OpenVDB: a float grid built here from the neghip volume (active where the value >= 40, at an
+// index offset, with an active tile and an inactive voxel holding a non-background value) must
+// read back as the dense box of its active voxels, background elsewhere.
+#include <gtest/gtest.h>
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+
+#include <cstring>
+#include <map>
+
+#include "tests/readers/reader_test_util.h"
+
+namespace voxlink::convert::testing {
+namespace {
+
+using openvdb::Coord;
+
+constexpr float kBackground = -1.0f;
+constexpr int kN = 64;
+const Coord kOffset(5, -3, 100);
+// An 8^3 block aligned to leaf boundaries, inside the data: becomes an active tile.
+const openvdb::CoordBBox kTile(Coord(24, 16, 120), Coord(31, 23, 127));
+constexpr float kTileValue = 1000.0f;
+
+class VdbReaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::exists(dataPath("volume/neghip_64x64x64_uint8.raw")))
+      GTEST_SKIP() << "neghip missing";
+    openvdb::initialize();
+    const auto neghip = readBytes(dataPath("volume/neghip_64x64x64_uint8.raw"));
+    ASSERT_EQ(neghip.size(), size_t{kN} * kN * kN);
+    auto grid = openvdb::FloatGrid::create(kBackground);
+    grid->setName("density");
+    auto transform = openvdb::math::Transform::createLinearTransform(0.5);
+    transform->postTranslate(openvdb::Vec3d(10, 20, 30));
+    grid->setTransform(transform);
+    auto acc = grid->getAccessor();
+    for (int z = 0; z < kN; ++z)
+      for (int y = 0; y < kN; ++y)
+        for (int x = 0; x < kN; ++x) {
+          const uint8_t v = neghip[(size_t(z) * kN + y) * kN + x];
+          if (v < 40) continue;
+          const Coord c = Coord(x, y, z) + kOffset;
+          acc.setValueOn(c, float(v));
+          active_[c] = float(v);
+        }
+    grid->tree().fill(kTile, kTileValue, true);
+    for (auto it = kTile.begin(); it; ++it) active_[*it] = kTileValue;
+    // An inactive voxel inside the box that stores something other than the background.
+    inactiveInside_ = Coord(20, 20, 120);
+    while (active_.count(inactiveInside_)) inactiveInside_.x() += 1;
+    ASSERT_LT(inactiveInside_.x(), kN + kOffset.x());
+    grid->tree().setValueOff(inactiveInside_, 77.0f);
+    ASSERT_FALSE(grid->tree().isValueOn(inactiveInside_));
+
+    auto other = openvdb::Vec3SGrid::create();
+    other->setName("velocity");
+    other->tree().setValueOn(Coord(0, 0, 0), openvdb::Vec3s(1, 2, 3));
+    path_ = dir_.file("neghip.vdb");
+    openvdb::io::File(path_).write({other, grid});
+  }
+
+  TempDir dir_;
+  std::string path_;
+  std::map<Coord, float> active_;
+  Coord inactiveInside_;
+};
+
+TEST_F(VdbReaderTest, ActiveBoxIsDenseWithBackgroundForInactiveVoxels) {
+  Coord lo = active_.begin()->first, hi = lo;
+  for (const auto& [c, v] : active_) {
+    lo = Coord::minComponent(lo, c);
+    hi = Coord::maxComponent(hi, c);
+  }
+  auto source = openOrDie(path_);
+  ASSERT_TRUE(source);
+  const VolumeInfo& info = source->info();
+  EXPECT_EQ(info.format, "vdb");
+  EXPECT_EQ(info.type, ScalarType::kF32);
+  const std::array<uint32_t, 3> dims{static_cast<uint32_t>(hi.x() - lo.x() + 1),
+                                     static_cast<uint32_t>(hi.y() - lo.y() + 1),
+                                     static_cast<uint32_t>(hi.z() - lo.z() + 1)};
+  EXPECT_EQ(info.dims, dims);
+  EXPECT_EQ(info.spacing, (std::array<double, 3>{0.5, 0.5, 0.5}));
+  EXPECT_EQ(info.origin,
+            (std::array<double, 3>{10 + 0.5 * lo.x(), 20 + 0.5 * lo.y(), 30 + 0.5 * lo.z()}));
+  EXPECT_TRUE(hasNote(info, cat("grid 'density'"))) << notesOf(info);
+  EXPECT_TRUE(hasNote(info, cat("from index (", lo.x(), ",", lo.y(), ",", lo.z(), ")")))
+      << notesOf(info);
+
+  std::vector<float> expected(static_cast<size_t>(dims[0]) * dims[1] * dims[2], kBackground);
+  for (const auto& [c, v] : active_)
+    expected[(size_t(c.z() - lo.z()) * dims[1] + (c.y() - lo.y())) * dims[0] + (c.x() - lo.x())] =
+        v;
+  for (uint32_t slab : {1u, 5u, 8u, dims[2]}) {
+    SCOPED_TRACE(slab);
+    const auto data = readInSlabs(*source, slab);
+    ASSERT_EQ(data.size(), expected.size() * 4);
+    EXPECT_EQ(std::memcmp(data.data(), expected.data(), data.size()), 0);
+  }
+}
+
+TEST_F(VdbReaderTest, GridSelectionByNameAndRefusals) {
+  OpenOptions named;
+  named.vdbGrid = "density";
+  EXPECT_TRUE(openVolume(path_, named));
+  named.vdbGrid = "nothere";
+  expectError(openVolume(path_, named), ErrorCode::kInvalidArgument,
+              {"neghip.vdb", "nothere", "'density' (float)", "'velocity'"});
+  named.vdbGrid = "velocity";
+  expectError(openVolume(path_, named), ErrorCode::kUnsupported,
+              {"neghip.vdb", "velocity", "vec3s", "float grids"});
+}
+
+}  // namespace
+}  // namespace voxlink::convert::testing
