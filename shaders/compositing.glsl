@@ -49,6 +49,18 @@ void compositeSample(vec3 q, vec3 fraction, vec3 toEye, inout vec3 color, inout 
   transmittance *= 1.0 - a;
 }
 
+// Index of the first sample t_k = t0 + (k + 1/2) step at or after the ray o + t d leaves the
+// trilinear cell `cell` (q = p - 1/2 in [cell, cell + 1)): empty cells are crossed in one step.
+int firstSampleAfterCell(vec3 o, vec3 d, ivec3 cell, float t0) {
+  float tExit = kBig;
+  for (int a = 0; a < 3; ++a) {
+    if (abs(d[a]) < kParallelEpsilon) continue;
+    float plane = float(cell[a] + (d[a] > 0.0 ? 1 : 0)) + 0.5;
+    tExit = min(tExit, (plane - o[a]) / d[a]);
+  }
+  return int(ceil((tExit - t0) / uStep - 0.5));
+}
+
 // First sample index at or after t for samples t_k = t0 + (k + 1/2) step, minus one against
 // rounding (a sample evaluated twice is prevented by the caller's running index).
 int firstSampleNear(float t, float t0) { return int(ceil((t - t0) / uStep - 0.5)) - 1; }

@@ -67,7 +67,10 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       cached = cell;
       loadCorners(cell);
     }
-    if (!gCellVisible) continue;
+    if (!gCellVisible) {
+      k = max(k, min(firstSampleAfterCell(o, d, cell, t0), samples) - 1);
+      continue;
+    }
     compositeSample(q, q - fl, toEye, color, transmittance);
     if (transmittance <= uStopTransmittance) return;
   }

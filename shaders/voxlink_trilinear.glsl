@@ -60,14 +60,49 @@ void pairIndices(ivec3 p, out int first, out int second) {
   if (split) second = findVoxel(q);
 }
 
+// Voxel indices (or -1) of the pair in row `row` of occupied brick k at depths w, w + 1.
+void rowPair(uint k, uint row, uint bits, uint depth, uint base, out int first, out int second) {
+  first = second = -1;
+  if ((bits & (3u << depth)) == 0u) return;
+  uint r = k * uint(VXL_N * VXL_N) + row;
+  Row fetched = Row(bits, base + u16At(rowsWord(r >> 1u), r));
+  first = voxelInRow(fetched, depth);
+  second = voxelInRow(fetched, depth + 1u);
+}
+
+// Corners are only read when gCellVisible ends up true, so an empty cell returns early without
+// touching them.
 void loadCorners(ivec3 cell) {
   gCellVisible = false;
-  gPairBrick = 0xFFFFFFFFu;
   int v0, v1, v2, v3, v4, v5, v6, v7;
-  pairIndices(cell + cornerOffset(0), v0, v1);
-  pairIndices(cell + cornerOffset(2), v2, v3);
-  pairIndices(cell + cornerOffset(4), v4, v5);
-  pairIndices(cell + cornerOffset(6), v6, v7);
+  ivec3 brick = cell / VXL_N;
+  ivec3 local = cell - brick * VXL_N;
+  if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(local, ivec3(VXL_N - 1))) &&
+      all(lessThan(cell + 1, uDims))) {
+    // The common case, all 8 corners in one brick: one occupancy lookup and four row masks
+    // (rows u, u + 1 by v, v + 1) decide whether the cell holds anything at all.
+    int k = occupiedIndex(brickId(brick));
+    if (k < 0) return;
+    uint kk = uint(k);
+    uint row = rowOfLocal(local);
+    uint depth = uint(local[VXL_W]);
+    uint b0 = rowBits(kk, row), b1 = rowBits(kk, row + 1u);
+    uint b2 = rowBits(kk, row + uint(VXL_N)), b3 = rowBits(kk, row + uint(VXL_N) + 1u);
+    if (((b0 | b1 | b2 | b3) & (3u << depth)) == 0u) return;
+    uint base = bvoxWord(kk);
+    rowPair(kk, row, b0, depth, base, v0, v1);
+    rowPair(kk, row + 1u, b1, depth, base, v2, v3);
+    rowPair(kk, row + uint(VXL_N), b2, depth, base, v4, v5);
+    rowPair(kk, row + uint(VXL_N) + 1u, b3, depth, base, v6, v7);
+  } else {
+    // Corners spread over several bricks or past the volume's faces.
+    gPairBrick = 0xFFFFFFFFu;
+    pairIndices(cell + cornerOffset(0), v0, v1);
+    pairIndices(cell + cornerOffset(2), v2, v3);
+    pairIndices(cell + cornerOffset(4), v4, v5);
+    pairIndices(cell + cornerOffset(6), v6, v7);
+    if (max(max(max(v0, v1), max(v2, v3)), max(max(v4, v5), max(v6, v7))) < 0) return;
+  }
   storedCorner(v0, gA0, gL0);
   storedCorner(v1, gA1, gL1);
   storedCorner(v2, gA2, gL2);
@@ -78,37 +113,46 @@ void loadCorners(ivec3 cell) {
   storedCorner(v7, gA7, gL7);
 }
 
+// One flat loop: each pass either moves to the next dual brick or takes one sample. Nested
+// loops (bricks, then samples) ran far slower on llvmpipe, whose SIMD lanes wait for the lane
+// with the longest inner loop at every outer step.
 void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
                     inout float transmittance) {
   ivec3 dualGrid = (uDims - 1) / VXL_N + 2;  // dual bricks -1 .. floor((dims - 1) / n), shifted by 1
   Dda bricks = ddaInit((o - 0.5) / float(VXL_N) + 1.0, d / float(VXL_N), t0, ivec3(0), dualGrid - 1);
-  float t = t0;
-  int next = 0;  // first sample not taken yet
+  float t = t0;  // where the ray entered the current dual brick
+  int axis = minAxis(bricks.tMax);
+  float tb = min(max(bricks.tMax[axis], t), t1);
+  bool brickActive = tb > t && dualBrickActive(bricks.cell - 1);
+  int k = 0;  // the next sample t_k = t0 + (k + 1/2) step not taken yet
   ivec3 cached = ivec3(-2147483647);
-  int limit = dualGrid.x + dualGrid.y + dualGrid.z + 3;
-  for (int i = 0; i < limit && t < t1; ++i) {
-    int axis = minAxis(bricks.tMax);
-    float tb = min(max(bricks.tMax[axis], t), t1);
-    if (tb > t && dualBrickActive(bricks.cell - 1)) {
-      int first = max(next, firstSampleNear(t, t0));
-      for (int k = first; k < first + 65536; ++k) {
-        float ts = t0 + (float(k) + 0.5) * uStep;
-        if (ts >= tb) break;
-        next = k + 1;
-        vec3 q = o + ts * d - 0.5;
-        vec3 fl = floor(q);
-        ivec3 cell = ivec3(fl);
-        if (cell != cached) {
-          cached = cell;
-          loadCorners(cell);
-        }
-        if (!gCellVisible) continue;
-        compositeSample(q, q - fl, toEye, color, transmittance);
-        if (transmittance <= uStopTransmittance) return;
-      }
+  int limit = dualGrid.x + dualGrid.y + dualGrid.z + int(min((t1 - t0) / uStep, 1e7)) + 8;
+  for (int i = 0; i < limit; ++i) {
+    float ts = t0 + (float(k) + 0.5) * uStep;
+    if (!brickActive || ts >= tb) {
+      if (tb >= t1) return;
+      t = tb;
+      ddaAdvance(bricks, axis);
+      if (bricks.cell[axis] < 0 || bricks.cell[axis] >= dualGrid[axis]) return;
+      axis = minAxis(bricks.tMax);
+      tb = min(max(bricks.tMax[axis], t), t1);
+      brickActive = tb > t && dualBrickActive(bricks.cell - 1);
+      if (brickActive) k = max(k, firstSampleNear(t, t0));
+      continue;
     }
-    t = tb;
-    ddaAdvance(bricks, axis);
-    if (bricks.cell[axis] < 0 || bricks.cell[axis] >= dualGrid[axis]) break;
+    vec3 q = o + ts * d - 0.5;
+    vec3 fl = floor(q);
+    ivec3 cell = ivec3(fl);
+    if (cell != cached) {
+      cached = cell;
+      loadCorners(cell);
+    }
+    if (!gCellVisible) {
+      k = max(k + 1, firstSampleAfterCell(o, d, cell, t0));
+      continue;
+    }
+    compositeSample(q, q - fl, toEye, color, transmittance);
+    if (transmittance <= uStopTransmittance) return;
+    ++k;
   }
 }
