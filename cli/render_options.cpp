@@ -14,7 +14,8 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
       ->check(CLI::IsMember(viewer::tfPresetNames()));
   cmd->add_option("--camera", camera, "AZ,EL[,DIST[,FOV]]: azimuth and elevation in degrees, distance "
                                       "(1 frames the volume), vertical field of view (default 30,20,1,30)");
-  cmd->add_option("--up", up, "World axis pointing up on screen")->check(CLI::IsMember({"y", "z"}))->capture_default_str();
+  cmd->add_option("--up", up, "World axis pointing up on screen")
+      ->check(CLI::IsMember({"y", "z", "-y", "-z"}))->capture_default_str();
   cmd->add_option("--sampling", sampling, "voxel (nearest, exact chords) or trilinear")
       ->check(CLI::IsMember({"voxel", "trilinear"}))->capture_default_str();
   cmd->add_option("--step", step, "Trilinear step in units of the smallest voxel spacing")->capture_default_str();
@@ -49,7 +50,7 @@ Result<viewer::RenderSettings> RenderOptions::settings() const {
 
 Result<viewer::CameraSpec> RenderOptions::cameraSpec() const {
   viewer::CameraSpec defaults;
-  defaults.up = up == "y" ? viewer::UpAxis::kY : viewer::UpAxis::kZ;
+  defaults.up = viewer::parseUpAxis(up).value_or(viewer::UpAxis::kZ);
   if (camera.empty()) return defaults;
   return viewer::parseCameraSpec(camera, defaults);
 }

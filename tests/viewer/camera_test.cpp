@@ -27,6 +27,18 @@ TEST(Camera, FramingSeesTheWholeBoundingSphere) {
     }
 }
 
+TEST(Camera, UpAxes) {
+  for (auto [text, axis] : {std::pair{"z", glm::dvec3(0, 0, 1)}, std::pair{"-z", glm::dvec3(0, 0, -1)},
+                            std::pair{"y", glm::dvec3(0, 1, 0)}, std::pair{"-y", glm::dvec3(0, -1, 0)}}) {
+    CameraSpec spec;
+    spec.up = *parseUpAxis(text);
+    const Camera c = Camera::framing(kBox, spec);
+    EXPECT_GT(glm::dot(c.up(), axis), 0.5) << text;
+    EXPECT_NEAR(glm::dot(c.right(), axis), 0.0, 1e-12) << text;
+  }
+  EXPECT_FALSE(parseUpAxis("x"));
+}
+
 TEST(Camera, MiddlePixelOfAnOddImageLooksExactlyAlongTheAxis) {
   const Camera c = Camera::lookAt({0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 40);
   const Ray r = c.primaryRay(16, 15, 33, 31);

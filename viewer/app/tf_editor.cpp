@@ -102,9 +102,9 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   }
   if (draggingOpacity_ >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
     auto& p = pts[draggingOpacity_];
-    p.value = clampBetween(pts, draggingOpacity_, valueOf(mouse.x));
-    p.alpha = alphaOf(mouse.y);
-    changed = true;
+    const format::OpacityPoint moved{clampBetween(pts, draggingOpacity_, valueOf(mouse.x)), alphaOf(mouse.y)};
+    changed = moved.value != p.value || moved.alpha != p.alpha;
+    p = moved;
   } else {
     draggingOpacity_ = -1;
   }
@@ -153,8 +153,9 @@ bool TfEditor::drawColorBar(format::TransferFunction& tf) {
     selectedOpacity_ = -1;
   }
   if (draggingColor_ >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-    pts[draggingColor_].value = clampBetween(pts, draggingColor_, valueOf(mouse.x));
-    changed = true;
+    const double v = clampBetween(pts, draggingColor_, valueOf(mouse.x));
+    changed = v != pts[draggingColor_].value;
+    pts[draggingColor_].value = v;
   } else {
     draggingColor_ = -1;
   }

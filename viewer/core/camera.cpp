@@ -58,18 +58,31 @@ Result<CameraSpec> parseCameraSpec(const std::string& text, CameraSpec spec) {
   return spec;
 }
 
+std::optional<UpAxis> parseUpAxis(const std::string& text) {
+  if (text == "z") return UpAxis::kZ;
+  if (text == "y") return UpAxis::kY;
+  if (text == "-z") return UpAxis::kNegZ;
+  if (text == "-y") return UpAxis::kNegY;
+  return std::nullopt;
+}
+
 Camera Camera::framing(const Box& box, const CameraSpec& spec) {
   Camera c;
   c.target_ = box.center();
   c.fovYDeg_ = spec.fovYDeg;
   const double az = radians(spec.azimuthDeg), el = radians(spec.elevationDeg);
   glm::dvec3 back, up;
-  if (spec.up == UpAxis::kZ) {
+  if (spec.up == UpAxis::kZ || spec.up == UpAxis::kNegZ) {
     back = {std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el)};
     up = {0, 0, 1};
   } else {
     back = {std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el)};
     up = {0, 1, 0};
+  }
+  if (spec.up == UpAxis::kNegZ || spec.up == UpAxis::kNegY) {
+    // Half a turn about x: the same view of the volume turned upside down.
+    back = {back.x, -back.y, -back.z};
+    up = -up;
   }
   c.worldUp_ = up;
   const glm::dvec3 right = glm::normalize(glm::cross(up, back));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
@@ -22,7 +23,9 @@ struct Box {
   double radius() const { return 0.5 * glm::length(hi - lo); }
 };
 
-enum class UpAxis { kY, kZ };
+// The world axis shown pointing up; the negative ones suit volumes whose slices run downwards.
+enum class UpAxis { kY, kZ, kNegY, kNegZ };
+std::optional<UpAxis> parseUpAxis(const std::string& text);  // "y", "z", "-y", "-z"
 
 // Where a camera looks from, as a user types it: "--camera AZ,EL[,DIST[,FOV]]".
 struct CameraSpec {
