@@ -107,10 +107,11 @@ bool drawTransferFunctionPanel(ViewerState& s) {
   ImGui::Separator();
   ImGui::Text("pre-classification: %s", s.classification.description.c_str());
   if (!s.visibleButRemoved.empty()) {
-    ImGui::TextColored(ImVec4(1.0f, 0.55f, 0.3f, 1.0f),
-                       "The transfer function gives opacity to %s, which this file's pre-classification "
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.55f, 0.3f, 1.0f));
+    ImGui::TextWrapped("The transfer function gives opacity to %s, which this file's pre-classification "
                        "removed: those voxels cannot show.",
                        format::describeIntervals(s.visibleButRemoved).c_str());
+    ImGui::PopStyleColor();
   }
   if (s.reclassifier.running()) {
     ImGui::ProgressBar(float(s.reclassifier.progress()), ImVec2(240, 0), s.reclassifier.stage().c_str());
