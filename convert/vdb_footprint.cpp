@@ -7,7 +7,7 @@
 
 namespace voxlink::convert {
 
-Result<format::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& file) {
+Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFile& file) {
   openvdb::initialize();
   const auto start = std::chrono::steady_clock::now();
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);

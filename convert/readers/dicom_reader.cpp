@@ -70,7 +70,7 @@ bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
                                                       const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir));
   const std::array<uint64_t, 3> dims{series.columns, series.rows, series.slices.size()};

@@ -78,7 +78,7 @@ class VdbSource final : public VolumeSource {
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path, const OpenOptions& options) {
   openvdb::initialize();
   openvdb::GridBase::Ptr base;
   std::string names;
