@@ -52,9 +52,7 @@ class ImageStackSource final : public VolumeSource {
   bool randomAccess() const override { return true; }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
-                       uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     auto* out = static_cast<uint8_t*>(dst);
     for (uint32_t z = z0; z < z0 + count; ++z) {
       const std::string& file = multiPage_ ? files_[0] : files_[z];
