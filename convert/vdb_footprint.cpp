@@ -18,13 +18,14 @@ Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFil
       accessor.setValueOn(openvdb::Coord(int(x), int(y), int(z)), static_cast<float>(file.value(index)));
     });
   }
+  grid->pruneGrid();  // as tools::copyFromDense does
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   format::PeerFootprint peer;
   peer.name = "OpenVDB FloatGrid";
   peer.bytes = grid->memUsage();
   peer.bytesPerVoxel = file.voxelCount() ? double(peer.bytes) / file.voxelCount() : 0.0;
   peer.seconds = seconds;
-  peer.note = "OpenVDB " OPENVDB_LIBRARY_VERSION_STRING ", values only (no gradients), in memory, active voxels = " +
+  peer.note = "OpenVDB " OPENVDB_LIBRARY_VERSION_STRING ", values only (no gradients), pruned, in memory, active voxels = " +
               std::to_string(grid->activeVoxelCount());
   return peer;
 }
