@@ -135,33 +135,64 @@ using DifferenceType = std::conditional_t<std::is_integral_v<T>, std::conditiona
 // Central differences of every cell of an interior brick, in source order (x fastest), into
 // g[0..2][(z*n + y)*n + x]: n-long contiguous loops the compiler vectorizes. Float and integer
 // sources only (double sources take the per-voxel path, which guards float overflow).
-template <class T>
-void denseBrickGradients(const T* brick, const int64_t stride[3], uint32_t n, const float scale[3],
-                         float* __restrict gx, float* __restrict gy, float* __restrict gz) {
+// The brick edge is a template parameter so the x loop has a known trip count the
+// vectorizer can fit (with u8 input it would otherwise aim at 16 lanes and run scalar).
+template <class T, uint32_t N>
+void denseBrickGradientsN(const T* brick, const int64_t stride[3], const float scale[3],
+                          float* __restrict gx, float* __restrict gy, float* __restrict gz) {
   using D = DifferenceType<T>;
   const int64_t sy = stride[1], sz = stride[2];
-  for (uint32_t z = 0; z < n; ++z) {
-    for (uint32_t y = 0; y < n; ++y) {
+  const float s0 = scale[0], s1 = scale[1], s2 = scale[2];
+  for (uint32_t z = 0; z < N; ++z) {
+    for (uint32_t y = 0; y < N; ++y) {
       const T* __restrict p = brick + z * sz + y * sy;
-      const size_t o = (size_t{z} * n + y) * n;
-      for (int64_t x = 0; x < int64_t{n}; ++x) {
-        gx[o + x] = static_cast<float>(static_cast<D>(p[x + 1]) - static_cast<D>(p[x - 1])) * scale[0];
-        gy[o + x] = static_cast<float>(static_cast<D>(p[x + sy]) - static_cast<D>(p[x - sy])) * scale[1];
-        gz[o + x] = static_cast<float>(static_cast<D>(p[x + sz]) - static_cast<D>(p[x - sz])) * scale[2];
+      const size_t o = (size_t{z} * N + y) * N;
+      for (int64_t x = 0; x < int64_t{N}; ++x) {
+        gx[o + x] = static_cast<float>(static_cast<D>(p[x + 1]) - static_cast<D>(p[x - 1])) * s0;
+        gy[o + x] = static_cast<float>(static_cast<D>(p[x + sy]) - static_cast<D>(p[x - sy])) * s1;
+        gz[o + x] = static_cast<float>(static_cast<D>(p[x + sz]) - static_cast<D>(p[x - sz])) * s2;
       }
     }
   }
 }
 
+// Keep flags of every cell of a row of bricks (n slices x n rows x the whole width), x fastest.
+// Long contiguous loops: they vectorize and stream the row's source data into cache in order,
+// so the per-brick work that follows reads from L2 instead of striding through slices.
+template <class T, class Keep>
+void rowKeepFlags(const SlabWindow& window, const uint32_t dims[3], uint32_t z0, uint32_t z1, uint32_t y0,
+                  uint32_t y1, uint32_t n, const Keep keep, uint8_t* __restrict flags) {
+  const uint32_t nx = dims[0];
+  for (uint32_t z = z0; z < z1; ++z) {
+    const T* slice = reinterpret_cast<const T*>(window.slice(z));
+    for (uint32_t y = y0; y < y1; ++y) {
+      const T* __restrict p = slice + uint64_t{y} * nx;
+      uint8_t* __restrict f = flags + (size_t{z - z0} * n + (y - y0)) * nx;
+      for (uint32_t x = 0; x < nx; ++x) f[x] = keep(p[x]) ? 1 : 0;
+    }
+  }
+}
+
+template <class T>
+void denseBrickGradients(const T* brick, const int64_t stride[3], uint32_t n, const float scale[3],
+                         float* gx, float* gy, float* gz) {
+  switch (n) {
+    case 4: return denseBrickGradientsN<T, 4>(brick, stride, scale, gx, gy, gz);
+    case 8: return denseBrickGradientsN<T, 8>(brick, stride, scale, gx, gy, gz);
+    case 16: return denseBrickGradientsN<T, 16>(brick, stride, scale, gx, gy, gz);
+    default: return denseBrickGradientsN<T, 32>(brick, stride, scale, gx, gy, gz);
+  }
+}
+
 // Encodes one occupied brick: its row starts, row masks, values and gradients. `Interior`
 // says the brick and a one-voxel margin lie inside the volume, so no border tests are needed.
-template <class T, class Keep, bool Interior>
+template <class T, bool Interior>
 uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t dims[3],
                      const int64_t stride[3], const format::AxisFrame frame, uint32_t n,
-                     const Keep keep, const ValueMapping& mapping, bool lossless, const double half[3],
+                     const ValueMapping& mapping, bool lossless, const double half[3],
                      const double full[3], uint32_t expected, uint16_t* rows, uint32_t* mask,
                      uint8_t* values, float* gx, float* gy, float* gz, const float* const dense[3],
-                     EncodeStats& stats) {
+                     const uint8_t* flags, const size_t flagStride[3], EncodeStats& stats) {
   const int su = frame.u, sv = frame.v, sw = frame.w;
   const uint32_t extentU = Interior ? n : std::min(n, dims[su] - origin[su]);
   const uint32_t extentV = Interior ? n : std::min(n, dims[sv] - origin[sv]);
@@ -177,7 +208,10 @@ uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t di
     const T* line = brick + u * stride[su] + v * stride[sv];
     // The row's occupancy bits, branch-free; then visit the set bits.
     uint32_t bits = 0;
-    for (uint32_t d = 0; d < extentW; ++d) bits |= uint32_t{keep(line[d * stride[sw]])} << d;
+    {  // from the row's keep flags: strides 1, nx, n*nx (flags points at this brick's corner)
+      const uint8_t* f = flags + u * flagStride[su] + v * flagStride[sv];
+      for (uint32_t d = 0; d < extentW; ++d) bits |= uint32_t{f[d * flagStride[sw]]} << d;
+    }
     if (bits == 0) continue;
     if (count + static_cast<uint32_t>(std::popcount(bits)) > expected) return UINT32_MAX;
     const uint32_t bit0 = row * n;
@@ -250,6 +284,73 @@ uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t di
   return count;
 }
 
+// The common case, kept tight: an interior brick (neighbours on every side, so gradients come
+// from the dense per-brick arrays), a brick edge known at compile time, and a lossless stored
+// type S that holds the source value minus an integer offset (u8/u16), or f32 bit for bit.
+template <class T, class S, uint32_t N>
+uint32_t encodeInteriorBrick(const T* brick, const int64_t srcStride[3], const format::AxisFrame frame,
+                             const uint8_t* flags, const size_t flagStride[3], const float* const dense[3],
+                             int64_t offset, uint32_t expected, uint16_t* __restrict rows,
+                             uint32_t* __restrict mask, S* __restrict values, float* __restrict gx,
+                             float* __restrict gy, float* __restrict gz, T& rawMin, T& rawMax) {
+  constexpr size_t kDenseStride[3] = {1, N, size_t{N} * N};
+  const int64_t sU = srcStride[frame.u], sV = srcStride[frame.v], sW = srcStride[frame.w];
+  const size_t fU = flagStride[frame.u], fV = flagStride[frame.v], fW = flagStride[frame.w];
+  const size_t dU = kDenseStride[frame.u], dV = kDenseStride[frame.v], dW = kDenseStride[frame.w];
+  const float* __restrict d0 = dense[0];
+  const float* __restrict d1 = dense[1];
+  const float* __restrict d2 = dense[2];
+  T lo = rawMin, hi = rawMax;
+  uint32_t count = 0;
+  for (uint32_t v = 0; v < N; ++v) {
+    for (uint32_t u = 0; u < N; ++u) {
+      const uint32_t row = v * N + u;
+      rows[row] = static_cast<uint16_t>(count);
+      const uint8_t* f = flags + u * fU + v * fV;
+      uint32_t bits = 0;
+      for (uint32_t d = 0; d < N; ++d) bits |= uint32_t{f[d * fW]} << d;
+      if (bits == 0) continue;
+      if (count + static_cast<uint32_t>(std::popcount(bits)) > expected) return UINT32_MAX;
+      mask[(row * N) >> 5] |= bits << ((row * N) & 31);
+      const size_t denseBase = u * dU + v * dV;
+      const T* line = brick + u * sU + v * sV;
+      do {
+        const uint32_t d = static_cast<uint32_t>(std::countr_zero(bits));
+        bits &= bits - 1;
+        const size_t i = denseBase + d * dW;
+        gx[count] = d0[i];
+        gy[count] = d1[i];
+        gz[count] = d2[i];
+        const T raw = line[d * sW];
+        lo = raw < lo ? raw : lo;
+        hi = raw > hi ? raw : hi;
+        if constexpr (std::is_same_v<S, float>) {
+          values[count] = raw;
+        } else {
+          values[count] = static_cast<S>(static_cast<int64_t>(raw) - offset);
+        }
+        ++count;
+      } while (bits);
+    }
+  }
+  rawMin = lo;
+  rawMax = hi;
+  return count;
+}
+
+template <class T, class S>
+uint32_t encodeInteriorBrick(uint32_t n, const T* brick, const int64_t srcStride[3], const format::AxisFrame frame,
+                             const uint8_t* flags, const size_t flagStride[3], const float* const dense[3],
+                             int64_t offset, uint32_t expected, uint16_t* rows, uint32_t* mask, S* values,
+                             float* gx, float* gy, float* gz, T& rawMin, T& rawMax) {
+  switch (n) {
+    case 4: return encodeInteriorBrick<T, S, 4>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    case 8: return encodeInteriorBrick<T, S, 8>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    case 16: return encodeInteriorBrick<T, S, 16>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    default: return encodeInteriorBrick<T, S, 32>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+  }
+}
+
 template <class T, class Keep>
 void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, uint32_t by,
                     const Keep& keep, const ValueMapping& mapping, const uint16_t* counts,
@@ -268,12 +369,19 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
   thread_local struct {
     std::vector<float> gx, gy, gz;           // gradients of the brick's kept voxels
     std::vector<float> denseX, denseY, denseZ;  // gradients of every cell of an interior brick
+    std::vector<uint8_t> flags;                 // keep flags of the whole row of bricks
   } scratch;
   const size_t cells = uint64_t{n} * n * n;
   scratch.gx.resize(cells);
   scratch.gy.resize(cells);
   scratch.gz.resize(cells);
   constexpr bool kDense = !std::is_same_v<T, double>;
+  // Keep flags of the row of bricks: n slices x n rows x nx.
+  const uint32_t z0 = bz * n, z1 = std::min(dims[2], z0 + n);
+  const uint32_t y0 = by * n, y1 = std::min(dims[1], y0 + n);
+  scratch.flags.resize(size_t{n} * n * dims[0]);
+  rowKeepFlags<T>(window, dims, z0, z1, y0, y1, n, keep, scratch.flags.data());
+  const size_t flagStride[3] = {1, dims[0], size_t{n} * dims[0]};
   if (kDense) {
     scratch.denseX.resize(cells);
     scratch.denseY.resize(cells);
@@ -301,12 +409,34 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
       dense[1] = scratch.denseY.data();
       dense[2] = scratch.denseZ.data();
     }
+    const uint8_t* flags = scratch.flags.data() + origin[0];
     float* const out3[3] = {scratch.gx.data(), scratch.gy.data(), scratch.gz.data()};
-    const uint32_t count =
-        interior ? encodeBrick<T, Keep, true>(brick, origin, dims, stride, g.frame, n, keep, mapping, lossless, half, full,
-                                              counts[bx], rows, mask, values, out3[0], out3[1], out3[2], dense, stats)
-                 : encodeBrick<T, Keep, false>(brick, origin, dims, stride, g.frame, n, keep, mapping, lossless, half, full,
-                                               counts[bx], rows, mask, values, out3[0], out3[1], out3[2], dense, stats);
+    // The tight path when it applies (interior, dense gradients, lossless u8/u16/f32 values).
+    uint32_t count = UINT32_MAX;
+    const bool f32Copy = std::is_same_v<T, float> && mapping.type == StoredType::kF32 &&
+                         mapping.scale == 1.0 && mapping.offset == 0.0;
+    if (kDense && interior && (lossless || f32Copy)) {
+      T rawMin = std::numeric_limits<T>::max(), rawMax = std::numeric_limits<T>::lowest();
+      const int64_t offset = static_cast<int64_t>(mapping.offset);
+      if (mapping.type == StoredType::kU8)
+        count = encodeInteriorBrick<T, uint8_t>(n, brick, stride, g.frame, flags, flagStride, dense, offset, counts[bx], rows, mask,
+                                                values, out3[0], out3[1], out3[2], rawMin, rawMax);
+      else if (mapping.type == StoredType::kU16)
+        count = encodeInteriorBrick<T, uint16_t>(n, brick, stride, g.frame, flags, flagStride, dense, offset, counts[bx], rows, mask,
+                                                 reinterpret_cast<uint16_t*>(values), out3[0], out3[1], out3[2], rawMin, rawMax);
+      else if constexpr (std::is_same_v<T, float>)
+        count = encodeInteriorBrick<T, float>(n, brick, stride, g.frame, flags, flagStride, dense, offset, counts[bx], rows, mask,
+                                              reinterpret_cast<float*>(values), out3[0], out3[1], out3[2], rawMin, rawMax);
+      if (count != UINT32_MAX && count > 0) {
+        stats.valueMin = std::min(stats.valueMin, static_cast<double>(rawMin));
+        stats.valueMax = std::max(stats.valueMax, static_cast<double>(rawMax));
+      }
+    } else {
+      count = interior ? encodeBrick<T, true>(brick, origin, dims, stride, g.frame, n, mapping, lossless, half, full,
+                                              counts[bx], rows, mask, values, out3[0], out3[1], out3[2], dense, flags, flagStride, stats)
+                 : encodeBrick<T, false>(brick, origin, dims, stride, g.frame, n, mapping, lossless, half, full,
+                                               counts[bx], rows, mask, values, out3[0], out3[1], out3[2], dense, flags, flagStride, stats);
+    }
     if (count != counts[bx]) {
       stats.countMismatch = true;
       return;

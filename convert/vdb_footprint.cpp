@@ -7,7 +7,7 @@
 
 namespace voxlink::convert {
 
-Result<format::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& file) {
+Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFile& file) {
   openvdb::initialize();
   const auto start = std::chrono::steady_clock::now();
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
@@ -18,13 +18,14 @@ Result<format::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& fil
       accessor.setValueOn(openvdb::Coord(int(x), int(y), int(z)), static_cast<float>(file.value(index)));
     });
   }
+  grid->pruneGrid();  // as tools::copyFromDense does
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   format::PeerFootprint peer;
   peer.name = "OpenVDB FloatGrid";
   peer.bytes = grid->memUsage();
   peer.bytesPerVoxel = file.voxelCount() ? double(peer.bytes) / file.voxelCount() : 0.0;
   peer.seconds = seconds;
-  peer.note = "OpenVDB " OPENVDB_LIBRARY_VERSION_STRING ", values only (no gradients), in memory, active voxels = " +
+  peer.note = "OpenVDB " OPENVDB_LIBRARY_VERSION_STRING ", values only (no gradients), pruned, in memory, active voxels = " +
               std::to_string(grid->activeVoxelCount());
   return peer;
 }

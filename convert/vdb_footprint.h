@@ -8,6 +8,9 @@
 
 namespace voxlink::convert {
 
+// Through the OpenVDB plugin (libvoxlink_vdb.so), loaded on first use.
 Result<format::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& file);
+// The implementation inside the plugin.
+Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFile& file);
 
 }  // namespace voxlink::convert

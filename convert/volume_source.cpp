@@ -8,6 +8,13 @@
 
 namespace voxlink::convert {
 
+Status VolumeSource::checkSliceRange(uint32_t z0, uint32_t count) const {
+  if (uint64_t{z0} + count > info_.dims[2])
+    return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", uint64_t{z0} + count,
+                     ") beyond z size ", info_.dims[2]);
+  return Status::ok();
+}
+
 Result<std::vector<uint8_t>> readAll(VolumeSource& source) {
   const VolumeInfo& info = source.info();
   const uint64_t bytes = info.voxelCount() * scalarSize(info.type);

@@ -49,6 +49,9 @@ class VolumeSource {
   virtual void unmap(uint32_t /*z0*/, uint32_t /*count*/) {}
 
  protected:
+  // kInvalidArgument unless slices [z0, z0 + count) lie inside the volume.
+  Status checkSliceRange(uint32_t z0, uint32_t count) const;
+
   VolumeInfo info_;
 };
 

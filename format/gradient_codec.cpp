@@ -142,18 +142,14 @@ __attribute__((target_clones("avx2", "default"))) void encodeBatch(const float* 
   constexpr float kMaxFloat = std::numeric_limits<float>::max();
   for (size_t i = 0; i < count; ++i) {
     float x = gx[i], y = gy[i], z = gz[i];
-    float big = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
+    const float big = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
     const bool valid = big > 0.0f && big <= kMaxFloat;  // false for zero, inf and NaN
-    // Lift tiny (subnormal) vectors by an exact power of two so 1/big stays finite.
-    const float lift = big < 0x1p-60f ? 0x1p60f : 1.0f;
-    x *= lift;
-    y *= lift;
-    z *= lift;
-    big *= lift;
-    const float inv = 1.0f / (valid ? big : 1.0f);  // division outside the select: vectorizes
-    x *= inv;
-    y *= inv;
-    z = valid ? z * inv : 1.0f;
+    // Squares must neither overflow nor vanish: rescale by an exact power of two, only when
+    // the vector is huge or tiny (no division, so the common case costs a compare).
+    const float rescale = big > 0x1p60f ? 0x1p-100f : (big < 0x1p-60f ? 0x1p100f : 1.0f);
+    x *= rescale;
+    y *= rescale;
+    z = valid ? z * rescale : 1.0f;
     const float zn = std::min(1.0f, std::max(-1.0f, z / std::sqrt(x * x + y * y + z * z)));
     // Polar angle from +z: acos(zn) = pi/2 - asin(zn).
     const float asinAbs = asinUnit(std::abs(zn));

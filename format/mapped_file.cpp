@@ -77,7 +77,13 @@ void MappedFile::willNeed(size_t offset, size_t bytes) const {
   const size_t page = pageSize();
   const size_t begin = offset / page * page;
   const size_t end = std::min(size_, offset + bytes);
-  if (end > begin) madvise(const_cast<uint8_t*>(data_) + begin, end - begin, MADV_WILLNEED);
+  if (end <= begin) return;
+#ifdef MADV_POPULATE_READ
+  // Map the whole range into the page tables in one call (Linux 5.14+) instead of taking a
+  // fault per 64 KiB while scanning; falls back to read-ahead on older kernels.
+  if (madvise(const_cast<uint8_t*>(data_) + begin, end - begin, MADV_POPULATE_READ) == 0) return;
+#endif
+  madvise(const_cast<uint8_t*>(data_) + begin, end - begin, MADV_WILLNEED);
 }
 
 }  // namespace voxlink::format

@@ -24,6 +24,7 @@ class MappedFile {
   // Tells the kernel these mapped pages are no longer needed, so they leave this process's
   // resident set (the file's page cache is untouched). Keeps streaming memory bounded.
   void release(size_t offset, size_t bytes) const;
+  // Maps the range in ahead of use (prefaulted where the kernel can).
   void willNeed(size_t offset, size_t bytes) const;
 
  private:

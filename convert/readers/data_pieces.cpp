@@ -74,9 +74,7 @@ class PieceSource final : public VolumeSource {
   bool randomAccess() const override { return layout_.encoding == PieceEncoding::kRaw; }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
-                       uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     auto* out = static_cast<uint8_t*>(dst);
     uint32_t z = z0;
     while (z < z0 + count) {

@@ -24,9 +24,7 @@ class DicomSource final : public VolumeSource {
   bool randomAccess() const override { return true; }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
-                       uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     const uint64_t storedBytes = info_.sliceVoxels() * scalarSize(series_.storedType);
     auto* out = static_cast<uint8_t*>(dst);
     for (uint32_t z = z0; z < z0 + count; ++z) {
@@ -70,7 +68,7 @@ bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
                                                       const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir));
   const std::array<uint64_t, 3> dims{series.columns, series.rows, series.slices.size()};

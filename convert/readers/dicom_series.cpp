@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 
+#include "convert/readers/dicom_probe.h"
 #include "convert/readers/file_list.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/text_header.h"
@@ -19,15 +20,6 @@ namespace voxlink::convert {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool looksLikeDicom(const fs::path& p) {
-  if (p.filename() == "DICOMDIR") return false;  // an index, not an image
-  if (toLower(p.extension().string()) == ".dcm") return true;
-  std::ifstream in(p, std::ios::binary);
-  char magic[132] = {};
-  in.read(magic, sizeof magic);
-  return in.gcount() == 132 && std::string_view(magic + 128, 4) == "DICM";
-}
 
 // The text of a string-valued element (DS, IS, UI, CS), or empty when absent.
 std::string stringValue(const gdcm::DataSet& ds, uint16_t group, uint16_t element) {
@@ -223,18 +215,6 @@ std::string orderNote(const std::vector<DicomSlice>& slices) {
 }
 
 }  // namespace
-
-bool folderHoldsDicom(const std::string& dir) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return false;
-  int looked = 0;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (!entry.is_regular_file(ec)) continue;
-    if (looksLikeDicom(entry.path())) return true;
-    if (++looked >= 64) break;  // a folder of other files: stop early
-  }
-  return false;
-}
 
 Result<DicomSeries> scanDicomSeries(const std::string& dir) {
   std::vector<std::string> files;

@@ -32,8 +32,6 @@ struct DicomSeries {
   std::vector<std::string> notes;
 };
 
-// True when `dir` holds at least one file that looks like DICOM (.dcm name or "DICM" magic).
-bool folderHoldsDicom(const std::string& dir);
 
 // Reads the headers of the DICOM files in `dir` (not recursive) and orders them.
 // kSizeMismatch: files disagree on Rows/Columns/bits/PixelSpacing; kUnsupported: several series,

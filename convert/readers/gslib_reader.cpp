@@ -88,9 +88,7 @@ class GslibSource final : public VolumeSource {
   }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", z0 + count,
-                       ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     if (z0 < nextSlice_) VOXLINK_RETURN_IF_ERROR(rewind());
     while (nextSlice_ < z0) {  // skip to z0 (sequential format)
       VOXLINK_RETURN_IF_ERROR(parseValues(info_.sliceVoxels(), nullptr));

@@ -1,101 +1,43 @@
 #include "convert/readers/image_stack_reader.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <filesystem>
 
 #include "convert/readers/file_list.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/reader_registry.h"
+#include "imageio/image_io.h"
 
 namespace voxlink::convert {
 namespace {
 
 namespace fs = std::filesystem;
-using OIIO::ImageInput;
-using OIIO::TypeDesc;
-
-Result<ScalarType> scalarFromOiio(TypeDesc format, const std::string& file, bool& halfFloat) {
-  halfFloat = false;
-  switch (format.basetype) {
-    case TypeDesc::UINT8:
-      return ScalarType::kU8;
-    case TypeDesc::INT8:
-      return ScalarType::kI8;
-    case TypeDesc::UINT16:
-      return ScalarType::kU16;
-    case TypeDesc::INT16:
-      return ScalarType::kI16;
-    case TypeDesc::UINT32:
-      return ScalarType::kU32;
-    case TypeDesc::INT32:
-      return ScalarType::kI32;
-    case TypeDesc::HALF:
-      halfFloat = true;
-      return ScalarType::kF32;
-    case TypeDesc::FLOAT:
-      return ScalarType::kF32;
-    case TypeDesc::DOUBLE:
-      return ScalarType::kF64;
-    default:
-      return makeError(ErrorCode::kUnsupported, file, ": pixel format ", format.c_str(),
-                       " (8/16/32-bit integers and floats are supported)");
-  }
-}
-
-TypeDesc oiioType(ScalarType type) {
-  switch (type) {
-    case ScalarType::kU8:
-      return TypeDesc::UINT8;
-    case ScalarType::kI8:
-      return TypeDesc::INT8;
-    case ScalarType::kU16:
-      return TypeDesc::UINT16;
-    case ScalarType::kI16:
-      return TypeDesc::INT16;
-    case ScalarType::kU32:
-      return TypeDesc::UINT32;
-    case ScalarType::kI32:
-      return TypeDesc::INT32;
-    case ScalarType::kF32:
-      return TypeDesc::FLOAT;
-    case ScalarType::kF64:
-      break;
-  }
-  return TypeDesc::DOUBLE;
-}
-
-Result<std::unique_ptr<ImageInput>> openImage(const std::string& file) {
-  auto in = ImageInput::open(file);
-  if (!in)
-    return makeError(ErrorCode::kCorrupt, file, ": OpenImageIO cannot open it (", OIIO::geterror(),
-                     ")");
-  return std::unique_ptr<ImageInput>(std::move(in));
-}
 
 // What every slice must share; the first slice sets it.
 struct SliceShape {
-  int width = 0, height = 0, channels = 0;
-  TypeDesc format;
+  imageio::ImageSpec spec;
   std::string from;  // the file (and page) that set it
 };
 
-Status checkSlice(const OIIO::ImageSpec& spec, const std::string& where, SliceShape& shape) {
+Status checkSlice(const imageio::ImageSpec& spec, const std::string& where, SliceShape& shape) {
   if (spec.depth > 1)
     return makeError(ErrorCode::kUnsupported, where, ": image depth ", spec.depth,
                      " (only 2-D slices)");
+  if (!spec.supportedType)
+    return makeError(ErrorCode::kUnsupported, where, ": pixel format ", spec.formatName,
+                     " (8/16/32-bit integers and floats are supported)");
   if (shape.from.empty()) {
-    shape = {spec.width, spec.height, spec.nchannels, spec.format, where};
+    shape = {spec, where};
     return Status::ok();
   }
-  if (spec.width != shape.width || spec.height != shape.height)
+  const imageio::ImageSpec& first = shape.spec;
+  if (spec.width != first.width || spec.height != first.height)
     return makeError(ErrorCode::kSizeMismatch, where, ": image size ", spec.width, "x", spec.height,
-                     " differs from ", shape.width, "x", shape.height, " of ", shape.from);
-  if (spec.format != shape.format || spec.nchannels != shape.channels)
-    return makeError(ErrorCode::kSizeMismatch, where, ": pixel format ", spec.format.c_str(), " x ",
-                     spec.nchannels, " channels differs from ", shape.format.c_str(), " x ",
-                     shape.channels, " of ", shape.from);
+                     " differs from ", first.width, "x", first.height, " of ", shape.from);
+  if (spec.formatName != first.formatName || spec.channels != first.channels)
+    return makeError(ErrorCode::kSizeMismatch, where, ": pixel format ", spec.formatName, " x ",
+                     spec.channels, " channels differs from ", first.formatName, " x ",
+                     first.channels, " of ", shape.from);
   return Status::ok();
 }
 
@@ -110,21 +52,12 @@ class ImageStackSource final : public VolumeSource {
   bool randomAccess() const override { return true; }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
-                       uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     auto* out = static_cast<uint8_t*>(dst);
     for (uint32_t z = z0; z < z0 + count; ++z) {
       const std::string& file = multiPage_ ? files_[0] : files_[z];
-      if (!multiPage_ || !input_) {
-        VOXLINK_ASSIGN_OR_RETURN(input_, openImage(file));
-      }
       const int subimage = multiPage_ ? static_cast<int>(z) : 0;
-      if (!input_->read_image(subimage, 0, 0, 1, oiioType(info_.type),
-                              out + uint64_t{z - z0} * info_.sliceBytes()))
-        return makeError(ErrorCode::kCorrupt, file, multiPage_ ? cat(": page ", z) : std::string(),
-                         ": cannot read pixels (", input_->geterror(), ")");
-      if (!multiPage_) input_.reset();
+      VOXLINK_RETURN_IF_ERROR(imageio::read(file, subimage, 1, info_.type, out + uint64_t{z - z0} * info_.sliceBytes()));
     }
     return Status::ok();
   }
@@ -132,7 +65,6 @@ class ImageStackSource final : public VolumeSource {
  private:
   std::vector<std::string> files_;
   bool multiPage_;
-  std::unique_ptr<ImageInput> input_;
 };
 
 }  // namespace
@@ -163,15 +95,16 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
       return naturalLess(fs::path(a).filename().string(), fs::path(b).filename().string());
     });
     for (const std::string& file : files) {
-      VOXLINK_ASSIGN_OR_RETURN(auto in, openImage(file));
-      VOXLINK_RETURN_IF_ERROR(checkSlice(in->spec(), file, shape));
+      VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(file));
+      VOXLINK_RETURN_IF_ERROR(checkSlice(spec, file, shape));
     }
     slices = files.size();
   } else {
     files.push_back(path);
-    VOXLINK_ASSIGN_OR_RETURN(auto in, openImage(path));
-    for (int page = 0; in->seek_subimage(page, 0); ++page) {
-      VOXLINK_RETURN_IF_ERROR(checkSlice(in->spec(), cat(path, ": page ", page), shape));
+    VOXLINK_ASSIGN_OR_RETURN(int pages, imageio::subimageCount(path));
+    for (int page = 0; page < pages; ++page) {
+      VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(path, page));
+      VOXLINK_RETURN_IF_ERROR(checkSlice(spec, cat(path, ": page ", page), shape));
       ++slices;
     }
     if (slices < 2)
@@ -183,17 +116,18 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
   VolumeInfo info;
   info.path = path;
   info.format = "image-stack";
-  bool halfFloat = false;
-  VOXLINK_ASSIGN_OR_RETURN(info.type, scalarFromOiio(shape.format, shape.from, halfFloat));
+  const imageio::ImageSpec& first = shape.spec;
+  info.type = first.type;
+  const bool halfFloat = first.halfFloat;
   VOXLINK_RETURN_IF_ERROR(
-      checkDims({uint64_t(shape.width), uint64_t(shape.height), slices}, path, "image size"));
-  info.dims = {static_cast<uint32_t>(shape.width), static_cast<uint32_t>(shape.height),
+      checkDims({uint64_t(first.width), uint64_t(first.height), slices}, path, "image size"));
+  info.dims = {static_cast<uint32_t>(first.width), static_cast<uint32_t>(first.height),
                static_cast<uint32_t>(slices)};
   info.notes.push_back(folder ? cat(slices, " slice images ordered by the numbers in their names, ",
                                     fs::path(files.front()).filename().string(), " first")
                               : cat(slices, " pages of one file"));
-  if (shape.channels > 1)
-    info.notes.push_back(cat("images have ", shape.channels, " channels; channel 0 is read"));
+  if (first.channels > 1)
+    info.notes.push_back(cat("images have ", first.channels, " channels; channel 0 is read"));
   if (halfFloat) info.notes.push_back("half-float pixels are served as f32");
   info.notes.push_back("image files carry no voxel spacing: 1 1 1 unless --spacing is given");
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));

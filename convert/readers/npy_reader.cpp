@@ -169,10 +169,8 @@ class FortranNpySource final : public VolumeSource {
   bool randomAccess() const override { return true; }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     const auto& d = info_.dims;
-    if (uint64_t{z0} + count > d[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", z0 + count,
-                       ") beyond z size ", d[2]);
     const size_t e = scalarSize(info_.type);
     auto* out = static_cast<uint8_t*>(dst);
     const uint8_t* base = file_.data() + offset_;

@@ -18,8 +18,7 @@ class RawSource final : public VolumeSource {
   bool randomAccess() const override { return true; }
 
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", z0 + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     const uint64_t bytes = uint64_t{count} * info_.sliceBytes();
     const uint64_t begin = offset_ + uint64_t{z0} * info_.sliceBytes();
     std::memcpy(dst, file_.data() + begin, bytes);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "convert/readers/dicom_probe.h"
 #include "convert/readers/dicom_reader.h"
 #include "convert/readers/dicom_series.h"
 #include "convert/readers/image_stack_reader.h"

@@ -28,9 +28,7 @@ class VdbSource final : public VolumeSource {
   // (tools::copyToDense would copy those stored values), so each 8^3 block is resolved here:
   // a leaf gives per-voxel values and states, a tile one value and state for the whole block.
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
-                       uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     using Leaf = FloatGrid::TreeType::LeafNodeType;
     constexpr int kDim = static_cast<int>(Leaf::DIM);
     const Coord lo(box_.min().x(), box_.min().y(), box_.min().z() + static_cast<int>(z0));
@@ -78,7 +76,7 @@ class VdbSource final : public VolumeSource {
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path, const OpenOptions& options) {
   openvdb::initialize();
   openvdb::GridBase::Ptr base;
   std::string names;

@@ -10,6 +10,9 @@
 namespace voxlink::convert {
 
 // The grid is options.vdbGrid, or the first float grid in the file.
+// Through the OpenVDB plugin (libvoxlink_vdb.so), loaded on first use.
 Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const OpenOptions& options);
+// The implementation inside the plugin.
+Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path, const OpenOptions& options);
 
 }  // namespace voxlink::convert

@@ -120,9 +120,7 @@ class MemorySource final : public VolumeSource {
   }
   bool randomAccess() const override { return true; }
   Status read(uint32_t z0, uint32_t count, void* dst) override {
-    if (uint64_t{z0} + count > info_.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
-                       uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     std::memcpy(dst, data_.data() + uint64_t{z0} * info_.sliceBytes(),
                 uint64_t{count} * info_.sliceBytes());
     return Status::ok();

@@ -46,3 +46,31 @@ TEST(Moments, ConstantVolumeHasZeroSigmaAndNaNIsRefused) {
 
 }  // namespace
 }  // namespace voxlink::convert
+
+#include "convert/histogram.h"
+
+namespace voxlink::convert {
+namespace {
+
+TEST(Histogram, CountsEveryVoxelAndGivesIntegersTheirOwnBins) {
+  auto v = testing::makeVolume<uint8_t>({10, 10, 10}, [](uint32_t x, uint32_t y, uint32_t) { return uint8_t(10 + (x + y) % 5); });
+  auto h = measureHistogram(*v, 64);
+  ASSERT_TRUE(h) << h.message();
+  ASSERT_EQ(h->counts.size(), 5u);  // values 10..14, one bin each
+  uint64_t total = 0;
+  for (uint64_t c : h->counts) total += c;
+  EXPECT_EQ(total, 1000u);
+  EXPECT_EQ(h->counts[0], 200u);  // (x + y) % 5 == 0 for a fifth of the voxels
+  EXPECT_DOUBLE_EQ(h->quantile(0.5), 13.0);  // 60 % of voxels are <= 12, i.e. in bins up to [12, 13)
+}
+
+TEST(Histogram, FloatRangeIsSplitEvenly) {
+  auto v = testing::makeVolume<float>({100, 1, 1}, [](uint32_t x, uint32_t, uint32_t) { return x * 0.01f; });
+  auto h = measureHistogram(*v, 10);
+  ASSERT_TRUE(h);
+  ASSERT_EQ(h->counts.size(), 10u);
+  for (uint64_t c : h->counts) EXPECT_NEAR(double(c), 10.0, 1.0);
+}
+
+}  // namespace
+}  // namespace voxlink::convert
