@@ -1,6 +1,7 @@
 #include "viewer/core/image.h"
 
-#include <OpenImageIO/imageio.h>
+#include "imageio/image_io.h"
+
 
 #include <algorithm>
 #include <cmath>
@@ -63,45 +64,26 @@ Result<ImageError> compareImages(const Image& a, const Image& b, double threshol
 Status writeImage(const Image& image, const std::string& path) {
   if (image.width == 0 || image.height == 0)
     return makeError(ErrorCode::kInvalidArgument, path, ": cannot write an empty image");
-  const bool exr = lowerExtension(path) == ".exr";
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out)
-    return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (",
-                     OIIO::geterror(), ")");
+  const int w = int(image.width), h = int(image.height);
   // EXR keeps the coverage in alpha; 8-bit files are opaque (the background is composited).
-  const int channels = exr ? 4 : 3;
-  OIIO::ImageSpec spec(int(image.width), int(image.height), channels,
-                       exr ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", exr ? "Linear" : "sRGB");
-  if (!out->open(path, spec))
-    return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
-  bool ok = false;
-  if (exr) {
-    ok = out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data());
-  } else {
-    std::vector<uint8_t> bytes(size_t{image.width} * image.height * 3);
-    for (size_t i = 0; i < bytes.size(); ++i) {
-      const double v = srgbEncode(image.rgba[i / 3 * 4 + i % 3]);
-      bytes[i] = static_cast<uint8_t>(std::lround(std::isfinite(v) ? v * 255.0 : 0.0));
-    }
-    ok = out->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  if (lowerExtension(path) == ".exr")
+    return imageio::write(path, w, h, 4, ScalarType::kF32, image.rgba.data(), /*halfFloat=*/true, "Linear");
+  std::vector<uint8_t> bytes(size_t{image.width} * image.height * 3);
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    const double v = srgbEncode(image.rgba[i / 3 * 4 + i % 3]);
+    bytes[i] = static_cast<uint8_t>(std::lround(std::isfinite(v) ? v * 255.0 : 0.0));
   }
-  if (!ok) return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
-  if (!out->close()) return makeError(ErrorCode::kIo, path, ": close failed: ", out->geterror());
-  return Status::ok();
+  return imageio::write(path, w, h, 3, ScalarType::kU8, bytes.data(), /*halfFloat=*/false, "sRGB");
 }
 
 Result<Image> readImage(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return makeError(ErrorCode::kIo, path, ": cannot read image: ", OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int channels = spec.nchannels;
+  VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(path));
+  const int channels = spec.channels;
   if (spec.width <= 0 || spec.height <= 0 || channels < 1 || spec.depth > 1)
     return makeError(ErrorCode::kUnsupported, path, ": not a 2D image");
   std::vector<float> data(size_t(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()))
-    return makeError(ErrorCode::kIo, path, ": read failed: ", in->geterror());
-  const bool linear = spec.format == OIIO::TypeDesc::HALF || spec.format == OIIO::TypeDesc::FLOAT;
+  VOXLINK_RETURN_IF_ERROR(imageio::read(path, 0, channels, ScalarType::kF32, data.data()));
+  const bool linear = spec.halfFloat || spec.type == ScalarType::kF32 || spec.type == ScalarType::kF64;
   Image img(uint32_t(spec.width), uint32_t(spec.height));
   for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
     for (int c = 0; c < 4; ++c) {

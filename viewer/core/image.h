@@ -1,5 +1,5 @@
 // Float RGBA images (linear colour, row 0 at the top) as both renderers produce them, the error
-// measures between two of them, and writing them through OpenImageIO.
+// measures between two of them, and writing them through OpenImageIO (imageio/, a plugin).
 #pragma once
 
 #include <array>
