@@ -159,16 +159,17 @@ void denseBrickGradientsN(const T* brick, const int64_t stride[3], const float s
 // Keep flags of every cell of a row of bricks (n slices x n rows x the whole width), x fastest.
 // Long contiguous loops: they vectorize and stream the row's source data into cache in order,
 // so the per-brick work that follows reads from L2 instead of striding through slices.
+// Only x in [x0, x1) is filled: the span of the row's occupied bricks.
 template <class T, class Keep>
 void rowKeepFlags(const SlabWindow& window, const uint32_t dims[3], uint32_t z0, uint32_t z1, uint32_t y0,
-                  uint32_t y1, uint32_t n, const Keep keep, uint8_t* __restrict flags) {
+                  uint32_t y1, uint32_t x0, uint32_t x1, uint32_t n, const Keep keep, uint8_t* __restrict flags) {
   const uint32_t nx = dims[0];
   for (uint32_t z = z0; z < z1; ++z) {
     const T* slice = reinterpret_cast<const T*>(window.slice(z));
     for (uint32_t y = y0; y < y1; ++y) {
       const T* __restrict p = slice + uint64_t{y} * nx;
       uint8_t* __restrict f = flags + (size_t{z - z0} * n + (y - y0)) * nx;
-      for (uint32_t x = 0; x < nx; ++x) f[x] = keep(p[x]) ? 1 : 0;
+      for (uint32_t x = x0; x < x1; ++x) f[x] = keep(p[x]) ? 1 : 0;
     }
   }
 }
@@ -376,11 +377,16 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
   scratch.gy.resize(cells);
   scratch.gz.resize(cells);
   constexpr bool kDense = !std::is_same_v<T, double>;
-  // Keep flags of the row of bricks: n slices x n rows x nx.
+  // Keep flags of the row of bricks (n slices x n rows x nx), over its occupied span only:
+  // sparse volumes have many empty rows and long empty runs.
+  uint32_t bxFirst = 0, bxEnd = g.grid[0];
+  while (bxFirst < bxEnd && counts[bxFirst] == 0) ++bxFirst;
+  while (bxEnd > bxFirst && counts[bxEnd - 1] == 0) --bxEnd;
+  if (bxFirst == bxEnd) return;
   const uint32_t z0 = bz * n, z1 = std::min(dims[2], z0 + n);
   const uint32_t y0 = by * n, y1 = std::min(dims[1], y0 + n);
   scratch.flags.resize(size_t{n} * n * dims[0]);
-  rowKeepFlags<T>(window, dims, z0, z1, y0, y1, n, keep, scratch.flags.data());
+  rowKeepFlags<T>(window, dims, z0, z1, y0, y1, bxFirst * n, std::min(dims[0], bxEnd * n), n, keep, scratch.flags.data());
   const size_t flagStride[3] = {1, dims[0], size_t{n} * dims[0]};
   if (kDense) {
     scratch.denseX.resize(cells);
@@ -390,7 +396,7 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
   const float halfF[3] = {static_cast<float>(half[0]), static_cast<float>(half[1]), static_cast<float>(half[2])};
 
   uint64_t k = firstOccupied;
-  for (uint32_t bx = 0; bx < g.grid[0]; ++bx) {
+  for (uint32_t bx = bxFirst; bx < bxEnd; ++bx) {
     if (counts[bx] == 0) continue;
     const uint64_t vbase = voxelBase[k];
     uint16_t* rows = out.rows + (k - out.k0) * n * n;

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "format/brick_rows.h"
 #include "format/crc32c.h"
@@ -107,6 +108,7 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
   w.path_ = path;
   w.header_ = header;
   w.layout_ = planSections(header, 0);
+  w.crcs_.resize(w.layout_.entries.size());
   // The temporary file sits beside the destination so the final rename stays on one file system.
   std::string pattern = path + ".tmp-XXXXXX";
   w.fd_ = mkstemp(pattern.data());
@@ -125,7 +127,9 @@ FileWriter::FileWriter(FileWriter&& other) noexcept
       tempPath_(std::move(other.tempPath_)),
       fd_(std::exchange(other.fd_, -1)),
       header_(other.header_),
-      layout_(std::move(other.layout_)) {
+      layout_(std::move(other.layout_)),
+      crcs_(std::move(other.crcs_)),
+      crcMutex_(std::move(other.crcMutex_)) {
   other.tempPath_.clear();
 }
 
@@ -157,7 +161,16 @@ Status FileWriter::write(SectionId id, uint64_t offset, const void* data, size_t
   const SectionEntry& e = layout_.entry(id);
   if (offset + bytes > e.bytes)
     return makeError(ErrorCode::kInvalidArgument, path_, ": section ", sectionName(id), ": write of ", bytes, " bytes at ", offset, " exceeds its ", e.bytes, " bytes");
-  return writeRaw(e.offset + offset, data, bytes);
+  VOXLINK_RETURN_IF_ERROR(writeRaw(e.offset + offset, data, bytes));
+  std::lock_guard lock(*crcMutex_);
+  RunningCrc& c = crcs_[static_cast<size_t>(&e - layout_.entries.data())];
+  if (c.inOrder && offset == c.covered) {
+    c.crc = crc32c(data, bytes, c.crc);
+    c.covered += bytes;
+  } else {
+    c.inOrder = false;
+  }
+  return Status::ok();
 }
 
 Status FileWriter::commit(const std::string& metaJson) {
@@ -167,11 +180,20 @@ Status FileWriter::commit(const std::string& metaJson) {
     return makeError(ErrorCode::kIo, path_, ": cannot size output to ", layout_.fileBytes, " bytes: ", std::strerror(errno));
   VOXLINK_RETURN_IF_ERROR(write(SectionId::kMeta, 0, metaJson.data(), metaJson.size()));
   {
-    // Checksum what actually reached the file, not what we meant to write.
-    VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(tempPath_));
-    for (SectionEntry& e : layout_.entries) {
-      e.crc = crc32c(mapped.data() + e.offset, e.bytes);
-      mapped.release(e.offset, e.bytes);
+    // Sections written out of order or with gaps (left as zeros) are read back.
+    std::optional<MappedFile> mapped;
+    for (size_t i = 0; i < layout_.entries.size(); ++i) {
+      SectionEntry& e = layout_.entries[i];
+      if (crcs_[i].inOrder && crcs_[i].covered == e.bytes) {
+        e.crc = crcs_[i].crc;
+        continue;
+      }
+      if (!mapped) {
+        VOXLINK_ASSIGN_OR_RETURN(MappedFile m, MappedFile::open(tempPath_));
+        mapped.emplace(std::move(m));
+      }
+      e.crc = crc32c(mapped->data() + e.offset, e.bytes);
+      mapped->release(e.offset, e.bytes);
     }
   }
   header_.sectionTableOffset = layout_.tableOffset;

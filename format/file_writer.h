@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -62,10 +64,12 @@ class FileWriter {
   FileHeader& header() { return header_; }  // fields like valueMin may be set before commit()
   const std::string& path() const { return path_; }
 
-  // Writes bytes at `offset` inside a section; thread-safe for disjoint ranges.
+  // Writes bytes at `offset` inside a section; thread-safe for disjoint ranges. A section
+  // written front to back in order is checksummed on the way; any other order makes commit()
+  // read that section back from the file instead.
   Status write(SectionId id, uint64_t offset, const void* data, size_t bytes);
-  // Writes META, checksums every section as written, writes the table and the header, and
-  // renames the file into place.
+  // Writes META, checksums every section, writes the table and the header, and renames the
+  // file into place.
   Status commit(const std::string& metaJson);
 
  private:
@@ -78,6 +82,14 @@ class FileWriter {
   int fd_ = -1;
   FileHeader header_{};
   SectionLayout layout_;
+  // The checksum of a section's prefix [0, covered), while writes arrive in order.
+  struct RunningCrc {
+    uint64_t covered = 0;
+    uint32_t crc = 0;
+    bool inOrder = true;
+  };
+  std::vector<RunningCrc> crcs_;  // parallel to layout_.entries
+  std::unique_ptr<std::mutex> crcMutex_ = std::make_unique<std::mutex>();
 };
 
 // A whole file held in memory: what small producers (tests, voxelizers) build and write.

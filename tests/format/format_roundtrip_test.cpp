@@ -149,6 +149,55 @@ TEST(FormatRoundTrip, FullyOccupiedVolume) {
   EXPECT_EQ(file->value(static_cast<uint64_t>(locator.find(16, 7, 8))), double((16 + 7 + 8) & 255));
 }
 
+// Checksums come from the writes themselves when a section arrives front to back, and from
+// reading the file back otherwise; both must give the same file.
+TEST(FormatRoundTrip, ChecksumsDoNotDependOnWriteOrder) {
+  VolumeDescription d;
+  d.dims = {40, 30, 20};
+  BrickedVolumeBuilder builder(d);
+  std::mt19937 rng(5);
+  for (uint32_t z = 0; z < 20; ++z)
+    for (uint32_t y = 0; y < 30; ++y)
+      for (uint32_t x = 0; x < 40; ++x)
+        if (rng() % 8 == 0)
+          builder.add(x, y, z, rng() & 255, encodeGradient(float(rng() % 9) - 4.0f, float(rng() % 9) - 4.0f, 1.0f));
+  auto volume = builder.build(R"({"test":"order"})");
+  ASSERT_TRUE(volume) << volume.message();
+  testing::TempDir dir;
+  ASSERT_TRUE(writeBrickedVolume(dir.file("in_order.vxl"), *volume).isOk());
+
+  const BrickedVolume& v = *volume;
+  const FileHeader header = makeHeader(v.description, v.voxelCount(), v.occupiedBrickCount());
+  auto writer = FileWriter::create(dir.file("shuffled.vxl"), header);
+  ASSERT_TRUE(writer) << writer.message();
+  // Each section in three chunks, last chunk first; the values section twice over.
+  auto backwards = [&](SectionId id, const void* data, size_t bytes) {
+    const auto* p = static_cast<const uint8_t*>(data);
+    const size_t a = bytes / 3, b = 2 * bytes / 3;
+    ASSERT_TRUE(writer->write(id, b, p + b, bytes - b).isOk());
+    ASSERT_TRUE(writer->write(id, a, p + a, b - a).isOk());
+    ASSERT_TRUE(writer->write(id, 0, p, a).isOk());
+  };
+  backwards(SectionId::kBrickOccupancy, v.occupancy.data(), v.occupancy.size() * 4);
+  backwards(SectionId::kBrickRank, v.rank.data(), v.rank.size() * 4);
+  backwards(SectionId::kBrickVoxelBase, v.voxelBase.data(), v.voxelBase.size() * 4);
+  backwards(SectionId::kRowStart, v.rowStarts.data(), v.rowStarts.size() * 2);
+  backwards(SectionId::kRowMask, v.rowMasks.data(), v.rowMasks.size() * 4);
+  ASSERT_TRUE(writer->write(SectionId::kValues, 0, v.values.data(), v.values.size()).isOk());
+  ASSERT_TRUE(writer->write(SectionId::kValues, 0, v.values.data(), v.values.size()).isOk());
+  // Gradients: the first half only in order, the rest never written until a gap-filling write.
+  const size_t half = v.gradients.size() / 2;
+  ASSERT_TRUE(writer->write(SectionId::kGradients, 0, v.gradients.data(), half * 2).isOk());
+  ASSERT_TRUE(writer->write(SectionId::kGradients, half * 2, v.gradients.data() + half, (v.gradients.size() - half) * 2).isOk());
+  ASSERT_TRUE(writer->commit(v.metaJson).isOk());
+
+  EXPECT_EQ(testing::readBytes(dir.file("shuffled.vxl")), testing::readBytes(dir.file("in_order.vxl")));
+  auto file = VoxLinkFile::open(dir.file("shuffled.vxl"));
+  ASSERT_TRUE(file) << file.message();
+  auto report = validateFile(*file);
+  EXPECT_TRUE(report) << report.message();
+}
+
 TEST(FormatRoundTrip, BuilderRejectsDuplicatesAndOutsideVoxels) {
   VolumeDescription d;
   d.dims = {4, 4, 4};
