@@ -113,32 +113,23 @@ namespace {
 
 
 
-// Float arcsine on [0, 1] and arctangent on [0, 1] accurate to a few float ulps (Cephes-style
-// minimax polynomials with range reduction), branch-free so loops over them vectorize.
-inline float asinUnit(float a) {  // a in [0, 1]
-  const bool big = a > 0.5f;
-  const float z = big ? 0.5f * (1.0f - a) : a * a;
-  const float x = big ? std::sqrt(z) : a;
-  const float p = ((((4.2163199048e-2f * z + 2.4181311049e-2f) * z + 4.5470025998e-2f) * z + 7.4953002686e-2f) * z +
-                   1.6666752422e-1f) * z * x + x;
-  return big ? 1.5707963267948966f - 2.0f * p : p;
-}
-
-inline float atanUnit(float r) {  // r in [0, 1]
-  const bool big = r > 0.4142135623730950f;  // tan(pi/8)
-  const float x = big ? (r - 1.0f) / (r + 1.0f) : r;
+// atan(lo / hi) for 0 <= lo <= hi, hi > 0, to a few float ulps: range reduction about pi/8
+// folded into the one division, then the Cephes atanf minimax polynomial. Branch-free, so
+// loops over it vectorize.
+__attribute__((always_inline)) inline float atanRatio(float lo, float hi) {
+  const bool big = lo > 0.41421356237309505f * hi;  // ratio > tan(pi/8): atan(r) = pi/4 + atan((r-1)/(r+1))
+  const float x = (big ? lo - hi : lo) / (big ? lo + hi : hi);
   const float z = x * x;
   const float p = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) * z * x + x;
-  return big ? 0.7853981633974483f + p : p;
+  return big ? 0.78539816339744831f + p : p;
 }
 
-// The whole batch encoder: branch-free float arithmetic the compiler vectorizes (AVX2 clone
-// where the CPU has it). Rounding to the nearest step is exact up to float rounding.
-__attribute__((target_clones("avx2", "default"))) void encodeBatch(const float* __restrict gx,
-                                                                 const float* __restrict gy,
-                                                                 const float* __restrict gz,
-                                                                 uint16_t* __restrict codes, size_t count) {
+// The encoding loop; the compiler vectorizes it. Both angles come from octant-reduced arctangents (one square root, two divisions per lane):
+// the polar angle as atan2(sqrt(x^2 + y^2), z), the azimuth from the first-octant ratio.
+__attribute__((always_inline)) inline void encodeLoop(const float* __restrict gx, const float* __restrict gy,
+                                                      const float* __restrict gz, uint16_t* __restrict codes, size_t count) {
   constexpr float kPi = 3.14159265358979323846f;
+  constexpr float kHalfPi = 1.57079632679489662f;
   constexpr float kMaxFloat = std::numeric_limits<float>::max();
   for (size_t i = 0; i < count; ++i) {
     float x = gx[i], y = gy[i], z = gz[i];
@@ -147,20 +138,19 @@ __attribute__((target_clones("avx2", "default"))) void encodeBatch(const float* 
     // Squares must neither overflow nor vanish: rescale by an exact power of two, only when
     // the vector is huge or tiny (no division, so the common case costs a compare).
     const float rescale = big > 0x1p60f ? 0x1p-100f : (big < 0x1p-60f ? 0x1p100f : 1.0f);
-    x *= rescale;
-    y *= rescale;
+    x = valid ? x * rescale : 0.0f;
+    y = valid ? y * rescale : 0.0f;
     z = valid ? z * rescale : 1.0f;
-    const float zn = std::min(1.0f, std::max(-1.0f, z / std::sqrt(x * x + y * y + z * z)));
-    // Polar angle from +z: acos(zn) = pi/2 - asin(zn).
-    const float asinAbs = asinUnit(std::abs(zn));
-    const float polar = zn >= 0.0f ? 1.5707963267948966f - asinAbs : 1.5707963267948966f + asinAbs;
+    const float rho = std::sqrt(x * x + y * y), az = std::abs(z);
+    const float t = atanRatio(std::min(rho, az), std::max(rho, az));
+    const float fromAxis = rho <= az ? t : kHalfPi - t;
+    const float polar = z >= 0.0f ? fromAxis : kPi - fromAxis;
     int32_t theta = static_cast<int32_t>(polar * (kPolarSteps / kPi) + 0.5f);
     theta = std::min(std::max(theta, 0), int32_t{kPolarSteps});
     // Azimuth: the first-octant angle, unfolded by the signs and the larger component.
     const float sx = std::abs(x), sy = std::abs(y);
     const float lo = std::min(sx, sy), hi = std::max(sx, sy);
-    const float ratio = lo / (hi > 0.0f ? hi : 1.0f);
-    int32_t j = static_cast<int32_t>(atanUnit(ratio) * (kAzimuthSteps / (2 * kPi)) + 0.5f);
+    int32_t j = static_cast<int32_t>(atanRatio(lo, hi > 0.0f ? hi : 1.0f) * (kAzimuthSteps / (2 * kPi)) + 0.5f);
     j = std::min(std::max(j, 0), int32_t{kAzimuthSteps / 8});
     int32_t phi = sy > sx ? kAzimuthSteps / 4 - j : j;
     phi = x < 0 ? kAzimuthSteps / 2 - phi : phi;
@@ -170,11 +160,64 @@ __attribute__((target_clones("avx2", "default"))) void encodeBatch(const float* 
   }
 }
 
+// The whole batch encoder, compiled for several instruction sets and picked once at run time.
+// The tail is padded to a full vector so it runs the same vector code, not a scalar epilogue.
+constexpr size_t kTail = 16;
+
+__attribute__((always_inline)) inline void encodeBatchBody(const float* __restrict gx, const float* __restrict gy,
+                                                           const float* __restrict gz, uint16_t* __restrict codes,
+                                                           size_t count) {
+  const size_t body = count / kTail * kTail, rest = count - body;
+  encodeLoop(gx, gy, gz, codes, body);
+  if (rest == 0) return;
+  float x[kTail] = {}, y[kTail] = {}, z[kTail] = {};
+  uint16_t tail[kTail];
+  for (size_t i = 0; i < rest; ++i) x[i] = gx[body + i], y[i] = gy[body + i], z[i] = gz[body + i];
+  encodeLoop(x, y, z, tail, kTail);
+  for (size_t i = 0; i < rest; ++i) codes[body + i] = tail[i];
+}
+
+using EncodeBatchFn = void (*)(const float*, const float*, const float*, uint16_t*, size_t);
+
+void encodeBatchPortable(const float* gx, const float* gy, const float* gz, uint16_t* codes, size_t count) {
+  encodeBatchBody(gx, gy, gz, codes, count);
+}
+
+#if defined(__x86_64__)
+// Explicit ISA lists rather than target_clones("arch=..."): an arch clone may not inline the
+// std:: helpers, which leaves calls in the loop and stops the vectorizer.
+__attribute__((target("avx2,fma"))) void encodeBatchAvx2(const float* gx, const float* gy, const float* gz,
+                                                         uint16_t* codes, size_t count) {
+  encodeBatchBody(gx, gy, gz, codes, count);
+}
+
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma"))) void encodeBatchAvx512(
+    const float* gx, const float* gy, const float* gz, uint16_t* codes, size_t count) {
+  encodeBatchBody(gx, gy, gz, codes, count);
+}
+#endif
+
+std::vector<BatchGradientEncoder> availableEncoders() {
+  std::vector<BatchGradientEncoder> list;
+#if defined(__x86_64__)
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512dq"))
+    list.push_back({"avx512", encodeBatchAvx512});
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) list.push_back({"avx2", encodeBatchAvx2});
+#endif
+  list.push_back({"portable", encodeBatchPortable});
+  return list;
+}
+
+const EncodeBatchFn encodeBatch = availableEncoders().front().encode;
+
 }  // namespace
 
 void encodeGradients(const float* x, const float* y, const float* z, uint16_t* codes, size_t count) {
   encodeBatch(x, y, z, codes, count);
 }
+
+std::vector<BatchGradientEncoder> batchGradientEncoders() { return availableEncoders(); }
 
 uint16_t encodeGradient(float x, float y, float z) {
   return encodeGradient(double{x}, double{y}, double{z});

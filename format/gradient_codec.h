@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace voxlink::format {
 
@@ -27,10 +28,19 @@ uint16_t encodeGradient(float x, float y, float z);
 uint16_t encodeGradient(double x, double y, double z);
 
 // Encodes `count` directions at once: what the converter uses. The arithmetic is in float and
-// written so the compiler vectorizes it (AVX2 where the CPU has it, SSE2 otherwise); the result
-// equals encodeGradient() except for directions within float rounding of a cell boundary,
-// where either neighbouring cell may be chosen (deterministically: same input, same code).
+// written so the compiler vectorizes it (AVX-512 or AVX2+FMA where the CPU has them, SSE
+// otherwise); the result equals encodeGradient() except for directions within float rounding of
+// a cell boundary, where either neighbouring cell may be chosen (deterministically on one
+// machine: same input, same code).
 void encodeGradients(const float* x, const float* y, const float* z, uint16_t* codes, size_t count);
+
+// The batch encoders this CPU can run, fastest first (the first is what encodeGradients uses);
+// for tests and benchmarks.
+struct BatchGradientEncoder {
+  const char* name;  // "avx512", "avx2", "portable"
+  void (*encode)(const float* x, const float* y, const float* z, uint16_t* codes, size_t count);
+};
+std::vector<BatchGradientEncoder> batchGradientEncoders();
 
 // Unit vector of a code; (0, 0, 0) for kZeroGradient and the other reserved codes (t = 255).
 std::array<float, 3> decodeGradient(uint16_t code);
