@@ -301,15 +301,33 @@ uint32_t encodeInteriorBrick(const T* brick, const int64_t srcStride[3], const f
   const float* __restrict d0 = dense[0];
   const float* __restrict d1 = dense[1];
   const float* __restrict d2 = dense[2];
+  // Every row's occupancy bits first. When rows run across x (u = x, the default z axis), the
+  // flags of N rows are contiguous for each depth: an N*N-wide loop the compiler vectorizes.
+  using Bits = std::conditional_t<(N <= 8), uint8_t, std::conditional_t<(N <= 16), uint16_t, uint32_t>>;
+  Bits rowBits[N * N] = {};
+  if (fU == 1) {
+    for (uint32_t d = 0; d < N; ++d)
+      for (uint32_t v = 0; v < N; ++v) {
+        const uint8_t* __restrict f = flags + v * fV + d * fW;
+        Bits* __restrict b = rowBits + v * N;
+        for (uint32_t u = 0; u < N; ++u) b[u] = static_cast<Bits>(b[u] | (Bits{f[u]} << d));
+      }
+  } else {
+    for (uint32_t v = 0; v < N; ++v)
+      for (uint32_t u = 0; u < N; ++u) {
+        const uint8_t* f = flags + u * fU + v * fV;
+        uint32_t bits = 0;
+        for (uint32_t d = 0; d < N; ++d) bits |= uint32_t{f[d * fW]} << d;
+        rowBits[v * N + u] = static_cast<Bits>(bits);
+      }
+  }
   T lo = rawMin, hi = rawMax;
   uint32_t count = 0;
   for (uint32_t v = 0; v < N; ++v) {
     for (uint32_t u = 0; u < N; ++u) {
       const uint32_t row = v * N + u;
       rows[row] = static_cast<uint16_t>(count);
-      const uint8_t* f = flags + u * fU + v * fV;
-      uint32_t bits = 0;
-      for (uint32_t d = 0; d < N; ++d) bits |= uint32_t{f[d * fW]} << d;
+      uint32_t bits = rowBits[row];
       if (bits == 0) continue;
       if (count + static_cast<uint32_t>(std::popcount(bits)) > expected) return UINT32_MAX;
       mask[(row * N) >> 5] |= bits << ((row * N) & 31);
