@@ -31,6 +31,14 @@ def run(cmd):
     return p.stdout, float(wall), int(rss) / 1024.0
 
 
+def fresh(output):
+    """Removes an earlier output and flushes dirty pages, so a timed run neither pays for
+    replacing a file (ext4 flushes the new one on rename-over) nor competes with write-back."""
+    if os.path.exists(output):
+        os.remove(output)
+    os.sync()
+
+
 def warm(path):
     with open(path, "rb") as f:
         while f.read(1 << 24):
@@ -58,6 +66,7 @@ def bench_convert(name, source, open_args, keep_args, peer=None):
     cmd = [voxlink, "convert", source, *open_args, *keep_args, "-o", out_vxl, "-q"]
     times, rss, stdout = [], 0.0, ""
     for _ in range(REPEATS):
+        fresh(out_vxl)
         stdout, t, r = run(cmd)
         times.append(t)
         rss = max(rss, r)
@@ -72,6 +81,7 @@ def bench_convert(name, source, open_args, keep_args, peer=None):
         "occ": 100 * rep["occupancy"],
         "bricks": 100 * rep["bricks_nonempty_fraction"],
         "sec": statistics.median(times),
+        "sec_min": min(times),
         "rss": rss,
         "mb": rep["bytes_total"] / 1e6,
         "bpv": rep["bytes_per_voxel"],
@@ -84,8 +94,10 @@ def bench_convert(name, source, open_args, keep_args, peer=None):
         "peer_sec": None,
     }
     if peer:
-        peer_cmd = [vdb_peer, source, *peer, os.path.join(work, name + ".vdb")]
+        peer_out = os.path.join(work, name + ".vdb")
+        peer_cmd = [vdb_peer, source, *peer, peer_out]
         warm(source)
+        fresh(peer_out)
         out, t, r = run(peer_cmd)
         commands.append(" ".join(peer_cmd))
         row["peer_sec"] = t
@@ -144,7 +156,7 @@ if not quick:
 cpu = subprocess.run(["sh", "-c", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2; nproc"],
                      capture_output=True, text=True).stdout.split("\n")
 print(f"\nmachine: {cpu[0].strip()}, {cpu[1].strip()} cores; median of {REPEATS} runs from page cache\n")
-print("| case | resolution [brick] | source | keep | non-empty voxels % | non-empty bricks % | convert s | "
+print("| case | resolution [brick] | source | keep | non-empty voxels % | non-empty bricks % | convert s (min) | "
       "peak RSS MiB | total MB | B/voxel | vs dense | OpenVDB FloatGrid B/voxel | stored, max abs value error | "
       "gradient error mean/max deg | OpenVDB job s | speed-up |")
 print("|" + "---|" * 16)
@@ -152,7 +164,7 @@ for r in rows:
     peer = f"{r['peer_sec']:.2f}" if r["peer_sec"] else "-"
     speed = f"{r['peer_sec'] / r['sec']:.1f}x" if r["peer_sec"] else "-"
     print(f"| {r['name']} | {r['dims']} | {r['type']} | {r['keep']} | {r['occ']:.2f} | {r['bricks']:.1f} | "
-          f"{r['sec']:.2f} | {r['rss']:.0f} | {r['mb']:.2f} | {r['bpv']:.3f} | {r['dense']:.1f}x smaller | "
+          f"{r['sec']:.2f} ({r['sec_min']:.2f}) | {r['rss']:.0f} | {r['mb']:.2f} | {r['bpv']:.3f} | {r['dense']:.1f}x smaller | "
           f"{r['vdb_bpv']:.3f} | {r['stored']}, {r['verr']:.3g} | {r['gmean']:.3f} / {r['gmax']:.3f} | {peer} | {speed} |")
 for r in rows:
     if r.get("peer_line"):
