@@ -200,6 +200,7 @@ __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma"))) void enco
 std::vector<BatchGradientEncoder> availableEncoders() {
   std::vector<BatchGradientEncoder> list;
 #if defined(__x86_64__)
+  __builtin_cpu_init();  // this runs during static initialization, maybe before libgcc's own
   if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
       __builtin_cpu_supports("avx512dq"))
     list.push_back({"avx512", encodeBatchAvx512});
