@@ -19,17 +19,22 @@ CommandRunner addInfoCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Memory footprint report of a VoxLink file");
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
   cmd->add_flag("--json", args->json, "Print the report as JSON");
-  cmd->add_flag("--no-vdb", args->skipVdb, "Skip building the OpenVDB FloatGrid used for comparison");
+  cmd->add_flag("--no-vdb", args->skipVdb,
+                "Skip building the OpenVDB FloatGrid used for comparison");
   return [args] {
     auto file = format::VoxLinkFile::open(args->path);
     if (!file) return reportError(file.error());
     format::FootprintReport report = format::computeFootprint(*file);
     if (!args->skipVdb) {
       auto peer = convert::measureVdbFootprint(*file);
-      if (!peer) return reportError(peer.error());
+      if (!peer)
+        return reportError(
+            makeError(peer.code(), peer.message(), " (--no-vdb reports without it)"));
       report.peer = *peer;
     }
-    std::fputs((args->json ? format::footprintJson(report) + "\n" : format::footprintTable(report)).c_str(), stdout);
+    std::fputs((args->json ? format::footprintJson(report) + "\n" : format::footprintTable(report))
+                   .c_str(),
+               stdout);
     return 0;
   };
 }

@@ -4,6 +4,7 @@
 #include "convert/readers/dicom_reader.h"
 #include "convert/readers/vdb_reader.h"
 #include "convert/vdb_footprint.h"
+#include "format/validator.h"
 #include "plugins/plugin_loader.h"
 
 namespace voxlink::convert {
@@ -17,8 +18,10 @@ Result<const Api*> api(const char* file, const char* entry) {
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir, const OpenOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(const DicomPluginApi* dicom, api<DicomPluginApi>(kDicomPlugin, kDicomPluginEntry));
+Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+                                                      const OpenOptions& options) {
+  VOXLINK_ASSIGN_OR_RETURN(const DicomPluginApi* dicom,
+                           api<DicomPluginApi>(kDicomPlugin, kDicomPluginEntry));
   return dicom->openSeries(dir, options);
 }
 
@@ -28,6 +31,10 @@ Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const Ope
 }
 
 Result<format::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& file) {
+  // The comparison walks every voxel through BVOX, ROWS and MASK, which open() does not check
+  // (that costs a pass over the data): a damaged file must give an error, not a crash.
+  if (auto valid = format::validateFile(file); !valid)
+    return makeError(valid.code(), valid.message(), "; the OpenVDB comparison needs a valid file");
   VOXLINK_ASSIGN_OR_RETURN(const VdbPluginApi* vdb, api<VdbPluginApi>(kVdbPlugin, kVdbPluginEntry));
   return vdb->measureFootprint(file);
 }
