@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "cli/command.h"
+#include "cli/printable_message.h"
 #include "cli/progress_bar.h"
 #include "cli/source_options.h"
 #include "convert/converter.h"
@@ -105,7 +106,7 @@ int runConvert(const ConvertArgs& a) {
       std::string(scalarName(info.type)).c_str(), std::string(storedName(s.storedType)).c_str(),
       s.valueMaxAbsError, s.gradientMeanErrorDeg, s.gradientMaxErrorDeg,
       humanCount(s.gradientSamples).c_str(), s.seconds, s.countSeconds, s.writeSeconds);
-  for (const std::string& note : info.notes) std::printf("  note: %s\n", note.c_str());
+  for (const std::string& note : info.notes) std::printf("  note: %s\n", printableMessage(note).c_str());
   return 0;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/printable_message.h"
 #include "cli/source_options.h"
 #include "convert/histogram.h"
 
@@ -30,7 +31,7 @@ CommandRunner addStatsCommand(CLI::App& app) {
     std::printf("%s: %s, %ux%ux%u %s, spacing %g %g %g\n", a->input.c_str(), info.format.c_str(), info.dims[0],
                 info.dims[1], info.dims[2], std::string(scalarName(info.type)).c_str(), info.spacing[0],
                 info.spacing[1], info.spacing[2]);
-    for (const std::string& note : info.notes) std::printf("  note: %s\n", note.c_str());
+    for (const std::string& note : info.notes) std::printf("  note: %s\n", printableMessage(note).c_str());
     std::printf("  values [%g, %g], mean %.6g, sigma %.6g\n", h->moments.min, h->moments.max, h->moments.mean,
                 h->moments.sigma);
     std::printf("  %-26s %14s %8s %10s\n", "bin", "voxels", "%", ">= bin %");

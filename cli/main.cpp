@@ -5,11 +5,12 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/printable_message.h"
 
 namespace voxlink::cli {
 
 int reportError(const Error& error) {
-  std::fprintf(stderr, "voxlink: %s\n", error.message.c_str());
+  std::fprintf(stderr, "voxlink: %s\n", printableMessage(error.message).c_str());
   switch (error.code) {
     case ErrorCode::kInvalidArgument: return 2;
     case ErrorCode::kIo: return 3;

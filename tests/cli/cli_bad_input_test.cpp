@@ -132,6 +132,21 @@ TEST_F(CliBadInput, DamagedVoxLinkFilesForInfoAndValidate) {
   EXPECT_NE(r.err.find("header.magic"), std::string::npos) << r.err;
 }
 
+// A damaged header whose quoted value holds a newline and a stray byte still gives one line.
+TEST_F(CliBadInput, DamagedHeaderTextIsEscapedIntoOneLine) {
+  const std::string header = "{'descr': '<u2', 'fortran_order': Fal\ne\xF6, 'shape': (2, 2, 2), }";
+  std::string npy = std::string("\x93NUMPY\x01\x00", 8);
+  std::string padded = header + std::string(118 - 10 - 1 - header.size(), ' ') + "\n";
+  npy += static_cast<char>(padded.size() & 0xFF);
+  npy += static_cast<char>(padded.size() >> 8);
+  npy += padded + std::string(16, '\0');
+  writeBytes(dir_.file("bad.npy"), std::vector<uint8_t>(npy.begin(), npy.end()));
+  auto r = runVoxlink({"convert", dir_.file("bad.npy"), "--keep-all", "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "bad.npy");
+  EXPECT_NE(r.err.find("\\n"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\\xF6"), std::string::npos) << r.err;
+}
+
 // Random damage (cuts, flipped bytes in the header, the section table and the data) never
 // crashes `info` or `validate`: each either succeeds (the damage hit padding or rewrote a byte
 // with its own value) or fails with one line.
