@@ -71,6 +71,10 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
   VOXLINK_ASSIGN_OR_RETURN(auto volume, findTag(xml, "Volume", path));
   if (!volume) return makeError(ErrorCode::kCorrupt, path, ": no <Volume> element");
   const size_t volumeEnd = findEndTag(xml, "Volume", volume->end);
+  // A header read whole must close its volume: a cut file would otherwise pass.
+  if (volumeEnd == std::string::npos && xml.size() < kMaxHeaderBytes)
+    return makeError(ErrorCode::kTruncated, path,
+                     ": <Volume> element is not closed (truncated header?)");
   VOXLINK_ASSIGN_OR_RETURN(auto raw, findTag(xml, "RawData", path, volume->end, volumeEnd));
   if (!raw)
     return makeError(ErrorCode::kCorrupt, path,

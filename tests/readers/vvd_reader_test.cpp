@@ -50,6 +50,10 @@ TEST(VvdReader, BadHeadersNameTheField) {
   writeText(dir.file("big.vvd"), header("uint32"));  // 96 bytes needed, 48 present
   expectError(openVolume(dir.file("big.vvd")), ErrorCode::kTruncated,
               {"big.vvd", "RawData filename", "v.raw"});
+  const std::string cut = header("int16").substr(0, header("int16").find("</Volume>"));
+  writeText(dir.file("cut.vvd"), cut);
+  expectError(openVolume(dir.file("cut.vvd")), ErrorCode::kTruncated,
+              {"cut.vvd", "<Volume>", "not closed"});
   std::filesystem::remove(dir.file("v.raw"));
   expectError(openVolume(dir.file("ok.vvd")), ErrorCode::kIo,
               {"ok.vvd", "RawData filename", "v.raw does not exist"});
