@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "convert/readers/dicom_series.h"
+#include "convert/readers/gdcm_messages.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/rescale.h"
 
@@ -44,7 +45,10 @@ class DicomSource final : public VolumeSource {
   Status readPixels(const std::string& file, uint8_t* dst, uint64_t bytes) {
     gdcm::ImageReader reader;
     reader.SetFileName(file.c_str());
-    if (!reader.Read()) return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot read the image");
+    GdcmMessages messages;
+    if (!reader.Read())
+      return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot read the image",
+                       messages.reason());
     const gdcm::Image& image = reader.GetImage();
     if (image.GetColumns() != info_.dims[0] || image.GetRows() != info_.dims[1])
       return makeError(ErrorCode::kSizeMismatch, file, ": pixel data is ", image.GetColumns(), "x",
@@ -55,7 +59,7 @@ class DicomSource final : public VolumeSource {
                        bytes, " expected");
     if (!image.GetBuffer(reinterpret_cast<char*>(dst)))
       return makeError(ErrorCode::kCorrupt, file,
-                       ": tag PixelData (7FE0,0010): GDCM cannot decode it");
+                       ": tag PixelData (7FE0,0010): GDCM cannot decode it", messages.reason());
     return Status::ok();
   }
 
@@ -69,7 +73,7 @@ bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
 }  // namespace
 
 Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
-                                                      const OpenOptions& options) {
+                                                            const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir));
   const std::array<uint64_t, 3> dims{series.columns, series.rows, series.slices.size()};
   VOXLINK_RETURN_IF_ERROR(checkDims(dims, dir, "Columns Rows slices"));

@@ -13,6 +13,8 @@
 
 #include "convert/readers/dicom_probe.h"
 #include "convert/readers/file_list.h"
+#include "convert/readers/gdcm_guard.h"
+#include "convert/readers/gdcm_messages.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/text_header.h"
 
@@ -64,9 +66,13 @@ Result<SliceHeader> readSliceHeader(const std::string& file) {
   gdcm::Reader reader;
   reader.SetFileName(file.c_str());
   const gdcm::Tag pixelData(0x7fe0, 0x0010);
+  GdcmMessages messages;
   if (!reader.ReadUpToTag(pixelData, {pixelData}))
-    return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot parse this DICOM file");
+    return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot parse this DICOM file",
+                     messages.reason());
   const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+  const size_t pixelDataAt = reader.GetStreamCurrentPosition();
+  const gdcm::TransferSyntax& syntax = reader.GetFile().GetHeader().GetDataSetTransferSyntax();
   SliceHeader h;
   h.slice.path = file;
   h.series = stringValue(ds, 0x0020, 0x000e);
@@ -90,6 +96,17 @@ Result<SliceHeader> readSliceHeader(const std::string& file) {
   if (!frames.empty() && frames != "1")
     return makeError(ErrorCode::kUnsupported, file, ": tag NumberOfFrames (0028,0008): ", frames,
                      " (multi-frame files are not supported)");
+  // Uncompressed pixel data must all be there: GDCM reads a file cut inside it without a word.
+  if (!syntax.IsEncapsulated() && *bitsAllocated % 8 == 0) {
+    const uint64_t need = uint64_t{*rows} * *columns * (*bitsAllocated / 8);
+    const uint64_t start = pixelDataAt;  // ReadUpToTag stops after the element's tag and length
+    std::error_code ec;
+    const uint64_t size = fs::file_size(file, ec);
+    if (!ec && size < start + need)
+      return makeError(ErrorCode::kTruncated, file, ": tag PixelData (7FE0,0010): the file holds ",
+                       size > start ? size - start : 0,
+                       " bytes of pixel data, Rows x Columns x BitsAllocated need ", need);
+  }
   h.photometric = stringValue(ds, 0x0028, 0x0004);
   VOXLINK_ASSIGN_OR_RETURN(
       std::vector<double> ipp,
@@ -234,6 +251,7 @@ Result<DicomSeries> scanDicomSeries(const std::string& dir) {
   std::sort(files.begin(), files.end(),
             [](const std::string& a, const std::string& b) { return naturalLess(a, b); });
 
+  VOXLINK_RETURN_IF_ERROR(checkGdcmSurvives(files));
   std::vector<SliceHeader> headers;
   std::map<std::string, size_t> seriesCount;
   for (const std::string& f : files) {

@@ -113,6 +113,24 @@ TEST(DicomReader, InconsistentSliceSizeNamesTheFileAndTag) {
               {"CTHead40.dcm", "Rows x Columns", "32x32", "64x64"});
 }
 
+// Cut files: one cut inside its pixel data (GDCM reads it without complaint, the reader must
+// not), and one cut inside its header, where Debian's GDCM asserts and would abort the process.
+TEST(DicomReader, CutFilesAreNamedNotReadOrCrashedOn) {
+  VOXLINK_REQUIRE_DATA(kSeries);
+  TempDir dir;
+  copySeries(dir);
+  const std::string victim = dir.file("CTHead50.dcm");
+  const auto whole = readBytes(victim);
+  writeBytes(victim, std::vector<uint8_t>(whole.begin(), whole.end() - 1));
+  expectError(openVolume(dir.path().string()), ErrorCode::kTruncated,
+              {"CTHead50.dcm", "PixelData (7FE0,0010)", "8191 bytes", "need 8192"});
+  writeBytes(victim, std::vector<uint8_t>(whole.begin(), whole.begin() + 300));
+  expectError(openVolume(dir.path().string()), ErrorCode::kCorrupt,
+              {"CTHead50.dcm", "GDCM crashed"});
+  writeBytes(victim, whole);
+  EXPECT_TRUE(openOrDie(dir.path().string()));
+}
+
 TEST(DicomReader, MissingSliceMakesGapsNonUniform) {
   VOXLINK_REQUIRE_DATA(kSeries);
   TempDir dir;
