@@ -4,8 +4,10 @@
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "convert/readers/axes.h"
+#include "convert/readers/child_probe.h"
 #include "convert/readers/reader_common.h"
 
 namespace voxlink::convert {
@@ -29,12 +31,22 @@ class VdbSource final : public VolumeSource {
   // a leaf gives per-voxel values and states, a tile one value and state for the whole block.
   Status read(uint32_t z0, uint32_t count, void* dst) override {
     VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
+    try {
+      readBlocks(z0, count, static_cast<float*>(dst));
+    } catch (const std::exception& e) {
+      return makeError(ErrorCode::kCorrupt, info_.path, ": OpenVDB failed reading slices ", z0,
+                       "..", z0 + count - 1, " (", e.what(), ")");
+    }
+    return Status::ok();
+  }
+
+ private:
+  void readBlocks(uint32_t z0, uint32_t count, float* out) const {
     using Leaf = FloatGrid::TreeType::LeafNodeType;
     constexpr int kDim = static_cast<int>(Leaf::DIM);
     const Coord lo(box_.min().x(), box_.min().y(), box_.min().z() + static_cast<int>(z0));
     const Coord hi(box_.max().x(), box_.max().y(), lo.z() + static_cast<int>(count) - 1);
     const int64_t nx = info_.dims[0], ny = info_.dims[1];
-    auto* out = static_cast<float*>(dst);
     auto accessor = grid_->getConstAccessor();
     const auto blockStart = [](int v) { return v & ~(kDim - 1); };
     for (int bz = blockStart(lo.z()); bz <= hi.z(); bz += kDim) {
@@ -65,10 +77,8 @@ class VdbSource final : public VolumeSource {
         }
       }
     }
-    return Status::ok();
   }
 
- private:
   FloatGrid::ConstPtr grid_;
   CoordBBox box_;
   float background_;
@@ -76,13 +86,29 @@ class VdbSource final : public VolumeSource {
 
 }  // namespace
 
-Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path, const OpenOptions& options) {
+Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path,
+                                                    const OpenOptions& options) {
   openvdb::initialize();
+  // OpenVDB trusts a file's structure: some damaged files corrupt its heap or crash it instead
+  // of throwing. Read every grid once in a child process first (this reads the file twice).
+  const ProbeOutcome probe = probeInChild([&](const MarkFn&) {
+    openvdb::io::File file(path);
+    file.open(/*delayLoad=*/false);
+    const openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();  // kept alive for the loop
+    for (const auto& meta : *grids) file.readGrid(meta->getName())->evalActiveVoxelBoundingBox();
+  });
+  if (probe.died)
+    return makeError(ErrorCode::kCorrupt, path, ": OpenVDB crashed reading this file (",
+                     strsignal(probe.signal), "); the file is damaged");
+  if (probe.thrown)  // the same read here would throw the same, maybe slowly
+    return makeError(ErrorCode::kCorrupt, path, ": OpenVDB cannot read it (", *probe.thrown, ")");
   openvdb::GridBase::Ptr base;
   std::string names;
   try {
     openvdb::io::File file(path);
-    file.open();
+    // No delayed loading: every leaf is read (and a damaged one throws) here, inside this try,
+    // not later from a converter thread.
+    file.open(/*delayLoad=*/false);
     openvdb::GridPtrVecPtr grids = file.readAllGridMetadata();
     std::string chosen = options.vdbGrid;
     for (const auto& g : *grids) {

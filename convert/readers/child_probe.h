@@ -1,0 +1,27 @@
+// Some libraries end the process on damaged input (GDCM asserts, OpenVDB corrupts its heap)
+// instead of reporting an error. A reader can first run the same library calls in a forked
+// child: if the child dies, the input is refused with a clear error and never read in-process.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace voxlink::convert {
+
+struct ProbeOutcome {
+  bool died = false;  // killed by a signal
+  int signal = 0;
+  std::optional<uint32_t> lastMark;   // the last mark(i) the child made
+  std::optional<std::string> thrown;  // what() of an exception that ended `work`
+};
+
+// Runs `work` in a child process with stderr sent to /dev/null. `work` may call mark(i) to say
+// which item it is on. An exception from `work` comes back as `thrown`, so the caller need not
+// repeat a slow failing read. When no child can be started the outcome is empty (not died, not
+// thrown): the caller then reads unguarded.
+using MarkFn = std::function<void(uint32_t)>;
+ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work);
+
+}  // namespace voxlink::convert
