@@ -1,10 +1,13 @@
 #include "convert/readers/child_probe.h"
 
 #include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -14,6 +17,7 @@ namespace voxlink::convert {
 namespace {
 
 constexpr uint32_t kThrownMarker = 0xFFFFFFFFu;  // followed by the message, up to EOF
+constexpr std::chrono::seconds kChildTimeLimit{300};
 
 void writeAll(int fd, const void* data, size_t bytes) {
   const auto* p = static_cast<const char*>(data);
@@ -58,10 +62,23 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
     _exit(0);
   }
   close(fds[1]);
-  // Everything the child wrote: marks, then maybe the exception marker and its message.
+  // Everything the child wrote: marks, then maybe the exception marker and its message. A child
+  // that neither finishes nor dies in time (forked from a process whose other threads held a
+  // lock the child then needs) is killed, and the caller reads unguarded.
   std::string received;
   char buffer[4096];
+  const auto deadline = std::chrono::steady_clock::now() + kChildTimeLimit;
+  bool timedOut = false;
   for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = left.count() > 0 ? poll(&p, 1, static_cast<int>(left.count())) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) {
+      timedOut = true;
+      break;
+    }
     const ssize_t n = read(fds[0], buffer, sizeof buffer);
     if (n > 0) {
       received.append(buffer, static_cast<size_t>(n));
@@ -71,6 +88,12 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
     break;
   }
   close(fds[0]);
+  if (timedOut) {
+    kill(child, SIGKILL);
+    while (waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    return ProbeOutcome{};
+  }
   for (size_t at = 0; at + sizeof(uint32_t) <= received.size(); at += sizeof(uint32_t)) {
     uint32_t index;
     std::memcpy(&index, received.data() + at, sizeof index);

@@ -20,7 +20,7 @@ struct ProbeOutcome {
 // Runs `work` in a child process with stderr sent to /dev/null. `work` may call mark(i) to say
 // which item it is on. An exception from `work` comes back as `thrown`, so the caller need not
 // repeat a slow failing read. When no child can be started the outcome is empty (not died, not
-// thrown): the caller then reads unguarded.
+// thrown): the caller then reads unguarded; so does a child that runs past 5 minutes (killed).
 using MarkFn = std::function<void(uint32_t)>;
 ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work);
 
