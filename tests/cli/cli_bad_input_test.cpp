@@ -26,6 +26,14 @@ class CliBadInput : public ::testing::Test {
     writeBytes(path, data);
     return path;
   }
+  // A valid VoxLink file converted from `raw`, or "" when the conversion failed.
+  std::string convertedFile(const std::string& raw) {
+    const std::string out = dir_.file("ok.vxl");
+    const auto r = runVoxlink({"convert", raw, "--dims", "20,20,20", "--type", "u8", "--threshold",
+                               "100", "-o", out, "-q"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    return r.status == 0 ? out : "";
+  }
   void expectCleanFailure(const CommandResult& r, const std::string& mentions) {
     EXPECT_NE(r.status, 0);
     EXPECT_EQ(lines(r.err), 1) << r.err;
@@ -87,11 +95,8 @@ TEST_F(CliBadInput, NoClassificationGiven) {
 
 TEST_F(CliBadInput, DamagedVoxLinkFilesForInfoAndValidate) {
   const std::string in = rawVolume();
-  const std::string out = dir_.file("ok.vxl");
-  ASSERT_EQ(runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "100",
-                        "-o", out, "-q"})
-                .status,
-            0);
+  const std::string out = convertedFile(in);
+  ASSERT_FALSE(out.empty());
   auto bytes = readBytes(out);
   // Truncated file.
   writeBytes(dir_.file("cut.vxl"), std::vector<uint8_t>(bytes.begin(), bytes.begin() + 1000));
@@ -151,12 +156,8 @@ TEST_F(CliBadInput, DamagedHeaderTextIsEscapedIntoOneLine) {
 // crashes `info` or `validate`: each either succeeds (the damage hit padding or rewrote a byte
 // with its own value) or fails with one line.
 TEST_F(CliBadInput, RandomDamageNeverCrashesInfoOrValidate) {
-  const std::string in = rawVolume();
-  const std::string out = dir_.file("ok.vxl");
-  ASSERT_EQ(runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "100",
-                        "-o", out, "-q"})
-                .status,
-            0);
+  const std::string out = convertedFile(rawVolume());
+  ASSERT_FALSE(out.empty());
   const auto original = readBytes(out);
   auto file = format::VoxLinkFile::open(out);
   ASSERT_TRUE(file) << file.message();
