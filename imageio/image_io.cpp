@@ -1,5 +1,10 @@
 #include "imageio/image_io.h"
 
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+
 #include "imageio/backend.h"
 #include "plugins/plugin_loader.h"
 
@@ -8,7 +13,8 @@ namespace {
 
 Result<Backend*> backend() {
   using Create = Backend* (*)();
-  VOXLINK_ASSIGN_OR_RETURN(void* entry, plugins::pluginEntry("libvoxlink_imageio_oiio.so", "voxlink_imageio_backend"));
+  VOXLINK_ASSIGN_OR_RETURN(
+      void* entry, plugins::pluginEntry("libvoxlink_imageio_oiio.so", "voxlink_imageio_backend"));
   static Backend* instance = reinterpret_cast<Create>(entry)();
   return instance;
 }
@@ -38,7 +44,30 @@ Status read(const std::string& path, int subimage, int channels, ScalarType as, 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
              const void* pixels, bool halfFloat, const char* colorSpace) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->write(path, width, height, channels, from, pixels, halfFloat, colorSpace);
+  // Written beside the destination under a temporary name that keeps the extension (it picks
+  // the format), then renamed: a failed write never leaves a partial image at `path`.
+  static std::atomic<unsigned> serial{0};
+  const std::filesystem::path target(path);
+  const std::filesystem::path temp =
+      target.parent_path() / cat(".", target.stem().string(), ".tmp-", getpid(), "-", serial++,
+                                 target.extension().string());
+  const std::string tempPath = temp.string();
+  Status written = b->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
+  std::error_code ec;
+  if (!written) {
+    std::filesystem::remove(temp, ec);
+    std::string message = written.message();
+    for (size_t at; (at = message.find(tempPath)) != std::string::npos;)
+      message.replace(at, tempPath.size(), path);
+    return makeError(written.code(), message);
+  }
+  std::filesystem::rename(temp, target, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    return makeError(ErrorCode::kIo, path,
+                     ": cannot move the finished image into place: ", ec.message());
+  }
+  return Status::ok();
 }
 
 }  // namespace voxlink::imageio

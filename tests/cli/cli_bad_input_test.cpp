@@ -137,6 +137,25 @@ TEST_F(CliBadInput, DamagedVoxLinkFilesForInfoAndValidate) {
   EXPECT_NE(r.err.find("header.magic"), std::string::npos) << r.err;
 }
 
+// A rendered image is written under a temporary name and renamed: a failed write leaves
+// nothing, a good one leaves exactly the image.
+TEST_F(CliBadInput, RenderedImageIsWholeOrAbsent) {
+  const std::string vxl = convertedFile(rawVolume());
+  ASSERT_FALSE(vxl.empty());
+  if (runVoxlink({"render", "--help"}).status != 0) GTEST_SKIP() << "built without the viewer";
+  auto r = runVoxlink({"render", vxl, "-o", dir_.file("missing/out.png"), "--size", "16x16"});
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("missing/out.png"), std::string::npos) << r.err;
+  r = runVoxlink({"render", vxl, "-o", dir_.file("out.png"), "--size", "16x16"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> images;
+  for (const std::string& name : listDir(dir_.path()))
+    if (name.find(".png") != std::string::npos) images.push_back(name);
+  ASSERT_EQ(images.size(), 1u);
+  EXPECT_NE(images[0].find("out.png"), std::string::npos);
+}
+
 // A damaged header whose quoted value holds a newline and a stray byte still gives one line.
 TEST_F(CliBadInput, DamagedHeaderTextIsEscapedIntoOneLine) {
   const std::string header = "{'descr': '<u2', 'fortran_order': Fal\ne\xF6, 'shape': (2, 2, 2), }";
