@@ -35,7 +35,7 @@ void writeAll(int fd, const void* data, size_t bytes) {
 ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
   ProbeOutcome outcome;
   int fds[2];
-  if (pipe(fds) != 0) return outcome;
+  if (pipe2(fds, O_CLOEXEC) != 0) return outcome;  // not leaked into programs run meanwhile
   const pid_t child = fork();
   if (child < 0) {
     close(fds[0]);
