@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +12,10 @@
 #include <limits>
 #include <type_traits>
 #include <vector>
+
+#if defined(__SSE4_1__)
+#include <immintrin.h>
+#endif
 
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
@@ -146,16 +151,62 @@ inline double gradientErrorDeg(double gx, double gy, double gz, uint16_t code) {
 template <class T>
 using DifferenceType = std::conditional_t<std::is_integral_v<T>, std::conditional_t<(sizeof(T) <= 2), int32_t, int64_t>, T>;
 
+// Four source values widened to four int32 lanes (integers of up to 16 bits) or four floats.
+#if defined(__SSE4_1__)
+template <class T>
+inline __m128i widen4(const T* p) {
+  if constexpr (sizeof(T) == 1) {
+    int32_t bytes;
+    std::memcpy(&bytes, p, 4);
+    const __m128i v = _mm_cvtsi32_si128(bytes);
+    return std::is_signed_v<T> ? _mm_cvtepi8_epi32(v) : _mm_cvtepu8_epi32(v);
+  } else {
+    const __m128i v = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+    return std::is_signed_v<T> ? _mm_cvtepi16_epi32(v) : _mm_cvtepu16_epi32(v);
+  }
+}
+
+template <class T>
+inline __m128 difference4(const T* hi, const T* lo) {
+  if constexpr (std::is_same_v<T, float>) {
+    return _mm_sub_ps(_mm_loadu_ps(hi), _mm_loadu_ps(lo));
+  } else {
+    return _mm_cvtepi32_ps(_mm_sub_epi32(widen4(hi), widen4(lo)));
+  }
+}
+#endif
+
 // Central differences of every cell of an interior brick, in source order (x fastest), into
-// g[0..2][(z*n + y)*n + x]: n-long contiguous loops the compiler vectorizes. Float and integer
-// sources only (double sources take the per-voxel path, which guards float overflow).
-// The brick edge is a template parameter so the x loop has a known trip count the
-// vectorizer can fit (with u8 input it would otherwise aim at 16 lanes and run scalar).
+// g[0..2][(z*n + y)*n + x], and the cell values into center[]. Float and integer sources only
+// (double sources take the per-voxel path, which guards float overflow). Sources of up to 16
+// bits and floats are done 4 cells at a time with SSE4.1 (every x86-64-v2 target): the
+// compiler's own vectorizer left this loop scalar for 8-bit input and an 8-cell brick edge,
+// which made it the converter's most expensive step.
 template <class T, uint32_t N>
 void denseBrickGradientsN(const T* brick, const int64_t stride[3], const float scale[3],
-                          float* __restrict gx, float* __restrict gy, float* __restrict gz) {
+                          float* __restrict gx, float* __restrict gy, float* __restrict gz,
+                          T* __restrict center) {
   using D = DifferenceType<T>;
   const int64_t sy = stride[1], sz = stride[2];
+#if defined(__SSE4_1__)
+  if constexpr (sizeof(T) <= 2 || std::is_same_v<T, float>) {
+    const __m128 s0 = _mm_set1_ps(scale[0]), s1 = _mm_set1_ps(scale[1]), s2 = _mm_set1_ps(scale[2]);
+    for (uint32_t z = 0; z < N; ++z) {
+      for (uint32_t y = 0; y < N; ++y) {
+        const T* p = brick + z * sz + y * sy;
+        const size_t o = (size_t{z} * N + y) * N;
+        for (uint32_t x = 0; x < N; x += 4) {
+          const T* c = p + x;
+          _mm_storeu_ps(gx + o + x, _mm_mul_ps(difference4(c + 1, c - 1), s0));
+          _mm_storeu_ps(gy + o + x, _mm_mul_ps(difference4(c + sy, c - sy), s1));
+          _mm_storeu_ps(gz + o + x, _mm_mul_ps(difference4(c + sz, c - sz), s2));
+          std::memcpy(center + o + x, c, sizeof(T) * 4);
+        }
+      }
+    }
+    return;
+  }
+#endif
   const float s0 = scale[0], s1 = scale[1], s2 = scale[2];
   for (uint32_t z = 0; z < N; ++z) {
     for (uint32_t y = 0; y < N; ++y) {
@@ -165,6 +216,7 @@ void denseBrickGradientsN(const T* brick, const int64_t stride[3], const float s
         gx[o + x] = static_cast<float>(static_cast<D>(p[x + 1]) - static_cast<D>(p[x - 1])) * s0;
         gy[o + x] = static_cast<float>(static_cast<D>(p[x + sy]) - static_cast<D>(p[x - sy])) * s1;
         gz[o + x] = static_cast<float>(static_cast<D>(p[x + sz]) - static_cast<D>(p[x - sz])) * s2;
+        center[o + x] = p[x];
       }
     }
   }
@@ -190,12 +242,12 @@ void rowKeepFlags(const SlabWindow& window, const uint32_t dims[3], uint32_t z0,
 
 template <class T>
 void denseBrickGradients(const T* brick, const int64_t stride[3], uint32_t n, const float scale[3],
-                         float* gx, float* gy, float* gz) {
+                         float* gx, float* gy, float* gz, T* center) {
   switch (n) {
-    case 4: return denseBrickGradientsN<T, 4>(brick, stride, scale, gx, gy, gz);
-    case 8: return denseBrickGradientsN<T, 8>(brick, stride, scale, gx, gy, gz);
-    case 16: return denseBrickGradientsN<T, 16>(brick, stride, scale, gx, gy, gz);
-    default: return denseBrickGradientsN<T, 32>(brick, stride, scale, gx, gy, gz);
+    case 4: return denseBrickGradientsN<T, 4>(brick, stride, scale, gx, gy, gz, center);
+    case 8: return denseBrickGradientsN<T, 8>(brick, stride, scale, gx, gy, gz, center);
+    case 16: return denseBrickGradientsN<T, 16>(brick, stride, scale, gx, gy, gz, center);
+    default: return denseBrickGradientsN<T, 32>(brick, stride, scale, gx, gy, gz, center);
   }
 }
 
@@ -299,27 +351,47 @@ uint32_t encodeBrick(const T* brick, const uint32_t origin[3], const uint32_t di
   return count;
 }
 
-// The common case, kept tight: an interior brick (neighbours on every side, so gradients come
-// from the dense per-brick arrays), a brick edge known at compile time, and a lossless stored
-// type S that holds the source value minus an integer offset (u8/u16), or f32 bit for bit.
+// Byte k of entry b: the position of the k-th set bit of b (unused bytes 0).
+inline constexpr auto kSetBitPositions = [] {
+  std::array<uint64_t, 256> table{};
+  for (uint32_t b = 0; b < 256; ++b)
+    for (uint32_t bit = 0, k = 0; bit < 8; ++bit)
+      if (b >> bit & 1) table[b] |= uint64_t{bit} << (8 * k++);
+  return table;
+}();
+
+// The common case, kept tight: an interior brick (neighbours on every side, so gradients and
+// values come from the dense per-brick arrays), a brick edge known at compile time, and a
+// lossless stored type S that holds the source value minus an integer offset (u8/u16), or f32
+// bit for bit. Branch-free: which cells are kept varies from row to row in no pattern a branch
+// predictor can learn, so the kept cells' dense indices are compacted by always storing and
+// advancing by the keep bit, then gathered in one loop.
 template <class T, class S, uint32_t N>
-uint32_t encodeInteriorBrick(const T* brick, const int64_t srcStride[3], const format::AxisFrame frame,
-                             const uint8_t* flags, const size_t flagStride[3], const float* const dense[3],
-                             int64_t offset, uint32_t expected, uint16_t* __restrict rows,
-                             uint32_t* __restrict mask, S* __restrict values, float* __restrict gx,
-                             float* __restrict gy, float* __restrict gz, T& rawMin, T& rawMax) {
-  constexpr size_t kDenseStride[3] = {1, N, size_t{N} * N};
-  const int64_t sU = srcStride[frame.u], sV = srcStride[frame.v], sW = srcStride[frame.w];
+uint32_t encodeInteriorBrick(const format::AxisFrame frame, const uint8_t* flags, const size_t flagStride[3],
+                             const float* const dense[3], const T* __restrict center, int64_t offset,
+                             uint32_t expected, uint16_t* __restrict rows, uint32_t* __restrict mask,
+                             S* __restrict values, float* __restrict gx, float* __restrict gy,
+                             float* __restrict gz, T& rawMin, T& rawMax) {
+  constexpr uint32_t kDenseStride[3] = {1, N, N * N};
   const size_t fU = flagStride[frame.u], fV = flagStride[frame.v], fW = flagStride[frame.w];
-  const size_t dU = kDenseStride[frame.u], dV = kDenseStride[frame.v], dW = kDenseStride[frame.w];
-  const float* __restrict d0 = dense[0];
-  const float* __restrict d1 = dense[1];
-  const float* __restrict d2 = dense[2];
+  const uint32_t dU = kDenseStride[frame.u], dV = kDenseStride[frame.v], dW = kDenseStride[frame.w];
   // Every row's occupancy bits first. When rows run across x (u = x, the default z axis), the
   // flags of N rows are contiguous for each depth: an N*N-wide loop the compiler vectorizes.
   using Bits = std::conditional_t<(N <= 8), uint8_t, std::conditional_t<(N <= 16), uint16_t, uint32_t>>;
   Bits rowBits[N * N] = {};
-  if (fU == 1) {
+  if (N == 8 && fU == 1) {
+    // Eight 0/1 flag bytes per load, shifted by the depth: bit d of byte u is the flag at depth
+    // d, so the eight bytes are the bits of rows u = 0..7 at once.
+    for (uint32_t v = 0; v < N; ++v) {
+      uint64_t bits = 0;
+      for (uint32_t d = 0; d < N; ++d) {
+        uint64_t f;
+        std::memcpy(&f, flags + v * fV + d * fW, 8);
+        bits |= f << d;
+      }
+      std::memcpy(rowBits + v * N, &bits, 8);
+    }
+  } else if (fU == 1) {
     for (uint32_t d = 0; d < N; ++d)
       for (uint32_t v = 0; v < N; ++v) {
         const uint8_t* __restrict f = flags + v * fV + d * fW;
@@ -335,52 +407,77 @@ uint32_t encodeInteriorBrick(const T* brick, const int64_t srcStride[3], const f
         rowBits[v * N + u] = static_cast<Bits>(bits);
       }
   }
-  T lo = rawMin, hi = rawMax;
+  using Index = std::conditional_t<(N <= 16), uint16_t, uint32_t>;
+  Index index[N * N * N + 8];  // + 8: a row of up to 8 cells is stored 8 entries at a time
   uint32_t count = 0;
   for (uint32_t v = 0; v < N; ++v) {
     for (uint32_t u = 0; u < N; ++u) {
       const uint32_t row = v * N + u;
       rows[row] = static_cast<uint16_t>(count);
-      uint32_t bits = rowBits[row];
-      if (bits == 0) continue;
-      if (count + static_cast<uint32_t>(std::popcount(bits)) > expected) return UINT32_MAX;
+      const uint32_t bits = rowBits[row];
       mask[(row * N) >> 5] |= bits << ((row * N) & 31);
-      const size_t denseBase = u * dU + v * dV;
-      const T* line = brick + u * sU + v * sV;
-      do {
-        const uint32_t d = static_cast<uint32_t>(std::countr_zero(bits));
-        bits &= bits - 1;
-        const size_t i = denseBase + d * dW;
-        gx[count] = d0[i];
-        gy[count] = d1[i];
-        gz[count] = d2[i];
-        const T raw = line[d * sW];
-        lo = raw < lo ? raw : lo;
-        hi = raw > hi ? raw : hi;
-        if constexpr (std::is_same_v<S, float>) {
-          values[count] = raw;
-        } else {
-          values[count] = static_cast<S>(static_cast<int64_t>(raw) - offset);
+      const uint32_t base = u * dU + v * dV;
+#if defined(__SSE4_1__)
+      if constexpr (N <= 8) {  // all 8 positions from a table; only the first popcount count
+        const __m128i positions = _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kSetBitPositions[bits])));
+        const __m128i cells = _mm_add_epi16(_mm_set1_epi16(static_cast<int16_t>(base)),
+                                            _mm_mullo_epi16(positions, _mm_set1_epi16(static_cast<int16_t>(dW))));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(index + count), cells);
+        count += static_cast<uint32_t>(std::popcount(bits));
+      } else
+#endif
+      {
+        for (uint32_t d = 0; d < N; ++d) {
+          index[count] = static_cast<Index>(base + d * dW);  // may be overwritten: count only
+          count += (bits >> d) & 1;                          // advances past kept cells
         }
-        ++count;
-      } while (bits);
+      }
+      if (count > expected) return UINT32_MAX;  // index[] holds N^3 entries: stop before overrun
     }
   }
-  rawMin = lo;
-  rawMax = hi;
+  const float* __restrict d0 = dense[0];
+  const float* __restrict d1 = dense[1];
+  const float* __restrict d2 = dense[2];
+  for (uint32_t j = 0; j < count; ++j) {
+    const uint32_t i = index[j];
+    gx[j] = d0[i];
+    gy[j] = d1[i];
+    gz[j] = d2[i];
+    if constexpr (std::is_same_v<S, float>) {
+      values[j] = center[i];
+    } else {
+      values[j] = static_cast<S>(static_cast<int64_t>(center[i]) - offset);
+    }
+  }
+  // The range over the stored values (contiguous: this loop vectorizes); stored = raw - offset.
+  S lo = values[0], hi = values[0];
+  for (uint32_t j = 1; j < count; ++j) {
+    lo = values[j] < lo ? values[j] : lo;
+    hi = values[j] > hi ? values[j] : hi;
+  }
+  if (count > 0) {
+    T rawLo, rawHi;
+    if constexpr (std::is_same_v<S, float>) {
+      rawLo = lo, rawHi = hi;
+    } else {
+      rawLo = static_cast<T>(static_cast<int64_t>(lo) + offset);
+      rawHi = static_cast<T>(static_cast<int64_t>(hi) + offset);
+    }
+    rawMin = std::min(rawMin, rawLo);
+    rawMax = std::max(rawMax, rawHi);
+  }
   return count;
 }
 
 template <class T, class S>
-uint32_t encodeInteriorBrick(uint32_t n, const T* brick, const int64_t srcStride[3], const format::AxisFrame frame,
-                             const uint8_t* flags, const size_t flagStride[3], const float* const dense[3],
-                             int64_t offset, uint32_t expected, uint16_t* rows, uint32_t* mask, S* values,
-                             float* gx, float* gy, float* gz, T& rawMin, T& rawMax) {
+uint32_t encodeInteriorBrick(uint32_t n, const format::AxisFrame frame, const uint8_t* flags, const size_t flagStride[3],
+                             const float* const dense[3], const T* center, int64_t offset, uint32_t expected,
+                             uint16_t* rows, uint32_t* mask, S* values, float* gx, float* gy, float* gz, T& rawMin, T& rawMax) {
   switch (n) {
-    case 4: return encodeInteriorBrick<T, S, 4>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
-    case 8: return encodeInteriorBrick<T, S, 8>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
-    case 16: return encodeInteriorBrick<T, S, 16>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
-    default: return encodeInteriorBrick<T, S, 32>(brick, srcStride, frame, flags, flagStride, dense, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    case 4: return encodeInteriorBrick<T, S, 4>(frame, flags, flagStride, dense, center, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    case 8: return encodeInteriorBrick<T, S, 8>(frame, flags, flagStride, dense, center, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    case 16: return encodeInteriorBrick<T, S, 16>(frame, flags, flagStride, dense, center, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
+    default: return encodeInteriorBrick<T, S, 32>(frame, flags, flagStride, dense, center, offset, expected, rows, mask, values, gx, gy, gz, rawMin, rawMax);
   }
 }
 
@@ -402,6 +499,7 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
   thread_local struct {
     std::vector<float> gx, gy, gz;           // gradients of the brick's kept voxels
     std::vector<float> denseX, denseY, denseZ;  // gradients of every cell of an interior brick
+    std::vector<T> denseV;                      // and its values
     std::vector<uint8_t> flags;                 // keep flags of the whole row of bricks
   } scratch;
   const size_t cells = uint64_t{n} * n * n;
@@ -424,6 +522,7 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
     scratch.denseX.resize(cells);
     scratch.denseY.resize(cells);
     scratch.denseZ.resize(cells);
+    scratch.denseV.resize(cells);
   }
   const float halfF[3] = {static_cast<float>(half[0]), static_cast<float>(half[1]), static_cast<float>(half[2])};
 
@@ -442,7 +541,8 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
     for (int a = 0; a < 3; ++a) interior &= origin[a] > 0 && origin[a] + n < dims[a];
     const float* dense[3] = {nullptr, nullptr, nullptr};
     if (kDense && interior) {
-      denseBrickGradients(brick, stride, n, halfF, scratch.denseX.data(), scratch.denseY.data(), scratch.denseZ.data());
+      denseBrickGradients(brick, stride, n, halfF, scratch.denseX.data(), scratch.denseY.data(), scratch.denseZ.data(),
+                          scratch.denseV.data());
       dense[0] = scratch.denseX.data();
       dense[1] = scratch.denseY.data();
       dense[2] = scratch.denseZ.data();
@@ -457,13 +557,13 @@ void encodeBrickRow(const SlabWindow& window, const GridShape& g, uint32_t bz, u
       T rawMin = std::numeric_limits<T>::max(), rawMax = std::numeric_limits<T>::lowest();
       const int64_t offset = static_cast<int64_t>(mapping.offset);
       if (mapping.type == StoredType::kU8)
-        count = encodeInteriorBrick<T, uint8_t>(n, brick, stride, g.frame, flags, flagStride, dense, offset, counts[bx], rows, mask,
+        count = encodeInteriorBrick<T, uint8_t>(n, g.frame, flags, flagStride, dense, scratch.denseV.data(), offset, counts[bx], rows, mask,
                                                 values, out3[0], out3[1], out3[2], rawMin, rawMax);
       else if (mapping.type == StoredType::kU16)
-        count = encodeInteriorBrick<T, uint16_t>(n, brick, stride, g.frame, flags, flagStride, dense, offset, counts[bx], rows, mask,
+        count = encodeInteriorBrick<T, uint16_t>(n, g.frame, flags, flagStride, dense, scratch.denseV.data(), offset, counts[bx], rows, mask,
                                                  reinterpret_cast<uint16_t*>(values), out3[0], out3[1], out3[2], rawMin, rawMax);
       else if constexpr (std::is_same_v<T, float>)
-        count = encodeInteriorBrick<T, float>(n, brick, stride, g.frame, flags, flagStride, dense, offset, counts[bx], rows, mask,
+        count = encodeInteriorBrick<T, float>(n, g.frame, flags, flagStride, dense, scratch.denseV.data(), offset, counts[bx], rows, mask,
                                               reinterpret_cast<float*>(values), out3[0], out3[1], out3[2], rawMin, rawMax);
       if (count != UINT32_MAX && count > 0) {
         stats.valueMin = std::min(stats.valueMin, static_cast<double>(rawMin));

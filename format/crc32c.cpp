@@ -31,9 +31,55 @@ constexpr Tables makeTables() {
 constexpr Tables kTables = makeTables();
 
 #ifdef VOXLINK_HAVE_X86_CRC
+// One crc32 instruction takes 3 cycles but a new one can start every cycle, so the buffer is
+// checksummed as three interleaved streams of kStreamBytes each and the three registers are
+// joined: the register after y is run through L bytes B is Z_L(y) ^ R(0, B), where Z_L (running
+// through L zero bytes) is linear in y and tabulated here byte by byte.
+constexpr size_t kStreamBytes = 4096;
+
+using ZeroShift = std::array<std::array<uint32_t, 256>, 4>;
+
+__attribute__((target("sse4.2"))) ZeroShift makeZeroShift() {
+  uint32_t basis[32];
+  for (int i = 0; i < 32; ++i) {
+    uint64_t c = uint32_t{1} << i;
+    for (size_t k = 0; k < kStreamBytes / 8; ++k) c = _mm_crc32_u64(c, 0);
+    basis[i] = static_cast<uint32_t>(c);
+  }
+  ZeroShift z{};
+  for (int k = 0; k < 4; ++k)
+    for (uint32_t b = 0; b < 256; ++b)
+      for (int bit = 0; bit < 8; ++bit)
+        if (b >> bit & 1) z[k][b] ^= basis[8 * k + bit];
+  return z;
+}
+
+inline uint32_t zeroShift(const ZeroShift& z, uint32_t c) {
+  return z[0][c & 0xFF] ^ z[1][(c >> 8) & 0xFF] ^ z[2][(c >> 16) & 0xFF] ^ z[3][c >> 24];
+}
+
 __attribute__((target("sse4.2"))) uint32_t crc32cHardware(const uint8_t* p, size_t n,
                                                            uint32_t crc) {
   uint64_t c = ~crc;
+  if (n >= 3 * kStreamBytes) {
+    static const ZeroShift shift = makeZeroShift();
+    do {
+      uint64_t a = c, b = 0, d = 0;
+      for (size_t i = 0; i < kStreamBytes; i += 8) {
+        uint64_t wa, wb, wd;
+        std::memcpy(&wa, p + i, 8);
+        std::memcpy(&wb, p + kStreamBytes + i, 8);
+        std::memcpy(&wd, p + 2 * kStreamBytes + i, 8);
+        a = _mm_crc32_u64(a, wa);
+        b = _mm_crc32_u64(b, wb);
+        d = _mm_crc32_u64(d, wd);
+      }
+      const uint32_t ab = zeroShift(shift, static_cast<uint32_t>(a)) ^ static_cast<uint32_t>(b);
+      c = zeroShift(shift, ab) ^ static_cast<uint32_t>(d);
+      p += 3 * kStreamBytes;
+      n -= 3 * kStreamBytes;
+    } while (n >= 3 * kStreamBytes);
+  }
   while (n >= 8) {
     uint64_t word;
     std::memcpy(&word, p, 8);
