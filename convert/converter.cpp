@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -129,10 +130,24 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
   SlabWindow window(source, 1);
   VOXLINK_RETURN_IF_ERROR(window.rewind());
   std::vector<EncodeStats> stats(pool.size());
-  std::vector<uint16_t> rows;
-  std::vector<uint32_t> masks;
-  std::vector<uint8_t> values;
-  std::vector<uint16_t> gradients;
+  // Two sets of slab buffers: while the workers encode one slab, a writer task checksums and
+  // writes the previous one (at most one write in flight, so sections stay in file order).
+  struct SlabBuffers {
+    std::vector<uint16_t> rows;
+    std::vector<uint32_t> masks;
+    std::vector<uint8_t> values;
+    std::vector<uint16_t> gradients;
+    uint64_t k0 = 0, v0 = 0;
+  };
+  SlabBuffers buffers[2];
+  std::future<Status> pendingWrite;  // declared after buffers: joined before they go
+  auto writeSlab = [&writer, n, maskWords, valueSize](const SlabBuffers& b) -> Status {
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowStart, b.k0 * n * n * 2, b.rows.data(), b.rows.size() * 2));
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowMask, b.k0 * maskWords * 4, b.masks.data(), b.masks.size() * 4));
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kValues, b.v0 * valueSize, b.values.data(), b.values.size()));
+    return writer.write(format::SectionId::kGradients, b.v0 * 2, b.gradients.data(), b.gradients.size() * 2);
+  };
+  unsigned slabsWritten = 0;
   const uint32_t stride = std::max(1u, options.errorSampleStride);
   for (uint32_t bz0 = 0; bz0 < layers(); bz0 += slabLayers) {
     VOXLINK_RETURN_IF_ERROR(checkCancel());
@@ -147,11 +162,14 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     }
     VOXLINK_RETURN_IF_ERROR(window.load(bz0 * n, std::min(info.dims[2], bz1 * n)));
     const uint64_t v0 = census.voxelBase[k0], v1 = census.voxelBase[k1];
-    rows.assign((k1 - k0) * n * n, 0);
-    masks.assign((k1 - k0) * maskWords, 0);
-    values.resize((v1 - v0) * valueSize);
-    gradients.resize(v1 - v0);
-    const SlabOutput out{k0, v0, rows.data(), masks.data(), values.data(), gradients.data()};
+    SlabBuffers& b = buffers[slabsWritten++ % 2];  // its last write was waited for below
+    b.k0 = k0;
+    b.v0 = v0;
+    b.rows.assign((k1 - k0) * n * n, 0);
+    b.masks.assign((k1 - k0) * maskWords, 0);
+    b.values.resize((v1 - v0) * valueSize);
+    b.gradients.resize(v1 - v0);
+    const SlabOutput out{k0, v0, b.rows.data(), b.masks.data(), b.values.data(), b.gradients.data()};
     pool.run(rowEnd - rowBegin, [&](size_t job, unsigned worker) {
       const uint64_t rowOfBricks = rowBegin + job;
       const uint32_t bz = static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
@@ -164,12 +182,11 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     for (const EncodeStats& s : stats)
       if (s.countMismatch)
         return makeError(ErrorCode::kCorrupt, info.path, ": data: the source changed between the two passes of the conversion");
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowStart, k0 * n * n * 2, rows.data(), rows.size() * 2));
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowMask, k0 * maskWords * 4, masks.data(), masks.size() * 4));
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kValues, v0 * valueSize, values.data(), values.size()));
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kGradients, v0 * 2, gradients.data(), gradients.size() * 2));
+    if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
+    pendingWrite = std::async(std::launch::async, writeSlab, std::cref(b));
     report(0.25 + 0.75 * bz1 / layers(), "writing");
   }
+  if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
   for (const EncodeStats& s : stats) {
     total.valueMin = std::min(total.valueMin, s.valueMin);
     total.valueMax = std::max(total.valueMax, s.valueMax);
