@@ -9,6 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "transfer_function.glsl"
 #include "shading.glsl"
 #include "voxlink_access.glsl"
+#include "voxlink_brick_bounds.glsl"
 #include "voxlink_row_walk.glsl"
 #include "voxlink_shadow.glsl"
 #include "compositing.glsl"

@@ -42,12 +42,17 @@ uint rowBits(uint k, uint row) {
 #endif
 }
 
+// Index of a row's first voxel among its brick's voxels (ROWS).
+uint rowStartInBrick(uint k, uint row) {
+  uint r = k * uint(VXL_N * VXL_N) + row;
+  return u16At(rowsWord(r >> 1u), r);
+}
+
 // Mask bits and first voxel of a row; the start is only read when the row holds voxels.
 Row fetchRow(uint k, uint row) {
   uint bits = rowBits(k, row);
   if (bits == 0u) return Row(0u, 0u);
-  uint r = k * uint(VXL_N * VXL_N) + row;
-  return Row(bits, bvoxWord(k) + u16At(rowsWord(r >> 1u), r));
+  return Row(bits, bvoxWord(k) + rowStartInBrick(k, row));
 }
 
 // Voxel index of depth d in a row, or -1: the next voxel along the predominant axis is the next

@@ -6,8 +6,10 @@
 
 struct RowWalk {
   Dda dda;       // voxel-cell walk, cell = the current row's entry cell
-  ivec3 lo, hi;  // the brick's cells, clipped to the volume
+  ivec3 origin;  // the brick's first cell: rows and depths are brick-local
+  ivec3 lo, hi;  // the cells walked: the brick's box of stored voxels (brick_bounds)
   uint k;        // occupied brick index
+  uint base;     // its first voxel (BVOX), read once per brick
   float t;       // where the ray entered the current row
   float tBrick;  // where it leaves the brick
   bool loaded;   // the row below is the current cell's
@@ -17,12 +19,16 @@ struct RowWalk {
   float tRowEnd;
 };
 
-RowWalk rowWalkBegin(vec3 o, vec3 d, float t, float tBrick, ivec3 brick, uint k) {
+// Starts the walk at t through the cells [lo, hi] of occupied brick k (grid cell `brick`),
+// which the ray leaves at tBrick.
+RowWalk rowWalkBegin(vec3 o, vec3 d, float t, float tBrick, ivec3 brick, uint k, ivec3 lo, ivec3 hi) {
   RowWalk w;
-  w.lo = brick * VXL_N;
-  w.hi = min(w.lo + VXL_N, uDims) - 1;
+  w.origin = brick * VXL_N;
+  w.lo = lo;
+  w.hi = hi;
   w.dda = ddaInit(o, d, t, w.lo, w.hi);
   w.k = k;
+  w.base = bvoxWord(k);
   w.t = t;
   w.tBrick = tBrick;
   w.loaded = false;
@@ -43,18 +49,21 @@ bool rowWalkNext(inout RowWalk w, out uint voxel, out float tStart, out float tE
     float tUV = min(w.dda.tMax[VXL_U], w.dda.tMax[VXL_V]);
     if (!w.loaded) {
       w.loaded = true;
-      ivec3 local = w.dda.cell - w.lo;
-      w.row = fetchRow(w.k, rowOfLocal(local));
+      ivec3 local = w.dda.cell - w.origin;
+      uint row = rowOfLocal(local);
+      w.row = Row(rowBits(w.k, row), 0u);
       w.entryDepth = local[VXL_W];
       w.tRowEnd = min(tUV, w.tBrick);
       w.hits = 0u;
       if (w.row.bits != 0u) {
         // Depths from the entry depth to the last one reached before the row ends.
         int last = clamp(w.entryDepth + w.dda.stepDir[VXL_W] * crossingsBefore(w, w.tRowEnd),
-                         0, w.hi[VXL_W] - w.lo[VXL_W]);
+                         w.lo[VXL_W] - w.origin[VXL_W], w.hi[VXL_W] - w.origin[VXL_W]);
         uint a = uint(min(w.entryDepth, last)), b = uint(max(w.entryDepth, last));
         uint upTo = b == 31u ? 0xFFFFFFFFu : (1u << (b + 1u)) - 1u;
         w.hits = w.row.bits & upTo & ~((1u << a) - 1u);
+        // The row's first voxel, only for rows the ray meets voxels in.
+        if (w.hits != 0u) w.row.first = w.base + rowStartInBrick(w.k, row);
       }
     }
     if (w.hits != 0u) {

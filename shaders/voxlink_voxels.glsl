@@ -12,8 +12,10 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
     int axis = minAxis(bricks.tMax);
     float tb = min(max(bricks.tMax[axis], t), t1);
     int k = occupiedIndex(brickId(bricks.cell));
-    if (k >= 0 && tb > t) {
-      RowWalk walk = rowWalkBegin(o, d, t, tb, bricks.cell, uint(k));
+    float tIn = t, tOut = tb;
+    ivec3 lo, hi;
+    if (k >= 0 && tb > t && clipToBrickBounds(o, d, uint(k), bricks.cell, tIn, tOut, lo, hi)) {
+      RowWalk walk = rowWalkBegin(o, d, tIn, tOut, bricks.cell, uint(k), lo, hi);
       uint voxel;
       float ta, tz;
       while (rowWalkNext(walk, voxel, ta, tz)) {

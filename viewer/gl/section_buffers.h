@@ -18,8 +18,9 @@ struct SectionBufferOptions {
   // to exercise the split path. Rounded down to a power of two bytes, at least 64.
   uint64_t maxChunkBytes = 0;
   GLuint firstBinding = 0;
-  // Storage blocks the shader needs besides the sections (the renderer's TF and gradient table).
-  uint32_t reservedBlocks = 2;
+  // Storage blocks the shader needs besides the sections (the renderer's TF, gradient table and
+  // brick bounds).
+  uint32_t reservedBlocks = 3;
 };
 
 class SectionBuffers {

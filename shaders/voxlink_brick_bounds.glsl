@@ -1,0 +1,29 @@
+// The box each occupied brick's stored voxels fill (viewer/core/brick_bounds.h), derived when
+// the file is loaded. Rays clip an occupied brick to it before walking rows, so they skip the
+// empty part of a sparse brick, and the brick altogether when they miss its voxels.
+
+layout(std430, binding = VXL_BRICK_BOUNDS_BINDING) readonly restrict buffer VxlBrickBounds {
+  uint brickBoundsWords[];
+};
+
+// Clips [t0, t1) to the box of occupied brick k (grid cell `brick`); lo and hi get the box's
+// cells (inclusive). False when the ray spends no time in the box.
+bool clipToBrickBounds(vec3 o, vec3 d, uint k, ivec3 brick, inout float t0, inout float t1,
+                       out ivec3 lo, out ivec3 hi) {
+  uint w = brickBoundsWords[k];
+  ivec3 base = brick * VXL_N;
+  lo = base + ivec3(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u);
+  hi = base + ivec3((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u);
+  for (int a = 0; a < 3; ++a) {
+    float l = float(lo[a]), h = float(hi[a] + 1);
+    if (abs(d[a]) <= kParallelEpsilon) {  // never crosses these planes (ddaInit's rule)
+      float c = floor(o[a] + t0 * d[a]);
+      if (c < l || c >= h) return false;
+      continue;
+    }
+    float ta = (l - o[a]) / d[a], tb = (h - o[a]) / d[a];
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  return t0 < t1;
+}
