@@ -394,17 +394,24 @@ uint32_t encodeInteriorBrick(const format::AxisFrame frame, const uint8_t* flags
   // flags of N rows are contiguous for each depth: an N*N-wide loop the compiler vectorizes.
   using Bits = std::conditional_t<(N <= 8), uint8_t, std::conditional_t<(N <= 16), uint16_t, uint32_t>>;
   Bits rowBits[N * N] = {};
-  if (N == 8 && fU == 1) {
-    // Eight 0/1 flag bytes per load, shifted by the depth: bit d of byte u is the flag at depth
-    // d, so the eight bytes are the bits of rows u = 0..7 at once.
+  if (N % 8 == 0 && fU == 1) {
+    // Eight 0/1 flag bytes per load, shifted by the depth within its group of eight: bit d % 8
+    // of byte j in group d / 8 is the flag of row u = u0 + j at depth d, so each group holds
+    // eight bits of eight rows at once.
     for (uint32_t v = 0; v < N; ++v) {
-      uint64_t bits = 0;
-      for (uint32_t d = 0; d < N; ++d) {
-        uint64_t f;
-        std::memcpy(&f, flags + v * fV + d * fW, 8);
-        bits |= f << d;
+      for (uint32_t u0 = 0; u0 < N; u0 += 8) {
+        uint64_t groups[N / 8 > 0 ? N / 8 : 1] = {};
+        for (uint32_t d = 0; d < N; ++d) {
+          uint64_t f;
+          std::memcpy(&f, flags + u0 + v * fV + d * fW, 8);
+          groups[d / 8] |= f << (d % 8);
+        }
+        for (uint32_t j = 0; j < 8; ++j) {
+          uint32_t bits = 0;
+          for (uint32_t g = 0; g < N / 8; ++g) bits |= static_cast<uint32_t>((groups[g] >> (8 * j)) & 0xFF) << (8 * g);
+          rowBits[v * N + u0 + j] = static_cast<Bits>(bits);
+        }
       }
-      std::memcpy(rowBits + v * N, &bits, 8);
     }
   } else if (fU == 1) {
     for (uint32_t d = 0; d < N; ++d)
@@ -422,8 +429,8 @@ uint32_t encodeInteriorBrick(const format::AxisFrame frame, const uint8_t* flags
         rowBits[v * N + u] = static_cast<Bits>(bits);
       }
   }
-  using Index = std::conditional_t<(N <= 16), uint16_t, uint32_t>;
-  Index index[N * N * N + 8];  // + 8: a row of up to 8 cells is stored 8 entries at a time
+  using Index = uint16_t;       // cells of a brick: at most 32^3 = 32768
+  Index index[N * N * N + 8];  // + 8: a row is stored 8 entries at a time
   uint32_t count = 0;
   for (uint32_t v = 0; v < N; ++v) {
     for (uint32_t u = 0; u < N; ++u) {
@@ -433,20 +440,22 @@ uint32_t encodeInteriorBrick(const format::AxisFrame frame, const uint8_t* flags
       mask[(row * N) >> 5] |= bits << ((row * N) & 31);
       const uint32_t base = u * dU + v * dV;
 #if defined(__SSE4_1__)
-      if constexpr (N <= 8) {  // all 8 positions from a table; only the first popcount count
-        const __m128i positions = _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kSetBitPositions[bits])));
-        const __m128i cells = _mm_add_epi16(_mm_set1_epi16(static_cast<int16_t>(base)),
+      // Eight depths at a time: all 8 positions of a byte of the row's bits from a table, of
+      // which only the first popcount count.
+      for (uint32_t g = 0; g < (N + 7) / 8; ++g) {
+        const uint32_t byte = (bits >> (8 * g)) & 0xFF;
+        const __m128i positions = _mm_cvtepu8_epi16(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kSetBitPositions[byte])));
+        const __m128i cells = _mm_add_epi16(_mm_set1_epi16(static_cast<int16_t>(base + 8 * g * dW)),
                                             _mm_mullo_epi16(positions, _mm_set1_epi16(static_cast<int16_t>(dW))));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(index + count), cells);
-        count += static_cast<uint32_t>(std::popcount(bits));
-      } else
-#endif
-      {
-        for (uint32_t d = 0; d < N; ++d) {
-          index[count] = static_cast<Index>(base + d * dW);  // may be overwritten: count only
-          count += (bits >> d) & 1;                          // advances past kept cells
-        }
+        count += static_cast<uint32_t>(std::popcount(byte));
       }
+#else
+      for (uint32_t d = 0; d < N; ++d) {
+        index[count] = static_cast<Index>(base + d * dW);  // may be overwritten: count only
+        count += (bits >> d) & 1;                          // advances past kept cells
+      }
+#endif
       if (count > expected) return UINT32_MAX;  // index[] holds N^3 entries: stop before overrun
     }
   }
