@@ -5,7 +5,9 @@
 # dense 3D-texture ray caster, interleaved frame by frame, each with its PSNR against the float64
 # reference.
 # usage: bench/render_bench.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN] [SIZES...]
+# BRICK=N (environment) sets the files' brick size, 16 unless given (see the document).
 set -euo pipefail
+brick=${BRICK:-16}
 voxlink=$1
 data=$2
 out=$3
@@ -20,7 +22,7 @@ run() {  # name source tf [convert options...]
   local name=$1 source=$2 tf=$3
   shift 3
   if [[ ! -e $source ]]; then echo "skipped $name: $source missing"; return; fi
-  "$voxlink" convert "$source" --tf "$tf" -o "$out/$name.vxl" -q "$@" | tee "$out/$name.convert.txt"
+  "$voxlink" convert "$source" --tf "$tf" --brick "$brick" -o "$out/$name.vxl" -q "$@" | tee "$out/$name.convert.txt"
   "$voxlink" bench-render "$out/$name.vxl" --tf "$tf" --sizes "${sizes[@]}" \
       --frames-per-turn "$frames" --pictures "$out/$name" | tee "$out/$name.md"
 }

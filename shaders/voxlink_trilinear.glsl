@@ -1,16 +1,42 @@
 // Trilinear sampling of a VoxLink file. A sample at index-space point p blends the 8 voxels
 // around q = p - 1/2 (voxel centres at integers). Samples are grouped by dual bricks (bricks
 // shifted by half a voxel): dual brick D covers q in [D n, D n + n) and reads voxels of bricks
-// D and D + 1 per axis, so it is skipped when those 8 bricks are all empty. Corners are looked
-// up in pairs along the predominant axis, so one row fetch serves both voxels of a pair.
+// D and D + 1 per axis, so it is skipped when those 8 bricks are all empty, and otherwise
+// clipped to the union of their boxes of stored voxels (voxlink_brick_bounds.glsl) dilated by
+// the reach of a sample. Corners are looked up in pairs along the predominant axis, so one row
+// fetch serves both voxels of a pair.
 // Mirrors ReferenceRenderer::traceTrilinear.
 
-bool dualBrickActive(ivec3 d) {
+// Clips [t0, t1) to where samples of dual brick d can meet stored voxels: a sample at p blends
+// the voxels of cells floor(p - 1/2) + {0, 1}, so a brick whose stored voxels fill the box
+// [lo, hi] matters for p in (lo - 1/2, hi + 3/2). The bound is the union of that over the 8
+// bricks dual brick d reads. False when none of them is occupied or the ray misses the union.
+bool clipDualBrick(vec3 o, vec3 d, ivec3 dual, inout float t0, inout float t1) {
+  vec3 lo = vec3(kBig), hi = vec3(-kBig);
   for (int i = 0; i < 8; ++i) {
-    ivec3 b = d + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    if (insideGrid(b, uBrickGrid) && brickOccupied(brickId(b))) return true;
+    ivec3 b = dual + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+    if (!insideGrid(b, uBrickGrid)) continue;
+    int k = occupiedIndex(brickId(b));
+    if (k < 0) continue;
+    uint w = brickBoundsWords[uint(k)];
+    vec3 base = vec3(b * VXL_N);
+    lo = min(lo, base + vec3(uvec3(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u)));
+    hi = max(hi, base + vec3(uvec3((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u)));
   }
-  return false;
+  if (lo.x > hi.x) return false;
+  lo -= 0.5;
+  hi += 1.5;
+  for (int a = 0; a < 3; ++a) {
+    if (abs(d[a]) <= kParallelEpsilon) {
+      float p = o[a] + t0 * d[a];
+      if (p <= lo[a] || p >= hi[a]) return false;
+      continue;
+    }
+    float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  return t0 < t1;
 }
 
 // The corner terms of a stored voxel (nothing for -1).
@@ -123,21 +149,24 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
   float t = t0;  // where the ray entered the current dual brick
   int axis = minAxis(bricks.tMax);
   float tb = min(max(bricks.tMax[axis], t), t1);
-  bool brickActive = tb > t && dualBrickActive(bricks.cell - 1);
-  int k = 0;  // the next sample t_k = t0 + (k + 1/2) step not taken yet
+  float tIn = t, tOut = tb;  // the part of the dual brick where samples can meet voxels
+  bool brickActive = tb > t && clipDualBrick(o, d, bricks.cell - 1, tIn, tOut);
+  int k = brickActive ? max(0, firstSampleNear(tIn, t0)) : 0;  // next sample t_k = t0 + (k + 1/2) step
   ivec3 cached = ivec3(-2147483647);
   int limit = dualGrid.x + dualGrid.y + dualGrid.z + int(min((t1 - t0) / uStep, 1e7)) + 8;
   for (int i = 0; i < limit; ++i) {
     float ts = t0 + (float(k) + 0.5) * uStep;
-    if (!brickActive || ts >= tb) {
+    if (!brickActive || ts >= tOut) {
       if (tb >= t1) return;
       t = tb;
       ddaAdvance(bricks, axis);
       if (bricks.cell[axis] < 0 || bricks.cell[axis] >= dualGrid[axis]) return;
       axis = minAxis(bricks.tMax);
       tb = min(max(bricks.tMax[axis], t), t1);
-      brickActive = tb > t && dualBrickActive(bricks.cell - 1);
-      if (brickActive) k = max(k, firstSampleNear(t, t0));
+      tIn = t;
+      tOut = tb;
+      brickActive = tb > t && clipDualBrick(o, d, bricks.cell - 1, tIn, tOut);
+      if (brickActive) k = max(k, firstSampleNear(tIn, t0));
       continue;
     }
     vec3 q = o + ts * d - 0.5;
