@@ -6,24 +6,35 @@ layout(std430, binding = VXL_BRICK_BOUNDS_BINDING) readonly restrict buffer VxlB
   uint brickBoundsWords[];
 };
 
-// Clips [t0, t1) to the box of occupied brick k (grid cell `brick`); lo and hi get the box's
-// cells (inclusive). False when the ray spends no time in the box.
-bool clipToBrickBounds(vec3 o, vec3 d, uint k, ivec3 brick, inout float t0, inout float t1,
-                       out ivec3 lo, out ivec3 hi) {
+// The cells [lo, hi] (inclusive) holding the stored voxels of occupied brick k at grid cell `brick`.
+void brickBox(uint k, ivec3 brick, out ivec3 lo, out ivec3 hi) {
   uint w = brickBoundsWords[k];
   ivec3 base = brick * VXL_N;
   lo = base + ivec3(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u);
   hi = base + ivec3((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u);
+}
+
+// Clips [t0, t1) to the part of the ray o + t d inside the box [lo, hi) (index space); on an axis
+// the ray runs parallel to (ddaInit's rule), the point at t0 must lie inside. False when the
+// ray spends no time in the box.
+bool clipToBox(vec3 o, vec3 d, vec3 lo, vec3 hi, inout float t0, inout float t1) {
   for (int a = 0; a < 3; ++a) {
-    float l = float(lo[a]), h = float(hi[a] + 1);
-    if (abs(d[a]) <= kParallelEpsilon) {  // never crosses these planes (ddaInit's rule)
-      float c = floor(o[a] + t0 * d[a]);
-      if (c < l || c >= h) return false;
+    if (abs(d[a]) <= kParallelEpsilon) {
+      float p = o[a] + t0 * d[a];
+      if (p < lo[a] || p >= hi[a]) return false;
       continue;
     }
-    float ta = (l - o[a]) / d[a], tb = (h - o[a]) / d[a];
+    float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
     t0 = max(t0, min(ta, tb));
     t1 = min(t1, max(ta, tb));
   }
   return t0 < t1;
+}
+
+// Clips [t0, t1) to the box of occupied brick k (grid cell `brick`); lo and hi get the box's
+// cells (inclusive). False when the ray spends no time in the box.
+bool clipToBrickBounds(vec3 o, vec3 d, uint k, ivec3 brick, inout float t0, inout float t1,
+                       out ivec3 lo, out ivec3 hi) {
+  brickBox(k, brick, lo, hi);
+  return clipToBox(o, d, vec3(lo), vec3(hi + 1), t0, t1);
 }

@@ -18,25 +18,13 @@ bool clipDualBrick(vec3 o, vec3 d, ivec3 dual, inout float t0, inout float t1) {
     if (!insideGrid(b, uBrickGrid)) continue;
     int k = occupiedIndex(brickId(b));
     if (k < 0) continue;
-    uint w = brickBoundsWords[uint(k)];
-    vec3 base = vec3(b * VXL_N);
-    lo = min(lo, base + vec3(uvec3(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u)));
-    hi = max(hi, base + vec3(uvec3((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u)));
+    ivec3 blo, bhi;
+    brickBox(uint(k), b, blo, bhi);
+    lo = min(lo, vec3(blo));
+    hi = max(hi, vec3(bhi));
   }
   if (lo.x > hi.x) return false;
-  lo -= 0.5;
-  hi += 1.5;
-  for (int a = 0; a < 3; ++a) {
-    if (abs(d[a]) <= kParallelEpsilon) {
-      float p = o[a] + t0 * d[a];
-      if (p <= lo[a] || p >= hi[a]) return false;
-      continue;
-    }
-    float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = max(t0, min(ta, tb));
-    t1 = min(t1, max(ta, tb));
-  }
-  return t0 < t1;
+  return clipToBox(o, d, lo - 0.5, hi + 1.5, t0, t1);
 }
 
 // The corner terms of a stored voxel (nothing for -1).
