@@ -4,27 +4,62 @@
 // D and D + 1 per axis, so it is skipped when those 8 bricks are all empty, and otherwise
 // clipped to the union of their boxes of stored voxels (voxlink_brick_bounds.glsl) dilated by
 // the reach of a sample. Corners are looked up in pairs along the predominant axis, so one row
-// fetch serves both voxels of a pair.
+// mask serves both voxels of a pair, and all through the occupied indices of the dual brick's 8
+// bricks, found once when the ray enters it: a cell whose corners cross a brick face then takes
+// the same path as any other cell (see loadCorners).
 // Mirrors ReferenceRenderer::traceTrilinear.
+
+// Occupied indices (or -1) of the bricks dual brick D reads, numbered like the corners of a cell
+// (cornerOffset in compositing.glsl): bit 0 is brick D + 1 along w, bit 1 along u, bit 2 along v.
+int gK0, gK1, gK2, gK3, gK4, gK5, gK6, gK7;
+uint gB0, gB1, gB2, gB3, gB4, gB5, gB6, gB7;  // their first voxels (BVOX), 0 for -1
+ivec3 gDualBase;  // D n: the first cell of the dual brick, in index space
+
+// How far (voxels) rounding may put a sample outside its dual brick; see traceTrilinear.
+const float kFaceTolerance = 0.01;
+
+// Looks up brick `dual + cornerOffset(m)`: its occupied index (or -1), and grows [lo, hi] by
+// its box of stored voxels.
+int dualBrickIndex(ivec3 dual, int m, inout vec3 lo, inout vec3 hi) {
+  ivec3 b = dual + cornerOffset(m);
+  if (!insideGrid(b, uBrickGrid)) return -1;
+  int k = occupiedIndex(brickId(b));
+  if (k < 0) return -1;
+  ivec3 blo, bhi;
+  brickBox(uint(k), b, blo, bhi);
+  lo = min(lo, vec3(blo));
+  hi = max(hi, vec3(bhi));
+  return k;
+}
+
+uint firstVoxelOf(int k) { return k < 0 ? 0u : bvoxWord(uint(k)); }
 
 // Clips [t0, t1) to where samples of dual brick d can meet stored voxels: a sample at p blends
 // the voxels of cells floor(p - 1/2) + {0, 1}, so a brick whose stored voxels fill the box
 // [lo, hi] matters for p in (lo - 1/2, hi + 3/2). The bound is the union of that over the 8
-// bricks dual brick d reads. False when none of them is occupied or the ray misses the union.
+// bricks dual brick d reads; on the way it keeps their occupied indices and first voxels for
+// loadCorners. False when none of them is occupied or the ray misses the union.
 bool clipDualBrick(vec3 o, vec3 d, ivec3 dual, inout float t0, inout float t1) {
   vec3 lo = vec3(kBig), hi = vec3(-kBig);
-  for (int i = 0; i < 8; ++i) {
-    ivec3 b = dual + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    if (!insideGrid(b, uBrickGrid)) continue;
-    int k = occupiedIndex(brickId(b));
-    if (k < 0) continue;
-    ivec3 blo, bhi;
-    brickBox(uint(k), b, blo, bhi);
-    lo = min(lo, vec3(blo));
-    hi = max(hi, vec3(bhi));
-  }
-  if (lo.x > hi.x) return false;
-  return clipToBox(o, d, lo - 0.5, hi + 1.5, t0, t1);
+  gK0 = dualBrickIndex(dual, 0, lo, hi);
+  gK1 = dualBrickIndex(dual, 1, lo, hi);
+  gK2 = dualBrickIndex(dual, 2, lo, hi);
+  gK3 = dualBrickIndex(dual, 3, lo, hi);
+  gK4 = dualBrickIndex(dual, 4, lo, hi);
+  gK5 = dualBrickIndex(dual, 5, lo, hi);
+  gK6 = dualBrickIndex(dual, 6, lo, hi);
+  gK7 = dualBrickIndex(dual, 7, lo, hi);
+  gDualBase = dual * VXL_N;
+  if (lo.x > hi.x || !clipToBox(o, d, lo - 0.5, hi + 1.5, t0, t1)) return false;
+  gB0 = firstVoxelOf(gK0);
+  gB1 = firstVoxelOf(gK1);
+  gB2 = firstVoxelOf(gK2);
+  gB3 = firstVoxelOf(gK3);
+  gB4 = firstVoxelOf(gK4);
+  gB5 = firstVoxelOf(gK5);
+  gB6 = firstVoxelOf(gK6);
+  gB7 = firstVoxelOf(gK7);
+  return true;
 }
 
 // The corner terms of a stored voxel (nothing for -1).
@@ -36,87 +71,76 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   gCellVisible = gCellVisible || colorAlpha.a > 0.0;
 }
 
-// The occupied index of the brick last looked up by pairIndices(): a cell's corners mostly share it.
-uint gPairBrick;
-int gPairK;
-
-// Voxel indices (or -1) of corners 2j (depth w) and 2j + 1 (depth w + 1) of a cell whose
-// corner 2j is voxel p. Both sit in one row (list) unless depth w is the brick's last, so one
-// row fetch serves the pair. Indices first, classification after: llvmpipe runs divergent
-// branches masked, so the expensive part is kept out of them.
-void pairIndices(ivec3 p, out int first, out int second) {
-  first = second = -1;
-  ivec3 q = p;
-  q[VXL_W] += 1;
-  bool firstInside = insideGrid(p, uDims), secondInside = insideGrid(q, uDims);
-  if (!firstInside && !secondInside) return;
-  ivec3 base = firstInside ? p : q;
-  ivec3 brick = base / VXL_N;
-  uint id = brickId(brick);
-  if (id != gPairBrick) {
-    gPairBrick = id;
-    gPairK = occupiedIndex(id);
-  }
-  ivec3 local = base - brick * VXL_N;
-  uint depth = uint(local[VXL_W]);
-  bool split = firstInside && secondInside && depth == uint(VXL_N - 1);
-  if (gPairK >= 0) {
-    Row row = fetchRow(uint(gPairK), rowOfLocal(local));
-    int atDepth = voxelInRow(row, depth);
-    if (firstInside) {
-      first = atDepth;
-      if (secondInside && !split) second = voxelInRow(row, depth + 1u);
-    } else {
-      second = atDepth;
-    }
-  }
-  // The second voxel of a pair split by a brick face lives in the next brick's row.
-  if (split) second = findVoxel(q);
+// Occupied index and first voxel of the dual brick's brick `m` (bits as in gK0..gK7), by
+// selects, not branches.
+int dualBrick(uint m) {
+  bool w = (m & 1u) != 0u;
+  int low = (m & 2u) != 0u ? (w ? gK3 : gK2) : (w ? gK1 : gK0);
+  int high = (m & 2u) != 0u ? (w ? gK7 : gK6) : (w ? gK5 : gK4);
+  return (m & 4u) != 0u ? high : low;
+}
+uint dualBrickBase(uint m) {
+  bool w = (m & 1u) != 0u;
+  uint low = (m & 2u) != 0u ? (w ? gB3 : gB2) : (w ? gB1 : gB0);
+  uint high = (m & 2u) != 0u ? (w ? gB7 : gB6) : (w ? gB5 : gB4);
+  return (m & 4u) != 0u ? high : low;
 }
 
-// Voxel indices (or -1) of the pair in row `row` of occupied brick k at depths w, w + 1.
-void rowPair(uint k, uint row, uint bits, uint depth, uint base, out int first, out int second) {
+// Mask bits of row `row` of brick k, or 0 when k is -1 (the read then stays in bounds).
+uint rowBitsOrNone(int k, uint row) {
+  return rowBits(uint(max(k, 0)), row) & (k < 0 ? 0u : 0xFFFFFFFFu);
+}
+
+// Voxel indices (or -1) of a pair of corners: depth `depth` of row `row` in brick kA (first
+// voxel baseA) and depth `next` of the same row in brick kB (differs from kA where the pair
+// crosses a w face). One row start serves both unless the pair crosses.
+void rowPair(int kA, uint baseA, int kB, uint baseB, uint row, uint bitsA, uint bitsB,
+             uint depth, uint next, out int first, out int second) {
   first = second = -1;
-  if ((bits & (3u << depth)) == 0u) return;
-  uint r = k * uint(VXL_N * VXL_N) + row;
-  Row fetched = Row(bits, base + u16At(rowsWord(r >> 1u), r));
-  first = voxelInRow(fetched, depth);
-  second = voxelInRow(fetched, depth + 1u);
+  bool hasA = ((bitsA >> depth) & 1u) != 0u, hasB = ((bitsB >> next) & 1u) != 0u;
+  if (!(hasA || hasB)) return;
+  uint startA = baseA + rowStartInBrick(uint(max(kA, 0)), row);
+  uint startB = startA;
+  if (kB != kA) startB = baseB + rowStartInBrick(uint(max(kB, 0)), row);
+  if (hasA) first = int(startA + uint(bitCount(bitsA & ((1u << depth) - 1u))));
+  if (hasB) second = int(startB + uint(bitCount(bitsB & ((1u << next) - 1u))));
 }
 
 // Corners are only read when gCellVisible ends up true, so an empty cell returns early without
-// touching them.
+// touching them. llvmpipe runs both sides of a branch whenever its lanes disagree, so there is
+// one path for every cell: a separate one for cells whose corners cross a brick face (1 - (1 -
+// 1/n)^3 of them) ran in most SIMD vectors and took a third of the frame's instructions.
 void loadCorners(ivec3 cell) {
   gCellVisible = false;
   int v0, v1, v2, v3, v4, v5, v6, v7;
-  ivec3 brick = cell / VXL_N;
-  ivec3 local = cell - brick * VXL_N;
-  if (all(greaterThanEqual(cell, ivec3(0))) && all(lessThan(local, ivec3(VXL_N - 1))) &&
-      all(lessThan(cell + 1, uDims))) {
-    // The common case, all 8 corners in one brick: one occupancy lookup and four row masks
-    // (rows u, u + 1 by v, v + 1) decide whether the cell holds anything at all.
-    int k = occupiedIndex(brickId(brick));
-    if (k < 0) return;
-    uint kk = uint(k);
-    uint row = rowOfLocal(local);
-    uint depth = uint(local[VXL_W]);
-    uint b0 = rowBits(kk, row), b1 = rowBits(kk, row + 1u);
-    uint b2 = rowBits(kk, row + uint(VXL_N)), b3 = rowBits(kk, row + uint(VXL_N) + 1u);
-    if (((b0 | b1 | b2 | b3) & (3u << depth)) == 0u) return;
-    uint base = bvoxWord(kk);
-    rowPair(kk, row, b0, depth, base, v0, v1);
-    rowPair(kk, row + 1u, b1, depth, base, v2, v3);
-    rowPair(kk, row + uint(VXL_N), b2, depth, base, v4, v5);
-    rowPair(kk, row + uint(VXL_N) + 1u, b3, depth, base, v6, v7);
-  } else {
-    // Corners spread over several bricks or past the volume's faces.
-    gPairBrick = 0xFFFFFFFFu;
-    pairIndices(cell + cornerOffset(0), v0, v1);
-    pairIndices(cell + cornerOffset(2), v2, v3);
-    pairIndices(cell + cornerOffset(4), v4, v5);
-    pairIndices(cell + cornerOffset(6), v6, v7);
-    if (max(max(max(v0, v1), max(v2, v3)), max(max(v4, v5), max(v6, v7))) < 0) return;
+  // The cell lies in the current dual brick (traceTrilinear sees to it), so its corners sit in
+  // the 8 bricks looked up on entry; local coordinates wrap into the next brick.
+  ivec3 local = cell - gDualBase;
+  const uint last = uint(VXL_N - 1);
+  uint w = uint(local[VXL_W]), u = uint(local[VXL_U]), v = uint(local[VXL_V]);
+  uint crossing = (w == last ? 1u : 0u) | (u == last ? 2u : 0u) | (v == last ? 4u : 0u);
+  uint wNext = (w + 1u) & last, uNext = (u + 1u) & last, vNext = (v + 1u) & last;
+  uint r0 = v * uint(VXL_N) + u, r1 = v * uint(VXL_N) + uNext;
+  uint r2 = vNext * uint(VXL_N) + u, r3 = vNext * uint(VXL_N) + uNext;
+  int k0 = gK0, k1 = dualBrick(1u & crossing), k2 = dualBrick(2u & crossing);
+  int k3 = dualBrick(3u & crossing), k4 = dualBrick(4u & crossing);
+  int k5 = dualBrick(5u & crossing), k6 = dualBrick(6u & crossing);
+  int k7 = dualBrick(7u & crossing);
+  uint b0 = rowBitsOrNone(k0, r0), b2 = rowBitsOrNone(k2, r1);
+  uint b4 = rowBitsOrNone(k4, r2), b6 = rowBitsOrNone(k6, r3);
+  uint b1 = b0, b3 = b2, b5 = b4, b7 = b6;
+  if ((crossing & 1u) != 0u) {  // the pairs' second corners lie in the next brick along w
+    b1 = rowBitsOrNone(k1, r0);
+    b3 = rowBitsOrNone(k3, r1);
+    b5 = rowBitsOrNone(k5, r2);
+    b7 = rowBitsOrNone(k7, r3);
   }
+  uint hits = ((b0 | b2 | b4 | b6) >> w) | ((b1 | b3 | b5 | b7) >> wNext);
+  if ((hits & 1u) == 0u) return;
+  rowPair(k0, gB0, k1, dualBrickBase(1u & crossing), r0, b0, b1, w, wNext, v0, v1);
+  rowPair(k2, dualBrickBase(2u & crossing), k3, dualBrickBase(3u & crossing), r1, b2, b3, w, wNext, v2, v3);
+  rowPair(k4, dualBrickBase(4u & crossing), k5, dualBrickBase(5u & crossing), r2, b4, b5, w, wNext, v4, v5);
+  rowPair(k6, dualBrickBase(6u & crossing), k7, dualBrickBase(7u & crossing), r3, b6, b7, w, wNext, v6, v7);
   storedCorner(v0, gA0, gL0);
   storedCorner(v1, gA1, gL1);
   storedCorner(v2, gA2, gL2);
@@ -157,9 +181,16 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       if (brickActive) k = max(k, firstSampleNear(tIn, t0));
       continue;
     }
+    // Rounding can leave a sample of this dual brick a hair outside it: it is moved in (at
+    // most kFaceTolerance; a cell at the far face takes fraction 1). The sample before tIn may
+    // lie in the previous dual brick, where that brick's clip found nothing to meet: skipped.
     vec3 q = o + ts * d - 0.5;
-    vec3 fl = floor(q);
-    ivec3 cell = ivec3(fl);
+    vec3 qIn = clamp(q, vec3(gDualBase), vec3(gDualBase + VXL_N));
+    if (any(greaterThan(abs(qIn - q), vec3(kFaceTolerance)))) {
+      ++k;
+      continue;
+    }
+    ivec3 cell = min(ivec3(floor(qIn)), gDualBase + (VXL_N - 1));
     if (cell != cached) {
       cached = cell;
       loadCorners(cell);
@@ -168,7 +199,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       k = max(k + 1, firstSampleAfterCell(o, d, cell, t0));
       continue;
     }
-    compositeSample(q, q - fl, toEye, color, transmittance);
+    compositeSample(qIn, qIn - vec3(cell), toEye, color, transmittance);
     if (transmittance <= uStopTransmittance) return;
     ++k;
   }

@@ -124,10 +124,34 @@ TEST(HardCases, RaysAlongBrickFacesAndEdges) {
     const glm::dvec3 eye(plane(0, x), plane(1, y), zFar), target(plane(0, x), plane(1, y), zMid);
     expectAgreement(*scene, Camera::lookAt(eye, target, {0, 1, 0}, 20.0), cat("along x=", x, " y=", y));
   }
-  // Diagonally through brick corners.
-  const glm::dvec3 corner(plane(0, 16), plane(1, 8), plane(2, 16));
-  expectAgreement(*scene, Camera::lookAt(corner + glm::dvec3(60, 60, 60), corner, {0, 0, 1}, 30.0),
-                  "through a brick corner");
+  // Trilinear samples are grouped by dual bricks, whose faces lie half a voxel further, through
+  // voxel centres: there a sample sits on the face between two of them.
+  for (auto [x, y] : {std::pair{8.5, 12.0}, std::pair{8.5, 8.5}, std::pair{16.5, 16.5}}) {
+    const glm::dvec3 eye(plane(0, x), plane(1, y), zFar), target(plane(0, x), plane(1, y), zMid);
+    expectAgreement(*scene, Camera::lookAt(eye, target, {0, 1, 0}, 20.0), cat("along x=", x, " y=", y));
+  }
+  // Diagonally through brick and dual-brick corners.
+  for (double i : {0.0, 0.5}) {
+    const glm::dvec3 corner(plane(0, 16 + i), plane(1, 8 + i), plane(2, 16 + i));
+    expectAgreement(*scene, Camera::lookAt(corner + glm::dvec3(60, 60, 60), corner, {0, 0, 1}, 30.0),
+                    cat("through a brick corner + ", i));
+  }
+}
+
+// Corners of a trilinear cell cross brick faces differently for each brick size and
+// predominant axis (the axis along which corners pair up in one row).
+TEST(HardCases, EveryBrickSizeAndAxis) {
+  VOXLINK_REQUIRE_GL();
+  for (uint32_t brick : {4u, 16u, 32u})
+    for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ}) {
+      auto scene = makeScene(shell, positive, brick, axis);
+      ASSERT_TRUE(scene);
+      CameraSpec spec;
+      spec.azimuthDeg = 35;
+      spec.elevationDeg = -25;
+      expectAgreement(*scene, Camera::framing(scene->dense.worldBox(), spec),
+                      cat("brick ", brick, " axis ", static_cast<int>(axis)));
+    }
 }
 
 TEST(HardCases, EmptyFileRendersTheBackground) {
