@@ -18,39 +18,44 @@ ivec3 gDualBase;  // D n: the first cell of the dual brick, in index space
 // How far (voxels) rounding may put a sample outside its dual brick; see traceTrilinear.
 const float kFaceTolerance = 0.01;
 
-// Looks up brick `dual + cornerOffset(m)`: its occupied index (or -1), and grows [lo, hi] by
-// its box of stored voxels.
-int dualBrickIndex(ivec3 dual, int m, inout vec3 lo, inout vec3 hi) {
+// Parts of the ray, [x, y), where samples can meet the stored voxels of each of the 8 bricks
+// (empty when x >= y); traceTrilinear skips the samples outside all of them.
+vec2 gR0, gR1, gR2, gR3, gR4, gR5, gR6, gR7;
+
+// Looks up brick `dual + cornerOffset(m)`: its occupied index (or -1), and `reach`, the part
+// of [t0, t1) where a sample can meet its stored voxels: a sample at p blends the voxels of
+// cells floor(p - 1/2) + {0, 1}, so a brick whose voxels fill the box [lo, hi] matters for p
+// in (lo - 1/2, hi + 3/2).
+int dualBrickIndex(ivec3 dual, int m, vec3 o, vec3 d, float t0, float t1, out vec2 reach) {
+  reach = vec2(kBig, -kBig);
   ivec3 b = dual + cornerOffset(m);
   if (!insideGrid(b, uBrickGrid)) return -1;
   int k = occupiedIndex(brickId(b));
   if (k < 0) return -1;
-  ivec3 blo, bhi;
-  brickBox(uint(k), b, blo, bhi);
-  lo = min(lo, vec3(blo));
-  hi = max(hi, vec3(bhi));
+  ivec3 lo, hi;
+  brickBox(uint(k), b, lo, hi);
+  if (clipToBox(o, d, vec3(lo) - 0.5, vec3(hi) + 1.5, t0, t1)) reach = vec2(t0, t1);
   return k;
 }
 
 uint firstVoxelOf(int k) { return k < 0 ? 0u : bvoxWord(uint(k)); }
 
-// Clips [t0, t1) to where samples of dual brick d can meet stored voxels: a sample at p blends
-// the voxels of cells floor(p - 1/2) + {0, 1}, so a brick whose stored voxels fill the box
-// [lo, hi] matters for p in (lo - 1/2, hi + 3/2). The bound is the union of that over the 8
-// bricks dual brick d reads; on the way it keeps their occupied indices and first voxels for
-// loadCorners. False when none of them is occupied or the ray misses the union.
+// Clips [t0, t1) to where samples of dual brick d can meet stored voxels: the span of the
+// reaches of the 8 bricks it reads. On the way it keeps their occupied indices, reaches and
+// first voxels for the samples. False when none of them is occupied or the ray misses them.
 bool clipDualBrick(vec3 o, vec3 d, ivec3 dual, inout float t0, inout float t1) {
-  vec3 lo = vec3(kBig), hi = vec3(-kBig);
-  gK0 = dualBrickIndex(dual, 0, lo, hi);
-  gK1 = dualBrickIndex(dual, 1, lo, hi);
-  gK2 = dualBrickIndex(dual, 2, lo, hi);
-  gK3 = dualBrickIndex(dual, 3, lo, hi);
-  gK4 = dualBrickIndex(dual, 4, lo, hi);
-  gK5 = dualBrickIndex(dual, 5, lo, hi);
-  gK6 = dualBrickIndex(dual, 6, lo, hi);
-  gK7 = dualBrickIndex(dual, 7, lo, hi);
+  gK0 = dualBrickIndex(dual, 0, o, d, t0, t1, gR0);
+  gK1 = dualBrickIndex(dual, 1, o, d, t0, t1, gR1);
+  gK2 = dualBrickIndex(dual, 2, o, d, t0, t1, gR2);
+  gK3 = dualBrickIndex(dual, 3, o, d, t0, t1, gR3);
+  gK4 = dualBrickIndex(dual, 4, o, d, t0, t1, gR4);
+  gK5 = dualBrickIndex(dual, 5, o, d, t0, t1, gR5);
+  gK6 = dualBrickIndex(dual, 6, o, d, t0, t1, gR6);
+  gK7 = dualBrickIndex(dual, 7, o, d, t0, t1, gR7);
   gDualBase = dual * VXL_N;
-  if (lo.x > hi.x || !clipToBox(o, d, lo - 0.5, hi + 1.5, t0, t1)) return false;
+  t0 = min(min(min(gR0.x, gR1.x), min(gR2.x, gR3.x)), min(min(gR4.x, gR5.x), min(gR6.x, gR7.x)));
+  t1 = max(max(max(gR0.y, gR1.y), max(gR2.y, gR3.y)), max(max(gR4.y, gR5.y), max(gR6.y, gR7.y)));
+  if (!(t0 < t1)) return false;
   gB0 = firstVoxelOf(gK0);
   gB1 = firstVoxelOf(gK1);
   gB2 = firstVoxelOf(gK2);
@@ -151,6 +156,36 @@ void loadCorners(ivec3 cell) {
   storedCorner(v7, gA7, gL7);
 }
 
+// Whether brick b or b + (1, 0, 0) holds voxels (bricks outside the grid hold none): one
+// occupancy word serves both unless b's bit is a word's last.
+bool brickPairOccupied(ivec3 b) {
+  if (b.y < 0 || b.y >= uBrickGrid.y || b.z < 0 || b.z >= uBrickGrid.z) return false;
+  int x0 = max(b.x, 0), x1 = min(b.x + 1, uBrickGrid.x - 1);
+  uint id = brickId(ivec3(x0, b.y, b.z));
+  uint bits = occWord(id >> 5u) >> (id & 31u);
+  uint wanted = x1 > x0 ? 3u : 1u;
+  if (wanted == 3u && (id & 31u) == 31u) bits |= (occWord((id >> 5u) + 1u) & 1u) << 1u;
+  return (bits & wanted) != 0u;
+}
+
+// Whether any of the 8 bricks dual brick `dual` reads holds voxels.
+bool dualBrickOccupied(ivec3 dual) {
+  return brickPairOccupied(dual) || brickPairOccupied(dual + ivec3(0, 1, 0)) ||
+         brickPairOccupied(dual + ivec3(0, 0, 1)) || brickPairOccupied(dual + ivec3(0, 1, 1));
+}
+
+bool inReach(vec2 r, float t) { return t >= r.x && t < r.y; }
+float startAfter(vec2 r, float t) { return r.x > t && r.x < r.y ? r.x : kBig; }
+
+// Whether a sample at t can meet a stored voxel of the current dual brick; if not, `next` is
+// where the first reach after t begins (kBig if none).
+bool sampleInReach(float t, out float next) {
+  next = min(min(min(startAfter(gR0, t), startAfter(gR1, t)), min(startAfter(gR2, t), startAfter(gR3, t))),
+             min(min(startAfter(gR4, t), startAfter(gR5, t)), min(startAfter(gR6, t), startAfter(gR7, t))));
+  return inReach(gR0, t) || inReach(gR1, t) || inReach(gR2, t) || inReach(gR3, t) ||
+         inReach(gR4, t) || inReach(gR5, t) || inReach(gR6, t) || inReach(gR7, t);
+}
+
 // One flat loop: each pass either moves to the next dual brick or takes one sample. Nested
 // loops (bricks, then samples) ran far slower on llvmpipe, whose SIMD lanes wait for the lane
 // with the longest inner loop at every outer step.
@@ -169,16 +204,35 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
   for (int i = 0; i < limit; ++i) {
     float ts = t0 + (float(k) + 0.5) * uStep;
     if (!brickActive || ts >= tOut) {
-      if (tb >= t1) return;
-      t = tb;
-      ddaAdvance(bricks, axis);
-      if (bricks.cell[axis] < 0 || bricks.cell[axis] >= dualGrid[axis]) return;
-      axis = minAxis(bricks.tMax);
-      tb = min(max(bricks.tMax[axis], t), t1);
+      // On to the next dual brick, crossing runs of empty ones here (llvmpipe runs the whole
+      // loop body for all lanes whenever one lane needs a part of it, see voxlink_voxels.glsl).
+      bool outside = false;
+      for (int j = 0; j < limit; ++j) {
+        if (tb >= t1) {
+          outside = true;
+          break;
+        }
+        t = tb;
+        ddaAdvance(bricks, axis);
+        if (bricks.cell[axis] < 0 || bricks.cell[axis] >= dualGrid[axis]) {
+          outside = true;
+          break;
+        }
+        axis = minAxis(bricks.tMax);
+        tb = min(max(bricks.tMax[axis], t), t1);
+        if (dualBrickOccupied(bricks.cell - 1)) break;
+      }
+      if (outside) return;
       tIn = t;
       tOut = tb;
       brickActive = tb > t && clipDualBrick(o, d, bricks.cell - 1, tIn, tOut);
       if (brickActive) k = max(k, firstSampleNear(tIn, t0));
+      continue;
+    }
+    // Between the reaches of the dual brick's bricks: on to the next reach in one pass.
+    float next;
+    if (!sampleInReach(ts, next)) {
+      k = max(k + 1, int(ceil((min(next, tOut) - t0) / uStep - 0.5)));
       continue;
     }
     // Rounding can leave a sample of this dual brick a hair outside it: it is moved in (at
