@@ -5,9 +5,9 @@
 # dense 3D-texture ray caster, interleaved frame by frame, each with its PSNR against the float64
 # reference.
 # usage: bench/render_bench.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN] [SIZES...]
-# BRICK=N (environment) sets the files' brick size, 16 unless given (see the document).
+# BRICK=N (environment) sets the files' brick size, 8 (the converter's default) unless given.
 set -euo pipefail
-brick=${BRICK:-16}
+brick=${BRICK:-8}
 voxlink=$1
 data=$2
 out=$3

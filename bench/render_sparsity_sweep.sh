@@ -4,9 +4,9 @@
 # over what each file keeps (so the TF shows exactly the kept values), voxel and trilinear
 # sampling, the paper's protocol at 512x512 (docs/rendering-benchmark.md).
 # usage: bench/render_sparsity_sweep.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN]
-# BRICK=N (environment) sets the files' brick size, 16 unless given.
+# BRICK=N (environment) sets the files' brick size, 8 (the converter's default) unless given.
 set -euo pipefail
-brick=${BRICK:-16}
+brick=${BRICK:-8}
 voxlink=$1
 data=$2
 out=$3

@@ -126,7 +126,7 @@ CommandRunner addConvertCommand(CLI::App& app) {
   cmd->add_option("--mean", a->mean, "With --keep-outside: standardize z = (v - mean) / sigma first");
   cmd->add_option("--sigma", a->sigma, "With --keep-outside: see --mean");
   cmd->add_flag("--standardize", a->standardize, "With --keep-outside: measure mean and sigma of the volume first");
-  cmd->add_option("--brick", a->brick, "Brick edge in voxels (8: most compact for sparse scans; 16: faster to render)")->check(CLI::IsMember({4, 8, 16, 32}))->capture_default_str();
+  cmd->add_option("--brick", a->brick, "Brick edge in voxels (8: most compact for sparse scans; 8 and 16 render equally fast)")->check(CLI::IsMember({4, 8, 16, 32}))->capture_default_str();
   cmd->add_option("--axis", a->axis, "Predominant axis: rows of voxels run along it")->check(CLI::IsMember({"x", "y", "z"}))->capture_default_str();
   cmd->add_option("--value-type", a->valueType, "Stored value type (default: smallest lossless)")->check(CLI::IsMember({"u8", "u16", "f16", "f32"}));
   cmd->add_option("--error-bound", a->errorBound, "Largest absolute value error allowed; picks the smallest type within it");
