@@ -226,8 +226,12 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       tIn = t;
       tOut = tb;
       brickActive = tb > t && clipDualBrick(o, d, bricks.cell - 1, tIn, tOut);
-      if (brickActive) k = max(k, firstSampleNear(tIn, t0));
-      continue;
+      if (!brickActive) continue;
+      // The same pass goes on to the dual brick's first sample: every pass runs both halves of
+      // this loop's body on llvmpipe, so a pass that only entered a dual brick was half wasted.
+      k = max(k, firstSampleNear(tIn, t0));
+      ts = t0 + (float(k) + 0.5) * uStep;
+      if (ts >= tOut) continue;
     }
     // Between the reaches of the dual brick's bricks: on to the next reach in one pass.
     float next;
