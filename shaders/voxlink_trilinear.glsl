@@ -1,9 +1,9 @@
 // Trilinear sampling of a VoxLink file. A sample at index-space point p blends the 8 voxels
 // around q = p - 1/2 (voxel centres at integers). Samples are grouped by dual bricks (bricks
 // shifted by half a voxel): dual brick D covers q in [D n, D n + n) and reads voxels of bricks
-// D and D + 1 per axis, so it is skipped when those 8 bricks are all empty, and otherwise
-// clipped to the union of their boxes of stored voxels (voxlink_brick_bounds.glsl) dilated by
-// the reach of a sample. Corners are looked up in pairs along the predominant axis, so one row
+// D and D + 1 per axis, so it is skipped when those 8 bricks are all empty; otherwise only
+// samples within the reach of one of their boxes of stored voxels (voxlink_brick_bounds.glsl)
+// are taken. Corners are looked up in pairs along the predominant axis, so one row
 // mask serves both voxels of a pair, and all through the occupied indices of the dual brick's 8
 // bricks, found once when the ray enters it: a cell whose corners cross a brick face then takes
 // the same path as any other cell (see loadCorners).
