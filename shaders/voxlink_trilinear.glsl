@@ -78,17 +78,10 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
 
 // Occupied index and first voxel of the dual brick's brick `m` (bits as in gK0..gK7), by
 // selects, not branches.
-int dualBrick(uint m) {
-  bool w = (m & 1u) != 0u;
-  int low = (m & 2u) != 0u ? (w ? gK3 : gK2) : (w ? gK1 : gK0);
-  int high = (m & 2u) != 0u ? (w ? gK7 : gK6) : (w ? gK5 : gK4);
-  return (m & 4u) != 0u ? high : low;
-}
-uint dualBrickBase(uint m) {
-  bool w = (m & 1u) != 0u;
-  uint low = (m & 2u) != 0u ? (w ? gB3 : gB2) : (w ? gB1 : gB0);
-  uint high = (m & 2u) != 0u ? (w ? gB7 : gB6) : (w ? gB5 : gB4);
-  return (m & 4u) != 0u ? high : low;
+void dualBrick(uint m, out int k, out uint base) {
+  bool w = (m & 1u) != 0u, u = (m & 2u) != 0u, v = (m & 4u) != 0u;
+  k = v ? (u ? (w ? gK7 : gK6) : (w ? gK5 : gK4)) : (u ? (w ? gK3 : gK2) : (w ? gK1 : gK0));
+  base = v ? (u ? (w ? gB7 : gB6) : (w ? gB5 : gB4)) : (u ? (w ? gB3 : gB2) : (w ? gB1 : gB0));
 }
 
 // Mask bits of row `row` of brick k, or 0 when k is -1 (the read then stays in bounds).
@@ -127,10 +120,15 @@ void loadCorners(ivec3 cell) {
   uint wNext = (w + 1u) & last, uNext = (u + 1u) & last, vNext = (v + 1u) & last;
   uint r0 = v * uint(VXL_N) + u, r1 = v * uint(VXL_N) + uNext;
   uint r2 = vNext * uint(VXL_N) + u, r3 = vNext * uint(VXL_N) + uNext;
-  int k0 = gK0, k1 = dualBrick(1u & crossing), k2 = dualBrick(2u & crossing);
-  int k3 = dualBrick(3u & crossing), k4 = dualBrick(4u & crossing);
-  int k5 = dualBrick(5u & crossing), k6 = dualBrick(6u & crossing);
-  int k7 = dualBrick(7u & crossing);
+  int k0 = gK0, k1, k2, k3, k4, k5, k6, k7;
+  uint s0 = gB0, s1, s2, s3, s4, s5, s6, s7;  // their first voxels
+  dualBrick(1u & crossing, k1, s1);
+  dualBrick(2u & crossing, k2, s2);
+  dualBrick(3u & crossing, k3, s3);
+  dualBrick(4u & crossing, k4, s4);
+  dualBrick(5u & crossing, k5, s5);
+  dualBrick(6u & crossing, k6, s6);
+  dualBrick(7u & crossing, k7, s7);
   uint b0 = rowBitsOrNone(k0, r0), b2 = rowBitsOrNone(k2, r1);
   uint b4 = rowBitsOrNone(k4, r2), b6 = rowBitsOrNone(k6, r3);
   uint b1 = b0, b3 = b2, b5 = b4, b7 = b6;
@@ -142,10 +140,10 @@ void loadCorners(ivec3 cell) {
   }
   uint hits = ((b0 | b2 | b4 | b6) >> w) | ((b1 | b3 | b5 | b7) >> wNext);
   if ((hits & 1u) == 0u) return;
-  rowPair(k0, gB0, k1, dualBrickBase(1u & crossing), r0, b0, b1, w, wNext, v0, v1);
-  rowPair(k2, dualBrickBase(2u & crossing), k3, dualBrickBase(3u & crossing), r1, b2, b3, w, wNext, v2, v3);
-  rowPair(k4, dualBrickBase(4u & crossing), k5, dualBrickBase(5u & crossing), r2, b4, b5, w, wNext, v4, v5);
-  rowPair(k6, dualBrickBase(6u & crossing), k7, dualBrickBase(7u & crossing), r3, b6, b7, w, wNext, v6, v7);
+  rowPair(k0, s0, k1, s1, r0, b0, b1, w, wNext, v0, v1);
+  rowPair(k2, s2, k3, s3, r1, b2, b3, w, wNext, v2, v3);
+  rowPair(k4, s4, k5, s5, r2, b4, b5, w, wNext, v4, v5);
+  rowPair(k6, s6, k7, s7, r3, b6, b7, w, wNext, v6, v7);
   storedCorner(v0, gA0, gL0);
   storedCorner(v1, gA1, gL1);
   storedCorner(v2, gA2, gL2);
