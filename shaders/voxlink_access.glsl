@@ -1,8 +1,9 @@
-// Lookups in a VoxLink file's sections, uploaded unchanged (format/layout.h, the same steps as
-// format::VoxelLocator): brick bit -> rank -> row start -> bit rank within the row mask.
-// The generated voxlink_sections.glsl declares the buffers (split into chunks where a section
-// exceeds one storage block) and the word accessors occWord(), rankWord(), bvoxWord(),
-// rowsWord(), maskWord(), valuWord(), gradWord().
+// Lookups in a VoxLink file on the GPU (format/layout.h, the same steps as format::VoxelLocator):
+// brick -> occupied index -> row start -> bit rank within the row mask. The generated
+// voxlink_sections.glsl declares the buffers (viewer/gl/section_buffers.h: the voxel sections
+// unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
+// chunks where one exceeds a storage block) and the accessors rowsWord(), maskWord(),
+// valuWord(), gradWord(), brickIndexWord(), dualOccWord(), brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
@@ -13,15 +14,13 @@ uint brickId(ivec3 b) {
   return (uint(b.z) * uint(uBrickGrid.y) + uint(b.y)) * uint(uBrickGrid.x) + uint(b.x);
 }
 
-bool brickOccupied(uint b) { return ((occWord(b >> 5u) >> (b & 31u)) & 1u) != 0u; }
+// Index of brick b among the occupied bricks, or -1 when b is empty (viewer/core/brick_lookup.h).
+int occupiedIndex(uint b) { return int(brickIndexWord(b)); }
 
-// Index of occupied brick b among the occupied bricks, or -1 when b is empty.
-int occupiedIndex(uint b) {
-  uint word = occWord(b >> 5u);
-  uint bit = b & 31u;
-  if (((word >> bit) & 1u) == 0u) return -1;
-  return int(rankWord(b >> 5u) + uint(bitCount(word & ((1u << bit) - 1u))));
-}
+bool brickOccupied(uint b) { return occupiedIndex(b) >= 0; }
+
+// First voxel (BVOX) of occupied brick k.
+uint firstVoxel(uint k) { return brickEntry(k).y; }
 
 uint u16At(uint word, uint i) { return (word >> ((i & 1u) << 4u)) & 0xFFFFu; }
 
@@ -52,7 +51,7 @@ uint rowStartInBrick(uint k, uint row) {
 Row fetchRow(uint k, uint row) {
   uint bits = rowBits(k, row);
   if (bits == 0u) return Row(0u, 0u);
-  return Row(bits, bvoxWord(k) + rowStartInBrick(k, row));
+  return Row(bits, firstVoxel(k) + rowStartInBrick(k, row));
 }
 
 // Voxel index of depth d in a row, or -1: the next voxel along the predominant axis is the next

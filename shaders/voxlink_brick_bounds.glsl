@@ -1,14 +1,11 @@
 // The box each occupied brick's stored voxels fill (viewer/core/brick_bounds.h), derived when
 // the file is loaded. Rays clip an occupied brick to it before walking rows, so they skip the
-// empty part of a sparse brick, and the brick altogether when they miss its voxels.
+// empty part of a sparse brick, and the brick altogether when they miss its voxels. The box is
+// the first word of the brick's entry (brickEntry(k)), its first voxel the second: one read
+// gives both.
 
-layout(std430, binding = VXL_BRICK_BOUNDS_BINDING) readonly restrict buffer VxlBrickBounds {
-  uint brickBoundsWords[];
-};
-
-// The cells [lo, hi] (inclusive) holding the stored voxels of occupied brick k at grid cell `brick`.
-void brickBox(uint k, ivec3 brick, out ivec3 lo, out ivec3 hi) {
-  uint w = brickBoundsWords[k];
+// The cells [lo, hi] (inclusive) of packed box word w of the brick at grid cell `brick`.
+void unpackBrickBox(uint w, ivec3 brick, out ivec3 lo, out ivec3 hi) {
   ivec3 base = brick * VXL_N;
   lo = base + ivec3(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u);
   hi = base + ivec3((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u);
@@ -32,9 +29,11 @@ bool clipToBox(vec3 o, vec3 d, vec3 lo, vec3 hi, inout float t0, inout float t1)
 }
 
 // Clips [t0, t1) to the box of occupied brick k (grid cell `brick`); lo and hi get the box's
-// cells (inclusive). False when the ray spends no time in the box.
+// cells (inclusive), base the brick's first voxel. False when the ray spends no time in the box.
 bool clipToBrickBounds(vec3 o, vec3 d, uint k, ivec3 brick, inout float t0, inout float t1,
-                       out ivec3 lo, out ivec3 hi) {
-  brickBox(k, brick, lo, hi);
+                       out ivec3 lo, out ivec3 hi, out uint base) {
+  uvec2 entry = brickEntry(k);
+  unpackBrickBox(entry.x, brick, lo, hi);
+  base = entry.y;
   return clipToBox(o, d, vec3(lo), vec3(hi + 1), t0, t1);
 }

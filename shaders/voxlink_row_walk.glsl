@@ -9,7 +9,7 @@ struct RowWalk {
   ivec3 origin;  // the brick's first cell: rows and depths are brick-local
   ivec3 lo, hi;  // the cells walked: the brick's box of stored voxels (brick_bounds)
   uint k;        // occupied brick index
-  uint base;     // its first voxel (BVOX), read once per brick
+  uint base;     // its first voxel (BVOX)
   float t;       // where the ray entered the current row
   float tBrick;  // where it leaves the brick
   bool loaded;   // the row below is the current cell's
@@ -19,16 +19,17 @@ struct RowWalk {
   float tRowEnd;
 };
 
-// Starts the walk at t through the cells [lo, hi] of occupied brick k (grid cell `brick`),
-// which the ray leaves at tBrick.
-RowWalk rowWalkBegin(vec3 o, vec3 d, float t, float tBrick, ivec3 brick, uint k, ivec3 lo, ivec3 hi) {
+// Starts the walk at t through the cells [lo, hi] of occupied brick k (grid cell `brick`, first
+// voxel `base`), which the ray leaves at tBrick.
+RowWalk rowWalkBegin(vec3 o, vec3 d, float t, float tBrick, ivec3 brick, uint k, uint base, ivec3 lo,
+                     ivec3 hi) {
   RowWalk w;
   w.origin = brick * VXL_N;
   w.lo = lo;
   w.hi = hi;
   w.dda = ddaInit(o, d, t, w.lo, w.hi);
   w.k = k;
-  w.base = bvoxWord(k);
+  w.base = base;
   w.t = t;
   w.tBrick = tBrick;
   w.loaded = false;

@@ -17,8 +17,9 @@ float shadowTransmittance(vec3 worldPoint) {
     int k = occupiedIndex(brickId(bricks.cell));
     float tIn = t, tOut = tb;
     ivec3 lo, hi;
-    if (k >= 0 && tb > t && clipToBrickBounds(o, d, uint(k), bricks.cell, tIn, tOut, lo, hi)) {
-      RowWalk walk = rowWalkBegin(o, d, tIn, tOut, bricks.cell, uint(k), lo, hi);
+    uint base;
+    if (k >= 0 && tb > t && clipToBrickBounds(o, d, uint(k), bricks.cell, tIn, tOut, lo, hi, base)) {
+      RowWalk walk = rowWalkBegin(o, d, tIn, tOut, bricks.cell, uint(k), base, lo, hi);
       uint voxel;
       float ta, tz;
       while (rowWalkNext(walk, voxel, ta, tz)) {

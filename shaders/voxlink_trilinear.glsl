@@ -26,44 +26,38 @@ vec2 gR0, gR1, gR2, gR3, gR4, gR5, gR6, gR7;
 // of [t0, t1) where a sample can meet its stored voxels: a sample at p blends the voxels of
 // cells floor(p - 1/2) + {0, 1}, so a brick whose voxels fill the box [lo, hi] matters for p
 // in (lo - 1/2, hi + 3/2).
-int dualBrickIndex(ivec3 dual, int m, vec3 o, vec3 d, float t0, float t1, out vec2 reach) {
+int dualBrickIndex(ivec3 dual, int m, vec3 o, vec3 d, float t0, float t1, out vec2 reach,
+                   out uint base) {
   reach = vec2(kBig, -kBig);
+  base = 0u;
   ivec3 b = dual + cornerOffset(m);
   if (!insideGrid(b, uBrickGrid)) return -1;
   int k = occupiedIndex(brickId(b));
   if (k < 0) return -1;
+  uvec2 entry = brickEntry(uint(k));
+  base = entry.y;
   ivec3 lo, hi;
-  brickBox(uint(k), b, lo, hi);
+  unpackBrickBox(entry.x, b, lo, hi);
   if (clipToBox(o, d, vec3(lo) - 0.5, vec3(hi) + 1.5, t0, t1)) reach = vec2(t0, t1);
   return k;
 }
-
-uint firstVoxelOf(int k) { return k < 0 ? 0u : bvoxWord(uint(k)); }
 
 // Clips [t0, t1) to where samples of dual brick d can meet stored voxels: the span of the
 // reaches of the 8 bricks it reads. On the way it keeps their occupied indices, reaches and
 // first voxels for the samples. False when none of them is occupied or the ray misses them.
 bool clipDualBrick(vec3 o, vec3 d, ivec3 dual, inout float t0, inout float t1) {
-  gK0 = dualBrickIndex(dual, 0, o, d, t0, t1, gR0);
-  gK1 = dualBrickIndex(dual, 1, o, d, t0, t1, gR1);
-  gK2 = dualBrickIndex(dual, 2, o, d, t0, t1, gR2);
-  gK3 = dualBrickIndex(dual, 3, o, d, t0, t1, gR3);
-  gK4 = dualBrickIndex(dual, 4, o, d, t0, t1, gR4);
-  gK5 = dualBrickIndex(dual, 5, o, d, t0, t1, gR5);
-  gK6 = dualBrickIndex(dual, 6, o, d, t0, t1, gR6);
-  gK7 = dualBrickIndex(dual, 7, o, d, t0, t1, gR7);
+  gK0 = dualBrickIndex(dual, 0, o, d, t0, t1, gR0, gB0);
+  gK1 = dualBrickIndex(dual, 1, o, d, t0, t1, gR1, gB1);
+  gK2 = dualBrickIndex(dual, 2, o, d, t0, t1, gR2, gB2);
+  gK3 = dualBrickIndex(dual, 3, o, d, t0, t1, gR3, gB3);
+  gK4 = dualBrickIndex(dual, 4, o, d, t0, t1, gR4, gB4);
+  gK5 = dualBrickIndex(dual, 5, o, d, t0, t1, gR5, gB5);
+  gK6 = dualBrickIndex(dual, 6, o, d, t0, t1, gR6, gB6);
+  gK7 = dualBrickIndex(dual, 7, o, d, t0, t1, gR7, gB7);
   gDualBase = dual * VXL_N;
   t0 = min(min(min(gR0.x, gR1.x), min(gR2.x, gR3.x)), min(min(gR4.x, gR5.x), min(gR6.x, gR7.x)));
   t1 = max(max(max(gR0.y, gR1.y), max(gR2.y, gR3.y)), max(max(gR4.y, gR5.y), max(gR6.y, gR7.y)));
   if (!(t0 < t1)) return false;
-  gB0 = firstVoxelOf(gK0);
-  gB1 = firstVoxelOf(gK1);
-  gB2 = firstVoxelOf(gK2);
-  gB3 = firstVoxelOf(gK3);
-  gB4 = firstVoxelOf(gK4);
-  gB5 = firstVoxelOf(gK5);
-  gB6 = firstVoxelOf(gK6);
-  gB7 = firstVoxelOf(gK7);
   return true;
 }
 
@@ -154,22 +148,22 @@ void loadCorners(ivec3 cell) {
   storedCorner(v7, gA7, gL7);
 }
 
-// Whether brick b or b + (1, 0, 0) holds voxels (bricks outside the grid hold none): one
-// occupancy word serves both unless b's bit is a word's last.
-bool brickPairOccupied(ivec3 b) {
-  if (b.y < 0 || b.y >= uBrickGrid.y || b.z < 0 || b.z >= uBrickGrid.z) return false;
-  int x0 = max(b.x, 0), x1 = min(b.x + 1, uBrickGrid.x - 1);
-  uint id = brickId(ivec3(x0, b.y, b.z));
-  uint bits = occWord(id >> 5u) >> (id & 31u);
-  uint wanted = x1 > x0 ? 3u : 1u;
-  if (wanted == 3u && (id & 31u) == 31u) bits |= (occWord((id >> 5u) + 1u) & 1u) << 1u;
-  return (bits & wanted) != 0u;
+// Whether any of the 8 bricks the dual brick at cell c of the dual grid (dual brick c - 1) reads
+// holds voxels: one bit of the table derived at load time (viewer/core/brick_lookup.h).
+bool dualBrickOccupied(ivec3 c, ivec3 dualGrid) {
+  uint i = (uint(c.z) * uint(dualGrid.y) + uint(c.y)) * uint(dualGrid.x) + uint(c.x);
+  return ((dualOccWord(i >> 5u) >> (i & 31u)) & 1u) != 0u;
 }
 
-// Whether any of the 8 bricks dual brick `dual` reads holds voxels.
-bool dualBrickOccupied(ivec3 dual) {
-  return brickPairOccupied(dual) || brickPairOccupied(dual + ivec3(0, 1, 0)) ||
-         brickPairOccupied(dual + ivec3(0, 0, 1)) || brickPairOccupied(dual + ivec3(0, 1, 1));
+// The cell of the sample at ts and its point qIn (q = p - 1/2), moved into the current dual
+// brick: rounding can leave a sample of a dual brick a hair outside it (a cell at the far face
+// takes fraction 1). False when it lies further out than kFaceTolerance: the sample before tIn
+// may lie in the previous dual brick, where that brick's clip found nothing to meet; skipped.
+bool placeSample(vec3 o, vec3 d, float ts, out vec3 qIn, out ivec3 cell) {
+  vec3 q = o + ts * d - 0.5;
+  qIn = clamp(q, vec3(gDualBase), vec3(gDualBase + VXL_N));
+  cell = min(ivec3(floor(qIn)), gDualBase + (VXL_N - 1));
+  return all(lessThanEqual(abs(qIn - q), vec3(kFaceTolerance)));
 }
 
 bool inReach(vec2 r, float t) { return t >= r.x && t < r.y; }
@@ -218,7 +212,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
         }
         axis = minAxis(bricks.tMax);
         tb = min(max(bricks.tMax[axis], t), t1);
-        if (dualBrickOccupied(bricks.cell - 1)) break;
+        if (dualBrickOccupied(bricks.cell, dualGrid)) break;
       }
       if (outside) return;
       tIn = t;
@@ -237,16 +231,12 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       k = max(k + 1, int(ceil((min(next, tOut) - t0) / uStep - 0.5)));
       continue;
     }
-    // Rounding can leave a sample of this dual brick a hair outside it: it is moved in (at
-    // most kFaceTolerance; a cell at the far face takes fraction 1). The sample before tIn may
-    // lie in the previous dual brick, where that brick's clip found nothing to meet: skipped.
-    vec3 q = o + ts * d - 0.5;
-    vec3 qIn = clamp(q, vec3(gDualBase), vec3(gDualBase + VXL_N));
-    if (any(greaterThan(abs(qIn - q), vec3(kFaceTolerance)))) {
+    vec3 qIn;
+    ivec3 cell;
+    if (!placeSample(o, d, ts, qIn, cell)) {
       ++k;
       continue;
     }
-    ivec3 cell = min(ivec3(floor(qIn)), gDualBase + (VXL_N - 1));
     if (cell != cached) {
       cached = cell;
       loadCorners(cell);

@@ -1,7 +1,12 @@
-// A VoxLink file's sections in GPU storage buffers, uploaded unchanged. A section larger than
-// one storage block allows (GL_MAX_SHADER_STORAGE_BLOCK_SIZE: 128 MiB on llvmpipe) is split into
-// chunks of a power-of-two word count, each on its own binding; the generated GLSL
-// (voxlink_sections.glsl) picks the chunk from the word index.
+// A VoxLink file in GPU storage buffers: its voxel sections (ROWS, MASK, VALU, GRAD) unchanged,
+// and in place of its brick sections (BOCC, BRNK, BVOX) brick tables derived from them when it is
+// loaded (viewer/core/brick_lookup.h, brick_bounds.h): an occupied index per brick, an
+// occupancy bit per dual brick, and per occupied brick its box and first voxel. The shaders
+// read a brick's occupied index, box and first voxel in two reads instead of four: on llvmpipe
+// each storage read costs a scalar loop over the SIMD lanes.
+// An array larger than one storage block allows (GL_MAX_SHADER_STORAGE_BLOCK_SIZE: 128 MiB on
+// llvmpipe) is split into chunks of a power-of-two element count, each on its own binding; the
+// generated GLSL (voxlink_sections.glsl) picks the chunk from the element index.
 #pragma once
 
 #include <cstdint>
@@ -18,9 +23,8 @@ struct SectionBufferOptions {
   // to exercise the split path. Rounded down to a power of two bytes, at least 64.
   uint64_t maxChunkBytes = 0;
   GLuint firstBinding = 0;
-  // Storage blocks the shader needs besides the sections (the renderer's TF, gradient table and
-  // brick bounds).
-  uint32_t reservedBlocks = 3;
+  // Storage blocks the shader needs besides these (the renderer's TF and gradient table).
+  uint32_t reservedBlocks = 2;
 };
 
 class SectionBuffers {
@@ -30,7 +34,8 @@ class SectionBuffers {
 
   // Binds every chunk to its storage-buffer binding.
   void bind() const;
-  // Buffer declarations and the word accessors occWord() ... gradWord() for the shaders.
+  // Buffer declarations and the accessors rowsWord(), maskWord(), valuWord(), gradWord(),
+  // brickIndexWord(), dualOccWord() and brickEntry() for the shaders.
   const std::string& glsl() const { return glsl_; }
   uint64_t gpuBytes() const { return gpuBytes_; }
   uint32_t bindingCount() const { return static_cast<uint32_t>(chunks_.size()); }

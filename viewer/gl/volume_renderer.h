@@ -35,7 +35,6 @@ struct VolumeGeometry {
 };
 
 // Storage-buffer bindings of the tables, above any the file's sections take.
-inline constexpr GLuint kBrickBoundsBinding = 61;  // VoxLink files only
 inline constexpr GLuint kTfBinding = 62;
 inline constexpr GLuint kGradientTableBinding = 63;
 

@@ -1,6 +1,5 @@
 #include "viewer/gl/voxlink_renderer.h"
 
-#include "viewer/core/brick_bounds.h"
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
@@ -8,8 +7,7 @@ namespace voxlink::viewer {
 std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
   return {{"VXL_N", std::to_string(h.brickSize)},
           {"VXL_AXIS", std::to_string(h.predominantAxis)},
-          {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))},
-          {"VXL_BRICK_BOUNDS_BINDING", std::to_string(kBrickBoundsBinding)}};
+          {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))}};
 }
 
 Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(const format::VoxLinkFile& file,
@@ -21,11 +19,7 @@ Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(const format::V
 VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections)
     : VolumeRenderer(VolumeGeometry::of(file.header())),
       sections_(std::move(sections)),
-      header_(file.header()) {
-  std::vector<uint32_t> bounds = brickBounds(file);
-  if (bounds.empty()) bounds.push_back(0);  // a block cannot be empty
-  bounds_ = createStorageBuffer(bounds.data(), bounds.size() * 4);
-}
+      header_(file.header()) {}
 
 std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const { return voxlinkDefines(header_); }
 
@@ -35,7 +29,6 @@ std::map<std::string, std::string> VoxLinkRenderer::generatedFiles() const {
 
 void VoxLinkRenderer::bindData(const ComputeProgram& program) const {
   sections_.bind();
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kBrickBoundsBinding, bounds_.buffer.id());
   glUniform3i(program.uniform("uBrickGrid"), GLint(header_.brickGrid[0]),
               GLint(header_.brickGrid[1]), GLint(header_.brickGrid[2]));
 }

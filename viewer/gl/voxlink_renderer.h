@@ -23,12 +23,11 @@ class VoxLinkRenderer : public VolumeRenderer {
   std::vector<ShaderDefine> dataDefines() const override;
   std::map<std::string, std::string> generatedFiles() const override;
   void bindData(const ComputeProgram& program) const override;
-  uint64_t dataBytes() const override { return sections_.gpuBytes() + bounds_.bytes; }
+  uint64_t dataBytes() const override { return sections_.gpuBytes(); }
 
  private:
   VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections);
   SectionBuffers sections_;
-  GlStorageBuffer bounds_;  // viewer/core/brick_bounds.h, one word per occupied brick
   format::FileHeader header_;
 };
 
