@@ -3,7 +3,7 @@
 // voxlink_sections.glsl declares the buffers (viewer/gl/section_buffers.h: the voxel sections
 // unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
 // chunks where one exceeds a storage block) and the accessors rowsWord(), maskWord(),
-// valuWord(), gradWord(), brickIndexWord(), dualOccWord(), brickEntry().
+// valuWord(), gradWord(), brickIndexWord(), dualBoxWord(), brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.

@@ -13,19 +13,18 @@ void unpackBrickBox(uint w, ivec3 brick, out ivec3 lo, out ivec3 hi) {
 
 // Clips [t0, t1) to the part of the ray o + t d inside the box [lo, hi) (index space); on an axis
 // the ray runs parallel to (ddaInit's rule), the point at t0 must lie inside. False when the
-// ray spends no time in the box.
+// ray spends no time in the box. Written on whole vectors, without a loop over axes: as a loop
+// (with its early exits) it cost about 340 instructions per call on llvmpipe.
 bool clipToBox(vec3 o, vec3 d, vec3 lo, vec3 hi, inout float t0, inout float t1) {
-  for (int a = 0; a < 3; ++a) {
-    if (abs(d[a]) <= kParallelEpsilon) {
-      float p = o[a] + t0 * d[a];
-      if (p < lo[a] || p >= hi[a]) return false;
-      continue;
-    }
-    float ta = (lo[a] - o[a]) / d[a], tb = (hi[a] - o[a]) / d[a];
-    t0 = max(t0, min(ta, tb));
-    t1 = min(t1, max(ta, tb));
-  }
-  return t0 < t1;
+  bvec3 parallel = lessThanEqual(abs(d), vec3(kParallelEpsilon));
+  vec3 p = o + t0 * d;
+  bvec3 outside = bvec3(uvec3(lessThan(p, lo)) | uvec3(greaterThanEqual(p, hi)));
+  vec3 ta = (lo - o) / d, tb = (hi - o) / d;  // the parallel axes' values are not used
+  vec3 tNear = mix(min(ta, tb), vec3(-kBig), parallel);
+  vec3 tFar = mix(max(ta, tb), vec3(kBig), parallel);
+  t0 = max(t0, max(max(tNear.x, tNear.y), tNear.z));
+  t1 = min(t1, min(min(tFar.x, tFar.y), tFar.z));
+  return !any(bvec3(uvec3(parallel) & uvec3(outside))) && t0 < t1;
 }
 
 // Clips [t0, t1) to the box of occupied brick k (grid cell `brick`); lo and hi get the box's

@@ -148,11 +148,17 @@ void loadCorners(ivec3 cell) {
   storedCorner(v7, gA7, gL7);
 }
 
-// Whether any of the 8 bricks the dual brick at cell c of the dual grid (dual brick c - 1) reads
-// holds voxels: one bit of the table derived at load time (viewer/core/brick_lookup.h).
-bool dualBrickOccupied(ivec3 c, ivec3 dualGrid) {
+// Whether the ray's samples in [t0, t1) can meet a stored voxel in the dual brick at cell c of
+// the dual grid (dual brick c - 1): one word of the table derived at load time
+// (viewer/core/brick_lookup.h), the box of the dual brick's cells that can.
+bool dualBrickHit(vec3 o, vec3 d, ivec3 c, ivec3 dualGrid, float t0, float t1) {
   uint i = (uint(c.z) * uint(dualGrid.y) + uint(c.y)) * uint(dualGrid.x) + uint(c.x);
-  return ((dualOccWord(i >> 5u) >> (i & 31u)) & 1u) != 0u;
+  uint box = dualBoxWord(i);
+  if (box == 0xFFFFFFFFu) return false;
+  ivec3 lo, hi;
+  unpackBrickBox(box, c - 1, lo, hi);  // cells; cell c covers p in [c + 1/2, c + 3/2)
+  // Widened like the samples that rounding leaves outside their dual brick (traceTrilinear).
+  return clipToBox(o, d, vec3(lo) + (0.5 - kFaceTolerance), vec3(hi) + (1.5 + kFaceTolerance), t0, t1);
 }
 
 // The cell of the sample at ts and its point qIn (q = p - 1/2), moved into the current dual
@@ -212,7 +218,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
         }
         axis = minAxis(bricks.tMax);
         tb = min(max(bricks.tMax[axis], t), t1);
-        if (dualBrickOccupied(bricks.cell, dualGrid)) break;
+        if (dualBrickHit(o, d, bricks.cell, dualGrid, t, tb)) break;
       }
       if (outside) return;
       tIn = t;

@@ -1,8 +1,9 @@
 // Brick lookup tables derived from a file's occupancy bits when it is loaded (not stored in the
 // file). On llvmpipe every storage-buffer read a shader executes costs a scalar loop over the
 // SIMD lanes, whether or not a lane needs it, so the ray tracers read these instead of the
-// occupancy and rank sections: one read gives a brick's occupied index (two before), one bit
-// tells whether a dual brick reads any voxels (eight reads before).
+// occupancy and rank sections: one read gives a brick's occupied index (two before), one word
+// the part of a dual brick where samples can meet voxels (eight reads gave only whether it
+// had any).
 #pragma once
 
 #include <array>
@@ -25,8 +26,13 @@ std::vector<uint32_t> occupiedIndexByBrick(const format::VoxLinkFile& file);
 // brick D sits at cell D + 1 of it.
 std::array<uint32_t, 3> dualBrickGrid(const format::FileHeader& header);
 
-// One bit per dual brick (x fastest over dualBrickGrid(), 32 per word): set when any of the 8
-// bricks it reads is occupied.
-std::vector<uint32_t> dualBrickOccupancy(const format::VoxLinkFile& file);
+// Marks a dual brick none of whose samples can meet a stored voxel in dualBrickBoxes().
+inline constexpr uint32_t kEmptyDualBrick = 0xFFFFFFFFu;
+
+// Per dual brick (x fastest over dualBrickGrid()): the cells c (q = p - 1/2 in [c, c + 1)) of
+// it whose samples can blend a stored voxel, as a box packed like a brick box (brick_bounds.h,
+// local to the dual brick's first cell D n), or kEmptyDualBrick. A sample blends the voxels
+// floor(q) + {0, 1} per axis, so a brick whose voxels fill [lo, hi] reaches cells [lo - 1, hi].
+std::vector<uint32_t> dualBrickBoxes(const format::VoxLinkFile& file);
 
 }  // namespace voxlink::viewer

@@ -56,7 +56,7 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &maxBlocks);
 
   const std::vector<uint32_t> brickIndex = occupiedIndexByBrick(file);
-  const std::vector<uint32_t> dualOccupancy = dualBrickOccupancy(file);
+  const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file);
   const std::vector<uint32_t> entries = brickEntries(file);
   const GpuArray arrays[] = {
       section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"),
@@ -64,7 +64,7 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       section(file, format::SectionId::kValues, "valuWord", "VxlValu"),
       section(file, format::SectionId::kGradients, "gradWord", "VxlGrad"),
       {"brick index table", "brickIndexWord", "VxlBrickIndex", 1, bytesOf(brickIndex)},
-      {"dual brick occupancy", "dualOccWord", "VxlDualOcc", 1, bytesOf(dualOccupancy)},
+      {"dual brick boxes", "dualBoxWord", "VxlDualBox", 1, bytesOf(dualBoxes)},
       {"brick entries", "brickEntry", "VxlBrickEntry", 2, bytesOf(entries)},
   };
 

@@ -1,9 +1,9 @@
 // A VoxLink file in GPU storage buffers: its voxel sections (ROWS, MASK, VALU, GRAD) unchanged,
 // and in place of its brick sections (BOCC, BRNK, BVOX) brick tables derived from them when it is
-// loaded (viewer/core/brick_lookup.h, brick_bounds.h): an occupied index per brick, an
-// occupancy bit per dual brick, and per occupied brick its box and first voxel. The shaders
-// read a brick's occupied index, box and first voxel in two reads instead of four: on llvmpipe
-// each storage read costs a scalar loop over the SIMD lanes.
+// loaded (viewer/core/brick_lookup.h, brick_bounds.h): an occupied index per brick, the box of
+// cells samples can meet voxels in per dual brick, and per occupied brick its box and first
+// voxel. The shaders read a brick's occupied index, box and first voxel in two reads instead of
+// four: on llvmpipe each storage read costs a scalar loop over the SIMD lanes.
 // An array larger than one storage block allows (GL_MAX_SHADER_STORAGE_BLOCK_SIZE: 128 MiB on
 // llvmpipe) is split into chunks of a power-of-two element count, each on its own binding; the
 // generated GLSL (voxlink_sections.glsl) picks the chunk from the element index.
@@ -35,7 +35,7 @@ class SectionBuffers {
   // Binds every chunk to its storage-buffer binding.
   void bind() const;
   // Buffer declarations and the accessors rowsWord(), maskWord(), valuWord(), gradWord(),
-  // brickIndexWord(), dualOccWord() and brickEntry() for the shaders.
+  // brickIndexWord(), dualBoxWord() and brickEntry() for the shaders.
   const std::string& glsl() const { return glsl_; }
   uint64_t gpuBytes() const { return gpuBytes_; }
   uint32_t bindingCount() const { return static_cast<uint32_t>(chunks_.size()); }
