@@ -1,6 +1,6 @@
 // Keeps the GLSL side in step with the C++ layout: the shaders' gradient decoder against
 // format::decodeGradient, and their voxel lookups against format::VoxelLocator, for every brick
-// size, predominant axis and stored type, with sections split into several storage blocks.
+// size, predominant axis and stored type, with sections split into several buffer textures.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -70,6 +70,26 @@ struct LookupCase {
 
 class GlslLookup : public ::testing::TestWithParam<LookupCase> {};
 
+// A file split into more chunks than the shader has texture units fails to load with a message
+// naming the file and the limit, instead of rendering garbage.
+TEST(GlslLayout, TooManyChunksIsAClearError) {
+  VOXLINK_REQUIRE_GL();
+  const DenseVolume dense = testing::makeVolume({40, 40, 40}, {1, 1, 1}, [](int x, int y, int z) {
+    return (x + y + z) % 3 == 0 ? 200.0 : 0.0;
+  });
+  auto sparse = testing::sparsify(dense, [](double v) { return v > 0; }, {});
+  ASSERT_TRUE(sparse) << sparse.message();
+  voxlink::testing::TempDir dir;
+  auto file = testing::writeAndOpen(*sparse, dir.file("many.vxl"));
+  ASSERT_TRUE(file) << file.message();
+  SectionBufferOptions tiny;
+  tiny.maxChunkBytes = 64;
+  auto sections = SectionBuffers::upload(*file, tiny);
+  ASSERT_FALSE(sections);
+  EXPECT_NE(sections.message().find("many.vxl"), std::string::npos) << sections.message();
+  EXPECT_NE(sections.message().find("texture units"), std::string::npos) << sections.message();
+}
+
 TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   VOXLINK_REQUIRE_GL();
   const LookupCase c = GetParam();
@@ -94,7 +114,6 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   for (const auto& e : file->sectionTable()) largest = std::max(largest, e.bytes);
   SectionBufferOptions split;
   split.maxChunkBytes = std::max<uint64_t>(largest / 2, 64);
-  split.reservedBlocks = 1;  // the results buffer
   auto sections = SectionBuffers::upload(*file, split);
   ASSERT_TRUE(sections) << sections.message();
   EXPECT_GT(sections->bindingCount(), 7u) << "no section was split";

@@ -1,7 +1,7 @@
 // Hard cases for the GL ray tracer, each held to the float64 reference: rays exactly parallel to
 // each axis (zero direction components), the camera inside the volume, rays along brick faces
 // and edges, 1-voxel-thick shells, dims that are no multiple of the brick size, a file without
-// voxels, a fully occupied volume, and sections split over several storage blocks. No NaN pixel,
+// voxels, a fully occupied volume, and sections split over several buffer textures. No NaN pixel,
 // no hang, no missed voxel (a missed opaque voxel would show as a large pixel error).
 #include <gtest/gtest.h>
 
