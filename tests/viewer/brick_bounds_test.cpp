@@ -31,13 +31,8 @@ TEST(BrickBounds, EachBoxIsTheTightBoxOfItsBricksVoxels) {
   });
   for (uint32_t n : {4u, 8u, 16u, 32u}) {
     for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ}) {
-      testing::SparseOptions o;
-      o.brickSize = n;
-      o.axis = axis;
-      auto sparse = testing::sparsify(dense, [](double v) { return v > 100; }, o);
-      ASSERT_TRUE(sparse) << sparse.message();
       voxlink::testing::TempDir dir;
-      auto file = testing::writeAndOpen(*sparse, dir.file("b.vxl"));
+      auto file = testing::thresholdedFile(dense, 100, n, axis, dir.file("b.vxl"));
       ASSERT_TRUE(file) << file.message();
       const std::vector<uint32_t> words = brickBounds(*file);
       ASSERT_EQ(words.size(), file->occupiedBrickCount());

@@ -58,6 +58,16 @@ Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse, co
   return format::VoxLinkFile::open(path);
 }
 
+Result<format::VoxLinkFile> thresholdedFile(const DenseVolume& volume, double threshold, uint32_t n,
+                                            format::Axis axis, const std::string& path) {
+  SparseOptions o;
+  o.brickSize = n;
+  o.axis = axis;
+  VOXLINK_ASSIGN_OR_RETURN(format::BrickedVolume sparse,
+                           sparsify(volume, [threshold](double v) { return v > threshold; }, o));
+  return writeAndOpen(sparse, path);
+}
+
 DenseVolume makeVolume(std::array<uint32_t, 3> dims, std::array<double, 3> spacing,
                        const std::function<double(int, int, int)>& f) {
   DenseVolume v;

@@ -32,6 +32,10 @@ Result<format::BrickedVolume> sparsify(const DenseVolume& volume,
                                        const SparseOptions& options);
 // Writes the sparse file to `path` and opens it.
 Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse, const std::string& path);
+// Keeps the voxels above `threshold` with brick size n and predominant axis `axis`, writes the
+// file to `path` and opens it.
+Result<format::VoxLinkFile> thresholdedFile(const DenseVolume& volume, double threshold, uint32_t n,
+                                            format::Axis axis, const std::string& path);
 
 // A dense volume filled by f(x, y, z) (index coordinates).
 DenseVolume makeVolume(std::array<uint32_t, 3> dims, std::array<double, 3> spacing,
