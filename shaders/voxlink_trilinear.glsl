@@ -1,9 +1,9 @@
 // Trilinear sampling of a VoxLink file. A sample at index-space point p blends the 8 voxels
 // around q = p - 1/2 (voxel centres at integers). Samples are grouped by dual bricks (bricks
 // shifted by half a voxel): dual brick D covers q in [D n, D n + n) and reads voxels of bricks
-// D and D + 1 per axis, so it is skipped when those 8 bricks are all empty; otherwise only
-// samples within the reach of one of their boxes of stored voxels (voxlink_brick_bounds.glsl)
-// are taken. Corners are looked up in pairs along the predominant axis, so one row
+// D and D + 1 per axis, so it is skipped when the ray misses the box of its cells whose samples
+// can meet a stored voxel (a table derived at load time); otherwise only samples within the
+// reach of one of the 8 bricks' boxes of stored voxels (voxlink_brick_bounds.glsl) are taken. Corners are looked up in pairs along the predominant axis, so one row
 // mask serves both voxels of a pair, and all through the occupied indices of the dual brick's 8
 // bricks, found once when the ray enters it: a cell whose corners cross a brick face then takes
 // the same path as any other cell (see loadCorners).
@@ -57,8 +57,7 @@ bool clipDualBrick(vec3 o, vec3 d, ivec3 dual, inout float t0, inout float t1) {
   gDualBase = dual * VXL_N;
   t0 = min(min(min(gR0.x, gR1.x), min(gR2.x, gR3.x)), min(min(gR4.x, gR5.x), min(gR6.x, gR7.x)));
   t1 = max(max(max(gR0.y, gR1.y), max(gR2.y, gR3.y)), max(max(gR4.y, gR5.y), max(gR6.y, gR7.y)));
-  if (!(t0 < t1)) return false;
-  return true;
+  return t0 < t1;
 }
 
 // The corner terms of a stored voxel (nothing for -1).
