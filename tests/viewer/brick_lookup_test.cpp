@@ -68,7 +68,7 @@ TEST(BrickLookup, TablesMatchBruteForce) {
             }
           }
       const auto dual = dualBrickGrid(h);
-      const std::vector<uint32_t> boxes = dualBrickBoxes(*file);
+      const std::vector<uint32_t> boxes = dualBrickBoxes(h, index, brickBounds(*file));
       ASSERT_EQ(boxes.size(), uint64_t{dual[0]} * dual[1] * dual[2]);
       uint64_t nonEmpty = 0;
       for (int64_t dz = -1; dz < g[2]; ++dz)
@@ -142,7 +142,8 @@ TEST(BrickLookup, EmptyFileHasNoOccupiedBrick) {
   auto file = testing::writeAndOpen(*sparse, dir.file("e.vxl"));
   ASSERT_TRUE(file) << file.message();
   for (uint32_t i : occupiedIndexByBrick(*file)) EXPECT_EQ(i, kEmptyBrick);
-  for (uint32_t w : dualBrickBoxes(*file)) EXPECT_EQ(w, kEmptyDualBrick);
+  for (uint32_t w : dualBrickBoxes(file->header(), occupiedIndexByBrick(*file), brickBounds(*file)))
+    EXPECT_EQ(w, kEmptyDualBrick);
 }
 
 }  // namespace

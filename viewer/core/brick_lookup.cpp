@@ -19,11 +19,9 @@ std::array<uint32_t, 3> dualBrickGrid(const format::FileHeader& h) {
   return {h.brickGrid[0] + 1, h.brickGrid[1] + 1, h.brickGrid[2] + 1};
 }
 
-std::vector<uint32_t> dualBrickBoxes(const format::VoxLinkFile& file) {
-  const auto& h = file.header();
-  const int64_t n = file.brickSize();
-  const std::vector<uint32_t> brickBoxes = brickBounds(file);
-  const std::vector<uint32_t> index = occupiedIndexByBrick(file);
+std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& h, std::span<const uint32_t> index,
+                                     std::span<const uint32_t> brickBoxes) {
+  const int64_t n = h.brickSize;
   const std::array<uint32_t, 3> dual = dualBrickGrid(h);
   struct Cells {
     int64_t lo[3], hi[3];

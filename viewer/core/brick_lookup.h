@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "format/voxlink_file.h"
@@ -33,6 +34,9 @@ inline constexpr uint32_t kEmptyDualBrick = 0xFFFFFFFFu;
 // it whose samples can blend a stored voxel, as a box packed like a brick box (brick_bounds.h,
 // local to the dual brick's first cell D n), or kEmptyDualBrick. A sample blends the voxels
 // floor(q) + {0, 1} per axis, so a brick whose voxels fill [lo, hi] reaches cells [lo - 1, hi].
-std::vector<uint32_t> dualBrickBoxes(const format::VoxLinkFile& file);
+// Takes the file's occupiedIndexByBrick() and brickBounds() (brick_bounds.h), which the caller
+// has at hand.
+std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& header, std::span<const uint32_t> brickIndex,
+                                     std::span<const uint32_t> brickBoxes);
 
 }  // namespace voxlink::viewer

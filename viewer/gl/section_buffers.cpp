@@ -28,8 +28,7 @@ GpuArray section(const format::VoxLinkFile& file, format::SectionId id, const ch
 }
 
 // Per occupied brick: (box of its stored voxels, its first voxel).
-std::vector<uint32_t> brickEntries(const format::VoxLinkFile& file) {
-  const std::vector<uint32_t> boxes = brickBounds(file);
+std::vector<uint32_t> brickEntries(const format::VoxLinkFile& file, const std::vector<uint32_t>& boxes) {
   const auto firstVoxels = file.brickVoxelBase();
   std::vector<uint32_t> entries(2 * boxes.size());
   for (size_t k = 0; k < boxes.size(); ++k) {
@@ -53,8 +52,9 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   const uint64_t chunkWords = limit / 4;
 
   const std::vector<uint32_t> brickIndex = occupiedIndexByBrick(file);
-  const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file);
-  const std::vector<uint32_t> entries = brickEntries(file);
+  const std::vector<uint32_t> boxes = brickBounds(file);
+  const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file.header(), brickIndex, boxes);
+  const std::vector<uint32_t> entries = brickEntries(file, boxes);
   const GpuArray arrays[] = {
       section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"),
       section(file, format::SectionId::kRowMask, "maskWord", "VxlMask"),
