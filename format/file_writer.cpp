@@ -95,6 +95,7 @@ SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
   };
   for (SectionId id : kRequiredSections)
     if (id != SectionId::kMeta) place(id);
+  for (SectionId id : sceneSectionsOf(header)) place(id);
   place(SectionId::kMeta);
   layout.tableOffset = offset;
   layout.fileBytes = offset + layout.entries.size() * sizeof(SectionEntry);
@@ -221,9 +222,30 @@ std::vector<uint32_t> rankFromOccupancy(const std::vector<uint32_t>& occupancy) 
   return rank;
 }
 
+void makeSceneHeader(FileHeader& h, const SceneSections& scene) {
+  h.versionMajor = kVersionMajorScene;
+  h.materialCount = static_cast<uint32_t>(scene.materials.size());
+  h.sphereCount = static_cast<uint32_t>(scene.spheres.size());
+  h.sphereRefCount = scene.sphereRefs.size();
+  h.surfaceVoxelCount = static_cast<uint64_t>(
+      std::count_if(scene.surface.begin(), scene.surface.end(), [](uint32_t w) { return w != kNoSurface; }));
+  uint64_t volume = 0;
+  for (uint32_t w : scene.volumeMask) volume += static_cast<uint64_t>(std::popcount(w));
+  h.volumeVoxelCount = volume;
+}
+
 Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
   VOXLINK_RETURN_IF_ERROR(checkDescription(v.description));
-  const FileHeader header = makeHeader(v.description, v.voxelCount(), v.occupiedBrickCount());
+  FileHeader header = makeHeader(v.description, v.voxelCount(), v.occupiedBrickCount());
+  if (v.scene) {
+    const SceneSections& s = *v.scene;
+    if (s.surface.size() != v.voxelCount() || s.volumeMask.size() != ceilDiv(v.voxelCount(), 32) ||
+        (!s.spheres.empty() && s.sphereRefStart.size() != v.voxelCount() + 1))
+      return makeError(ErrorCode::kInvalidArgument, path, ": scene sections do not match the ", v.voxelCount(), " voxels");
+    if (s.materials.size() > kMaxMaterials)
+      return makeError(ErrorCode::kTooLarge, path, ": ", s.materials.size(), " materials exceed the format's limit of ", kMaxMaterials);
+    makeSceneHeader(header, s);
+  }
   const size_t valueBytes = v.voxelCount() * storedSize(v.description.valueType);
   if (v.values.size() != valueBytes)
     return makeError(ErrorCode::kInvalidArgument, path, ": VALU has ", v.values.size(), " bytes, ", v.voxelCount(), " voxels need ", valueBytes);
@@ -239,7 +261,29 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
   VOXLINK_RETURN_IF_ERROR(put(SectionId::kRowMask, v.rowMasks));
   VOXLINK_RETURN_IF_ERROR(put(SectionId::kValues, v.values));
   VOXLINK_RETURN_IF_ERROR(put(SectionId::kGradients, v.gradients));
+  if (v.scene) {
+    const SceneSections& s = *v.scene;
+    VOXLINK_RETURN_IF_ERROR(put(SectionId::kMaterials, s.materials));
+    VOXLINK_RETURN_IF_ERROR(put(SectionId::kSurface, s.surface));
+    VOXLINK_RETURN_IF_ERROR(put(SectionId::kVolumeMask, s.volumeMask));
+    if (!s.spheres.empty()) {
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kSpheres, s.spheres));
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereRefStart, s.sphereRefStart));
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereRefs, s.sphereRefs));
+    }
+  }
   return writer.commit(v.metaJson);
+}
+
+uint64_t fileOrderKey(const VolumeDescription& d, uint32_t x, uint32_t y, uint32_t z) {
+  const uint32_t n = d.brickSize;
+  const uint64_t gridX = ceilDiv(d.dims[0], n), gridY = ceilDiv(d.dims[1], n);
+  const uint32_t p[3] = {x, y, z};
+  const AxisFrame frame = axisFrame(d.predominantAxis);
+  const uint64_t brick = (uint64_t{z / n} * gridY + y / n) * gridX + x / n;
+  const uint32_t row = (p[frame.v] % n) * n + p[frame.u] % n;
+  const uint32_t depth = p[frame.w] % n;
+  return (brick * n * n + row) * n + depth;
 }
 
 BrickedVolumeBuilder::BrickedVolumeBuilder(VolumeDescription description)
@@ -258,16 +302,11 @@ Result<BrickedVolume> BrickedVolumeBuilder::build(std::string metaJson) const {
                             static_cast<uint32_t>(ceilDiv(d.dims[1], n)),
                             static_cast<uint32_t>(ceilDiv(d.dims[2], n))};
   const uint64_t bricks = uint64_t{grid[0]} * grid[1] * grid[2];
-  const AxisFrame frame = axisFrame(d.predominantAxis);
   std::vector<Entry> sorted = voxels_;
   for (Entry& e : sorted) {
-    const uint32_t p[3] = {e.x, e.y, e.z};
     if (e.x >= d.dims[0] || e.y >= d.dims[1] || e.z >= d.dims[2])
       return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, ") lies outside the ", d.dims[0], "x", d.dims[1], "x", d.dims[2], " volume");
-    const uint64_t brick = (uint64_t{p[2] / n} * grid[1] + p[1] / n) * grid[0] + p[0] / n;
-    const uint32_t row = (p[frame.v] % n) * n + p[frame.u] % n;
-    const uint32_t depth = p[frame.w] % n;
-    e.key = (brick * n * n + row) * n + depth;
+    e.key = fileOrderKey(d, e.x, e.y, e.z);
   }
   std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
   for (size_t i = 1; i < sorted.size(); ++i)

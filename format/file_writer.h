@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,19 @@ class FileWriter {
   std::unique_ptr<std::mutex> crcMutex_ = std::make_unique<std::mutex>();
 };
 
+// The version 2 sections of a scene, per voxel in file order (see format/layout.h).
+struct SceneSections {
+  std::vector<MaterialRecord> materials;  // MATL
+  std::vector<uint32_t> surface;          // SURF, one word per voxel
+  std::vector<uint32_t> volumeMask;       // VMSK, ceil(voxels / 32) words
+  std::vector<SphereRecord> spheres;      // SPHR (empty: no sphere sections)
+  std::vector<uint32_t> sphereRefStart;   // SROF, voxels + 1 entries when there are spheres
+  std::vector<uint32_t> sphereRefs;       // SRID
+};
+
+// Sets the version 2 fields of a header from the scene sections it will carry.
+void makeSceneHeader(FileHeader& header, const SceneSections& scene);
+
 // A whole file held in memory: what small producers (tests, voxelizers) build and write.
 struct BrickedVolume {
   VolumeDescription description;
@@ -103,6 +117,7 @@ struct BrickedVolume {
   std::vector<uint32_t> rowMasks;    // MASK
   std::vector<uint8_t> values;       // VALU, voxelCount * storedSize bytes (unpadded)
   std::vector<uint16_t> gradients;   // GRAD
+  std::optional<SceneSections> scene;  // present: a version 2 file
 
   uint64_t voxelCount() const { return gradients.size(); }
   uint64_t occupiedBrickCount() const { return voxelBase.empty() ? 0 : voxelBase.size() - 1; }
@@ -112,6 +127,10 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& volume);
 
 // Fills BRNK from BOCC.
 std::vector<uint32_t> rankFromOccupancy(const std::vector<uint32_t>& occupancy);
+
+// The position of voxel (x, y, z) in file order: (brick, row, depth) packed into one number.
+// Voxels sorted by this key are in the order of VALU, GRAD and every per-voxel section.
+uint64_t fileOrderKey(const VolumeDescription& d, uint32_t x, uint32_t y, uint32_t z);
 
 // Collects voxels in any order and sorts them into bricks and rows.
 class BrickedVolumeBuilder {

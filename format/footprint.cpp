@@ -4,6 +4,36 @@
 #include <nlohmann/json.hpp>
 
 namespace voxlink::format {
+namespace {
+
+SceneFootprint computeSceneFootprint(const VoxLinkFile& f) {
+  const FileHeader& h = f.header();
+  SceneFootprint s;
+  s.volumeVoxels = h.volumeVoxelCount;
+  s.surfaceVoxels = h.surfaceVoxelCount;
+  s.materials = h.materialCount;
+  s.spheres = h.sphereCount;
+  s.sphereRefs = h.sphereRefCount;
+  const auto starts = f.sphereRefStarts();
+  for (size_t i = 0; i + 1 < starts.size(); ++i) s.sphereVoxels += starts[i + 1] > starts[i];
+  for (const SectionEntry& e : f.sectionTable()) {
+    switch (static_cast<SectionId>(e.id)) {
+      case SectionId::kValues:
+      case SectionId::kGradients:
+      case SectionId::kVolumeMask: s.volumeBytes += e.bytes; break;
+      case SectionId::kSurface:
+      case SectionId::kMaterials: s.surfaceBytes += e.bytes; break;
+      case SectionId::kSpheres:
+      case SectionId::kSphereRefStart:
+      case SectionId::kSphereRefs: s.sphereBytes += e.bytes; break;
+      case SectionId::kMeta: break;
+      default: s.structureBytes += e.bytes; break;
+    }
+  }
+  return s;
+}
+
+}  // namespace
 
 FootprintReport computeFootprint(const VoxLinkFile& f) {
   const FileHeader& h = f.header();
@@ -36,6 +66,7 @@ FootprintReport computeFootprint(const VoxLinkFile& f) {
   r.valueErrorBound = h.valueErrorBound;
   r.valueMaxAbsError = h.valueMaxAbsError;
   r.valueMaxRelError = h.valueMaxRelError;
+  if (f.isScene()) r.scene = computeSceneFootprint(f);
   return r;
 }
 
@@ -64,6 +95,15 @@ std::string footprintTable(const FootprintReport& r) {
   for (const SectionFootprint& s : r.sections)
     add("  %-22s %14llu %10.3f\n", s.name.c_str(), (unsigned long long)s.bytes, s.bytesPerVoxel);
   add("  %-22s %14llu %10.3f\n", "total", (unsigned long long)r.bytesTotal, r.bytesPerVoxel);
+  if (r.scene) {
+    const SceneFootprint& s = *r.scene;
+    auto mb = [](uint64_t bytes) { return bytes / 1e6; };
+    add("  scene: %llu volume voxels, %llu surface voxels (%llu materials), %llu sphere voxels (%llu spheres, %llu references)\n",
+        (unsigned long long)s.volumeVoxels, (unsigned long long)s.surfaceVoxels, (unsigned long long)s.materials,
+        (unsigned long long)s.sphereVoxels, (unsigned long long)s.spheres, (unsigned long long)s.sphereRefs);
+    add("  by kind: bricks+rows %.3f MB, volume %.3f MB, surfaces %.3f MB, spheres %.3f MB\n", mb(s.structureBytes),
+        mb(s.volumeBytes), mb(s.surfaceBytes), mb(s.sphereBytes));
+  }
   add("  dense source: %llu bytes; this file is %.2f%% of it (%.1fx smaller)\n",
       (unsigned long long)r.denseSourceBytes, 100.0 * r.ratioVsDense, r.ratioVsDense > 0 ? 1.0 / r.ratioVsDense : 0.0);
   if (r.peer) {
@@ -100,6 +140,14 @@ std::string footprintJson(const FootprintReport& r) {
   j["sections"] = sections;
   j["dense_source_bytes"] = r.denseSourceBytes;
   j["ratio_vs_dense"] = r.ratioVsDense;
+  if (r.scene) {
+    const SceneFootprint& s = *r.scene;
+    j["scene"] = {{"volume_voxels", s.volumeVoxels},   {"surface_voxels", s.surfaceVoxels},
+                  {"sphere_voxels", s.sphereVoxels},   {"materials", s.materials},
+                  {"spheres", s.spheres},              {"sphere_refs", s.sphereRefs},
+                  {"structure_bytes", s.structureBytes}, {"volume_bytes", s.volumeBytes},
+                  {"surface_bytes", s.surfaceBytes},   {"sphere_bytes", s.sphereBytes}};
+  }
   if (r.peer) {
     j["peer"] = {{"name", r.peer->name},
                  {"bytes", r.peer->bytes},

@@ -26,6 +26,19 @@ struct PeerFootprint {
   std::string note;
 };
 
+// What a scene (version 2 file) holds per object kind; the bytes split the file's sections by
+// what they serve: the shared brick/row structure, volume samples, surfaces, spheres.
+struct SceneFootprint {
+  uint64_t volumeVoxels = 0;   // voxels with a volume sample
+  uint64_t surfaceVoxels = 0;  // voxels with a surface fragment
+  uint64_t sphereVoxels = 0;   // voxels that reference at least one sphere
+  uint64_t materials = 0, spheres = 0, sphereRefs = 0;
+  uint64_t structureBytes = 0;  // BOCC, BRNK, BVOX, ROWS, MASK
+  uint64_t volumeBytes = 0;     // VALU, GRAD, VMSK
+  uint64_t surfaceBytes = 0;    // SURF, MATL
+  uint64_t sphereBytes = 0;     // SPHR, SROF, SRID
+};
+
 struct FootprintReport {
   std::string path;
   uint32_t dims[3] = {0, 0, 0};
@@ -47,6 +60,7 @@ struct FootprintReport {
   double valueMaxAbsError = 0;   // measured when the file was written
   double valueMaxRelError = 0;
   std::optional<PeerFootprint> peer;
+  std::optional<SceneFootprint> scene;  // version 2 files
 };
 
 FootprintReport computeFootprint(const VoxLinkFile& file);

@@ -1,4 +1,7 @@
-// The VoxLink file layout, version 1: plain structs whose every field carries its byte offset.
+// The VoxLink file layout, versions 1 and 2: plain structs whose every field carries its byte
+// offset. Version 1 holds a sparse volume; version 2 (a scene) adds geometry to the same bricks
+// and rows: surface fragments, sphere references, a material table and a mask of the voxels that
+// carry volume samples. A file with volume data only is always written as version 1.
 // docs/format.md is the prose spec of the same thing; tests/format_layout_test.cpp and
 // tests/glsl_layout_test.cpp keep this header, the spec and the shaders in step.
 //
@@ -16,8 +19,11 @@
 namespace voxlink::format {
 
 inline constexpr char kMagic[8] = {'V', 'O', 'X', 'L', 'I', 'N', 'K', '\0'};
-inline constexpr uint16_t kVersionMajor = 1;  // readers accept only their own major version
+inline constexpr uint16_t kVersionMajor = 1;  // a sparse volume
+inline constexpr uint16_t kVersionMajorScene = 2;  // a scene: geometry (+ volume) in one buffer
 inline constexpr uint16_t kVersionMinor = 0;  // readers accept any minor version
+// Readers accept the majors they know (1 and 2) and refuse later ones: a version 1 reader would
+// draw a version 2 file's geometry voxels as empty volume samples, so the major changed.
 inline constexpr uint32_t kByteOrderMark = 0x01020304u;  // reads 0x04030201 when swapped
 inline constexpr uint32_t kByteOrderMarkSwapped = 0x04030201u;
 inline constexpr uint64_t kSectionAlignment = 64;
@@ -68,7 +74,13 @@ struct FileHeader {                // 256 bytes at offset 0
   uint64_t voxelCount;             // 8B (168)  stored voxels
   uint64_t occupiedBrickCount;     // 8B (176)  bricks with at least one stored voxel
   double valueErrorBound;          // 8B (184)  error bound asked for, 0 if none (lossless)
-  uint8_t reserved[64];            // 64B (192) zero
+  // Version 2 (scene) counts; zero in version 1, where these bytes were reserved.
+  uint32_t materialCount;          // 4B (192)  entries of MATL
+  uint32_t sphereCount;            // 4B (196)  entries of SPHR (0: no SPHR, SROF, SRID)
+  uint64_t sphereRefCount;         // 8B (200)  entries of SRID
+  uint64_t surfaceVoxelCount;      // 8B (208)  voxels whose SURF word holds a fragment
+  uint64_t volumeVoxelCount;       // 8B (216)  voxels whose VMSK bit is set
+  uint8_t reserved[32];            // 32B (224) zero
 };
 static_assert(sizeof(FileHeader) == 256);
 static_assert(offsetof(FileHeader, sectionTableOffset) == 24);
@@ -78,6 +90,10 @@ static_assert(offsetof(FileHeader, spacing) == 72);
 static_assert(offsetof(FileHeader, valueScale) == 120);
 static_assert(offsetof(FileHeader, voxelCount) == 168);
 static_assert(offsetof(FileHeader, valueErrorBound) == 184);
+static_assert(offsetof(FileHeader, materialCount) == 192);
+static_assert(offsetof(FileHeader, sphereRefCount) == 200);
+static_assert(offsetof(FileHeader, volumeVoxelCount) == 216);
+static_assert(offsetof(FileHeader, reserved) == 224);
 
 // Four ASCII characters read as a little-endian u32.
 constexpr uint32_t fourCC(const char (&s)[5]) {
@@ -96,6 +112,14 @@ enum class SectionId : uint32_t {
   kRowMask = fourCC("MASK"),         // u32[K*n*n*n/32]: n bits per row, bit d = voxel at depth d
   kValues = fourCC("VALU"),          // StoredType[voxels], padded to 4 bytes
   kGradients = fourCC("GRAD"),       // u16[voxels], padded to 4 bytes: GradientCodec codes
+  // Version 2 (scene) sections:
+  kMaterials = fourCC("MATL"),       // MaterialRecord[materialCount]
+  kSurface = fourCC("SURF"),         // u32[voxels]: SurfaceFragment word, kNoSurface if none
+  kVolumeMask = fourCC("VMSK"),      // u32[ceil(voxels/32)]: bit i%32 of word i/32 = voxel i
+                                     //   carries a volume sample (VALU/GRAD); else they are 0
+  kSpheres = fourCC("SPHR"),         // SphereRecord[sphereCount]
+  kSphereRefStart = fourCC("SROF"),  // u32[voxels+1]: voxel i references SRID[SROF[i], SROF[i+1])
+  kSphereRefs = fourCC("SRID"),      // u32[sphereRefCount]: sphere indices, ascending per voxel
 };
 // (B = brick count of the grid, K = occupied bricks, n = brick size.)
 
@@ -104,7 +128,47 @@ inline constexpr std::array<SectionId, 8> kRequiredSections = {
     SectionId::kBrickVoxelBase, SectionId::kRowStart, SectionId::kRowMask,
     SectionId::kValues,   SectionId::kGradients};
 
+// Sections every version 2 file has, and those it has when sphereCount > 0.
+inline constexpr std::array<SectionId, 3> kSceneSections = {
+    SectionId::kMaterials, SectionId::kSurface, SectionId::kVolumeMask};
+inline constexpr std::array<SectionId, 3> kSphereSections = {
+    SectionId::kSpheres, SectionId::kSphereRefStart, SectionId::kSphereRefs};
+
 std::string_view sectionName(SectionId id);  // "META", ...
+
+// --- Version 2 records -----------------------------------------------------------------------
+// A surface fragment (the paper's fragment data, section 4.1): low 16 bits the polar normal
+// (GradientCodec::kPolar16, unit outward normal), high 16 bits the material index. A voxel that
+// several triangles touch keeps one fragment (docs/format.md says how it is chosen).
+inline constexpr uint32_t kNoSurface = 0xFFFFFFFFu;
+constexpr uint32_t surfaceWord(uint16_t normalCode, uint16_t material) {
+  return uint32_t{material} << 16 | normalCode;
+}
+constexpr uint16_t surfaceNormal(uint32_t word) { return static_cast<uint16_t>(word & 0xFFFF); }
+constexpr uint16_t surfaceMaterial(uint32_t word) { return static_cast<uint16_t>(word >> 16); }
+inline constexpr uint32_t kMaxMaterials = 0xFFFF;  // material 0xFFFF is never used
+
+struct MaterialRecord {      // 64 bytes; linear RGB, every value finite
+  float color[3];            // 12B (0)   diffuse colour, [0, 1]
+  float opacity;             // 4B (12)   [0, 1]; 1 = opaque
+  float emission[3];         // 12B (16)  >= 0, added to the shaded colour
+  float reflectivity;        // 4B (28)   [0, 1]: share of a hit's light that is mirrored
+  float transmission;        // 4B (32)   [0, 1]: share that is refracted
+  float refractiveIndex;     // 4B (36)   >= 1 when transmission > 0
+  float specular;            // 4B (40)   [0, 1]: Phong highlight strength
+  float shininess;           // 4B (44)   Phong exponent, >= 0
+  uint32_t reserved[4];      // 16B (48)  zero
+};
+static_assert(sizeof(MaterialRecord) == 64);
+static_assert(offsetof(MaterialRecord, reflectivity) == 28);
+
+struct SphereRecord {        // 32 bytes; an implicit sphere in world units
+  float center[3];           // 12B (0)
+  float radius;              // 4B (12)   > 0
+  uint32_t material;         // 4B (16)   < materialCount
+  uint32_t reserved[3];      // 12B (20)  zero
+};
+static_assert(sizeof(SphereRecord) == 32);
 
 struct SectionEntry {    // 32 bytes; the table is SectionEntry[sectionCount]
   uint32_t id;           // 4B (0)   SectionId

@@ -107,6 +107,11 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
       return makeError(ErrorCode::kCorrupt, f.path(), ": section GRAD: voxel ", i, " has the reserved or non-canonical code 0x", std::hex, grads[i]);
   const double slack = 1e-9 * std::max(1.0, std::max(std::abs(h.valueMin), std::abs(h.valueMax)));
   for (uint64_t i = 0; i < f.voxelCount(); ++i) {
+    if (!f.hasVolumeSample(i)) {
+      if (f.storedValue(i) != 0 || grads[i] != kZeroGradient)
+        return makeError(ErrorCode::kCorrupt, f.path(), ": section VALU/GRAD: voxel ", i, " has no volume sample (VMSK) but a non-zero value or gradient");
+      continue;
+    }
     const double v = f.value(i);
     if (!std::isfinite(v))
       return makeError(ErrorCode::kNonFinite, f.path(), ": section VALU: voxel ", i, " is not finite");
@@ -118,6 +123,101 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
   VOXLINK_RETURN_IF_ERROR(checkPadding(f, SectionId::kGradients, f.voxelCount() * 2));
   const uint64_t n = h.brickSize;
   return checkPadding(f, SectionId::kRowStart, f.occupiedBrickCount() * n * n * 2);
+}
+
+bool finiteIn(float v, float lo, float hi) { return std::isfinite(v) && v >= lo && v <= hi; }
+
+Status checkMaterials(const VoxLinkFile& f) {
+  const auto materials = f.materials();
+  for (size_t m = 0; m < materials.size(); ++m) {
+    const MaterialRecord& r = materials[m];
+    auto bad = [&](const char* field) {
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section MATL: material ", m, ".", field, " is out of range or not finite");
+    };
+    for (int c = 0; c < 3; ++c) {
+      if (!finiteIn(r.color[c], 0, 1)) return bad("color");
+      if (!finiteIn(r.emission[c], 0, 1e30f)) return bad("emission");
+    }
+    if (!finiteIn(r.opacity, 0, 1)) return bad("opacity");
+    if (!finiteIn(r.reflectivity, 0, 1)) return bad("reflectivity");
+    if (!finiteIn(r.transmission, 0, 1)) return bad("transmission");
+    if (!finiteIn(r.reflectivity + r.transmission, 0, 1)) return bad("reflectivity+transmission");
+    if (!finiteIn(r.refractiveIndex, 1, 10)) return bad("refractiveIndex");
+    if (!finiteIn(r.specular, 0, 1)) return bad("specular");
+    if (!finiteIn(r.shininess, 0, 1e6f)) return bad("shininess");
+    for (uint32_t word : r.reserved)
+      if (word != 0) return bad("reserved");
+  }
+  return Status::ok();
+}
+
+Status checkSpheres(const VoxLinkFile& f) {
+  const auto spheres = f.spheres();
+  for (size_t s = 0; s < spheres.size(); ++s) {
+    const SphereRecord& r = spheres[s];
+    const bool finite = std::isfinite(r.center[0]) && std::isfinite(r.center[1]) && std::isfinite(r.center[2]);
+    if (!finite || !(std::isfinite(r.radius) && r.radius > 0))
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, " has a centre or radius that is not finite and positive");
+    if (r.material >= f.header().materialCount)
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, ".material ", r.material, " is not in the table of ", f.header().materialCount);
+    if (r.reserved[0] || r.reserved[1] || r.reserved[2])
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, ".reserved is not zero");
+  }
+  return Status::ok();
+}
+
+// Per voxel: a valid surface word, ascending sphere references, and at least one thing stored.
+Status checkSceneVoxels(const VoxLinkFile& f) {
+  const FileHeader& h = f.header();
+  const auto surface = f.surfaceWords();
+  const auto mask = f.volumeMaskWords();
+  const auto refStart = f.sphereRefStarts();
+  const auto refs = f.sphereRefs();
+  const bool spheres = h.sphereCount > 0;
+  if (spheres && (refStart[0] != 0 || refStart[f.voxelCount()] != h.sphereRefCount))
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: first/last entries ", refStart[0], "/", refStart[f.voxelCount()], " (expected 0/", h.sphereRefCount, ")");
+  uint64_t surfaceCount = 0, volumeCount = 0;
+  for (uint64_t i = 0; i < f.voxelCount(); ++i) {
+    const uint32_t word = surface[i];
+    const bool hasSurface = word != kNoSurface;
+    if (hasSurface) {
+      ++surfaceCount;
+      if (surfaceMaterial(word) >= h.materialCount)
+        return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: voxel ", i, " names material ", surfaceMaterial(word), " of ", h.materialCount);
+      if (surfaceNormal(word) == kZeroGradient || !isCanonicalGradientCode(surfaceNormal(word)))
+        return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: voxel ", i, " has the reserved or non-canonical normal code 0x", std::hex, surfaceNormal(word));
+    }
+    const bool hasVolume = (mask[i >> 5] >> (i & 31)) & 1u;
+    volumeCount += hasVolume;
+    bool hasSpheres = false;
+    if (spheres) {
+      const uint32_t begin = refStart[i], end = refStart[i + 1];
+      if (end < begin || end > h.sphereRefCount)
+        return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: voxel ", i, " references [", begin, ", ", end, ") of ", h.sphereRefCount);
+      for (uint32_t r = begin; r < end; ++r) {
+        if (refs[r] >= h.sphereCount || (r > begin && refs[r] <= refs[r - 1]))
+          return makeError(ErrorCode::kCorrupt, f.path(), ": section SRID: voxel ", i, " names sphere ", refs[r], " (not ascending, or not in the table of ", h.sphereCount, ")");
+      }
+      hasSpheres = end > begin;
+    }
+    if (!hasSurface && !hasVolume && !hasSpheres)
+      return makeError(ErrorCode::kCorrupt, f.path(), ": sections VMSK/SURF/SROF: voxel ", i, " stores nothing (no volume sample, surface or sphere)");
+  }
+  if (surfaceCount != h.surfaceVoxelCount)
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: ", surfaceCount, " surface voxels, header.surfaceVoxelCount says ", h.surfaceVoxelCount);
+  if (volumeCount != h.volumeVoxelCount)
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section VMSK: ", volumeCount, " volume voxels, header.volumeVoxelCount says ", h.volumeVoxelCount);
+  const uint64_t tailBits = mask.size() * 32 - f.voxelCount();
+  if (tailBits > 0 && (mask.back() >> (32 - tailBits)) != 0)
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section VMSK: bits set beyond the last of ", f.voxelCount(), " voxels");
+  return Status::ok();
+}
+
+Status checkScene(const VoxLinkFile& f) {
+  if (!f.isScene()) return Status::ok();
+  VOXLINK_RETURN_IF_ERROR(checkMaterials(f));
+  VOXLINK_RETURN_IF_ERROR(checkSpheres(f));
+  return checkSceneVoxels(f);
 }
 
 }  // namespace
@@ -132,6 +232,7 @@ Result<ValidationReport> validateFile(const VoxLinkFile& f) {
     return makeError(ErrorCode::kCorrupt, f.path(), ": header.valueMin/valueMax: [", f.header().valueMin, ", ", f.header().valueMax, "] is not a range");
   VOXLINK_RETURN_IF_ERROR(checkBrickLevel(f));
   VOXLINK_RETURN_IF_ERROR(checkBricks(f, report));
+  VOXLINK_RETURN_IF_ERROR(checkScene(f));
   VOXLINK_RETURN_IF_ERROR(checkVoxels(f, report));
   const nlohmann::json meta = nlohmann::json::parse(f.metaJson(), nullptr, /*allow_exceptions=*/false);
   if (!meta.is_object())

@@ -17,6 +17,27 @@ uint64_t headerCrcOf(const FileHeader& header) {
   return crc32c(&copy, sizeof(copy));
 }
 
+// The version 2 counts: zero in version 1; in version 2 bounded by the voxel count.
+Status checkSceneCounts(const FileHeader& h, const std::string& where) {
+  if (h.versionMajor == kVersionMajor) {
+    if (h.materialCount || h.sphereCount || h.sphereRefCount || h.surfaceVoxelCount || h.volumeVoxelCount)
+      return makeError(ErrorCode::kCorrupt, where, ": header.materialCount..volumeVoxelCount: not zero in a version 1 file");
+    return Status::ok();
+  }
+  if (h.materialCount > kMaxMaterials)
+    return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: ", h.materialCount, " exceeds ", kMaxMaterials);
+  if (h.surfaceVoxelCount > h.voxelCount || h.volumeVoxelCount > h.voxelCount)
+    return makeError(ErrorCode::kCorrupt, where, ": header.surfaceVoxelCount/volumeVoxelCount: ", h.surfaceVoxelCount, "/", h.volumeVoxelCount, " exceed header.voxelCount ", h.voxelCount);
+  if (h.surfaceVoxelCount > 0 && h.materialCount == 0)
+    return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: 0, but ", h.surfaceVoxelCount, " surface voxels need materials");
+  if (h.sphereCount == 0 && h.sphereRefCount != 0)
+    return makeError(ErrorCode::kCorrupt, where, ": header.sphereRefCount: ", h.sphereRefCount, " references to no spheres");
+  // Every sphere reference names a sphere once per voxel.
+  if (h.sphereRefCount > h.voxelCount * uint64_t{h.sphereCount} || h.sphereRefCount > kMaxVoxels)
+    return makeError(ErrorCode::kCorrupt, where, ": header.sphereRefCount: ", h.sphereRefCount, " is more than the voxels and spheres allow");
+  return Status::ok();
+}
+
 }  // namespace
 
 std::string_view sectionName(SectionId id) {
@@ -29,6 +50,12 @@ std::string_view sectionName(SectionId id) {
     case SectionId::kRowMask: return "MASK";
     case SectionId::kValues: return "VALU";
     case SectionId::kGradients: return "GRAD";
+    case SectionId::kMaterials: return "MATL";
+    case SectionId::kSurface: return "SURF";
+    case SectionId::kVolumeMask: return "VMSK";
+    case SectionId::kSpheres: return "SPHR";
+    case SectionId::kSphereRefStart: return "SROF";
+    case SectionId::kSphereRefs: return "SRID";
   }
   return "????";
 }
@@ -39,6 +66,8 @@ uint32_t expectedElementBytes(const FileHeader& header, SectionId id) {
     case SectionId::kRowStart:
     case SectionId::kGradients: return 2;
     case SectionId::kValues: return static_cast<uint32_t>(storedSize(static_cast<StoredType>(header.valueType)));
+    case SectionId::kMaterials: return sizeof(MaterialRecord);
+    case SectionId::kSpheres: return sizeof(SphereRecord);
     default: return 4;
   }
 }
@@ -57,6 +86,12 @@ uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t m
     case SectionId::kRowMask: return k * maskWordsPerBrick(static_cast<uint32_t>(n)) * 4;
     case SectionId::kValues: return alignUp(voxels * storedSize(static_cast<StoredType>(header.valueType)), 4);
     case SectionId::kGradients: return alignUp(voxels * 2, 4);
+    case SectionId::kMaterials: return uint64_t{header.materialCount} * sizeof(MaterialRecord);
+    case SectionId::kSurface: return voxels * 4;
+    case SectionId::kVolumeMask: return ceilDiv(voxels, 32) * 4;
+    case SectionId::kSpheres: return uint64_t{header.sphereCount} * sizeof(SphereRecord);
+    case SectionId::kSphereRefStart: return (voxels + 1) * 4;
+    case SectionId::kSphereRefs: return header.sphereRefCount * 4;
   }
   return 0;
 }
@@ -68,8 +103,8 @@ Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& w
     return makeError(ErrorCode::kByteOrder, where, ": header.byteOrderMark: file was written big-endian; this reader reads little-endian files only");
   if (h.byteOrderMark != kByteOrderMark)
     return makeError(ErrorCode::kCorrupt, where, ": header.byteOrderMark: 0x", std::hex, h.byteOrderMark, " is not 0x01020304");
-  if (h.versionMajor != kVersionMajor)
-    return makeError(ErrorCode::kUnsupported, where, ": header.versionMajor: file is version ", h.versionMajor, ".", h.versionMinor, ", this reader reads version ", kVersionMajor, ".x");
+  if (h.versionMajor != kVersionMajor && h.versionMajor != kVersionMajorScene)
+    return makeError(ErrorCode::kUnsupported, where, ": header.versionMajor: file is version ", h.versionMajor, ".", h.versionMinor, ", this reader reads versions ", kVersionMajor, ".x and ", kVersionMajorScene, ".x");
   if (h.headerBytes != sizeof(FileHeader))
     return makeError(ErrorCode::kCorrupt, where, ": header.headerBytes: ", h.headerBytes, " (expected ", sizeof(FileHeader), ")");
   if (headerCrcOf(h) != h.headerCrc)
@@ -102,6 +137,7 @@ Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& w
     return makeError(ErrorCode::kCorrupt, where, ": header.occupiedBrickCount: ", h.occupiedBrickCount, " exceeds the ", bricks, " bricks of the grid");
   if (h.voxelCount > kMaxVoxels || h.voxelCount > h.occupiedBrickCount * n3 || h.voxelCount < h.occupiedBrickCount)
     return makeError(ErrorCode::kCorrupt, where, ": header.voxelCount: ", h.voxelCount, " does not fit ", h.occupiedBrickCount, " occupied bricks of ", n3, " voxels");
+  VOXLINK_RETURN_IF_ERROR(checkSceneCounts(h, where));
   if (h.sectionTableOffset > fileBytes || h.sectionCount > 1024 ||
       h.sectionTableOffset + uint64_t{h.sectionCount} * sizeof(SectionEntry) > fileBytes)
     return makeError(ErrorCode::kTruncated, where, ": header.sectionTableOffset: table of ", h.sectionCount, " entries at byte ", h.sectionTableOffset, " lies beyond the end of the ", fileBytes, "-byte file");
@@ -170,6 +206,16 @@ Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const 
     if (e->bytes != expected)
       return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id), ".bytes: ", e->bytes, " but the header's counts need ", expected);
   }
+  for (SectionId id : file.presentSceneSections()) {
+    const SectionEntry* e = file.findSection(id);
+    if (!e)
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ": missing (a version ", h.versionMajor, " file with ", h.sphereCount, " spheres has it)");
+    if (e->elementBytes != expectedElementBytes(h, id))
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ".elementBytes: ", e->elementBytes, " (expected ", expectedElementBytes(h, id), ")");
+    const uint64_t expected = expectedSectionBytes(h, id, 0);
+    if (e->bytes != expected)
+      return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id), ".bytes: ", e->bytes, " but the header's counts need ", expected);
+  }
   return file;
 }
 
@@ -210,6 +256,32 @@ std::span<const uint16_t> VoxLinkFile::rowStarts() const {
 std::span<const uint16_t> VoxLinkFile::gradientCodes() const {
   auto bytes = sectionBytes(SectionId::kGradients);
   return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(voxelCount())};
+}
+
+std::vector<SectionId> sceneSectionsOf(const FileHeader& h) {
+  std::vector<SectionId> ids;
+  if (h.versionMajor != kVersionMajorScene) return ids;
+  ids.assign(kSceneSections.begin(), kSceneSections.end());
+  if (h.sphereCount > 0) ids.insert(ids.end(), kSphereSections.begin(), kSphereSections.end());
+  return ids;
+}
+
+std::vector<SectionId> VoxLinkFile::presentSceneSections() const { return sceneSectionsOf(*header_); }
+
+std::span<const MaterialRecord> VoxLinkFile::materials() const {
+  auto bytes = sectionBytes(SectionId::kMaterials);
+  return {reinterpret_cast<const MaterialRecord*>(bytes.data()), bytes.size() / sizeof(MaterialRecord)};
+}
+
+std::span<const SphereRecord> VoxLinkFile::spheres() const {
+  auto bytes = sectionBytes(SectionId::kSpheres);
+  return {reinterpret_cast<const SphereRecord*>(bytes.data()), bytes.size() / sizeof(SphereRecord)};
+}
+
+bool VoxLinkFile::hasVolumeSample(uint64_t voxel) const {
+  if (!isScene()) return true;
+  const auto mask = volumeMaskWords();
+  return (mask[voxel >> 5] >> (voxel & 31)) & 1u;
 }
 
 std::string VoxLinkFile::metaJson() const {

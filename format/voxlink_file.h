@@ -48,6 +48,18 @@ class VoxLinkFile {
   const uint8_t* valueBytes() const { return sectionBytes(SectionId::kValues).data(); }
   std::string metaJson() const;
 
+  // Version 2 (scene) sections; empty spans in a version 1 file.
+  bool isScene() const { return header_->versionMajor == kVersionMajorScene; }
+  std::vector<SectionId> presentSceneSections() const;  // the scene sections this file must have
+  std::span<const MaterialRecord> materials() const;
+  std::span<const uint32_t> surfaceWords() const { return words32(SectionId::kSurface); }
+  std::span<const uint32_t> volumeMaskWords() const { return words32(SectionId::kVolumeMask); }
+  std::span<const SphereRecord> spheres() const;
+  std::span<const uint32_t> sphereRefStarts() const { return words32(SectionId::kSphereRefStart); }
+  std::span<const uint32_t> sphereRefs() const { return words32(SectionId::kSphereRefs); }
+  // Whether voxel i carries a volume sample (always in version 1).
+  bool hasVolumeSample(uint64_t voxel) const;
+
   // Value of voxel i in source units (stored value mapped through scale and offset).
   double value(uint64_t voxel) const;
   // The stored value of voxel i as a double, before the mapping.
@@ -72,5 +84,7 @@ Status checkHeader(const FileHeader& header, uint64_t fileBytes, const std::stri
 // Expected payload size of a required section for a given header.
 uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t metaBytes);
 uint32_t expectedElementBytes(const FileHeader& header, SectionId id);
+// The version 2 sections a header asks for (none for version 1).
+std::vector<SectionId> sceneSectionsOf(const FileHeader& header);
 
 }  // namespace voxlink::format

@@ -78,7 +78,7 @@ TEST_F(FormatBadInput, SwappedByteOrderIsNamed) {
 }
 
 TEST_F(FormatBadInput, NewerMajorVersion) {
-  header().versionMajor = 2;
+  header().versionMajor = 3;
   resealHeader();
   auto f = reopen();
   EXPECT_EQ(f.code(), ErrorCode::kUnsupported);
