@@ -23,6 +23,10 @@ float shadowTransmittance(vec3 worldPoint) {
       uint voxel;
       float ta, tz;
       while (rowWalkNext(walk, voxel, ta, tz)) {
+#if VXL_SCENE
+        transmittance *= geometryTransmittance(voxel, o, d, ta, tz);
+        if (hasVolumeSample(voxel))
+#endif
         transmittance *= 1.0 - correctedAlpha(classify(storedBits(voxel)).a, tz - ta);
         if (transmittance < uShadowStop) return transmittance;
       }

@@ -36,6 +36,11 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
       uint voxel;
       float ta, tz;
       while (rowWalkNext(walk, voxel, ta, tz)) {
+#if VXL_SCENE
+        compositeGeometry(voxel, o, d, ta, tz, toEye, color, transmittance);
+        if (transmittance <= uStopTransmittance) return;
+        if (!hasVolumeSample(voxel)) continue;
+#endif
         vec4 c = classify(storedBits(voxel));
         float a = correctedAlpha(c.a, tz - ta);
         if (a > 0.0) {

@@ -71,6 +71,27 @@ inline ShadedTerms shadeSample(const glm::dvec3& c, double alpha, const glm::dve
           m * (c * (s.diffuse * diffuse) + glm::dvec3(alpha * s.specular * specular))};
 }
 
+// Surface hits in a scene cast their shadow rays from this many voxels (of the smallest
+// spacing) off the surface along the normal: a voxelized surface is one to two voxels thick and
+// would otherwise shadow itself. kSurfaceShadowBias in shaders/voxlink_scene_shading.glsl.
+inline constexpr double kSurfaceShadowBias = 2.0;
+
+// Phong terms of a surface hit in a scene: unit normal `n` facing the eye, material colour `c`,
+// the frame's ambient and diffuse weights and the material's own highlight (white, strength
+// `specular`, exponent at least 1). colour = ambient + shadow * lit, plus the material's emission.
+inline ShadedTerms shadeSurface(const glm::dvec3& c, double specular, double shininess,
+                                const glm::dvec3& n, const glm::dvec3& toLight,
+                                const glm::dvec3& toEye, const Shading& s) {
+  if (!s.enabled) return {c, glm::dvec3(0.0)};
+  const double ndl = glm::dot(n, toLight);
+  double highlight = 0;
+  if (ndl > 0 && specular > 0) {
+    const glm::dvec3 r = 2.0 * ndl * n - toLight;
+    highlight = specular * std::pow(std::max(glm::dot(r, toEye), 0.0), std::max(shininess, 1.0));
+  }
+  return {c * s.ambient, c * (s.diffuse * std::max(ndl, 0.0)) + glm::dvec3(highlight)};
+}
+
 // The unit direction of a gradient, or zero (what the 16-bit codec stores, without rounding).
 inline glm::dvec3 gradientDirection(const glm::dvec3& g) {
   const double len = glm::length(g);

@@ -85,7 +85,10 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s) {
   return &programs_.emplace(key, std::move(p)).first->second;
 }
 
-Status VolumeRenderer::prepare(const RenderSettings& settings) { return program(settings).status(); }
+Status VolumeRenderer::prepare(const RenderSettings& settings) {
+  VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
+  return program(settings).status();
+}
 
 void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& camera,
                                       const RenderSettings& s, uint32_t width,
@@ -122,6 +125,7 @@ void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& cam
 Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settings,
                               RenderTarget& target) {
   VOXLINK_RETURN_IF_ERROR(checkSettings(settings, name()));
+  VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
   VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* p, program(settings));
   target.resize(settings.width, settings.height);
   p->use();

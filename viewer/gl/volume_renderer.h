@@ -57,6 +57,8 @@ class VolumeRenderer {
  protected:
   explicit VolumeRenderer(const VolumeGeometry& geometry);
   virtual std::string mainShader() const = 0;
+  // Refuses settings the data cannot be rendered with (called before every frame).
+  virtual Status checkSupported(const RenderSettings&) const { return Status::ok(); }
   virtual std::vector<ShaderDefine> dataDefines() const = 0;
   virtual std::map<std::string, std::string> generatedFiles() const { return {}; }
   virtual void bindData(const ComputeProgram& program) const = 0;

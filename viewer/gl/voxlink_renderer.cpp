@@ -7,7 +7,9 @@ namespace voxlink::viewer {
 std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
   return {{"VXL_N", std::to_string(h.brickSize)},
           {"VXL_AXIS", std::to_string(h.predominantAxis)},
-          {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))}};
+          {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))},
+          {"VXL_SCENE", h.versionMajor == format::kVersionMajorScene ? "1" : "0"},
+          {"VXL_SPHERES", h.sphereCount > 0 ? "1" : "0"}};
 }
 
 Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(const format::VoxLinkFile& file,
@@ -20,6 +22,13 @@ VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers
     : VolumeRenderer(VolumeGeometry::of(file.header())),
       sections_(std::move(sections)),
       header_(file.header()) {}
+
+Status VoxLinkRenderer::checkSupported(const RenderSettings& settings) const {
+  if (header_.versionMajor == format::kVersionMajorScene && settings.sampling != Sampling::kVoxel)
+    return makeError(ErrorCode::kUnsupported, name(), ": scenes (files with geometry) render with voxel sampling; ",
+                     samplingName(settings.sampling), " sampling is for volume files");
+  return Status::ok();
+}
 
 std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const { return voxlinkDefines(header_); }
 

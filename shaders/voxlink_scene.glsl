@@ -1,0 +1,89 @@
+// Geometry in a VoxLink scene (format version 2; paper, sections 3.1.1-3.1.2): per voxel a
+// surface fragment (polar normal + material), references to implicit spheres intersected
+// exactly, and a bit saying whether the voxel also carries a volume sample. Included when
+// VXL_SCENE is 1; the sections come through voxlink_sections.glsl (surfWord, vmskWord,
+// matlWord and, with VXL_SPHERES, sphrWord, srofWord, sridWord).
+// Mirrors viewer/core/scene_reference_renderer.cpp; docs/scene.md states the model. Shading of
+// hits, which needs shadowTransmittance(), is in voxlink_scene_shading.glsl.
+#if VXL_SCENE
+
+const uint kNoSurface = 0xFFFFFFFFu;
+
+struct Material {
+  vec3 color;
+  float opacity;
+  vec3 emission;
+  float specular;
+  float shininess;
+};
+
+float matlFloat(uint word) { return uintBitsToFloat(matlWord(word)); }
+
+// MaterialRecord (format/layout.h): 16 words per material.
+Material fetchMaterial(uint m) {
+  uint b = m * 16u;
+  Material r;
+  r.color = vec3(matlFloat(b), matlFloat(b + 1u), matlFloat(b + 2u));
+  r.opacity = matlFloat(b + 3u);
+  r.emission = vec3(matlFloat(b + 4u), matlFloat(b + 5u), matlFloat(b + 6u));
+  r.specular = matlFloat(b + 10u);
+  r.shininess = matlFloat(b + 11u);
+  return r;
+}
+
+bool hasVolumeSample(uint voxel) { return ((vmskWord(voxel >> 5u) >> (voxel & 31u)) & 1u) != 0u; }
+
+#if VXL_SPHERES
+float sphrFloat(uint word) { return uintBitsToFloat(sphrWord(word)); }
+
+// Nearest t >= tMin at which o + t d (index space) meets sphere s, or kBig. The sphere's centre
+// and radius are stored in world units; voxels of a scene with spheres are cubic.
+float sphereHit(uint s, vec3 o, vec3 d, float tMin, out vec3 centre) {
+  uint b = s * 8u;
+  centre = worldToIndex(vec3(sphrFloat(b), sphrFloat(b + 1u), sphrFloat(b + 2u)));
+  float radius = sphrFloat(b + 3u) / uVolumeSpacing.x;
+  vec3 oc = o - centre;
+  float a = dot(d, d), half_b = dot(oc, d), c = dot(oc, oc) - radius * radius;
+  float disc = half_b * half_b - a * c;
+  if (disc < 0.0) return kBig;
+  float root = sqrt(disc);
+  float tNear = (-half_b - root) / a, tFar = (-half_b + root) / a;
+  return tNear >= tMin ? tNear : (tFar >= tMin ? tFar : kBig);
+}
+
+uint sphereMaterial(uint s) { return sphrWord(s * 8u + 4u); }
+
+// The first sphere hit of this voxel inside its chord [ta, tz), or false.
+bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, out uint sphere,
+                    out vec3 centre) {
+  tHit = kBig;
+  uint end = srofWord(voxel + 1u);
+  for (uint r = srofWord(voxel); r < end; ++r) {
+    uint s = sridWord(r);
+    vec3 c;
+    float t = sphereHit(s, o, d, max(ta, 0.0), c);
+    if (t >= ta && t < tz && t < tHit) {
+      tHit = t;
+      sphere = s;
+      centre = c;
+    }
+  }
+  return tHit < kBig;
+}
+#endif
+
+// Transmittance of the geometry in one voxel a shadow ray crosses over [ta, tz).
+float geometryTransmittance(uint voxel, vec3 o, vec3 d, float ta, float tz) {
+  float transmittance = 1.0;
+  uint surface = surfWord(voxel);
+  if (surface != kNoSurface) transmittance *= 1.0 - fetchMaterial(surface >> 16u).opacity;
+#if VXL_SPHERES
+  float tHit;
+  uint sphere;
+  vec3 centre;
+  if (firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre))
+    transmittance *= 1.0 - fetchMaterial(sphereMaterial(sphere)).opacity;
+#endif
+  return transmittance;
+}
+#endif  // VXL_SCENE

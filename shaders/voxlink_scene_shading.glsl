@@ -1,0 +1,65 @@
+// Shading and compositing of the geometry hits of voxlink_scene.glsl; included after
+// voxlink_shadow.glsl. Mirrors viewer/core/scene_reference_renderer.cpp.
+#if VXL_SCENE
+
+// Surface hits cast their shadow rays from this many voxels off the surface along the normal:
+// a voxelized surface is one to two voxels thick, and a ray started inside it would shadow
+// the surface itself. kSurfaceShadowBias in viewer/core/render_model.h.
+const float kSurfaceShadowBias = 2.0;
+
+// Phong terms of a surface hit with unit normal n facing the eye; mirrors shadeSurface() in
+// viewer/core/render_model.h. Ambient and diffuse weights are the frame's, the highlight the
+// material's.
+void shadeSurface(Material m, vec3 n, vec3 toEye, out vec3 ambient, out vec3 lit) {
+  if (!uShadingEnabled) {
+    ambient = m.color;
+    lit = vec3(0.0);
+    return;
+  }
+  float ndl = dot(n, uToLight);
+  float diffuse = max(ndl, 0.0);
+  float specular = 0.0;
+  if (ndl > 0.0 && m.specular > 0.0) {
+    vec3 r = 2.0 * ndl * n - uToLight;
+    specular = m.specular * pow(max(dot(r, toEye), 0.0), max(m.shininess, 1.0));
+  }
+  ambient = m.color * uPhong.x;
+  lit = m.color * (uPhong.y * diffuse) + vec3(specular);
+}
+
+// Composites one surface hit at index-space point p with world normal n.
+void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color, inout float transmittance) {
+  n = dot(n, toEye) < 0.0 ? -n : n;  // fragments are two-sided
+  vec3 ambient, lit;
+  shadeSurface(m, n, toEye, ambient, lit);
+  float shadow = 1.0;
+#if VXL_SHADOWS
+  if (uShadingEnabled && dot(n, uToLight) > 0.0)
+    shadow = shadowTransmittance(indexToWorld(p) + n * (kSurfaceShadowBias * uUnit));
+#endif
+  color += transmittance * m.opacity * (ambient + shadow * lit + m.emission);
+  transmittance *= 1.0 - m.opacity;
+}
+
+// Surface fragment, then the nearest sphere hit, of one voxel the primary ray crosses over
+// [ta, tz). The caller composites the voxel's volume sample afterwards, if it has one.
+void compositeGeometry(uint voxel, vec3 o, vec3 d, float ta, float tz, vec3 toEye, inout vec3 color,
+                       inout float transmittance) {
+  uint surface = surfWord(voxel);
+  if (surface != kNoSurface) {
+    vec3 n = decodeGradient(surface & 0xFFFFu);
+    compositeSurface(fetchMaterial(surface >> 16u), n, o + ta * d, toEye, color, transmittance);
+  }
+#if VXL_SPHERES
+  float tHit;
+  uint sphere;
+  vec3 centre;
+  if (transmittance > uStopTransmittance && firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre)) {
+    vec3 p = o + tHit * d;
+    compositeSurface(fetchMaterial(sphereMaterial(sphere)), normalize(p - centre), p, toEye, color,
+                     transmittance);
+  }
+#endif
+}
+
+#endif  // VXL_SCENE
