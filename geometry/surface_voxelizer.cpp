@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <memory>
 
 #include "geometry/triangle_box_overlap.h"
 
@@ -161,22 +162,50 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
       at += count;
     }
   }
-  std::vector<Overlap> overlaps(sliceStart[depth]);
+  const size_t overlapCount = sliceStart[depth];
+  std::unique_ptr<Overlap[]> overlaps(new Overlap[overlapCount]);  // not zero-filled
   tbb::parallel_for(size_t(0), blockCount, [&](size_t block) {
     uint64_t* at = &perSlice[block * depth];
     for (const Overlap& o : blocks[block]) overlaps[at[o.key >> 32]++] = o;
     std::vector<Overlap>().swap(blocks[block]);
   });
+  // Within a slice the overlaps are in triangle order; a stable counting sort by y and a stable
+  // insertion sort by x per row (rows hold a few overlaps) give (key, triangle) order.
+  struct SliceScratch {
+    std::vector<Overlap> buffer;
+    std::vector<uint32_t> rowStart;
+  };
+  tbb::enumerable_thread_specific<SliceScratch> scratch;
+  const size_t rows = grid.dims[1];
   tbb::parallel_for(size_t(0), depth, [&](size_t z) {
-    std::sort(overlaps.begin() + sliceStart[z], overlaps.begin() + sliceStart[z + 1]);
+    Overlap* slice = overlaps.get() + sliceStart[z];
+    const size_t count = sliceStart[z + 1] - sliceStart[z];
+    if (count < 2) return;
+    SliceScratch& tmp = scratch.local();
+    tmp.buffer.resize(count);
+    tmp.rowStart.assign(rows + 1, 0);
+    for (size_t i = 0; i < count; ++i) ++tmp.rowStart[((slice[i].key >> 16) & 0xffff) + 1];
+    for (size_t y = 0; y < rows; ++y) tmp.rowStart[y + 1] += tmp.rowStart[y];
+    for (size_t i = 0; i < count; ++i)
+      tmp.buffer[tmp.rowStart[(slice[i].key >> 16) & 0xffff]++] = slice[i];
+    for (size_t i = 0; i < count; ++i) {
+      // Insertion sort by key only: stable, so equal keys keep ascending triangle order.
+      const Overlap item = tmp.buffer[i];
+      size_t at = i;
+      while (at > 0 && slice[at - 1].key > item.key) {
+        slice[at] = slice[at - 1];
+        --at;
+      }
+      slice[at] = item;
+    }
   });
 
   // Pass 3: runs of equal keys -> voxels. Chunks start at run boundaries.
-  const size_t chunkCount = std::max<size_t>(1, std::min<size_t>(overlaps.size() / 65536, 1024));
-  std::vector<size_t> starts(chunkCount + 1, overlaps.size());
+  const size_t chunkCount = std::max<size_t>(1, std::min<size_t>(overlapCount / 65536, 1024));
+  std::vector<size_t> starts(chunkCount + 1, overlapCount);
   for (size_t c = 0; c < chunkCount; ++c) {
-    size_t s = overlaps.size() * c / chunkCount;
-    while (s > 0 && s < overlaps.size() && overlaps[s].key == overlaps[s - 1].key) ++s;
+    size_t s = overlapCount * c / chunkCount;
+    while (s > 0 && s < overlapCount && overlaps[s].key == overlaps[s - 1].key) ++s;
     starts[c] = s;
   }
   std::vector<size_t> runs(chunkCount, 0);
