@@ -14,6 +14,7 @@ packages=(
   libimgui-dev xvfb xauth
   python3 time
   libfftw3-dev libzip-dev
+  libassimp-dev
   r-cran-gstat
 )
 apt-get update

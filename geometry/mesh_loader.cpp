@@ -1,0 +1,229 @@
+#include "geometry/mesh_loader.h"
+
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/ObjMaterial.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+namespace voxlink::geometry {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+// Falls back to OBJ-stem.mtl when the OBJ names an MTL file that does not exist.
+class MtlFallbackIo : public Assimp::DefaultIOSystem {
+ public:
+  explicit MtlFallbackIo(std::string fallback) : fallback_(std::move(fallback)) {}
+  bool Exists(const char* file) const override {
+    return DefaultIOSystem::Exists(file) || (isMissingMtl(file) && !fallback_.empty());
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (isMissingMtl(file) && !fallback_.empty())
+      return DefaultIOSystem::Open(fallback_.c_str(), mode);
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  bool isMissingMtl(const char* file) const {
+    return lower(fs::path(file).extension().string()) == ".mtl" && !DefaultIOSystem::Exists(file);
+  }
+  std::string fallback_;
+};
+
+std::string oneLine(std::string s) {
+  std::replace(s.begin(), s.end(), '\n', ' ');
+  std::replace(s.begin(), s.end(), '\r', ' ');
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+// The line of the first `v` record with a non-finite coordinate, or 0. Only run once a
+// non-finite position was seen: assimp does not report lines.
+size_t findNonFiniteObjVertexLine(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (size_t number = 1; std::getline(in, line); ++number) {
+    if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
+    const char* p = line.c_str() + 1;
+    for (int c = 0; c < 3; ++c) {
+      char* end = nullptr;
+      const double value = std::strtod(p, &end);
+      if (end == p) break;
+      if (!std::isfinite(value)) return number;
+      p = end;
+    }
+  }
+  return 0;
+}
+
+float mean(const aiColor3D& c) { return (c.r + c.g + c.b) / 3.0f; }
+
+Material convertMaterial(const aiMaterial& in) {
+  Material m;
+  aiString name;
+  if (in.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) m.name = name.C_Str();
+  if (m.name.empty()) m.name = "default";
+  aiColor3D color;
+  if (in.Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) m.color = {color.r, color.g, color.b};
+  if (in.Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS)
+    m.emission = {color.r, color.g, color.b};
+  float opacity = 1.0f;
+  if (in.Get(AI_MATKEY_OPACITY, opacity) == AI_SUCCESS) m.opacity = std::clamp(opacity, 0.0f, 1.0f);
+  aiColor3D specular(0, 0, 0);
+  in.Get(AI_MATKEY_COLOR_SPECULAR, specular);
+  const float ks = std::clamp(mean(specular), 0.0f, 1.0f);
+  int illum = -1;
+  in.Get(AI_MATKEY_OBJ_ILLUM, illum);
+  if (illum == 3 || illum == 5) {
+    m.reflectivity = ks > 0.0f ? ks : 1.0f;
+  } else if (illum == 4 || illum == 6 || illum == 7) {
+    m.reflectivity = ks;
+    m.transmission = m.opacity < 1.0f ? 1.0f - m.opacity : 1.0f;
+  }
+  float ior = 1.0f;
+  if (m.transmission > 0.0f && in.Get(AI_MATKEY_REFRACTI, ior) == AI_SUCCESS && ior > 0.0f)
+    m.refractiveIndex = ior;
+  return m;
+}
+
+struct Matrix3x4 {
+  float m[3][4];
+};
+
+Matrix3x4 toMatrix(const aiMatrix4x4& t) {
+  return {{{t.a1, t.a2, t.a3, t.a4}, {t.b1, t.b2, t.b3, t.b4}, {t.c1, t.c2, t.c3, t.c4}}};
+}
+
+bool isIdentity(const aiMatrix4x4& t) { return t.IsIdentity(); }
+
+struct Collector {
+  const aiScene& scene;
+  TriangleMesh& out;
+  bool allHaveNormals = true;
+
+  void visit(const aiNode& node, const aiMatrix4x4& parent) {
+    const aiMatrix4x4 transform = parent * node.mTransformation;
+    for (unsigned i = 0; i < node.mNumMeshes; ++i)
+      append(*scene.mMeshes[node.mMeshes[i]], transform);
+    for (unsigned i = 0; i < node.mNumChildren; ++i) visit(*node.mChildren[i], transform);
+  }
+
+  void append(const aiMesh& mesh, const aiMatrix4x4& transform) {
+    size_t triangles = 0;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) triangles += mesh.mFaces[f].mNumIndices == 3;
+    if (triangles == 0) return;
+    const uint32_t base = static_cast<uint32_t>(out.vertexCount());
+    const bool identity = isIdentity(transform);
+    const Matrix3x4 t = toMatrix(transform);
+    aiMatrix3x3 normalTransform(transform);
+    normalTransform.Inverse().Transpose();
+    if (!mesh.HasNormals()) allHaveNormals = false;
+    out.positions.reserve(out.positions.size() + 3 * size_t(mesh.mNumVertices));
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D& p = mesh.mVertices[v];
+      if (identity) {
+        out.positions.insert(out.positions.end(), {p.x, p.y, p.z});
+      } else {
+        for (int r = 0; r < 3; ++r)
+          out.positions.push_back(t.m[r][0] * p.x + t.m[r][1] * p.y + t.m[r][2] * p.z + t.m[r][3]);
+      }
+      if (allHaveNormals) {
+        aiVector3D n = identity ? mesh.mNormals[v] : normalTransform * mesh.mNormals[v];
+        const float length = n.Length();
+        if (length > 0.0f) n /= length;
+        out.normals.insert(out.normals.end(), {n.x, n.y, n.z});
+      }
+    }
+    out.triangles.reserve(out.triangles.size() + 3 * triangles);
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines
+      out.triangles.insert(out.triangles.end(), {base + face.mIndices[0], base + face.mIndices[1],
+                                                 base + face.mIndices[2]});
+    }
+    out.triangleMaterials.insert(out.triangleMaterials.end(), triangles,
+                                 static_cast<uint16_t>(mesh.mMaterialIndex));
+  }
+};
+
+}  // namespace
+
+Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& options) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return makeError(ErrorCode::kIo, path, ": no such file");
+  const std::string extension = lower(fs::path(path).extension().string());
+  const bool isObj = extension == ".obj";
+
+  Assimp::Importer importer;
+  std::string fallbackMtl;
+  if (isObj) {
+    fs::path mtl = fs::path(path);
+    mtl.replace_extension(".mtl");
+    if (fs::is_regular_file(mtl, ec)) fallbackMtl = mtl.string();
+  }
+  importer.SetIOHandler(new MtlFallbackIo(fallbackMtl));  // the importer owns it
+  // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
+  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) ||
+      scene->mRootNode == nullptr) {
+    return makeError(ErrorCode::kCorrupt, path,
+                     ": cannot parse: ", oneLine(importer.GetErrorString()));
+  }
+  if (scene->mNumMaterials > 65536) {
+    return makeError(ErrorCode::kTooLarge, path, ": ", scene->mNumMaterials,
+                     " materials, more than 65536");
+  }
+  uint64_t faces = 0;
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) faces += scene->mMeshes[i]->mNumFaces;
+  if (faces > options.maxTriangles) {
+    return makeError(ErrorCode::kTooLarge, path, ": ", faces, " faces, more than the limit of ",
+                     options.maxTriangles, " triangles");
+  }
+
+  TriangleMesh mesh;
+  Collector collector{*scene, mesh};
+  collector.visit(*scene->mRootNode, aiMatrix4x4());
+  if (!collector.allHaveNormals) mesh.normals.clear();
+  if (mesh.triangleCount() == 0) return makeError(ErrorCode::kCorrupt, path, ": no triangles");
+  if (mesh.triangleCount() > options.maxTriangles) {
+    return makeError(ErrorCode::kTooLarge, path, ": ", mesh.triangleCount(),
+                     " triangles, more than the limit of ", options.maxTriangles);
+  }
+  if (mesh.vertexCount() > std::numeric_limits<uint32_t>::max()) {
+    return makeError(ErrorCode::kTooLarge, path, ": ", mesh.vertexCount(),
+                     " vertices, more than 2^32-1");
+  }
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    if (std::isfinite(mesh.positions[i])) continue;
+    const size_t line = isObj ? findNonFiniteObjVertexLine(path) : 0;
+    if (line > 0) {
+      return makeError(ErrorCode::kNonFinite, path, ": line ", line,
+                       ": non-finite vertex coordinate");
+    }
+    return makeError(ErrorCode::kNonFinite, path, ": vertex ", i / 3, ": non-finite coordinate ",
+                     mesh.positions[i]);
+  }
+  mesh.materials.reserve(scene->mNumMaterials);
+  for (unsigned i = 0; i < scene->mNumMaterials; ++i)
+    mesh.materials.push_back(convertMaterial(*scene->mMaterials[i]));
+  if (mesh.materials.empty()) mesh.materials.push_back(Material{"default"});
+  return mesh;
+}
+
+}  // namespace voxlink::geometry

@@ -1,0 +1,107 @@
+#include "geometry/sphere_voxelizer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+namespace voxlink::geometry {
+namespace {
+
+#pragma pack(push, 4)
+struct Overlap {
+  uint64_t key;
+  uint32_t sphere;
+  bool operator<(const Overlap& o) const { return key != o.key ? key < o.key : sphere < o.sphere; }
+};
+#pragma pack(pop)
+
+}  // namespace
+
+Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
+                                           const VoxelGrid& grid, uint64_t maxOverlaps) {
+  VOXLINK_RETURN_IF_ERROR(validateGrid(grid));
+  for (size_t s = 0; s < spheres.size(); ++s) {
+    const Sphere& sphere = spheres[s];
+    if (!std::isfinite(sphere.center[0]) || !std::isfinite(sphere.center[1]) ||
+        !std::isfinite(sphere.center[2])) {
+      return makeError(ErrorCode::kNonFinite, "sphere ", s, ": centre is not finite");
+    }
+    if (!(std::isfinite(sphere.radius) && sphere.radius > 0.0f)) {
+      return makeError(ErrorCode::kInvalidArgument, "sphere ", s, ": radius ", sphere.radius,
+                       " is not a positive finite size");
+    }
+  }
+  if (spheres.size() > UINT32_MAX)
+    return makeError(ErrorCode::kTooLarge, "spheres: ", spheres.size(), " is more than 2^32-1");
+
+  tbb::enumerable_thread_specific<std::vector<Overlap>> local;
+  std::atomic<uint64_t> total{0};
+  std::atomic<bool> tooMany{false};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, spheres.size(), 64), [&](const auto& range) {
+    std::vector<Overlap>& out = local.local();
+    const size_t before = out.size();
+    for (size_t s = range.begin(); s != range.end() && !tooMany; ++s) {
+      const Sphere& sphere = spheres[s];
+      const auto c = grid.toGrid(sphere.center[0], sphere.center[1], sphere.center[2]);
+      const double r = sphere.radius / grid.spacing;
+      int64_t lo[3], hi[3];
+      bool empty = false;
+      for (int a = 0; a < 3; ++a) {
+        // Voxel i's box [i, i+1] reaches the sphere's extent [c - r, c + r].
+        lo[a] = std::max<int64_t>(0, int64_t(std::ceil(c[a] - r)) - 1);
+        hi[a] = std::min<int64_t>(int64_t(grid.dims[a]) - 1, int64_t(std::floor(c[a] + r)));
+        empty |= lo[a] > hi[a];
+      }
+      if (empty) continue;
+      for (int64_t k = lo[2]; k <= hi[2]; ++k) {
+        for (int64_t j = lo[1]; j <= hi[1]; ++j) {
+          // Candidate x range of this row from the remaining radius, widened by one voxel
+          // against rounding; each candidate gets the exact test.
+          const double dz = std::max({0.0, double(k) - c[2], c[2] - double(k + 1)});
+          const double dy = std::max({0.0, double(j) - c[1], c[1] - double(j + 1)});
+          const double rest = r * r - dy * dy - dz * dz;
+          if (rest < 0.0) continue;
+          const double t = std::sqrt(rest);
+          const int64_t from = std::max<int64_t>(lo[0], int64_t(std::ceil(c[0] - t)) - 2);
+          const int64_t to = std::min<int64_t>(hi[0], int64_t(std::floor(c[0] + t)) + 1);
+          for (int64_t i = from; i <= to; ++i) {
+            if (sphereOverlapsVoxel(c, r, i, j, k))
+              out.push_back({voxelKey(uint32_t(i), uint32_t(j), uint32_t(k)), uint32_t(s)});
+          }
+        }
+      }
+    }
+    if (total.fetch_add(out.size() - before) + (out.size() - before) > maxOverlaps) tooMany = true;
+  });
+  if (tooMany) {
+    return makeError(ErrorCode::kTooLarge, "sphere voxelizer: more than ", maxOverlaps,
+                     " voxel/sphere overlaps at grid ", grid.dims[0], "x", grid.dims[1], "x",
+                     grid.dims[2]);
+  }
+  std::vector<Overlap> overlaps;
+  overlaps.reserve(total);
+  for (auto& part : local) {
+    overlaps.insert(overlaps.end(), part.begin(), part.end());
+    std::vector<Overlap>().swap(part);
+  }
+  tbb::parallel_sort(overlaps.begin(), overlaps.end());
+
+  SphereVoxelization result;
+  result.sphereIds.resize(overlaps.size());
+  result.offsets.push_back(0);
+  for (size_t i = 0; i < overlaps.size(); ++i) {
+    if (i > 0 && overlaps[i].key != overlaps[i - 1].key) result.offsets.push_back(i);
+    if (i == 0 || overlaps[i].key != overlaps[i - 1].key)
+      result.voxels.push_back(voxelFromKey(overlaps[i].key));
+    result.sphereIds[i] = overlaps[i].sphere;
+  }
+  if (!overlaps.empty()) result.offsets.push_back(overlaps.size());
+  return result;
+}
+
+}  // namespace voxlink::geometry

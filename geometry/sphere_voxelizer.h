@@ -1,0 +1,49 @@
+// Voxelization of implicit spheres (particles): for every sphere exactly the voxels whose box it
+// overlaps, i.e. the squared distance from the centre to the voxel's closed box is <= r^2
+// (evaluated in grid coordinates in double precision; touching counts). Solid: a sphere marks
+// its interior voxels too. Spheres partly outside the grid mark only the voxels inside it.
+//
+// The result lists, per overlapped voxel, the indices of the spheres overlapping it, CSR-like:
+//   voxel n = voxels[n], its spheres = sphereIds[offsets[n] .. offsets[n + 1]) (ascending).
+// Voxels are sorted by (z, y, x). Memory: 12 bytes per (voxel, sphere) overlap plus the output.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "format/error.h"
+#include "geometry/particle_loader.h"
+#include "geometry/voxel_grid.h"
+
+namespace voxlink::geometry {
+
+struct SphereVoxelization {
+  std::vector<std::array<uint32_t, 3>> voxels;  // x, y, z
+  std::vector<uint64_t> offsets;                // voxels.size() + 1 entries
+  std::vector<uint32_t> sphereIds;
+};
+
+inline constexpr uint64_t kDefaultMaxSphereOverlaps = 256ull << 20;
+
+// Errors: an invalid grid, a non-finite centre or a radius that is not finite and > 0 (names the
+// sphere), more overlaps than maxOverlaps (kTooLarge).
+Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
+                                           const VoxelGrid& grid,
+                                           uint64_t maxOverlaps = kDefaultMaxSphereOverlaps);
+
+// Exact test used by voxelizeSpheres: sphere (centre and radius in grid coordinates) against
+// voxel (i, j, k)'s box [i, i+1] x [j, j+1] x [k, k+1].
+inline bool sphereOverlapsVoxel(const std::array<double, 3>& centre, double radius, int64_t i,
+                                int64_t j, int64_t k) {
+  const int64_t lo[3] = {i, j, k};
+  double d2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double below = double(lo[a]) - centre[a], above = centre[a] - double(lo[a] + 1);
+    const double d = below > 0.0 ? below : (above > 0.0 ? above : 0.0);
+    d2 += d * d;
+  }
+  return d2 <= radius * radius;
+}
+
+}  // namespace voxlink::geometry

@@ -1,0 +1,219 @@
+// loadMesh on the real meshes in ../shared/data/mesh and on small files written here.
+#include "geometry/mesh_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "tests/support/test_util.h"
+
+namespace voxlink::geometry {
+namespace {
+
+using testing::dataPath;
+using testing::TempDir;
+
+void writeText(const std::string& path, const std::string& text) {
+  testing::writeBytes(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
+
+const Material* findMaterial(const TriangleMesh& mesh, const std::string& name) {
+  for (const Material& m : mesh.materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+TEST(MeshLoader, BunnyObjAndAsciiPlyAgree) {
+  VOXLINK_REQUIRE_DATA("mesh/c3dtm_stanford-bunny.obj");
+  VOXLINK_REQUIRE_DATA("mesh/vtk_bunny.ply");
+  auto obj = loadMesh(dataPath("mesh/c3dtm_stanford-bunny.obj"));
+  auto ply = loadMesh(dataPath("mesh/vtk_bunny.ply"));
+  ASSERT_TRUE(obj) << obj.message();
+  ASSERT_TRUE(ply) << ply.message();
+  EXPECT_EQ(obj->triangleCount(), 69451u);
+  EXPECT_EQ(ply->triangleCount(), 69451u);
+  EXPECT_EQ(ply->vertexCount(), 35947u);  // PLY keeps its shared vertices
+  const Bounds3 a = meshBounds(*obj), b = meshBounds(*ply);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(a.min[axis], b.min[axis], 1e-5f);
+    EXPECT_NEAR(a.max[axis], b.max[axis], 1e-5f);
+  }
+  EXPECT_NEAR(b.max[1], 0.187321f, 1e-6f);  // the ear tip, from the PLY's text
+  EXPECT_EQ(obj->triangleMaterials.size(), obj->triangleCount());
+}
+
+TEST(MeshLoader, HorseBigEndianPly) {
+  VOXLINK_REQUIRE_DATA("mesh/vtk_horse.ply");
+  auto mesh = loadMesh(dataPath("mesh/vtk_horse.ply"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->vertexCount(), 48485u);
+  EXPECT_EQ(mesh->triangleCount(), 96966u);
+  const Bounds3 b = meshBounds(*mesh);
+  // Read with the wrong byte order the floats would be huge or tiny; the horse is ~0.18 long.
+  EXPECT_NEAR(b.max[1] - b.min[1], 0.183341f, 1e-5f);
+}
+
+TEST(MeshLoader, DragonLittleEndianPly) {
+  VOXLINK_REQUIRE_DATA("mesh/stanford_dragon_decimated.ply");
+  auto mesh = loadMesh(dataPath("mesh/stanford_dragon_decimated.ply"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->vertexCount(), 11429u);
+  EXPECT_EQ(mesh->triangleCount(), 22866u);
+}
+
+TEST(MeshLoader, CornellBoxOriginalMaterials) {
+  VOXLINK_REQUIRE_DATA("mesh/mcguire_CornellBox-Original.obj");
+  // The OBJ names CornellBox-Original.mtl; the file beside it is mcguire_CornellBox-Original.mtl.
+  auto mesh = loadMesh(dataPath("mesh/mcguire_CornellBox-Original.obj"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->triangleCount(), 36u);  // 18 quads, negative indices
+  const Material* light = findMaterial(*mesh, "light");
+  ASSERT_NE(light, nullptr);
+  EXPECT_FLOAT_EQ(light->emission[0], 17.0f);
+  EXPECT_FLOAT_EQ(light->emission[1], 12.0f);
+  EXPECT_FLOAT_EQ(light->emission[2], 4.0f);
+  const Material* left = findMaterial(*mesh, "leftWall");
+  ASSERT_NE(left, nullptr);
+  EXPECT_FLOAT_EQ(left->color[0], 0.63f);
+  EXPECT_FLOAT_EQ(left->refractiveIndex, 1.0f);  // Ni 1.5 but illum 2: does not refract
+  // The light's two triangles carry the light's material.
+  size_t lightTriangles = 0;
+  for (uint16_t m : mesh->triangleMaterials) lightTriangles += mesh->materials[m].name == "light";
+  EXPECT_EQ(lightTriangles, 2u);
+}
+
+TEST(MeshLoader, CornellBoxSphereMirrorAndGlass) {
+  VOXLINK_REQUIRE_DATA("mesh/mcguire_CornellBox-Sphere.obj");
+  auto mesh = loadMesh(dataPath("mesh/mcguire_CornellBox-Sphere.obj"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  const Material* mirror = findMaterial(*mesh, "leftSphere");  // illum 5, Ks 0.95
+  const Material* glass = findMaterial(*mesh, "rightSphere");  // illum 7, Ni 2.5, Ks 0.3
+  ASSERT_NE(mirror, nullptr);
+  ASSERT_NE(glass, nullptr);
+  EXPECT_NEAR(mirror->reflectivity, 0.95f, 1e-6f);
+  EXPECT_FLOAT_EQ(mirror->transmission, 0.0f);
+  EXPECT_FLOAT_EQ(glass->refractiveIndex, 2.5f);
+  EXPECT_FLOAT_EQ(glass->transmission, 1.0f);
+  EXPECT_NEAR(glass->reflectivity, 0.3f, 1e-6f);
+  const Material* light = findMaterial(*mesh, "light");
+  ASSERT_NE(light, nullptr);
+  EXPECT_FLOAT_EQ(light->emission[0], 10.0f);
+  EXPECT_EQ(mesh->normals.size(), mesh->positions.size());  // the file has vn records
+}
+
+TEST(MeshLoader, PolygonsAndNegativeIndices) {
+  TempDir dir;
+  writeText(dir.file("p.obj"),
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0.5 1.5 0\nv 0 1 0\n"
+            "f -5 -4 -3 -2 -1\n"  // a pentagon -> 3 triangles
+            "v 0 0 1\nv 1 0 1\nv 0 1 1\nf 6 7 8\n");
+  auto mesh = loadMesh(dir.file("p.obj"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->triangleCount(), 4u);
+  const Bounds3 b = meshBounds(*mesh);
+  EXPECT_FLOAT_EQ(b.max[1], 1.5f);
+  EXPECT_FLOAT_EQ(b.max[2], 1.0f);
+}
+
+// A two-triangle binary PLY with an extra float and an extra uchar per vertex.
+std::vector<uint8_t> binaryPly(bool bigEndian) {
+  std::string header = std::string("ply\nformat ") +
+                       (bigEndian ? "binary_big_endian" : "binary_little_endian") +
+                       " 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                       "property float z\nproperty float confidence\nproperty uchar red\n"
+                       "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  std::vector<uint8_t> out(header.begin(), header.end());
+  auto put = [&](const void* p, size_t n) {
+    const uint8_t* b = static_cast<const uint8_t*>(p);
+    for (size_t i = 0; i < n; ++i) out.push_back(b[bigEndian ? n - 1 - i : i]);
+  };
+  const float v[4][4] = {{0, 0, 0, 0.5f}, {2, 0, 0, 0.5f}, {2, 3, 0, 0.5f}, {0, 3, 4, 0.5f}};
+  for (const auto& vertex : v) {
+    for (float f : vertex) put(&f, 4);
+    out.push_back(7);
+  }
+  const int32_t faces[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  for (const auto& face : faces) {
+    out.push_back(3);
+    for (int32_t i : face) put(&i, 4);
+  }
+  return out;
+}
+
+TEST(MeshLoader, BinaryPlyBothByteOrders) {
+  TempDir dir;
+  for (bool bigEndian : {false, true}) {
+    const std::string path = dir.file(bigEndian ? "be.ply" : "le.ply");
+    testing::writeBytes(path, binaryPly(bigEndian));
+    auto mesh = loadMesh(path);
+    ASSERT_TRUE(mesh) << mesh.message();
+    EXPECT_EQ(mesh->triangleCount(), 2u);
+    const Bounds3 b = meshBounds(*mesh);
+    EXPECT_FLOAT_EQ(b.max[0], 2.0f);
+    EXPECT_FLOAT_EQ(b.max[1], 3.0f);
+    EXPECT_FLOAT_EQ(b.max[2], 4.0f);
+  }
+}
+
+TEST(MeshLoaderErrors, MissingFile) {
+  auto mesh = loadMesh("/nonexistent/mesh.obj");
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kIo);
+  EXPECT_NE(mesh.message().find("/nonexistent/mesh.obj"), std::string::npos);
+}
+
+TEST(MeshLoaderErrors, Unparseable) {
+  TempDir dir;
+  writeText(dir.file("bad.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n");
+  auto mesh = loadMesh(dir.file("bad.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("bad.ply"), std::string::npos) << mesh.message();
+  EXPECT_EQ(mesh.message().find('\n'), std::string::npos);
+}
+
+TEST(MeshLoaderErrors, NoTriangles) {
+  TempDir dir;
+  writeText(dir.file("points.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
+  auto mesh = loadMesh(dir.file("points.obj"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("points.obj"), std::string::npos) << mesh.message();
+}
+
+TEST(MeshLoaderErrors, NonFiniteObjVertexNamesTheLine) {
+  TempDir dir;
+  writeText(dir.file("nan.obj"), "# a comment\nv 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n");
+  auto mesh = loadMesh(dir.file("nan.obj"));
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kNonFinite) << mesh.message();
+  EXPECT_NE(mesh.message().find("nan.obj: line 3"), std::string::npos) << mesh.message();
+}
+
+TEST(MeshLoaderErrors, NonFinitePlyVertex) {
+  TempDir dir;
+  writeText(dir.file("inf.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n");
+  auto mesh = loadMesh(dir.file("inf.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kNonFinite) << mesh.message();
+  EXPECT_NE(mesh.message().find("inf.ply: vertex 1"), std::string::npos) << mesh.message();
+}
+
+TEST(MeshLoaderErrors, TriangleLimit) {
+  TempDir dir;
+  writeText(dir.file("two.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+  MeshLoadOptions options;
+  options.maxTriangles = 1;
+  auto mesh = loadMesh(dir.file("two.obj"), options);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kTooLarge);
+  EXPECT_NE(mesh.message().find("two.obj"), std::string::npos);
+  EXPECT_TRUE(loadMesh(dir.file("two.obj")));
+}
+
+}  // namespace
+}  // namespace voxlink::geometry
