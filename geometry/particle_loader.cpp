@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <unordered_map>
 
 namespace voxlink::geometry {
@@ -38,9 +39,18 @@ std::string canonicalElement(std::string_view s) {
   return out;
 }
 
+// "file: line N", formatted only when an error message needs it.
+struct Where {
+  const std::string& path;
+  size_t line;
+};
+std::ostream& operator<<(std::ostream& out, const Where& where) {
+  return out << where.path << ": line " << where.line;
+}
+
 class MaterialTable {
  public:
-  Result<uint16_t> index(const std::string& name, const std::string& where) {
+  Result<uint16_t> index(const std::string& name, const Where& where) {
     auto it = ids_.find(name);
     if (it != ids_.end()) return it->second;
     if (names_.size() >= 65536)
@@ -123,7 +133,7 @@ Result<ParticleSet> loadPdb(const std::string& path) {
   for (size_t number = 1; std::getline(in, line); ++number) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.rfind("ATOM", 0) != 0 && line.rfind("HETATM", 0) != 0) continue;
-    const std::string where = cat(path, ": line ", number);
+    const Where where{path, number};
     if (line.size() < 54) {
       return makeError(ErrorCode::kTruncated, where, ": ", line.substr(0, 6), " record has ",
                        line.size(), " columns, the coordinates need 54");
@@ -177,7 +187,7 @@ Result<ParticleSet> loadParticleText(const std::string& path) {
       start = stop + 1;
     }
     if (fields.empty()) continue;
-    const std::string where = cat(path, ": line ", number);
+    const Where where{path, number};
     float probe = 0.0f;
     if (firstRecord && !parseFloat(fields[0], probe)) {  // a header line
       firstRecord = false;

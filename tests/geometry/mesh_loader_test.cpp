@@ -157,6 +157,21 @@ TEST(MeshLoader, BinaryPlyBothByteOrders) {
   }
 }
 
+TEST(MeshLoader, AsciiStl) {
+  TempDir dir;
+  writeText(
+      dir.file("t.stl"),
+      "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 2 0 0\n"
+      "   vertex 0 3 0\n  endloop\n endfacet\n facet normal 0 0 -1\n  outer loop\n"
+      "   vertex 0 0 1\n   vertex 0 3 1\n   vertex 2 0 1\n  endloop\n endfacet\nendsolid t\n");
+  auto mesh = loadMesh(dir.file("t.stl"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->triangleCount(), 2u);
+  const Bounds3 b = meshBounds(*mesh);
+  EXPECT_FLOAT_EQ(b.max[1], 3.0f);
+  EXPECT_FLOAT_EQ(b.max[2], 1.0f);
+}
+
 TEST(MeshLoaderErrors, MissingFile) {
   auto mesh = loadMesh("/nonexistent/mesh.obj");
   ASSERT_FALSE(mesh);
