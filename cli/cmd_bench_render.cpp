@@ -55,7 +55,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     auto settings = args->render.settings();
     if (!settings) return reportError(settings.error());
     o.base = *settings;
-    auto spec = args->render.cameraSpec();
+    auto spec = args->render.cameraSpec(*file);
     if (!spec) return reportError(spec.error());
     o.camera = *spec;
     o.pictureDir = args->pictures;

@@ -34,7 +34,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
     if (!file) return reportError(file.error());
     auto settings = args->render.settings();
     if (!settings) return reportError(settings.error());
-    auto spec = args->render.cameraSpec();
+    auto spec = args->render.cameraSpec(*file);
     if (!spec) return reportError(spec.error());
     auto tf = args->render.transferFunction(*file);
     if (!tf) return reportError(tf.error());

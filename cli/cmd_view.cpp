@@ -36,7 +36,7 @@ CommandRunner addViewCommand(CLI::App& app) {
     auto settings = args->render.settings();
     if (!settings) return reportError(settings.error());
     o.settings = *settings;
-    auto spec = args->render.cameraSpec();
+    auto spec = args->render.cameraSpec(*file);
     if (!spec) return reportError(spec.error());
     o.camera = *spec;
     if (!args->render.tfPath.empty() || !args->render.tfPreset.empty()) {

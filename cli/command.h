@@ -22,6 +22,7 @@ int reportError(const Status& status);
 CommandRunner addConvertCommand(CLI::App& app);
 CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
+CommandRunner addSceneCommand(CLI::App& app);
 CommandRunner addStatsCommand(CLI::App& app);
 CommandRunner addKrigeCommand(CLI::App& app);
 CommandRunner addGrfCommand(CLI::App& app);

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
                "voxlink"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxlink 0.1.0");
-  const CommandFactory factories[] = {addConvertCommand, addInfoCommand, addValidateCommand, addStatsCommand, addKrigeCommand,
+  const CommandFactory factories[] = {addConvertCommand, addInfoCommand, addValidateCommand, addSceneCommand, addStatsCommand, addKrigeCommand,
                                       addGrfCommand,
 #ifdef VOXLINK_WITH_VIEWER
                                       addRenderCommand, addBenchRenderCommand, addViewCommand,

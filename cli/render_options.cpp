@@ -1,6 +1,7 @@
 #include "cli/render_options.h"
 
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "viewer/core/tf_presets.h"
@@ -14,8 +15,8 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
       ->check(CLI::IsMember(viewer::tfPresetNames()));
   cmd->add_option("--camera", camera, "AZ,EL[,DIST[,FOV]]: azimuth and elevation in degrees, distance "
                                       "(1 frames the volume), vertical field of view (default 30,20,1,30)");
-  cmd->add_option("--up", up, "World axis pointing up on screen")
-      ->check(CLI::IsMember({"y", "z", "-y", "-z"}))->capture_default_str();
+  cmd->add_option("--up", up, "World axis pointing up on screen (default z, or the scene file's camera)")
+      ->check(CLI::IsMember({"y", "z", "-y", "-z"}));
   cmd->add_option("--sampling", sampling, "voxel (nearest, exact chords) or trilinear")
       ->check(CLI::IsMember({"voxel", "trilinear"}))->capture_default_str();
   cmd->add_option("--step", step, "Trilinear step in units of the smallest voxel spacing")->capture_default_str();
@@ -48,9 +49,30 @@ Result<viewer::RenderSettings> RenderOptions::settings() const {
   return s;
 }
 
-Result<viewer::CameraSpec> RenderOptions::cameraSpec() const {
+Result<viewer::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& file) const {
   viewer::CameraSpec defaults;
-  defaults.up = viewer::parseUpAxis(up).value_or(viewer::UpAxis::kZ);
+  // A scene's camera (META scene.camera, from its scene file) is the default view.
+  const auto meta = nlohmann::json::parse(file.metaJson(), nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json* sceneCamera = nullptr;
+  if (meta.is_object() && meta.contains("scene") && meta["scene"].is_object() && meta["scene"].contains("camera"))
+    sceneCamera = &meta["scene"]["camera"];
+  if (sceneCamera && sceneCamera->is_object()) {
+    const nlohmann::json& c = *sceneCamera;
+    auto number = [&](const char* key, double& out) {
+      if (c.contains(key) && c[key].is_number()) out = c[key].get<double>();
+    };
+    number("azimuth", defaults.azimuthDeg);
+    number("elevation", defaults.elevationDeg);
+    number("distance", defaults.distanceScale);
+    number("fov", defaults.fovYDeg);
+    if (c.contains("up") && c["up"].is_string())
+      defaults.up = viewer::parseUpAxis(c["up"].get<std::string>()).value_or(viewer::UpAxis::kZ);
+  }
+  if (!up.empty()) {
+    auto axis = viewer::parseUpAxis(up);
+    if (!axis) return makeError(ErrorCode::kInvalidArgument, "--up: \"", up, "\" is not y, z, -y or -z");
+    defaults.up = *axis;
+  }
   if (camera.empty()) return defaults;
   return viewer::parseCameraSpec(camera, defaults);
 }

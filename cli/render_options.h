@@ -19,7 +19,7 @@ struct RenderOptions {
   std::string tfPath;
   std::string tfPreset;
   std::string camera;
-  std::string up = "z";
+  std::string up;  // empty: the scene's camera, else z
   std::string sampling = "voxel";
   double step = 0.5;
   bool shadows = false;
@@ -29,7 +29,8 @@ struct RenderOptions {
   // Registers the options on `cmd`; `withSize` is false for commands with their own size flag.
   void add(CLI::App* cmd, bool withSize = true);
   Result<viewer::RenderSettings> settings() const;
-  Result<viewer::CameraSpec> cameraSpec() const;
+  // --camera and --up over the file's own view (a scene's camera), over the defaults.
+  Result<viewer::CameraSpec> cameraSpec(const format::VoxLinkFile& file) const;
   // --tf file, else --tf-preset over the file's value range, else the file's default.
   Result<format::TransferFunction> transferFunction(const format::VoxLinkFile& file) const;
 };

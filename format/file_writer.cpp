@@ -227,11 +227,14 @@ void makeSceneHeader(FileHeader& h, const SceneSections& scene) {
   h.materialCount = static_cast<uint32_t>(scene.materials.size());
   h.sphereCount = static_cast<uint32_t>(scene.spheres.size());
   h.sphereRefCount = scene.sphereRefs.size();
-  h.surfaceVoxelCount = static_cast<uint64_t>(
-      std::count_if(scene.surface.begin(), scene.surface.end(), [](uint32_t w) { return w != kNoSurface; }));
-  uint64_t volume = 0;
-  for (uint32_t w : scene.volumeMask) volume += static_cast<uint64_t>(std::popcount(w));
-  h.volumeVoxelCount = volume;
+  auto bits = [](const std::vector<uint32_t>& mask) {
+    uint64_t n = 0;
+    for (uint32_t w : mask) n += static_cast<uint64_t>(std::popcount(w));
+    return n;
+  };
+  h.surfaceVoxelCount = bits(scene.surfaceMask);
+  h.volumeVoxelCount = bits(scene.volumeMask);
+  h.sphereVoxelCount = bits(scene.sphereMask);
 }
 
 Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
@@ -239,16 +242,21 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
   FileHeader header = makeHeader(v.description, v.voxelCount(), v.occupiedBrickCount());
   if (v.scene) {
     const SceneSections& s = *v.scene;
-    if (s.surface.size() != v.voxelCount() || s.volumeMask.size() != ceilDiv(v.voxelCount(), 32) ||
-        (!s.spheres.empty() && s.sphereRefStart.size() != v.voxelCount() + 1))
-      return makeError(ErrorCode::kInvalidArgument, path, ": scene sections do not match the ", v.voxelCount(), " voxels");
+    const uint64_t maskWords = ceilDiv(v.voxelCount(), 32);
+    if (s.volumeMask.size() != maskWords || s.surfaceMask.size() != maskWords ||
+        (!s.spheres.empty() && s.sphereMask.size() != maskWords))
+      return makeError(ErrorCode::kInvalidArgument, path, ": scene masks do not match the ", v.voxelCount(), " voxels");
     if (s.materials.size() > kMaxMaterials)
       return makeError(ErrorCode::kTooLarge, path, ": ", s.materials.size(), " materials exceed the format's limit of ", kMaxMaterials);
     makeSceneHeader(header, s);
+    if (s.surface.size() != header.surfaceVoxelCount ||
+        (!s.spheres.empty() && s.sphereRefStart.size() != header.sphereVoxelCount + 1))
+      return makeError(ErrorCode::kInvalidArgument, path, ": scene payloads do not match their masks");
   }
-  const size_t valueBytes = v.voxelCount() * storedSize(v.description.valueType);
-  if (v.values.size() != valueBytes)
-    return makeError(ErrorCode::kInvalidArgument, path, ": VALU has ", v.values.size(), " bytes, ", v.voxelCount(), " voxels need ", valueBytes);
+  const uint64_t slots = sampleSlots(header);
+  const size_t valueBytes = slots * storedSize(v.description.valueType);
+  if (v.values.size() != valueBytes || v.gradients.size() != slots)
+    return makeError(ErrorCode::kInvalidArgument, path, ": VALU/GRAD hold ", v.values.size(), " bytes/", v.gradients.size(), " codes, ", slots, " samples need ", valueBytes, "/", slots);
   VOXLINK_ASSIGN_OR_RETURN(FileWriter writer, FileWriter::create(path, header));
   auto put = [&](SectionId id, const auto& vec) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
@@ -264,10 +272,12 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
   if (v.scene) {
     const SceneSections& s = *v.scene;
     VOXLINK_RETURN_IF_ERROR(put(SectionId::kMaterials, s.materials));
-    VOXLINK_RETURN_IF_ERROR(put(SectionId::kSurface, s.surface));
     VOXLINK_RETURN_IF_ERROR(put(SectionId::kVolumeMask, s.volumeMask));
+    VOXLINK_RETURN_IF_ERROR(put(SectionId::kSurfaceMask, s.surfaceMask));
+    VOXLINK_RETURN_IF_ERROR(put(SectionId::kSurface, s.surface));
     if (!s.spheres.empty()) {
       VOXLINK_RETURN_IF_ERROR(put(SectionId::kSpheres, s.spheres));
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereMask, s.sphereMask));
       VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereRefStart, s.sphereRefStart));
       VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereRefs, s.sphereRefs));
     }

@@ -93,13 +93,16 @@ class FileWriter {
   std::unique_ptr<std::mutex> crcMutex_ = std::make_unique<std::mutex>();
 };
 
-// The version 2 sections of a scene, per voxel in file order (see format/layout.h).
+// The version 2 sections of a scene (see format/layout.h): masks over the voxels in file order,
+// payloads over the voxels whose bit is set.
 struct SceneSections {
   std::vector<MaterialRecord> materials;  // MATL
-  std::vector<uint32_t> surface;          // SURF, one word per voxel
   std::vector<uint32_t> volumeMask;       // VMSK, ceil(voxels / 32) words
+  std::vector<uint32_t> surfaceMask;      // SMSK, ceil(voxels / 32) words
+  std::vector<uint32_t> surface;          // SURF, one word per surface voxel
   std::vector<SphereRecord> spheres;      // SPHR (empty: no sphere sections)
-  std::vector<uint32_t> sphereRefStart;   // SROF, voxels + 1 entries when there are spheres
+  std::vector<uint32_t> sphereMask;       // PMSK, ceil(voxels / 32) words when there are spheres
+  std::vector<uint32_t> sphereRefStart;   // SROF, sphere voxels + 1 entries
   std::vector<uint32_t> sphereRefs;       // SRID
 };
 
@@ -115,11 +118,12 @@ struct BrickedVolume {
   std::vector<uint32_t> voxelBase;   // BVOX, occupied bricks + 1 entries
   std::vector<uint16_t> rowStarts;   // ROWS
   std::vector<uint32_t> rowMasks;    // MASK
-  std::vector<uint8_t> values;       // VALU, voxelCount * storedSize bytes (unpadded)
-  std::vector<uint16_t> gradients;   // GRAD
+  std::vector<uint8_t> values;       // VALU, voxelCount * storedSize bytes (unpadded); empty in
+                                     //   a scene without volume samples (format/voxlink_file.h)
+  std::vector<uint16_t> gradients;   // GRAD, as VALU
   std::optional<SceneSections> scene;  // present: a version 2 file
 
-  uint64_t voxelCount() const { return gradients.size(); }
+  uint64_t voxelCount() const { return voxelBase.empty() ? 0 : voxelBase.back(); }
   uint64_t occupiedBrickCount() const { return voxelBase.empty() ? 0 : voxelBase.size() - 1; }
 };
 

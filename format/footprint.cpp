@@ -14,15 +14,16 @@ SceneFootprint computeSceneFootprint(const VoxLinkFile& f) {
   s.materials = h.materialCount;
   s.spheres = h.sphereCount;
   s.sphereRefs = h.sphereRefCount;
-  const auto starts = f.sphereRefStarts();
-  for (size_t i = 0; i + 1 < starts.size(); ++i) s.sphereVoxels += starts[i + 1] > starts[i];
+  s.sphereVoxels = h.sphereVoxelCount;
   for (const SectionEntry& e : f.sectionTable()) {
     switch (static_cast<SectionId>(e.id)) {
       case SectionId::kValues:
       case SectionId::kGradients:
       case SectionId::kVolumeMask: s.volumeBytes += e.bytes; break;
       case SectionId::kSurface:
+      case SectionId::kSurfaceMask:
       case SectionId::kMaterials: s.surfaceBytes += e.bytes; break;
+      case SectionId::kSphereMask:
       case SectionId::kSpheres:
       case SectionId::kSphereRefStart:
       case SectionId::kSphereRefs: s.sphereBytes += e.bytes; break;

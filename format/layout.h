@@ -80,7 +80,8 @@ struct FileHeader {                // 256 bytes at offset 0
   uint64_t sphereRefCount;         // 8B (200)  entries of SRID
   uint64_t surfaceVoxelCount;      // 8B (208)  voxels whose SURF word holds a fragment
   uint64_t volumeVoxelCount;       // 8B (216)  voxels whose VMSK bit is set
-  uint8_t reserved[32];            // 32B (224) zero
+  uint64_t sphereVoxelCount;       // 8B (224)  voxels whose PMSK bit is set
+  uint8_t reserved[24];            // 24B (232) zero
 };
 static_assert(sizeof(FileHeader) == 256);
 static_assert(offsetof(FileHeader, sectionTableOffset) == 24);
@@ -93,7 +94,8 @@ static_assert(offsetof(FileHeader, valueErrorBound) == 184);
 static_assert(offsetof(FileHeader, materialCount) == 192);
 static_assert(offsetof(FileHeader, sphereRefCount) == 200);
 static_assert(offsetof(FileHeader, volumeVoxelCount) == 216);
-static_assert(offsetof(FileHeader, reserved) == 224);
+static_assert(offsetof(FileHeader, sphereVoxelCount) == 224);
+static_assert(offsetof(FileHeader, reserved) == 232);
 
 // Four ASCII characters read as a little-endian u32.
 constexpr uint32_t fourCC(const char (&s)[5]) {
@@ -112,13 +114,18 @@ enum class SectionId : uint32_t {
   kRowMask = fourCC("MASK"),         // u32[K*n*n*n/32]: n bits per row, bit d = voxel at depth d
   kValues = fourCC("VALU"),          // StoredType[voxels], padded to 4 bytes
   kGradients = fourCC("GRAD"),       // u16[voxels], padded to 4 bytes: GradientCodec codes
-  // Version 2 (scene) sections:
+  // Version 2 (scene) sections. Each kind of content is a voxel mask (bit i%32 of word i/32 set:
+  // voxel i has it) and a payload in voxel order over the voxels whose bit is set, so a kind
+  // costs a bit per voxel plus its payload where it is present. A voxel's slot in a payload is
+  // the rank of its bit (set bits before it); readers derive per-word prefix counts at load.
   kMaterials = fourCC("MATL"),       // MaterialRecord[materialCount]
-  kSurface = fourCC("SURF"),         // u32[voxels]: SurfaceFragment word, kNoSurface if none
-  kVolumeMask = fourCC("VMSK"),      // u32[ceil(voxels/32)]: bit i%32 of word i/32 = voxel i
-                                     //   carries a volume sample (VALU/GRAD); else they are 0
+  kVolumeMask = fourCC("VMSK"),      // u32[ceil(V/32)]: voxels with a volume sample (VALU, GRAD)
+  kSurfaceMask = fourCC("SMSK"),     // u32[ceil(V/32)]: voxels with a surface fragment
+  kSurface = fourCC("SURF"),         // u32[surfaceVoxelCount]: surface fragment words
   kSpheres = fourCC("SPHR"),         // SphereRecord[sphereCount]
-  kSphereRefStart = fourCC("SROF"),  // u32[voxels+1]: voxel i references SRID[SROF[i], SROF[i+1])
+  kSphereMask = fourCC("PMSK"),      // u32[ceil(V/32)]: voxels that reference spheres
+  kSphereRefStart = fourCC("SROF"),  // u32[sphereVoxelCount+1]: slot s references
+                                     //   SRID[SROF[s], SROF[s+1])
   kSphereRefs = fourCC("SRID"),      // u32[sphereRefCount]: sphere indices, ascending per voxel
 };
 // (B = brick count of the grid, K = occupied bricks, n = brick size.)
@@ -128,11 +135,12 @@ inline constexpr std::array<SectionId, 8> kRequiredSections = {
     SectionId::kBrickVoxelBase, SectionId::kRowStart, SectionId::kRowMask,
     SectionId::kValues,   SectionId::kGradients};
 
-// Sections every version 2 file has, and those it has when sphereCount > 0.
-inline constexpr std::array<SectionId, 3> kSceneSections = {
-    SectionId::kMaterials, SectionId::kSurface, SectionId::kVolumeMask};
-inline constexpr std::array<SectionId, 3> kSphereSections = {
-    SectionId::kSpheres, SectionId::kSphereRefStart, SectionId::kSphereRefs};
+// Sections every version 2 file has, and those it has when sphereCount > 0. In version 2, VALU
+// and GRAD hold volumeVoxelCount entries (the VMSK slots), not one per voxel.
+inline constexpr std::array<SectionId, 4> kSceneSections = {
+    SectionId::kMaterials, SectionId::kVolumeMask, SectionId::kSurfaceMask, SectionId::kSurface};
+inline constexpr std::array<SectionId, 4> kSphereSections = {
+    SectionId::kSpheres, SectionId::kSphereMask, SectionId::kSphereRefStart, SectionId::kSphereRefs};
 
 std::string_view sectionName(SectionId id);  // "META", ...
 

@@ -85,7 +85,7 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
     uint16_t gradient = kZeroGradient;
     uint32_t surface = kNoSurface;
     bool volume = false;
-    if (!spheres_.empty()) scene.sphereRefStart.push_back(static_cast<uint32_t>(scene.sphereRefs.size()));
+    const size_t refsBefore = scene.sphereRefs.size();
     size_t j = i;
     for (; j < keyed.size() && keyed[j].key == keyed[i].key; ++j) {
       const Entry& e = *keyed[j].entry;
@@ -108,19 +108,42 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
       }
     }
     bricks.add(first.x, first.y, first.z, bits, gradient);
-    scene.surface.push_back(surface);
-    if (voxel % 32 == 0) scene.volumeMask.push_back(0);
-    if (volume) scene.volumeMask.back() |= 1u << (voxel % 32);
+    if (voxel % 32 == 0) {
+      scene.volumeMask.push_back(0);
+      scene.surfaceMask.push_back(0);
+      if (!spheres_.empty()) scene.sphereMask.push_back(0);
+    }
+    const uint32_t bit = 1u << (voxel % 32);
+    if (volume) scene.volumeMask.back() |= bit;
+    if (surface != kNoSurface) {
+      scene.surfaceMask.back() |= bit;
+      scene.surface.push_back(surface);
+    }
+    if (scene.sphereRefs.size() > refsBefore) {
+      scene.sphereMask.back() |= bit;
+      scene.sphereRefStart.push_back(static_cast<uint32_t>(refsBefore));
+    }
     ++voxel;
     i = j;
   }
   if (!spheres_.empty()) scene.sphereRefStart.push_back(static_cast<uint32_t>(scene.sphereRefs.size()));
 
   VOXLINK_ASSIGN_OR_RETURN(BrickedVolume built, bricks.build(std::move(metaJson)));
-  // The range covers volume samples only; geometry voxels hold 0 in VALU.
   built.description.valueMin = std::isfinite(lo) ? lo : 0.0;
   built.description.valueMax = std::isfinite(hi) ? hi : 0.0;
-  if (geometry) built.scene = std::move(scene);
+  if (!geometry) return built;
+  // VALU and GRAD keep the volume voxels only, in voxel order (their VMSK slots).
+  const size_t valueSize = storedSize(d.valueType);
+  size_t slot = 0;
+  for (uint64_t v = 0; v < voxel; ++v) {
+    if (!((scene.volumeMask[v / 32] >> (v % 32)) & 1u)) continue;
+    std::memmove(built.values.data() + slot * valueSize, built.values.data() + v * valueSize, valueSize);
+    built.gradients[slot] = built.gradients[v];
+    ++slot;
+  }
+  built.values.resize(slot * valueSize);
+  built.gradients.resize(slot);
+  built.scene = std::move(scene);
   return built;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <vector>
 
 #include "format/brick_rows.h"
@@ -106,12 +107,8 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
     if (!isCanonicalGradientCode(grads[i]))
       return makeError(ErrorCode::kCorrupt, f.path(), ": section GRAD: voxel ", i, " has the reserved or non-canonical code 0x", std::hex, grads[i]);
   const double slack = 1e-9 * std::max(1.0, std::max(std::abs(h.valueMin), std::abs(h.valueMax)));
-  for (uint64_t i = 0; i < f.voxelCount(); ++i) {
-    if (!f.hasVolumeSample(i)) {
-      if (f.storedValue(i) != 0 || grads[i] != kZeroGradient)
-        return makeError(ErrorCode::kCorrupt, f.path(), ": section VALU/GRAD: voxel ", i, " has no volume sample (VMSK) but a non-zero value or gradient");
-      continue;
-    }
+  const uint64_t slots = sampleSlots(h);
+  for (uint64_t i = 0; i < slots; ++i) {
     const double v = f.value(i);
     if (!std::isfinite(v))
       return makeError(ErrorCode::kNonFinite, f.path(), ": section VALU: voxel ", i, " is not finite");
@@ -119,8 +116,8 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
       return makeError(ErrorCode::kCorrupt, f.path(), ": section VALU: voxel ", i, " = ", v, " lies outside header.valueMin/valueMax [", h.valueMin, ", ", h.valueMax, "]");
   }
   report.voxelsChecked = f.voxelCount();
-  VOXLINK_RETURN_IF_ERROR(checkPadding(f, SectionId::kValues, f.voxelCount() * storedSize(f.valueType())));
-  VOXLINK_RETURN_IF_ERROR(checkPadding(f, SectionId::kGradients, f.voxelCount() * 2));
+  VOXLINK_RETURN_IF_ERROR(checkPadding(f, SectionId::kValues, slots * storedSize(f.valueType())));
+  VOXLINK_RETURN_IF_ERROR(checkPadding(f, SectionId::kGradients, slots * 2));
   const uint64_t n = h.brickSize;
   return checkPadding(f, SectionId::kRowStart, f.occupiedBrickCount() * n * n * 2);
 }
@@ -166,50 +163,58 @@ Status checkSpheres(const VoxLinkFile& f) {
   return Status::ok();
 }
 
-// Per voxel: a valid surface word, ascending sphere references, and at least one thing stored.
-Status checkSceneVoxels(const VoxLinkFile& f) {
-  const FileHeader& h = f.header();
-  const auto surface = f.surfaceWords();
-  const auto mask = f.volumeMaskWords();
-  const auto refStart = f.sphereRefStarts();
-  const auto refs = f.sphereRefs();
-  const bool spheres = h.sphereCount > 0;
-  if (spheres && (refStart[0] != 0 || refStart[f.voxelCount()] != h.sphereRefCount))
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: first/last entries ", refStart[0], "/", refStart[f.voxelCount()], " (expected 0/", h.sphereRefCount, ")");
-  uint64_t surfaceCount = 0, volumeCount = 0;
-  for (uint64_t i = 0; i < f.voxelCount(); ++i) {
-    const uint32_t word = surface[i];
-    const bool hasSurface = word != kNoSurface;
-    if (hasSurface) {
-      ++surfaceCount;
-      if (surfaceMaterial(word) >= h.materialCount)
-        return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: voxel ", i, " names material ", surfaceMaterial(word), " of ", h.materialCount);
-      if (surfaceNormal(word) == kZeroGradient || !isCanonicalGradientCode(surfaceNormal(word)))
-        return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: voxel ", i, " has the reserved or non-canonical normal code 0x", std::hex, surfaceNormal(word));
-    }
-    const bool hasVolume = (mask[i >> 5] >> (i & 31)) & 1u;
-    volumeCount += hasVolume;
-    bool hasSpheres = false;
-    if (spheres) {
-      const uint32_t begin = refStart[i], end = refStart[i + 1];
-      if (end < begin || end > h.sphereRefCount)
-        return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: voxel ", i, " references [", begin, ", ", end, ") of ", h.sphereRefCount);
-      for (uint32_t r = begin; r < end; ++r) {
-        if (refs[r] >= h.sphereCount || (r > begin && refs[r] <= refs[r - 1]))
-          return makeError(ErrorCode::kCorrupt, f.path(), ": section SRID: voxel ", i, " names sphere ", refs[r], " (not ascending, or not in the table of ", h.sphereCount, ")");
-      }
-      hasSpheres = end > begin;
-    }
-    if (!hasSurface && !hasVolume && !hasSpheres)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": sections VMSK/SURF/SROF: voxel ", i, " stores nothing (no volume sample, surface or sphere)");
-  }
-  if (surfaceCount != h.surfaceVoxelCount)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: ", surfaceCount, " surface voxels, header.surfaceVoxelCount says ", h.surfaceVoxelCount);
-  if (volumeCount != h.volumeVoxelCount)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section VMSK: ", volumeCount, " volume voxels, header.volumeVoxelCount says ", h.volumeVoxelCount);
+// A mask's set bits must match its header count and stop at the last voxel.
+Status checkMask(const VoxLinkFile& f, SectionId id, std::span<const uint32_t> mask, uint64_t count,
+                 const char* countName) {
+  uint64_t bits = 0;
+  for (uint32_t w : mask) bits += static_cast<uint64_t>(std::popcount(w));
+  if (bits != count)
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id), ": ", bits, " voxels marked, header.", countName, " says ", count);
   const uint64_t tailBits = mask.size() * 32 - f.voxelCount();
   if (tailBits > 0 && (mask.back() >> (32 - tailBits)) != 0)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section VMSK: bits set beyond the last of ", f.voxelCount(), " voxels");
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id), ": bits set beyond the last of ", f.voxelCount(), " voxels");
+  return Status::ok();
+}
+
+// Masks against the header's counts, every surface word and sphere reference valid, and no
+// voxel that stores nothing.
+Status checkSceneVoxels(const VoxLinkFile& f) {
+  const FileHeader& h = f.header();
+  const bool spheres = h.sphereCount > 0;
+  VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kVolumeMask, f.volumeMaskWords(), h.volumeVoxelCount, "volumeVoxelCount"));
+  VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kSurfaceMask, f.surfaceMaskWords(), h.surfaceVoxelCount, "surfaceVoxelCount"));
+  if (spheres)
+    VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kSphereMask, f.sphereMaskWords(), h.sphereVoxelCount, "sphereVoxelCount"));
+  const auto surface = f.surfaceWords();
+  for (uint64_t s = 0; s < h.surfaceVoxelCount; ++s) {
+    const uint32_t word = surface[s];
+    if (surfaceMaterial(word) >= h.materialCount)
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: entry ", s, " names material ", surfaceMaterial(word), " of ", h.materialCount);
+    if (surfaceNormal(word) == kZeroGradient || !isCanonicalGradientCode(surfaceNormal(word)))
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: entry ", s, " has the reserved or non-canonical normal code 0x", std::hex, surfaceNormal(word));
+  }
+  if (spheres) {
+    const auto refStart = f.sphereRefStarts();
+    const auto refs = f.sphereRefs();
+    if (refStart[0] != 0 || refStart[h.sphereVoxelCount] != h.sphereRefCount)
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: first/last entries ", refStart[0], "/", refStart[h.sphereVoxelCount], " (expected 0/", h.sphereRefCount, ")");
+    for (uint64_t s = 0; s < h.sphereVoxelCount; ++s) {
+      const uint32_t begin = refStart[s], end = refStart[s + 1];
+      if (end <= begin || end > h.sphereRefCount)
+        return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: entry ", s, " references [", begin, ", ", end, ") of ", h.sphereRefCount, " (a marked voxel names at least one sphere)");
+      for (uint32_t r = begin; r < end; ++r)
+        if (refs[r] >= h.sphereCount || (r > begin && refs[r] <= refs[r - 1]))
+          return makeError(ErrorCode::kCorrupt, f.path(), ": section SRID: entry ", r, " names sphere ", refs[r], " (not ascending, or not in the table of ", h.sphereCount, ")");
+    }
+  }
+  const auto volume = f.volumeMaskWords(), surfaceMask = f.surfaceMaskWords(), sphereMask = f.sphereMaskWords();
+  for (size_t w = 0; w < volume.size(); ++w) {
+    const uint64_t first = uint64_t{w} * 32, inWord = std::min<uint64_t>(32, f.voxelCount() - first);
+    const uint32_t present = (inWord == 32 ? ~0u : (1u << inWord) - 1u);
+    const uint32_t stored = volume[w] | surfaceMask[w] | (spheres ? sphereMask[w] : 0u);
+    if ((stored & present) != present)
+      return makeError(ErrorCode::kCorrupt, f.path(), ": sections VMSK/SMSK/PMSK: voxel ", first + std::countr_one(stored), " stores nothing (no volume sample, surface or sphere)");
+  }
   return Status::ok();
 }
 

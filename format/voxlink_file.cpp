@@ -20,14 +20,17 @@ uint64_t headerCrcOf(const FileHeader& header) {
 // The version 2 counts: zero in version 1; in version 2 bounded by the voxel count.
 Status checkSceneCounts(const FileHeader& h, const std::string& where) {
   if (h.versionMajor == kVersionMajor) {
-    if (h.materialCount || h.sphereCount || h.sphereRefCount || h.surfaceVoxelCount || h.volumeVoxelCount)
-      return makeError(ErrorCode::kCorrupt, where, ": header.materialCount..volumeVoxelCount: not zero in a version 1 file");
+    if (h.materialCount || h.sphereCount || h.sphereRefCount || h.surfaceVoxelCount || h.volumeVoxelCount ||
+        h.sphereVoxelCount)
+      return makeError(ErrorCode::kCorrupt, where, ": header.materialCount..sphereVoxelCount: not zero in a version 1 file");
     return Status::ok();
   }
   if (h.materialCount > kMaxMaterials)
     return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: ", h.materialCount, " exceeds ", kMaxMaterials);
-  if (h.surfaceVoxelCount > h.voxelCount || h.volumeVoxelCount > h.voxelCount)
-    return makeError(ErrorCode::kCorrupt, where, ": header.surfaceVoxelCount/volumeVoxelCount: ", h.surfaceVoxelCount, "/", h.volumeVoxelCount, " exceed header.voxelCount ", h.voxelCount);
+  if (h.surfaceVoxelCount > h.voxelCount || h.volumeVoxelCount > h.voxelCount || h.sphereVoxelCount > h.voxelCount)
+    return makeError(ErrorCode::kCorrupt, where, ": header.surfaceVoxelCount/volumeVoxelCount/sphereVoxelCount: ", h.surfaceVoxelCount, "/", h.volumeVoxelCount, "/", h.sphereVoxelCount, " exceed header.voxelCount ", h.voxelCount);
+  if (h.sphereCount == 0 && h.sphereVoxelCount != 0)
+    return makeError(ErrorCode::kCorrupt, where, ": header.sphereVoxelCount: ", h.sphereVoxelCount, " voxels reference no spheres");
   if (h.surfaceVoxelCount > 0 && h.materialCount == 0)
     return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: 0, but ", h.surfaceVoxelCount, " surface voxels need materials");
   if (h.sphereCount == 0 && h.sphereRefCount != 0)
@@ -53,6 +56,8 @@ std::string_view sectionName(SectionId id) {
     case SectionId::kMaterials: return "MATL";
     case SectionId::kSurface: return "SURF";
     case SectionId::kVolumeMask: return "VMSK";
+    case SectionId::kSurfaceMask: return "SMSK";
+    case SectionId::kSphereMask: return "PMSK";
     case SectionId::kSpheres: return "SPHR";
     case SectionId::kSphereRefStart: return "SROF";
     case SectionId::kSphereRefs: return "SRID";
@@ -72,6 +77,10 @@ uint32_t expectedElementBytes(const FileHeader& header, SectionId id) {
   }
 }
 
+uint64_t sampleSlots(const FileHeader& h) {
+  return h.versionMajor == kVersionMajorScene ? h.volumeVoxelCount : h.voxelCount;
+}
+
 uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t metaBytes) {
   const uint64_t n = header.brickSize;
   const uint64_t bricks = uint64_t{header.brickGrid[0]} * header.brickGrid[1] * header.brickGrid[2];
@@ -84,13 +93,15 @@ uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t m
     case SectionId::kBrickVoxelBase: return (k + 1) * 4;
     case SectionId::kRowStart: return alignUp(k * n * n * 2, 4);
     case SectionId::kRowMask: return k * maskWordsPerBrick(static_cast<uint32_t>(n)) * 4;
-    case SectionId::kValues: return alignUp(voxels * storedSize(static_cast<StoredType>(header.valueType)), 4);
-    case SectionId::kGradients: return alignUp(voxels * 2, 4);
+    case SectionId::kValues: return alignUp(sampleSlots(header) * storedSize(static_cast<StoredType>(header.valueType)), 4);
+    case SectionId::kGradients: return alignUp(sampleSlots(header) * 2, 4);
     case SectionId::kMaterials: return uint64_t{header.materialCount} * sizeof(MaterialRecord);
-    case SectionId::kSurface: return voxels * 4;
-    case SectionId::kVolumeMask: return ceilDiv(voxels, 32) * 4;
+    case SectionId::kVolumeMask:
+    case SectionId::kSurfaceMask:
+    case SectionId::kSphereMask: return ceilDiv(voxels, 32) * 4;
+    case SectionId::kSurface: return header.surfaceVoxelCount * 4;
     case SectionId::kSpheres: return uint64_t{header.sphereCount} * sizeof(SphereRecord);
-    case SectionId::kSphereRefStart: return (voxels + 1) * 4;
+    case SectionId::kSphereRefStart: return (header.sphereVoxelCount + 1) * 4;
     case SectionId::kSphereRefs: return header.sphereRefCount * 4;
   }
   return 0;
@@ -255,7 +266,7 @@ std::span<const uint16_t> VoxLinkFile::rowStarts() const {
 
 std::span<const uint16_t> VoxLinkFile::gradientCodes() const {
   auto bytes = sectionBytes(SectionId::kGradients);
-  return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(voxelCount())};
+  return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(sampleSlots(*header_))};
 }
 
 std::vector<SectionId> sceneSectionsOf(const FileHeader& h) {
@@ -278,11 +289,6 @@ std::span<const SphereRecord> VoxLinkFile::spheres() const {
   return {reinterpret_cast<const SphereRecord*>(bytes.data()), bytes.size() / sizeof(SphereRecord)};
 }
 
-bool VoxLinkFile::hasVolumeSample(uint64_t voxel) const {
-  if (!isScene()) return true;
-  const auto mask = volumeMaskWords();
-  return (mask[voxel >> 5] >> (voxel & 31)) & 1u;
-}
 
 std::string VoxLinkFile::metaJson() const {
   auto bytes = sectionBytes(SectionId::kMeta);

@@ -44,7 +44,7 @@ class VoxLinkFile {
   std::span<const uint32_t> brickVoxelBase() const;
   std::span<const uint16_t> rowStarts() const;    // K * n^2
   std::span<const uint32_t> rowMaskWords() const { return words32(SectionId::kRowMask); }
-  std::span<const uint16_t> gradientCodes() const;  // voxelCount
+  std::span<const uint16_t> gradientCodes() const;  // sampleSlots(header())
   const uint8_t* valueBytes() const { return sectionBytes(SectionId::kValues).data(); }
   std::string metaJson() const;
 
@@ -52,15 +52,17 @@ class VoxLinkFile {
   bool isScene() const { return header_->versionMajor == kVersionMajorScene; }
   std::vector<SectionId> presentSceneSections() const;  // the scene sections this file must have
   std::span<const MaterialRecord> materials() const;
-  std::span<const uint32_t> surfaceWords() const { return words32(SectionId::kSurface); }
   std::span<const uint32_t> volumeMaskWords() const { return words32(SectionId::kVolumeMask); }
+  std::span<const uint32_t> surfaceMaskWords() const { return words32(SectionId::kSurfaceMask); }
+  std::span<const uint32_t> surfaceWords() const { return words32(SectionId::kSurface); }  // by slot
   std::span<const SphereRecord> spheres() const;
-  std::span<const uint32_t> sphereRefStarts() const { return words32(SectionId::kSphereRefStart); }
+  std::span<const uint32_t> sphereMaskWords() const { return words32(SectionId::kSphereMask); }
+  std::span<const uint32_t> sphereRefStarts() const { return words32(SectionId::kSphereRefStart); }  // by slot
   std::span<const uint32_t> sphereRefs() const { return words32(SectionId::kSphereRefs); }
-  // Whether voxel i carries a volume sample (always in version 1).
-  bool hasVolumeSample(uint64_t voxel) const;
+  // Per-voxel access through the masks: format/scene_index.h.
 
-  // Value of voxel i in source units (stored value mapped through scale and offset).
+  // Value of VALU entry i in source units (stored value mapped through scale and offset). In
+  // version 1 entry i is voxel i; in version 2 it is volume slot i (format/scene_index.h).
   double value(uint64_t voxel) const;
   // The stored value of voxel i as a double, before the mapping.
   double storedValue(uint64_t voxel) const;
@@ -84,6 +86,8 @@ Status checkHeader(const FileHeader& header, uint64_t fileBytes, const std::stri
 // Expected payload size of a required section for a given header.
 uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t metaBytes);
 uint32_t expectedElementBytes(const FileHeader& header, SectionId id);
+// Entries of VALU and GRAD: one per voxel in version 1, one per volume voxel in version 2.
+uint64_t sampleSlots(const FileHeader& header);
 // The version 2 sections a header asks for (none for version 1).
 std::vector<SectionId> sceneSectionsOf(const FileHeader& header);
 

@@ -23,7 +23,8 @@ struct Overlap {
 }  // namespace
 
 Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
-                                           const VoxelGrid& grid, uint64_t maxOverlaps) {
+                                           const VoxelGrid& grid, uint64_t maxOverlaps,
+                                           SphereFill fill) {
   VOXLINK_RETURN_IF_ERROR(validateGrid(grid));
   for (size_t s = 0; s < spheres.size(); ++s) {
     const Sphere& sphere = spheres[s];
@@ -70,7 +71,9 @@ Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
           const int64_t from = std::max<int64_t>(lo[0], int64_t(std::ceil(c[0] - t)) - 2);
           const int64_t to = std::min<int64_t>(hi[0], int64_t(std::floor(c[0] + t)) + 1);
           for (int64_t i = from; i <= to; ++i) {
-            if (sphereOverlapsVoxel(c, r, i, j, k))
+            const bool marked = fill == SphereFill::kShell ? sphereSurfaceInVoxel(c, r, i, j, k)
+                                                           : sphereOverlapsVoxel(c, r, i, j, k);
+            if (marked)
               out.push_back({voxelKey(uint32_t(i), uint32_t(j), uint32_t(k)), uint32_t(s)});
           }
         }

@@ -26,11 +26,18 @@ struct SphereVoxelization {
 
 inline constexpr uint64_t kDefaultMaxSphereOverlaps = 256ull << 20;
 
+// Which voxels a sphere marks: every voxel its ball overlaps, or only those its surface passes
+// through. A ray tracer that intersects the exact sphere needs only the shell: the point where
+// a ray meets the sphere lies on the surface, so in a shell voxel (a 25-voxel-radius sphere:
+// 7.5k shell voxels instead of 72k).
+enum class SphereFill { kSolid, kShell };
+
 // Errors: an invalid grid, a non-finite centre or a radius that is not finite and > 0 (names the
 // sphere), more overlaps than maxOverlaps (kTooLarge).
 Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
                                            const VoxelGrid& grid,
-                                           uint64_t maxOverlaps = kDefaultMaxSphereOverlaps);
+                                           uint64_t maxOverlaps = kDefaultMaxSphereOverlaps,
+                                           SphereFill fill = SphereFill::kSolid);
 
 // Exact test used by voxelizeSpheres: sphere (centre and radius in grid coordinates) against
 // voxel (i, j, k)'s box [i, i+1] x [j, j+1] x [k, k+1].
@@ -44,6 +51,20 @@ inline bool sphereOverlapsVoxel(const std::array<double, 3>& centre, double radi
     d2 += d * d;
   }
   return d2 <= radius * radius;
+}
+
+// The sphere's surface meets the voxel's closed box: the nearest point of the box is within the
+// radius and the farthest corner is not inside it (touching counts).
+inline bool sphereSurfaceInVoxel(const std::array<double, 3>& centre, double radius, int64_t i,
+                                 int64_t j, int64_t k) {
+  if (!sphereOverlapsVoxel(centre, radius, i, j, k)) return false;
+  const int64_t lo[3] = {i, j, k};
+  double far2 = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double d = std::max(std::abs(double(lo[a]) - centre[a]), std::abs(double(lo[a] + 1) - centre[a]));
+    far2 += d * d;
+  }
+  return far2 >= radius * radius;
 }
 
 }  // namespace voxlink::geometry

@@ -31,7 +31,25 @@ Material fetchMaterial(uint m) {
   return r;
 }
 
-bool hasVolumeSample(uint voxel) { return ((vmskWord(voxel >> 5u) >> (voxel & 31u)) & 1u) != 0u; }
+// Slot of voxel i in a payload indexed by a mask (format/mask_rank.h): set bits before it.
+uint maskSlot(uint word, uint rankBefore, uint voxel) {
+  uint below = (voxel & 31u) == 0u ? 0u : word << (32u - (voxel & 31u));
+  return rankBefore + uint(bitCount(below));
+}
+
+// The VALU/GRAD slot of a voxel's volume sample; false when it has none.
+bool volumeSlot(uint voxel, out uint slot) {
+  uint word = vmskWord(voxel >> 5u);
+  slot = maskSlot(word, vmskRank(voxel >> 5u), voxel);
+  return ((word >> (voxel & 31u)) & 1u) != 0u;
+}
+
+// The voxel's surface fragment word, or kNoSurface.
+uint surfaceOf(uint voxel) {
+  uint word = smskWord(voxel >> 5u);
+  if (((word >> (voxel & 31u)) & 1u) == 0u) return kNoSurface;
+  return surfWord(maskSlot(word, smskRank(voxel >> 5u), voxel));
+}
 
 #if VXL_SPHERES
 float sphrFloat(uint word) { return uintBitsToFloat(sphrWord(word)); }
@@ -57,14 +75,17 @@ uint sphereMaterial(uint s) { return sphrWord(s * 8u + 4u); }
 bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, out uint sphere,
                     out vec3 centre) {
   tHit = kBig;
-  uint end = srofWord(voxel + 1u);
-  for (uint r = srofWord(voxel); r < end; ++r) {
-    uint s = sridWord(r);
+  uint word = pmskWord(voxel >> 5u);
+  if (((word >> (voxel & 31u)) & 1u) == 0u) return false;
+  uint s = maskSlot(word, pmskRank(voxel >> 5u), voxel);
+  uint end = srofWord(s + 1u);
+  for (uint r = srofWord(s); r < end; ++r) {
+    uint id = sridWord(r);
     vec3 c;
-    float t = sphereHit(s, o, d, max(ta, 0.0), c);
+    float t = sphereHit(id, o, d, max(ta, 0.0), c);
     if (t >= ta && t < tz && t < tHit) {
       tHit = t;
-      sphere = s;
+      sphere = id;
       centre = c;
     }
   }
@@ -75,7 +96,7 @@ bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tH
 // Transmittance of the geometry in one voxel a shadow ray crosses over [ta, tz).
 float geometryTransmittance(uint voxel, vec3 o, vec3 d, float ta, float tz) {
   float transmittance = 1.0;
-  uint surface = surfWord(voxel);
+  uint surface = surfaceOf(voxel);
   if (surface != kNoSurface) transmittance *= 1.0 - fetchMaterial(surface >> 16u).opacity;
 #if VXL_SPHERES
   float tHit;

@@ -45,7 +45,7 @@ void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color, 
 // [ta, tz). The caller composites the voxel's volume sample afterwards, if it has one.
 void compositeGeometry(uint voxel, vec3 o, vec3 d, float ta, float tz, vec3 toEye, inout vec3 color,
                        inout float transmittance) {
-  uint surface = surfWord(voxel);
+  uint surface = surfaceOf(voxel);
   if (surface != kNoSurface) {
     vec3 n = decodeGradient(surface & 0xFFFFu);
     compositeSurface(fetchMaterial(surface >> 16u), n, o + ta * d, toEye, color, transmittance);

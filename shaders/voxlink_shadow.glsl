@@ -25,7 +25,9 @@ float shadowTransmittance(vec3 worldPoint) {
       while (rowWalkNext(walk, voxel, ta, tz)) {
 #if VXL_SCENE
         transmittance *= geometryTransmittance(voxel, o, d, ta, tz);
-        if (hasVolumeSample(voxel))
+        uint slot;
+        if (!volumeSlot(voxel, slot)) continue;
+        voxel = slot;  // VALU and GRAD of a scene hold the volume voxels only
 #endif
         transmittance *= 1.0 - correctedAlpha(classify(storedBits(voxel)).a, tz - ta);
         if (transmittance < uShadowStop) return transmittance;

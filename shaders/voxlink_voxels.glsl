@@ -39,7 +39,9 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
 #if VXL_SCENE
         compositeGeometry(voxel, o, d, ta, tz, toEye, color, transmittance);
         if (transmittance <= uStopTransmittance) return;
-        if (!hasVolumeSample(voxel)) continue;
+        uint slot;
+        if (!volumeSlot(voxel, slot)) continue;
+        voxel = slot;  // VALU and GRAD of a scene hold the volume voxels only
 #endif
         vec4 c = classify(storedBits(voxel));
         float a = correctedAlpha(c.a, tz - ta);

@@ -11,6 +11,7 @@
 #include "format/footprint.h"
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
+#include "format/scene_index.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
 #include "tests/support/test_util.h"
@@ -90,14 +91,18 @@ TEST(SceneFormat, RoundTripKeepsEveryKindPerVoxel) {
                                   fileOrderKey(smallGrid(axis), 23, 19, 16)};
     std::sort(keys.begin(), keys.end());
     const uint64_t i = std::find(keys.begin(), keys.end(), want) - keys.begin();
-    EXPECT_TRUE(f->hasVolumeSample(i));
-    EXPECT_EQ(f->storedValue(i), 200);
-    EXPECT_EQ(surfaceMaterial(f->surfaceWords()[i]), 0);
-    EXPECT_EQ(surfaceNormal(f->surfaceWords()[i]), encodeGradient(0.0, 1.0, 0.0));
-    const auto starts = f->sphereRefStarts();
-    ASSERT_EQ(starts[i + 1] - starts[i], 2u);
-    EXPECT_EQ(f->sphereRefs()[starts[i]], 0u);
-    EXPECT_EQ(f->sphereRefs()[starts[i] + 1], 1u);
+    const SceneIndex index(*f);
+    const int64_t slot = index.volumeSlot(i);
+    ASSERT_GE(slot, 0);
+    EXPECT_EQ(f->storedValue(uint64_t(slot)), 200);
+    EXPECT_EQ(f->gradientCodes().size(), 2u);  // VALU/GRAD hold the two volume voxels only
+    EXPECT_EQ(surfaceMaterial(index.surfaceWord(i)), 0);
+    EXPECT_EQ(surfaceNormal(index.surfaceWord(i)), encodeGradient(0.0, 1.0, 0.0));
+    const auto [begin, end] = index.sphereRefs(i);
+    ASSERT_EQ(end - begin, 2u);
+    EXPECT_EQ(f->sphereRefs()[begin], 0u);
+    EXPECT_EQ(f->sphereRefs()[begin + 1], 1u);
+    EXPECT_EQ(f->header().sphereVoxelCount, 2u);
 
     const FootprintReport report = computeFootprint(*f);
     ASSERT_TRUE(report.scene);
@@ -136,8 +141,10 @@ TEST(SceneFormat, GeometryWithoutSpheresHasNoSphereSections) {
   ASSERT_TRUE(f) << f.message();
   EXPECT_TRUE(validateFile(*f));
   EXPECT_EQ(f->findSection(SectionId::kSpheres), nullptr);
-  EXPECT_FALSE(f->hasVolumeSample(0));
-  EXPECT_EQ(f->gradientCodes()[0], kZeroGradient);
+  EXPECT_EQ(SceneIndex(*f).volumeSlot(0), -1);
+  // No volume samples at all: VALU and GRAD hold nothing rather than a zero per voxel.
+  EXPECT_TRUE(f->gradientCodes().empty());
+  EXPECT_EQ(f->findSection(SectionId::kValues)->bytes, 0u);
 }
 
 TEST(SceneFormat, EmptySceneIsValid) {
@@ -227,22 +234,34 @@ TEST_F(SceneBadInput, GoodFileValidates) { EXPECT_EQ(problem(), ""); }
 
 TEST_F(SceneBadInput, SurfaceMaterialOutOfTable) {
   uint32_t* surface = section<uint32_t>(SectionId::kSurface);
-  for (int i = 0; i < 4; ++i)
-    if (surface[i] != kNoSurface) surface[i] = surfaceWord(surfaceNormal(surface[i]), 9);
-  EXPECT_NE(problem().find("section SURF"), std::string::npos) << problem();
+  surface[1] = surfaceWord(surfaceNormal(surface[1]), 9);
+  EXPECT_NE(problem().find("section SURF: entry 1 names material 9"), std::string::npos) << problem();
 }
 
 TEST_F(SceneBadInput, SurfaceWithZeroNormal) {
-  uint32_t* surface = section<uint32_t>(SectionId::kSurface);
-  for (int i = 0; i < 4; ++i)
-    if (surface[i] != kNoSurface) surface[i] = surfaceWord(kZeroGradient, 0);
+  section<uint32_t>(SectionId::kSurface)[0] = surfaceWord(kZeroGradient, 0);
   EXPECT_NE(problem().find("normal code"), std::string::npos) << problem();
 }
 
 TEST_F(SceneBadInput, VolumeMaskDisagreesWithCount) {
-  section<uint32_t>(SectionId::kVolumeMask)[0] ^= 0xF;
+  section<uint32_t>(SectionId::kVolumeMask)[0] |= 0x4;  // voxel 2 (spheres only) marked too
+  EXPECT_NE(problem().find("section VMSK: 3 voxels marked, header.volumeVoxelCount says 2"), std::string::npos)
+      << problem();
+}
+
+TEST_F(SceneBadInput, VoxelStoringNothing) {
+  // Voxel 3 (the surface-only voxel at the far corner) loses its surface bit; counts are fixed up
+  // so only the "stores nothing" rule can catch it.
+  section<uint32_t>(SectionId::kSurfaceMask)[0] &= ~0x8u;
+  section<uint32_t>(SectionId::kSurfaceMask)[0] |= 0x1u;
   const std::string p = problem();
-  EXPECT_TRUE(p.find("VMSK") != std::string::npos || p.find("VALU/GRAD") != std::string::npos) << "[" << p << "]";
+  EXPECT_NE(p.find("voxel 3 stores nothing"), std::string::npos) << p;
+}
+
+TEST_F(SceneBadInput, MarkedSphereVoxelWithoutReferences) {
+  uint32_t* starts = section<uint32_t>(SectionId::kSphereRefStart);
+  starts[1] = starts[0];
+  EXPECT_NE(problem().find("section SROF"), std::string::npos) << problem();
 }
 
 TEST_F(SceneBadInput, SphereRadiusNotPositive) {

@@ -42,6 +42,43 @@ TEST(SphereVoxelizer, RandomSpheresMatchBruteForce) {
   expectMatchesBruteForce(spheres, grid);
 }
 
+// The shell is the solid's voxels that the surface passes through: the farthest corner of the
+// voxel's box lies on or outside the sphere. Checked by brute force over every voxel and sphere.
+TEST(SphereVoxelizer, ShellKeepsTheVoxelsTheSurfaceCrosses) {
+  std::mt19937 rng(11);
+  VoxelGrid grid;
+  grid.origin = {0.1, -0.3, 0.2};
+  grid.spacing = 0.4;
+  grid.dims = {20, 18, 16};
+  std::uniform_real_distribution<float> x(-1.0f, 7.0f), r(0.1f, 3.0f);
+  std::vector<Sphere> spheres;
+  for (int s = 0; s < 25; ++s) spheres.push_back({{x(rng), x(rng), x(rng)}, r(rng), 0});
+  auto solid = voxelizeSpheres(spheres, grid);
+  auto shell = voxelizeSpheres(spheres, grid, kDefaultMaxSphereOverlaps, SphereFill::kShell);
+  ASSERT_TRUE(solid && shell);
+  std::vector<std::pair<uint64_t, uint32_t>> expected, got;
+  for (size_t n = 0; n < solid->voxels.size(); ++n)
+    for (uint64_t r0 = solid->offsets[n]; r0 < solid->offsets[n + 1]; ++r0) {
+      const Sphere& s = spheres[solid->sphereIds[r0]];
+      const auto& v = solid->voxels[n];
+      double far2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const double lo = grid.origin[a] + (v[a] - 0.5) * grid.spacing, hi = lo + grid.spacing;
+        const double d = std::max(std::abs(lo - s.center[a]), std::abs(hi - s.center[a]));
+        far2 += d * d;
+      }
+      if (far2 >= double(s.radius) * s.radius * (1 + 1e-9)) expected.push_back({voxelKey(v[0], v[1], v[2]), solid->sphereIds[r0]});
+    }
+  for (size_t n = 0; n < shell->voxels.size(); ++n)
+    for (uint64_t r0 = shell->offsets[n]; r0 < shell->offsets[n + 1]; ++r0)
+      got.push_back({voxelKey(shell->voxels[n][0], shell->voxels[n][1], shell->voxels[n][2]), shell->sphereIds[r0]});
+  EXPECT_LT(got.size(), solid->sphereIds.size());
+  // Rounding at the far corner may keep a voxel the world-space check drops (grid vs world units).
+  EXPECT_LE(expected.size(), got.size());
+  EXPECT_LE(got.size() - expected.size(), got.size() / 1000 + 1);
+  for (const auto& e : expected) EXPECT_TRUE(std::binary_search(got.begin(), got.end(), e));
+}
+
 TEST(SphereVoxelizer, TouchingExactlyCounts) {
   VoxelGrid grid;  // voxel i covers [i - 0.5, i + 0.5]
   grid.dims = {5, 5, 5};

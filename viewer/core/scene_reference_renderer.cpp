@@ -33,7 +33,7 @@ glm::dvec3 decoded(uint16_t code) {
 }  // namespace
 
 SceneReferenceRenderer::SceneReferenceRenderer(const format::VoxLinkFile& file, const format::TransferFunction& tf)
-    : file_(file), tf_(tf), locator_(file) {
+    : file_(file), tf_(tf), locator_(file), index_(file) {
   const format::FileHeader& h = file.header();
   for (int a = 0; a < 3; ++a) {
     dims_[a] = h.dims[a];
@@ -81,12 +81,11 @@ std::array<double, 4> SceneReferenceRenderer::traceRay(const Ray& ray, const Cam
 // Nearest t >= max(ta, 0) of the voxel's spheres inside its chord [ta, tz).
 bool SceneReferenceRenderer::firstSphereHit(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d, double ta,
                                             double tz, Hit& hit) const {
-  if (file_.header().sphereCount == 0) return false;
-  const auto starts = file_.sphereRefStarts();
+  const auto [begin, end] = index_.sphereRefs(voxel);
   const auto refs = file_.sphereRefs();
   const auto spheres = file_.spheres();
   hit = Hit{};
-  for (uint32_t r = starts[voxel]; r < starts[voxel + 1]; ++r) {
+  for (uint32_t r = begin; r < end; ++r) {
     const format::SphereRecord& s = spheres[refs[r]];
     const glm::dvec3 centre = toIndex({s.center[0], s.center[1], s.center[2]});
     const double radius = s.radius / spacing_.x;
@@ -105,7 +104,7 @@ bool SceneReferenceRenderer::firstSphereHit(uint64_t voxel, const glm::dvec3& o,
 double SceneReferenceRenderer::geometryTransmittance(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d,
                                                      double ta, double tz) const {
   double transmittance = 1.0;
-  const uint32_t word = file_.surfaceWords()[voxel];
+  const uint32_t word = index_.surfaceWord(voxel);
   const auto materials = file_.materials();
   if (word != format::kNoSurface) transmittance *= 1.0 - materials[format::surfaceMaterial(word)].opacity;
   Hit hit;
@@ -126,8 +125,8 @@ double SceneReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint,
     const int64_t i = locator_.find(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z));
     if (i < 0) return true;
     if (file_.isScene()) transmittance *= geometryTransmittance(uint64_t(i), o, d, ta, tb);
-    if (file_.hasVolumeSample(uint64_t(i)))
-      transmittance *= 1.0 - correctedAlpha(tf_.opacityAt(file_.value(uint64_t(i))), tb - ta, f.unit);
+    const int64_t slot = index_.volumeSlot(uint64_t(i));
+    if (slot >= 0) transmittance *= 1.0 - correctedAlpha(tf_.opacityAt(file_.value(uint64_t(slot))), tb - ta, f.unit);
     return transmittance >= stopAt;
   });
   return transmittance;
@@ -161,7 +160,7 @@ std::array<double, 4> SceneReferenceRenderer::trace(const Ray& ray, const Frame&
     if (found < 0) return true;
     const uint64_t i = uint64_t(found);
     if (file_.isScene()) {
-      const uint32_t word = file_.surfaceWords()[i];
+      const uint32_t word = index_.surfaceWord(i);
       if (word != format::kNoSurface)
         compositeSurface(materials[format::surfaceMaterial(word)], decoded(format::surfaceNormal(word)), o + ta * d,
                          toEye, f, color, transmittance);
@@ -172,13 +171,14 @@ std::array<double, 4> SceneReferenceRenderer::trace(const Ray& ray, const Frame&
                          f, color, transmittance);
       }
       if (transmittance <= stopAt) return false;
-      if (!file_.hasVolumeSample(i)) return true;
     }
-    const double v = file_.value(i);
+    const int64_t slot = index_.volumeSlot(i);
+    if (slot < 0) return true;
+    const double v = file_.value(uint64_t(slot));
     const double a = correctedAlpha(tf_.opacityAt(v), tb - ta, f.unit);
     if (a > 0) {
       const auto rgb = tf_.colorAt(v);
-      const ShadedTerms s = shadeSample({rgb[0], rgb[1], rgb[2]}, 1.0, decoded(file_.gradientCodes()[i]), f.toLight,
+      const ShadedTerms s = shadeSample({rgb[0], rgb[1], rgb[2]}, 1.0, decoded(file_.gradientCodes()[uint64_t(slot)]), f.toLight,
                                         toEye, f.settings.shading);
       double shadow = 1.0;
       if (f.settings.shading.shadows && f.settings.shading.enabled)

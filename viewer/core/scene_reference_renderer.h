@@ -8,6 +8,7 @@
 
 #include <array>
 
+#include "format/scene_index.h"
 #include "format/transfer_function.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
@@ -44,6 +45,7 @@ class SceneReferenceRenderer {
   const format::VoxLinkFile& file_;
   const format::TransferFunction& tf_;
   format::VoxelLocator locator_;
+  format::SceneIndex index_;
   std::array<uint32_t, 3> dims_;
   glm::dvec3 origin_, spacing_;
 };

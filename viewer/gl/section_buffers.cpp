@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 
+#include "format/scene_index.h"
 #include "viewer/core/brick_bounds.h"
 #include "viewer/core/brick_lookup.h"
 
@@ -64,13 +65,20 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       {"dual brick boxes", "dualBoxWord", "VxlDualBox", 1, bytesOf(dualBoxes)},
       {"brick entries", "brickEntry", "VxlBrickEntry", 2, bytesOf(entries)},
   };
-  // Scenes (version 2): the geometry sections as they are (shaders/voxlink_scene.glsl).
+  // Scenes (version 2): the geometry sections as they are, and per mask the set bits before
+  // each word, derived here (shaders/voxlink_scene.glsl).
+  const format::SceneIndex index(file);
   if (file.isScene()) {
-    arrays.push_back(section(file, format::SectionId::kSurface, "surfWord", "VxlSurf"));
-    arrays.push_back(section(file, format::SectionId::kVolumeMask, "vmskWord", "VxlVmsk"));
     arrays.push_back(section(file, format::SectionId::kMaterials, "matlWord", "VxlMatl"));
+    arrays.push_back(section(file, format::SectionId::kVolumeMask, "vmskWord", "VxlVmsk"));
+    arrays.push_back({"volume mask ranks", "vmskRank", "VxlVmskRank", 1, bytesOf(index.volume().table())});
+    arrays.push_back(section(file, format::SectionId::kSurfaceMask, "smskWord", "VxlSmsk"));
+    arrays.push_back({"surface mask ranks", "smskRank", "VxlSmskRank", 1, bytesOf(index.surface().table())});
+    arrays.push_back(section(file, format::SectionId::kSurface, "surfWord", "VxlSurf"));
     if (file.header().sphereCount > 0) {
       arrays.push_back(section(file, format::SectionId::kSpheres, "sphrWord", "VxlSphr"));
+      arrays.push_back(section(file, format::SectionId::kSphereMask, "pmskWord", "VxlPmsk"));
+      arrays.push_back({"sphere mask ranks", "pmskRank", "VxlPmskRank", 1, bytesOf(index.spheres().table())});
       arrays.push_back(section(file, format::SectionId::kSphereRefStart, "srofWord", "VxlSrof"));
       arrays.push_back(section(file, format::SectionId::kSphereRefs, "sridWord", "VxlSrid"));
     }

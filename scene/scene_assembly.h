@@ -1,0 +1,43 @@
+// Turns a scene description into one VoxLink buffer: loads every mesh, particle file and volume
+// it names, places them with their transforms, voxelizes the geometry exactly on the CPU
+// (geometry/surface_voxelizer.h, geometry/sphere_voxelizer.h) and merges everything into the
+// bricks and rows of a version 2 file (format/scene_builder.h).
+//
+// The grid: with a volume object it is the volume's own grid (dims, spacing, origin), so the
+// volume's voxels are kept exactly as `voxlink convert` wrote them and geometry is placed in
+// the volume's world coordinates; without one it is fitted around every object's bounds with
+// `grid.resolution` voxels along the longest axis (geometry/voxel_grid.h, fitGrid).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "format/error.h"
+#include "format/file_writer.h"
+#include "geometry/surface_voxelizer.h"
+#include "scene/scene_description.h"
+
+namespace voxlink::scene {
+
+struct SceneBuildReport {
+  uint64_t triangles = 0, spheres = 0, materials = 0;
+  uint64_t surfaceVoxels = 0, sphereVoxels = 0, sphereRefs = 0, volumeVoxels = 0;
+  uint64_t zeroAreaTriangles = 0;
+  geometry::NormalErrorStats normalError;  // what one fragment per voxel costs
+  std::array<uint32_t, 3> dims{0, 0, 0};
+  std::array<double, 3> spacing{1, 1, 1};
+  double loadSeconds = 0, voxelizeSeconds = 0, mergeSeconds = 0;
+};
+
+struct SceneBuildOutput {
+  format::BrickedVolume volume;  // write with format::writeBrickedVolume
+  SceneBuildReport report;
+};
+
+// `progress(stage, fraction)` is called between stages ("load", "voxelize", "merge").
+using SceneProgress = std::function<void(const char* stage, double fraction)>;
+
+Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress = {});
+
+}  // namespace voxlink::scene

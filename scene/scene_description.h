@@ -1,0 +1,71 @@
+// The scene file (docs/scene.md): which meshes, spheres and volume go into one VoxLink buffer,
+// their transforms and materials, the grid they are voxelized into, lights and a camera. This
+// file only reads and checks the JSON; scene_assembly.h loads and voxelizes what it names.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "format/error.h"
+#include "format/layout.h"
+#include "geometry/material.h"
+
+namespace voxlink::scene {
+
+// Row-major 4x4 affine transform (last row 0 0 0 1), object -> world.
+struct Transform {
+  std::array<double, 16> m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  std::array<double, 3> apply(const std::array<double, 3>& p) const;
+  // The factor a uniform transform scales lengths by; 0 when the scale is not uniform (spheres
+  // need a uniform one).
+  double uniformScale() const;
+};
+
+struct SceneMaterial {
+  geometry::Material material;
+  float specular = 0.0f;   // Phong highlight strength, 0..1
+  float shininess = 0.0f;  // Phong exponent
+};
+
+enum class ObjectKind { kMesh, kParticles, kSphere, kVolume };
+
+struct SceneObject {
+  ObjectKind kind = ObjectKind::kMesh;
+  std::string path;  // resolved against the scene file's folder; empty for kSphere
+  Transform transform;
+  std::optional<std::string> material;  // a scene material overriding the file's own
+  std::array<double, 3> center{0, 0, 0};  // kSphere
+  double radius = 0;                      // kSphere
+  double radiusScale = 1;                 // kParticles: multiplies every radius
+};
+
+struct SceneGrid {
+  uint32_t resolution = 256;  // voxels along the longest axis of the scene's bounds
+  uint32_t brickSize = 8;
+  format::Axis axis = format::Axis::kZ;
+};
+
+struct Light {
+  std::array<double, 3> position{0, 0, 0};
+  std::array<double, 3> color{1, 1, 1};
+  double intensity = 1;
+};
+
+struct SceneDescription {
+  std::string path;  // the scene file, for messages
+  SceneGrid grid;
+  std::vector<std::pair<std::string, SceneMaterial>> materials;  // in file order
+  std::vector<SceneObject> objects;
+  std::vector<Light> lights;
+  std::string cameraJson;  // the "camera" object as written, or empty
+  const SceneMaterial* findMaterial(const std::string& name) const;
+};
+
+// Reads and checks a scene file; every error is one line naming the file and the JSON path of
+// the bad field ("cornell.scene.json: objects[2].radius: -1 is not > 0").
+Result<SceneDescription> readSceneDescription(const std::string& path);
+Result<SceneDescription> parseSceneDescription(const std::string& json, const std::string& path);
+
+}  // namespace voxlink::scene

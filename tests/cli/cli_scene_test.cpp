@@ -1,0 +1,155 @@
+// `voxlink scene build` on the real meshes and particles, as a user runs it: the Cornell box's
+// axis-aligned walls, a molecule beside a mesh, a CT volume with geometry inside it, and the
+// rule that a scene holding only a volume keeps exactly the converter's voxels.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "format/gradient_codec.h"
+#include "format/scene_index.h"
+#include "format/validator.h"
+#include "format/voxel_locator.h"
+#include "format/voxlink_file.h"
+#include "tests/cli/run_command.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::testing {
+namespace {
+
+void writeText(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+TEST(CliScene, CornellBoxWallsAreOneVoxelThick) {
+  VOXLINK_REQUIRE_DATA("mesh/mcguire_CornellBox-Original.obj");
+  TempDir dir;
+  const std::string scene = dir.file("cornell.scene.json");
+  writeText(scene, R"({"grid": {"resolution": 128}, "objects": [{"type": "mesh", "file": ")" +
+                       dataPath("mesh/mcguire_CornellBox-Original.obj") + R"("}]})");
+  auto r = runVoxlink({"scene", "build", scene, "-o", dir.file("cornell.vxl")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("surface from 36 triangles"), std::string::npos) << r.out;
+  auto f = format::VoxLinkFile::open(dir.file("cornell.vxl"));
+  ASSERT_TRUE(f) << f.message();
+  ASSERT_TRUE(format::validateFile(*f));
+  EXPECT_TRUE(f->isScene());
+  EXPECT_EQ(f->materials().size(), 9u);  // the MTL's eight materials + the default assimp adds
+  // The floor lies on the grid's first voxel plane (fitGrid puts the bounds on voxel centres):
+  // floor voxels (normal +-y) appear in layer y = 0 and none in layer y = 1.
+  uint64_t layer0 = 0, layer1 = 0;
+  const format::SceneIndex index(*f);
+  format::VoxelLocator(*f).forEachVoxel([&](uint32_t, uint32_t y, uint32_t, uint64_t i) {
+    const uint32_t word = index.surfaceWord(i);
+    if (word == format::kNoSurface) return;
+    if (std::abs(format::decodeGradient(format::surfaceNormal(word))[1]) < 0.999f) return;
+    layer0 += y == 0;
+    layer1 += y == 1;
+  });
+  EXPECT_GT(layer0, 100u * 100u);
+  EXPECT_EQ(layer1, 0u);
+}
+
+TEST(CliScene, MoleculeBesideBunnyWithExactSpheres) {
+  VOXLINK_REQUIRE_DATA("particles/biopython_2XHE.pdb");
+  VOXLINK_REQUIRE_DATA("mesh/bunny_npm.obj");
+  TempDir dir;
+  const std::string scene = dir.file("mol.scene.json");
+  writeText(scene, R"({"grid": {"resolution": 96}, "objects": [
+      {"type": "particles", "file": ")" + dataPath("particles/biopython_2XHE.pdb") + R"("},
+      {"type": "mesh", "file": ")" + dataPath("mesh/bunny_npm.obj") + R"(",
+       "transform": {"scale": 4, "translate": [60, -60, 20]}}]})");
+  auto r = runVoxlink({"scene", "build", scene, "-o", dir.file("mol.vxl")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto f = format::VoxLinkFile::open(dir.file("mol.vxl"));
+  ASSERT_TRUE(f) << f.message();
+  ASSERT_TRUE(format::validateFile(*f));
+  EXPECT_EQ(f->header().sphereCount, 6315u);
+  EXPECT_GT(f->header().surfaceVoxelCount, 0u);
+  auto info = runVoxlink({"info", dir.file("mol.vxl"), "--no-vdb"});
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find("6315 spheres"), std::string::npos) << info.out;
+  auto render = runVoxlink({"render", dir.file("mol.vxl"), "-o", dir.file("mol.png"), "--size", "64x64"});
+  EXPECT_EQ(render.status, 0) << render.err;
+}
+
+TEST(CliScene, VolumeOnlySceneKeepsTheConvertersVoxels) {
+  VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
+  TempDir dir;
+  auto c = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161", "--type", "u8",
+                       "--threshold", "60", "-o", dir.file("tooth.vxl"), "-q"});
+  ASSERT_EQ(c.status, 0) << c.err;
+  writeText(dir.file("t.scene.json"), R"({"objects": [{"type": "volume", "file": "tooth.vxl"}]})");
+  auto r = runVoxlink({"scene", "build", dir.file("t.scene.json"), "-o", dir.file("scene.vxl")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto a = format::VoxLinkFile::open(dir.file("tooth.vxl"));
+  auto b = format::VoxLinkFile::open(dir.file("scene.vxl"));
+  ASSERT_TRUE(a && b);
+  EXPECT_FALSE(b->isScene());  // volume only: a version 1 file
+  for (format::SectionId id : format::kRequiredSections) {
+    if (id == format::SectionId::kMeta) continue;
+    const auto x = a->sectionBytes(id), y = b->sectionBytes(id);
+    EXPECT_TRUE(x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin())) << format::sectionName(id);
+  }
+  EXPECT_EQ(a->header().valueMin, b->header().valueMin);
+  EXPECT_EQ(a->header().valueMax, b->header().valueMax);
+}
+
+TEST(CliScene, GeometryInsideACtVolume) {
+  VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
+  VOXLINK_REQUIRE_DATA("mesh/bunny_npm.obj");
+  TempDir dir;
+  auto c = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161", "--type", "u8",
+                       "--threshold", "60", "-o", dir.file("tooth.vxl"), "-q"});
+  ASSERT_EQ(c.status, 0) << c.err;
+  writeText(dir.file("t.scene.json"), R"({"objects": [{"type": "volume", "file": "tooth.vxl"},
+      {"type": "mesh", "file": ")" + dataPath("mesh/bunny_npm.obj") + R"(", "transform": {"scale": 5, "translate": [50, 20, 80]}},
+      {"type": "sphere", "center": [20, 20, 20], "radius": 8}]})");
+  auto r = runVoxlink({"scene", "build", dir.file("t.scene.json"), "-o", dir.file("scene.vxl")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto tooth = format::VoxLinkFile::open(dir.file("tooth.vxl"));
+  auto f = format::VoxLinkFile::open(dir.file("scene.vxl"));
+  ASSERT_TRUE(tooth && f);
+  ASSERT_TRUE(format::validateFile(*f)) << format::validateFile(*f).message();
+  EXPECT_EQ(f->header().volumeVoxelCount, tooth->voxelCount());
+  EXPECT_GT(f->header().surfaceVoxelCount, 1000u);
+  EXPECT_EQ(f->header().dims[0], 103u);
+  // Every tooth voxel keeps its value in the scene.
+  const format::VoxelLocator locator(*f);
+  const format::SceneIndex index(*f);
+  uint64_t checked = 0;
+  format::VoxelLocator(*tooth).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+    const int64_t j = locator.find(x, y, z);
+    ASSERT_GE(j, 0);
+    const int64_t slot = index.volumeSlot(uint64_t(j));
+    ASSERT_GE(slot, 0);
+    ASSERT_EQ(f->value(uint64_t(slot)), tooth->value(i));
+    ASSERT_EQ(f->gradientCodes()[uint64_t(slot)], tooth->gradientCodes()[i]);
+    ++checked;
+  });
+  EXPECT_EQ(checked, tooth->voxelCount());
+}
+
+TEST(CliScene, BadInputIsOneLine) {
+  TempDir dir;
+  writeText(dir.file("bad.scene.json"), R"({"objects": [{"type": "mesh", "file": "missing.obj"}]})");
+  auto r = runVoxlink({"scene", "build", dir.file("bad.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
+  writeText(dir.file("nan.obj"), "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  writeText(dir.file("nan.scene.json"), R"({"objects": [{"type": "mesh", "file": "nan.obj"}]})");
+  r = runVoxlink({"scene", "build", dir.file("nan.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("nan.obj"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
+  writeText(dir.file("empty.scene.json"), R"({"objects": []})");
+  r = runVoxlink({"scene", "build", dir.file("empty.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("no geometry and no volume"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace voxlink::testing
