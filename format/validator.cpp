@@ -122,6 +122,12 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
 
 }  // namespace
 
+Result<VoxLinkFile> openValidatedFile(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::open(path));
+  VOXLINK_RETURN_IF_ERROR(validateFile(file).status());
+  return file;
+}
+
 Result<ValidationReport> validateFile(const VoxLinkFile& f) {
   ValidationReport report;
   VOXLINK_RETURN_IF_ERROR(checkChecksums(f, report));
