@@ -2,9 +2,10 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <filesystem>
+#include <vector>
 
+#include "format/output_file.h"
 #include "imageio/backend.h"
 #include "plugins/plugin_loader.h"
 
@@ -44,30 +45,31 @@ Status read(const std::string& path, int subimage, int channels, ScalarType as, 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
              const void* pixels, bool halfFloat, const char* colorSpace) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  // Written beside the destination under a temporary name that keeps the extension (it picks
-  // the format), then renamed: a failed write never leaves a partial image at `path`.
-  static std::atomic<unsigned> serial{0};
-  const std::filesystem::path target(path);
-  const std::filesystem::path temp =
-      target.parent_path() / cat(".", target.stem().string(), ".tmp-", getpid(), "-", serial++,
-                                 target.extension().string());
-  const std::string tempPath = temp.string();
+  // Written beside the destination under a unique temporary name (O_EXCL) that keeps the
+  // extension (it picks the format), then renamed: a failed write never leaves a partial image
+  // at `path`. The backend checks every write and the close (a full disk fails there).
+  const std::string extension = std::filesystem::path(path).extension().string();
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, extension));
+  ::close(temp.fd);  // the backend opens the file by name
+  const std::string tempPath = temp.path;
   Status written = b->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
-  std::error_code ec;
+  if (written) {
+    // Image libraries do not all report a short write (a full disk left truncated PNGs behind
+    // with success): the file must read back whole before it replaces anything.
+    std::vector<float> back(size_t(width) * size_t(height) * size_t(channels));
+    if (Status s = b->read(tempPath, 0, channels, ScalarType::kF32, back.data()); !s)
+      written = makeError(ErrorCode::kIo, path,
+                          ": write failed: the written image does not read "
+                          "back (disk full?)");
+  }
   if (!written) {
-    std::filesystem::remove(temp, ec);
+    format::discardTemp(tempPath);
     std::string message = written.message();
     for (size_t at; (at = message.find(tempPath)) != std::string::npos;)
       message.replace(at, tempPath.size(), path);
     return makeError(written.code(), message);
   }
-  std::filesystem::rename(temp, target, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    return makeError(ErrorCode::kIo, path,
-                     ": cannot move the finished image into place: ", ec.message());
-  }
-  return Status::ok();
+  return format::commitTemp(tempPath, path);
 }
 
 }  // namespace voxlink::imageio

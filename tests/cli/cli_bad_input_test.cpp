@@ -82,7 +82,7 @@ TEST_F(CliBadInput, OutputThatCannotBeWritten) {
   const std::string in = rawVolume();
   auto r = runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "10",
                        "-o", dir_.file("nope/o.vxl")});
-  expectCleanFailure(r, "nope/o.vxl: cannot create output file");
+  expectCleanFailure(r, "nope/o.vxl: cannot create a temporary file");
   EXPECT_EQ(r.status, 3);
 }
 
