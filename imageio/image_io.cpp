@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "format/output_file.h"
+#include "format/stderr_capture.h"
 #include "imageio/backend.h"
 #include "plugins/plugin_loader.h"
 
@@ -27,19 +28,32 @@ Result<std::string> pluginPath() {
   return plugins::pluginLocation("libvoxlink_imageio_oiio.so");
 }
 
+// libpng (under OpenImageIO) prints warnings such as "libpng warning: iCCP: known incorrect
+// sRGB profile" to stderr: captured, so our messages stay one line; a failure quotes it.
+template <class R>
+R quoting(const format::StderrCapture& capture, R result) {
+  if (result) return result;
+  const std::string said = capture.firstLine();
+  if (said.empty()) return result;
+  return Error{result.code(), cat(result.message(), " (", said, ")")};
+}
+
 Result<ImageSpec> probe(const std::string& path, int subimage) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->probe(path, subimage);
+  format::StderrCapture capture;
+  return quoting(capture, b->probe(path, subimage));
 }
 
 Result<int> subimageCount(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->subimageCount(path);
+  format::StderrCapture capture;
+  return quoting(capture, b->subimageCount(path));
 }
 
 Status read(const std::string& path, int subimage, int channels, ScalarType as, void* dst) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->read(path, subimage, channels, as, dst);
+  format::StderrCapture capture;
+  return quoting(capture, b->read(path, subimage, channels, as, dst));
 }
 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
@@ -52,6 +66,7 @@ Status write(const std::string& path, int width, int height, int channels, Scala
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, extension));
   ::close(temp.fd);  // the backend opens the file by name
   const std::string tempPath = temp.path;
+  format::StderrCapture capture;
   Status written = b->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
   if (written) {
     // Image libraries do not all report a short write (a full disk left truncated PNGs behind
