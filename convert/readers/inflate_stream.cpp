@@ -90,9 +90,10 @@ Status InflateStream::checkNothingTrails() {
   for (;;) {
     for (uInt i = 0; i < z_->s.avail_in; ++i)
       if (z_->s.next_in[i] != 0)
-        return makeError(ErrorCode::kCorrupt, label_, ": bytes after the end of the compressed ",
-                         "stream (trailing garbage at decoded byte ", produced_, ", ", seen + i,
-                         " bytes after it)");
+        return makeError(ErrorCode::kCorrupt, label_,
+                         ": trailing garbage after the end of the compressed stream (a non-zero "
+                         "byte ",
+                         seen + i, " bytes past it, after ", produced_, " decoded bytes)");
     seen += z_->s.avail_in;
     z_->s.avail_in = 0;
     VOXLINK_ASSIGN_OR_RETURN(bool more, fillInput());
