@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <thread>
 
 #include "format/crc32c.h"
@@ -128,7 +129,19 @@ TEST(CliHardening, ValidFilesWithExtremeValueRangesRender) {
   r = runVoxlink({"convert", ramp, "--dims", "20,20,20", "--type", "f32", "--threshold", "1000",
                   "-o", dir.file("empty.vxl"), "-q"});
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* name : {"big.vxl", "empty.vxl"}) {
+  // The same empty file with a NaN value range in its header (validate accepts it: no voxels).
+  {
+    auto bytes = readBytes(dir.file("empty.vxl"));
+    format::FileHeader h;
+    std::memcpy(&h, bytes.data(), sizeof h);
+    ASSERT_EQ(h.voxelCount, 0u);
+    h.valueMin = h.valueMax = std::numeric_limits<double>::quiet_NaN();
+    h.headerCrc = 0;
+    h.headerCrc = format::crc32c(&h, sizeof h);
+    std::memcpy(bytes.data(), &h, sizeof h);
+    writeBytes(dir.file("nan.vxl"), bytes);
+  }
+  for (const char* name : {"big.vxl", "empty.vxl", "nan.vxl"}) {
     SCOPED_TRACE(name);
     EXPECT_EQ(runVoxlink({"validate", dir.file(name)}).status, 0);
     r = runVoxlink({"render", dir.file(name), "-o", dir.file("out.png"), "--size", "32x32"});
