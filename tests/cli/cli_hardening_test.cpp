@@ -280,7 +280,8 @@ TEST(CliHardening, FifosAreRefusedNotWaitedOn) {
         {"convert", dir.file("fifo.vxl"), "--format", "nrrd", "--keep-all", "-o",
          dir.file("o.vxl")},
         {"convert", dir.file("ramp.raw"), "--dims", "20,20,20", "--type", "u8", "--tf",
-         dir.file("tf.json"), "-o", dir.file("o.vxl")}}) {
+         dir.file("tf.json"), "-o", dir.file("o.vxl")},
+        {"krige", dir.file("tf.json"), "--value", "v", "-o", dir.file("k.nhdr")}}) {
     SCOPED_TRACE(args[0] + " " + args[1]);
     const auto r = runVoxlink(args, timeout);
     expectOneLineFailure(r, {"FIFO"});
