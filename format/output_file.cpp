@@ -64,9 +64,7 @@ Result<TempFile> createTempBeside(const std::string& target, std::string_view su
   if (fd < 0)
     return makeError(ErrorCode::kIo, target, ": cannot create a temporary file in ", dir.string(),
                      ": ", std::strerror(errno));
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  fchmod(fd, 0666 & ~mask);
+  fchmod(fd, 0644);  // mkstemp makes 0600; outputs are ordinary readable files
   registerTempForCleanup(pattern);
   return TempFile{fd, pattern};
 }
