@@ -1,6 +1,7 @@
 // Sizes from files and options that overflow 64-bit arithmetic or exceed format/limits.h: each
 // must fail with a one-line error before anything is allocated or written. Synthetic files only.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cstring>
 
@@ -41,8 +42,8 @@ TEST(HostileSizes, VtiBlockSizesThatWrapAroundFailBeforeDecoding) {
   for (uint64_t v : {uint64_t{2}, half, half, uint64_t{16}, uint64_t{16}}) appendU64(wrap, v);
   wrap.resize(wrap.size() + 2048, 0x78);
   writeBytes(dir.file("wrap.vti"), vtiWithPayload("0 511 0 0 0 0", wrap));
-  expectError(openVolume(dir.file("wrap.vti")), ErrorCode::kCorrupt,
-              {"wrap.vti", "DataArray", "compression header"});
+  expectError(openVolume(dir.file("wrap.vti")), ErrorCode::kSizeMismatch,
+              {"wrap.vti", "DataArray", "do not make the 512 bytes"});
 
   // Compressed block sizes whose sum wraps around to a few bytes.
   std::vector<uint8_t> sum;
@@ -58,6 +59,25 @@ TEST(HostileSizes, VtiBlockSizesThatWrapAroundFailBeforeDecoding) {
   writeBytes(dir.file("tiny.vti"), vtiWithPayload("0 511 0 0 0 0", tiny));
   expectError(openVolume(dir.file("tiny.vti")), ErrorCode::kCorrupt,
               {"tiny.vti", "block 0 of 0 bytes"});
+}
+
+TEST(HostileSizes, VtiSmallArrayWithVtksDefaultBlockSizeStillOpens) {
+  // VTK writes block size 32768 even for an array of 120 bytes: one block, last size 120.
+  TempDir dir;
+  const auto values = patternBytes(120, 9);
+  std::vector<uint8_t> z(compressBound(values.size()));
+  uLongf zn = z.size();
+  ASSERT_EQ(compress(z.data(), &zn, values.data(), values.size()), Z_OK);
+  std::vector<uint8_t> payload;
+  for (uint64_t v : {uint64_t{1}, uint64_t{32768}, uint64_t{120}, uint64_t{zn}})
+    appendU64(payload, v);
+  payload.insert(payload.end(), z.begin(), z.begin() + static_cast<long>(zn));
+  writeBytes(dir.file("small.vti"), vtiWithPayload("0 5 0 4 0 3", payload));
+  auto source = openOrDie(dir.file("small.vti"));
+  ASSERT_TRUE(source);
+  auto data = readAll(*source);
+  ASSERT_TRUE(data) << data.message();
+  EXPECT_TRUE(*data == values);
 }
 
 TEST(HostileSizes, VtiHugeExtentFailsOnTheMissingDataNotOnAllocation) {
