@@ -8,6 +8,7 @@
 
 #include "cli/command.h"
 #include "cli/render_options.h"
+#include "format/validator.h"
 #include "viewer/core/recorded_source.h"
 #include "viewer/gl/dense_renderer.h"
 #include "viewer/gl/gl_context.h"
@@ -40,7 +41,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
   args->source.add(cmd);
   args->render.add(cmd, false);
   return [args] {
-    auto file = format::VoxLinkFile::open(args->path);
+    auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     viewer::BenchmarkOptions o;
     o.framesPerTurn = args->framesPerTurn;

@@ -9,6 +9,7 @@
 #include "cli/source_options.h"
 #include "convert/converter.h"
 #include "convert/moments.h"
+#include "format/output_file.h"
 #include "format/transfer_function.h"
 
 namespace voxlink::cli {
@@ -58,6 +59,7 @@ std::string humanCount(uint64_t v) {
 }
 
 int runConvert(const ConvertArgs& a) {
+  if (Status s = format::checkOutputTarget(a.output, {a.input}); !s) return reportError(s);
   auto open = toOpenOptions(a.source);
   if (!open) return reportError(open.error());
   auto source = convert::openVolume(a.input, *open);
@@ -121,15 +123,22 @@ CommandRunner addConvertCommand(CLI::App& app) {
   auto* keep = cmd->add_option_group("classification", "What to keep (exactly one)");
   keep->add_option("--threshold", a->thresholds, "Keep values >= LO, or in [LO,HI]; repeat for a union")->allow_extra_args(false);
   keep->add_option("--tf", a->tfPath, "Keep values the transfer function (JSON) gives opacity > 0")->check(CLI::ExistingFile);
-  keep->add_option("--keep-outside", a->keepOutside, "Keep values outside [LO,HI], e.g. -1.96,1.96")->delimiter(',')->expected(2);
+  keep->add_option("--keep-outside", a->keepOutside, "Keep values outside [LO,HI], e.g. -1.96,1.96")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(finiteNumber());
   keep->add_flag("--keep-all", a->keepAll, "Keep every voxel");
-  cmd->add_option("--mean", a->mean, "With --keep-outside: standardize z = (v - mean) / sigma first");
-  cmd->add_option("--sigma", a->sigma, "With --keep-outside: see --mean");
+  cmd->add_option("--mean", a->mean,
+                  "With --keep-outside: standardize z = (v - mean) / sigma first")
+      ->check(finiteNumber());
+  cmd->add_option("--sigma", a->sigma, "With --keep-outside: see --mean")->check(finiteNumber());
   cmd->add_flag("--standardize", a->standardize, "With --keep-outside: measure mean and sigma of the volume first");
   cmd->add_option("--brick", a->brick, "Brick edge in voxels (8: most compact for sparse scans; 8 and 16 render equally fast)")->check(CLI::IsMember({4, 8, 16, 32}))->capture_default_str();
   cmd->add_option("--axis", a->axis, "Predominant axis: rows of voxels run along it")->check(CLI::IsMember({"x", "y", "z"}))->capture_default_str();
   cmd->add_option("--value-type", a->valueType, "Stored value type (default: smallest lossless)")->check(CLI::IsMember({"u8", "u16", "f16", "f32"}));
-  cmd->add_option("--error-bound", a->errorBound, "Largest absolute value error allowed; picks the smallest type within it");
+  cmd->add_option("--error-bound", a->errorBound,
+                  "Largest absolute value error allowed; picks the smallest type within it")
+      ->check(finiteNumber());
   cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)")->capture_default_str();
   cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "No progress bar");

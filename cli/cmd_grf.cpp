@@ -89,7 +89,7 @@ CommandRunner addGrfCommand(CLI::App& app) {
                   "Covariance model in voxel units, e.g. exp:psill=1,range=32 (sill 1: N(0,1))")
       ->capture_default_str();
   cmd->add_option("--seed", a->seed, "Random seed")->capture_default_str();
-  cmd->add_option("--mean", a->mean, "Field mean")->capture_default_str();
+  cmd->add_option("--mean", a->mean, "Field mean")->check(finiteNumber())->capture_default_str();
   cmd->add_option("-o,--output", a->output,
                   "NAME.nhdr (raw + NRRD header) or NAME.npy; omit to only time/measure");
   cmd->add_option("--type", a->type, "Stored value type")

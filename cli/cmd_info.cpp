@@ -5,6 +5,7 @@
 #include "cli/command.h"
 #include "convert/vdb_footprint.h"
 #include "format/footprint.h"
+#include "format/validator.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::cli {
@@ -22,7 +23,7 @@ CommandRunner addInfoCommand(CLI::App& app) {
   cmd->add_flag("--no-vdb", args->skipVdb,
                 "Skip building the OpenVDB FloatGrid used for comparison");
   return [args] {
-    auto file = format::VoxLinkFile::open(args->path);
+    auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     format::FootprintReport report = format::computeFootprint(*file);
     if (!args->skipVdb) {

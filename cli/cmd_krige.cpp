@@ -7,6 +7,7 @@
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
+#include "format/output_file.h"
 #include "samples/kriging/cross_validation.h"
 #include "samples/kriging/grid_writer.h"
 #include "samples/kriging/krige_grid.h"
@@ -130,6 +131,8 @@ int runKrige(const KrigeArgs& a) {
         cv->evaluated, cv->meanError, cv->rmse, cv->meanStandardizedSquaredError, cv->correlation);
   }
   if (a.output.empty()) return 0;
+  for (const std::string& out : {a.output, a.varianceOutput})
+    if (Status s = format::checkOutputTarget(out, {a.input}); !s) return reportError(s);
 
   auto grid = gridFromArgs(a, *points);
   if (!grid) return reportError(grid.error());
@@ -184,18 +187,21 @@ CommandRunner addKrigeCommand(CLI::App& app) {
                   "practical range; mat takes nu=)");
   cmd->add_option("--fit", a->fit,
                   "Fit this model type to the experimental variogram instead (exp|sph|gau|mat)");
-  cmd->add_option("--nu", a->nu, "Matern smoothness for --fit mat")->capture_default_str();
+  cmd->add_option("--nu", a->nu, "Matern smoothness for --fit mat")
+      ->capture_default_str()
+      ->check(finiteNumber());
   cmd->add_flag("--no-nugget", a->fixNuggetZero, "With --fit: keep the nugget at 0");
   cmd->add_option("--kind", a->kind, "ok (ordinary) or sk (simple, needs --mean)")
       ->check(CLI::IsMember({"ok", "sk"}))
       ->capture_default_str();
-  cmd->add_option("--mean", a->mean, "Known mean for simple kriging");
+  cmd->add_option("--mean", a->mean, "Known mean for simple kriging")->check(finiteNumber());
   cmd->add_option("-k,--neighbours", a->neighbours,
                   "Nearest samples per node (0: all, global kriging)")
       ->capture_default_str();
   cmd->add_option("--max-distance", a->maxDistance, "Search radius (default: unlimited)");
   cmd->add_option("--merge-distance", a->mergeDistance,
-                  "Merge samples closer than this (default 1e-9 x bounding-box diagonal)");
+                  "Merge samples closer than this (default 1e-9 x bounding-box diagonal)")
+      ->check(finiteNumber());
   cmd->add_option("--max-condition", a->maxCondition,
                   "Regularize systems whose condition estimate exceeds this")
       ->capture_default_str();

@@ -6,6 +6,8 @@
 
 #include "cli/command.h"
 #include "cli/render_options.h"
+#include "format/output_file.h"
+#include "format/validator.h"
 #include "viewer/core/recorded_source.h"
 #include "viewer/core/reference_renderer.h"
 #include "viewer/gl/gl_context.h"
@@ -30,7 +32,10 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--reference-output", args->referenceOut, "Write the reference image here (implies --reference)");
   args->source.add(cmd);
   return [args] {
-    auto file = format::VoxLinkFile::open(args->path);
+    for (const std::string& out : {args->output, args->referenceOut})
+      if (Status s = format::checkOutputTarget(out, {args->path, args->source.path}); !s)
+        return reportError(s);
+    auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     auto settings = args->render.settings();
     if (!settings) return reportError(settings.error());

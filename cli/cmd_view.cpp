@@ -4,6 +4,7 @@
 
 #include "cli/command.h"
 #include "cli/render_options.h"
+#include "format/validator.h"
 #include "viewer/app/viewer_app.h"
 
 namespace voxlink::cli {
@@ -25,7 +26,7 @@ CommandRunner addViewCommand(CLI::App& app) {
   cmd->add_option("--capture-window-on-exit", args->capture, "With --frames: write the whole window (panels included)");
   args->render.add(cmd, false);
   return [args] {
-    auto file = format::VoxLinkFile::open(args->path);
+    auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     viewer::ViewerOptions o;
     o.path = args->path;

@@ -3,6 +3,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <string>
 
@@ -17,6 +20,26 @@ using CommandFactory = CommandRunner (*)(CLI::App& app);
 // Prints "voxlink: <message>" on stderr and returns the exit status for the error's kind.
 int reportError(const Error& error);
 int reportError(const Status& status);
+
+// Option check for numbers that must be finite: CLI11 itself reads "nan" and "inf" as doubles.
+// Each comma-separated element is checked, so it also guards list options like --keep-outside.
+inline CLI::Validator finiteNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string rest = text;
+        for (size_t at = 0; at <= rest.size();) {
+          const size_t comma = std::min(rest.find(',', at), rest.size());
+          const std::string word = rest.substr(at, comma - at);
+          char* end = nullptr;
+          const double v = std::strtod(word.c_str(), &end);
+          if (!word.empty() && end == word.c_str() + word.size() && !std::isfinite(v))
+            return word + " is not a finite number";
+          at = comma + 1;
+        }
+        return "";
+      },
+      "FINITE");
+}
 
 // Subcommands, in the order --help lists them.
 CommandRunner addConvertCommand(CLI::App& app);

@@ -1,11 +1,14 @@
 // voxlink: convert dense volumes to VoxLink files, report their footprint, validate them,
 // render them.
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <vector>
 
 #include "cli/command.h"
 #include "cli/printable_message.h"
+#include "format/output_file.h"
 
 namespace voxlink::cli {
 
@@ -19,6 +22,33 @@ int reportError(const Error& error) {
 }
 
 int reportError(const Status& status) { return status ? 0 : reportError(status.error()); }
+
+namespace {
+
+// Output that could not be written (a closed pipe, a full disk behind a redirect) is an error:
+// the exit status must not claim a report that nobody received.
+int finishStandardOutput(int status) {
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    const int e = errno;
+    std::fprintf(stderr, "voxlink: standard output: write failed: %s\n",
+                 e ? std::strerror(e) : "I/O error");
+    return status != 0 ? status : 3;
+  }
+  return status;
+}
+
+// The option parser's errors as one line and exit status 2 (CLI11 prints a second line and
+// exits 104-112); --help and --version keep CLI11's output and status 0.
+int reportParseError(CLI::App& app, const CLI::ParseError& e) {
+  if (e.get_exit_code() == 0) return finishStandardOutput(app.exit(e));
+  std::string what = e.what();
+  for (char& c : what)
+    if (c == '\n') c = ' ';
+  std::fprintf(stderr, "voxlink: %s (see voxlink --help)\n", printableMessage(what).c_str());
+  return 2;
+}
+
+}  // namespace
 
 }  // namespace voxlink::cli
 
@@ -43,9 +73,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return reportParseError(app, e);
   }
+  voxlink::format::removeTempsOnSignals();
   for (auto& [sub, run] : commands)
-    if (sub->parsed()) return run();
+    if (sub->parsed()) return finishStandardOutput(run());
   return 2;
 }

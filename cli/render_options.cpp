@@ -80,8 +80,7 @@ Result<viewer::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& 
 Result<format::TransferFunction> RenderOptions::transferFunction(const format::VoxLinkFile& file) const {
   if (!tfPath.empty()) return format::loadTransferFunction(tfPath);
   if (!tfPreset.empty()) {
-    double lo = file.header().valueMin, hi = file.header().valueMax;
-    if (!(lo < hi)) hi = lo + 1;
+    const auto [lo, hi] = viewer::displayRange(file.header().valueMin, file.header().valueMax);
     return viewer::tfPreset(tfPreset, lo, hi);
   }
   return viewer::defaultTransferFunction(file);

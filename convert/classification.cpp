@@ -87,6 +87,8 @@ Result<Classification> keepOutsideClassification(double lo, double hi, std::opti
     return makeError(ErrorCode::kInvalidArgument, "--keep-outside ", lo, ",", hi, ": expected finite LO <= HI");
   if (sigma && !(*sigma > 0 && std::isfinite(*sigma)))
     return makeError(ErrorCode::kInvalidArgument, "--sigma ", *sigma, ": expected a finite value > 0");
+  if (mean && !std::isfinite(*mean))
+    return makeError(ErrorCode::kInvalidArgument, "--mean ", *mean, ": expected a finite value");
   if (mean.has_value() != sigma.has_value())
     return makeError(ErrorCode::kInvalidArgument, "--keep-outside: give both mean and sigma to standardize, or neither");
   Classification c;

@@ -1,6 +1,7 @@
 #include "convert/value_mapping.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace voxlink::convert {
@@ -40,6 +41,14 @@ ValueMapping candidate(StoredType type, ScalarType source, double lo, double hi)
       m.errorBound = (integral && magnitude <= 16777216.0) || source == ScalarType::kF32
                          ? 0.0
                          : magnitude * 0x1p-24;
+      // f64 values beyond float's range (1e300) would store as infinity: scale them by a power
+      // of two, which keeps the relative rounding error of f32 and is exact to undo.
+      if (magnitude >= 0x1p127 && std::isfinite(magnitude))
+        m.scale = std::ldexp(1.0, std::ilogb(magnitude) - 125);  // |stored| < 2^126: rounds finite
+      // Within f32 rounding of the largest double, the rounded value overflows on decoding.
+      if (!std::isfinite(magnitude) || !std::isfinite(m.decode(m.encode(magnitude))) ||
+          !std::isfinite(m.decode(m.encode(-magnitude))))
+        m.errorBound = INFINITY;
       break;
   }
   return m;
@@ -73,6 +82,10 @@ Result<ValueMapping> chooseValueMapping(ScalarType source, double keptMin, doubl
   }
   // Only f64 sources get here without a bound: f32, with its rounding error measured.
   ValueMapping m = candidate(StoredType::kF32, source, keptMin, keptMax);
+  if (!std::isfinite(m.errorBound))
+    return makeError(ErrorCode::kTooLarge, "kept values up to ",
+                     std::max(std::abs(keptMin), std::abs(keptMax)),
+                     " cannot be stored: f32 rounding overflows the largest double");
   if (errorBound > 0 && m.errorBound > errorBound)
     return makeError(ErrorCode::kInvalidArgument, "--error-bound ", errorBound, ": no stored type meets it over the kept range [", keptMin, ", ", keptMax, "] (f32 guarantees ", m.errorBound, ")");
   m.reason = "f32 (the widest stored type); rounding error measured";

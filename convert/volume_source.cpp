@@ -4,7 +4,9 @@
 #include <filesystem>
 
 #include "convert/readers/raw_reader.h"
+#include "convert/readers/reader_common.h"
 #include "convert/readers/reader_registry.h"
+#include "format/regular_file.h"
 
 namespace voxlink::convert {
 
@@ -35,10 +37,29 @@ std::vector<std::string> readerNames() {
   return names;
 }
 
-Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path, const OpenOptions& options) {
+namespace {
+
+// Every reader checks its header before allocating; this repeats the shape limits on whatever a
+// reader returns, so no command (convert, stats, ...) sees a volume beyond them.
+Result<std::unique_ptr<VolumeSource>> checked(Result<std::unique_ptr<VolumeSource>> source) {
+  if (!source) return source;
+  const VolumeInfo& info = (*source)->info();
+  VOXLINK_RETURN_IF_ERROR(checkVolumeShape(info, "dims"));
+  // Readers name the field when they check; this catches any reader that does not.
+  VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, info.path, "spacing"));
+  VOXLINK_RETURN_IF_ERROR(checkOrigin(info.origin, info.path, "origin"));
+  return source;
+}
+
+Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
+                                                     const OpenOptions& options) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec))
     return makeError(ErrorCode::kIo, path, ": no such file or directory");
+  // Folders hold DICOM series and image stacks; anything else must be a regular file (a FIFO
+  // or device would block the readers' probes forever).
+  if (!std::filesystem::is_directory(path, ec))
+    VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "volume"));
   const auto& registry = readerRegistry();
   if (!options.format.empty()) {
     for (const ReaderEntry& r : registry)
@@ -52,6 +73,13 @@ Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path, const 
   // A file no reader claims is raw when dims and type were given.
   if (options.dims && options.type) return openRaw(path, options);
   return makeError(ErrorCode::kUnsupported, path, ": unknown volume format; give --format, or --dims and --type for a raw file");
+}
+
+}  // namespace
+
+Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path,
+                                                 const OpenOptions& options) {
+  return checked(openWithReader(path, options));
 }
 
 }  // namespace voxlink::convert

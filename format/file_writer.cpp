@@ -17,6 +17,7 @@
 #include "format/crc32c.h"
 #include "format/half.h"
 #include "format/mapped_file.h"
+#include "format/output_file.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::format {
@@ -111,12 +112,9 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
   w.layout_ = planSections(header, 0);
   w.crcs_.resize(w.layout_.entries.size());
   // The temporary file sits beside the destination so the final rename stays on one file system.
-  std::string pattern = path + ".tmp-XXXXXX";
-  w.fd_ = mkstemp(pattern.data());
-  if (w.fd_ < 0)
-    return makeError(ErrorCode::kIo, path, ": cannot create output file: ", std::strerror(errno));
-  w.tempPath_ = pattern;
-  fchmod(w.fd_, 0644);
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path));
+  w.fd_ = temp.fd;
+  w.tempPath_ = temp.path;
   const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
   if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
     return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd, " bytes: ", std::strerror(errno));
@@ -139,7 +137,7 @@ FileWriter::~FileWriter() { discard(); }
 void FileWriter::discard() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  if (!tempPath_.empty()) ::unlink(tempPath_.c_str());
+  if (!tempPath_.empty()) discardTemp(tempPath_);
   tempPath_.clear();
 }
 
@@ -204,11 +202,11 @@ Status FileWriter::commit(const std::string& metaJson) {
   VOXLINK_RETURN_IF_ERROR(writeRaw(layout_.tableOffset, layout_.entries.data(),
                                    layout_.entries.size() * sizeof(SectionEntry)));
   VOXLINK_RETURN_IF_ERROR(writeRaw(0, &header_, sizeof(header_)));
+  // Local file systems report a full disk at write; network ones may only at close (checked).
+  // No fsync: it would cost the conversion seconds on large outputs.
   if (::close(std::exchange(fd_, -1)) != 0)
     return makeError(ErrorCode::kIo, path_, ": closing the output failed: ", std::strerror(errno));
-  if (std::rename(tempPath_.c_str(), path_.c_str()) != 0)
-    return makeError(ErrorCode::kIo, path_, ": cannot move the finished file into place: ", std::strerror(errno));
-  tempPath_.clear();
+  VOXLINK_RETURN_IF_ERROR(commitTemp(std::exchange(tempPath_, std::string()), path_));
   return Status::ok();
 }
 

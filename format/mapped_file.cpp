@@ -9,6 +9,8 @@
 #include <cstring>
 #include <utility>
 
+#include "format/regular_file.h"
+
 namespace voxlink::format {
 namespace {
 
@@ -20,7 +22,8 @@ size_t pageSize() {
 }  // namespace
 
 Result<MappedFile> MappedFile::open(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: a FIFO must not block open(); it is refused below, regular files mmap as usual.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) return makeError(ErrorCode::kIo, path, ": cannot open: ", std::strerror(errno));
   struct stat st {};
   if (fstat(fd, &st) != 0) {
@@ -30,6 +33,7 @@ Result<MappedFile> MappedFile::open(const std::string& path) {
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd);
+    if (Status s = requireRegularFile(path); !s) return s.error();  // names what it is
     return makeError(ErrorCode::kIo, path, ": not a regular file");
   }
   MappedFile file;

@@ -1,11 +1,19 @@
 #include "format/transfer_function.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "format/limits.h"
+#include "format/output_file.h"
+#include "format/regular_file.h"
 
 namespace voxlink::format {
 namespace {
@@ -121,11 +129,11 @@ Result<TransferFunction> parseTransferFunction(const std::string& text, const st
 }
 
 Result<TransferFunction> loadTransferFunction(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open transfer function");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseTransferFunction(text.str(), path);
+  // A FIFO or device must fail at once, not block the command (regular files only).
+  VOXLINK_ASSIGN_OR_RETURN(
+      std::string text,
+      readRegularFile(path, limits::kMaxTransferFunctionBytes, "transfer function"));
+  return parseTransferFunction(text, path);
 }
 
 std::string transferFunctionJson(const TransferFunction& tf) {
@@ -141,16 +149,22 @@ std::string transferFunctionJson(const TransferFunction& tf) {
 }
 
 Status saveTransferFunction(const TransferFunction& tf, const std::string& path) {
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp);
-    if (!out) return makeError(ErrorCode::kIo, path, ": cannot write transfer function");
-    out << transferFunctionJson(tf) << "\n";
-    if (!out) return makeError(ErrorCode::kIo, path, ": write failed");
+  // A unique O_EXCL temporary, not a fixed name a symlink could be planted at.
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path, ".json"));
+  const std::string text = transferFunctionJson(tf) + "\n";
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(temp.fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
   }
-  if (std::rename(temp.c_str(), path.c_str()) != 0)
-    return makeError(ErrorCode::kIo, path, ": cannot move the saved file into place");
-  return Status::ok();
+  const bool closed = ::close(temp.fd) == 0;
+  if (done != text.size() || !closed) {
+    discardTemp(temp.path);
+    return makeError(ErrorCode::kIo, path, ": write failed: ", std::strerror(errno));
+  }
+  return commitTemp(temp.path, path);
 }
 
 }  // namespace voxlink::format

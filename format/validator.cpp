@@ -227,6 +227,12 @@ Status checkScene(const VoxLinkFile& f) {
 
 }  // namespace
 
+Result<VoxLinkFile> openValidatedFile(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::open(path));
+  VOXLINK_RETURN_IF_ERROR(validateFile(file).status());
+  return file;
+}
+
 Result<ValidationReport> validateFile(const VoxLinkFile& f) {
   ValidationReport report;
   VOXLINK_RETURN_IF_ERROR(checkChecksums(f, report));

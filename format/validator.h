@@ -17,4 +17,9 @@ struct ValidationReport {
 
 Result<ValidationReport> validateFile(const VoxLinkFile& file);
 
+// VoxLinkFile::open() then validateFile(): what every command that reads a .vxl (render, view,
+// info, bench-render) uses, so a file `voxlink validate` rejects is refused with the same
+// message and never reaches a renderer that trusts its invariants.
+Result<VoxLinkFile> openValidatedFile(const std::string& path);
+
 }  // namespace voxlink::format

@@ -2,9 +2,11 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <filesystem>
+#include <vector>
 
+#include "format/output_file.h"
+#include "format/stderr_capture.h"
 #include "imageio/backend.h"
 #include "plugins/plugin_loader.h"
 
@@ -26,48 +28,63 @@ Result<std::string> pluginPath() {
   return plugins::pluginLocation("libvoxlink_imageio_oiio.so");
 }
 
+// libpng (under OpenImageIO) prints warnings such as "libpng warning: iCCP: known incorrect
+// sRGB profile" to stderr: captured, so our messages stay one line; a failure quotes it.
+template <class R>
+R quoting(const format::StderrCapture& capture, R result) {
+  if (result) return result;
+  const std::string said = capture.firstLine();
+  if (said.empty()) return result;
+  return Error{result.code(), cat(result.message(), " (", said, ")")};
+}
+
 Result<ImageSpec> probe(const std::string& path, int subimage) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->probe(path, subimage);
+  format::StderrCapture capture;
+  return quoting(capture, b->probe(path, subimage));
 }
 
 Result<int> subimageCount(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->subimageCount(path);
+  format::StderrCapture capture;
+  return quoting(capture, b->subimageCount(path));
 }
 
 Status read(const std::string& path, int subimage, int channels, ScalarType as, void* dst) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->read(path, subimage, channels, as, dst);
+  format::StderrCapture capture;
+  return quoting(capture, b->read(path, subimage, channels, as, dst));
 }
 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
              const void* pixels, bool halfFloat, const char* colorSpace) {
   VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  // Written beside the destination under a temporary name that keeps the extension (it picks
-  // the format), then renamed: a failed write never leaves a partial image at `path`.
-  static std::atomic<unsigned> serial{0};
-  const std::filesystem::path target(path);
-  const std::filesystem::path temp =
-      target.parent_path() / cat(".", target.stem().string(), ".tmp-", getpid(), "-", serial++,
-                                 target.extension().string());
-  const std::string tempPath = temp.string();
+  // Written beside the destination under a unique temporary name (O_EXCL) that keeps the
+  // extension (it picks the format), then renamed: a failed write never leaves a partial image
+  // at `path`. The backend checks every write and the close (a full disk fails there).
+  const std::string extension = std::filesystem::path(path).extension().string();
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, extension));
+  ::close(temp.fd);  // the backend opens the file by name
+  const std::string tempPath = temp.path;
+  format::StderrCapture capture;
   Status written = b->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
-  std::error_code ec;
+  if (written) {
+    // Image libraries do not all report a short write (a full disk left truncated PNGs behind
+    // with success): the file must read back whole before it replaces anything.
+    std::vector<float> back(size_t(width) * size_t(height) * size_t(channels));
+    if (Status s = b->read(tempPath, 0, channels, ScalarType::kF32, back.data()); !s)
+      written = makeError(ErrorCode::kIo, path,
+                          ": write failed: the written image does not read "
+                          "back (disk full?)");
+  }
   if (!written) {
-    std::filesystem::remove(temp, ec);
+    format::discardTemp(tempPath);
     std::string message = written.message();
     for (size_t at; (at = message.find(tempPath)) != std::string::npos;)
       message.replace(at, tempPath.size(), path);
     return makeError(written.code(), message);
   }
-  std::filesystem::rename(temp, target, ec);
-  if (ec) {
-    std::filesystem::remove(temp, ec);
-    return makeError(ErrorCode::kIo, path,
-                     ": cannot move the finished image into place: ", ec.message());
-  }
-  return Status::ok();
+  return format::commitTemp(tempPath, path);
 }
 
 }  // namespace voxlink::imageio

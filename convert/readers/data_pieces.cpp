@@ -9,6 +9,7 @@
 #include "convert/readers/byte_order.h"
 #include "convert/readers/inflate_stream.h"
 #include "convert/readers/raw_reader.h"
+#include "format/regular_file.h"
 
 namespace voxlink::convert {
 namespace {
@@ -37,6 +38,7 @@ Error missingFile(const std::string& label, const std::string& path) {
 // Byte offset just after `lines` newlines, counted from `from`.
 Result<uint64_t> skipLines(const std::string& path, uint64_t from, uint64_t lines,
                            const std::string& label) {
+  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "data file"));
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) return makeError(ErrorCode::kIo, label, ": cannot open ", path);
   uint64_t offset = from;
@@ -118,6 +120,7 @@ class PieceSource final : public VolumeSource {
     const ResolvedPiece& rp = pieces_[p];
     if (fdPiece_ != p) {
       closeFile();
+      VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(rp.piece.path, "data file"));
       fd_ = ::open(rp.piece.path.c_str(), O_RDONLY | O_CLOEXEC);
       if (fd_ < 0) return makeError(ErrorCode::kIo, layout_.label, ": cannot open ", rp.piece.path);
       fdPiece_ = p;
@@ -194,6 +197,7 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
     const auto size = fs::file_size(p.path, ec);
     if (ec) {
       if (!fs::exists(p.path, ec)) return missingFile(layout.label, p.path);
+      VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(p.path, "data file"));  // a FIFO...
       return makeError(ErrorCode::kIo, layout.label, ": cannot read ", p.path);
     }
     ResolvedPiece rp{p, p.startOffset, first};

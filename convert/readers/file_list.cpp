@@ -4,6 +4,8 @@
 #include <filesystem>
 
 #include "convert/readers/text_header.h"
+#include "format/checked_math.h"
+#include "format/limits.h"
 
 namespace voxlink::convert {
 namespace {
@@ -14,8 +16,6 @@ struct NumberFormat {
   bool zeroPad = false;
   size_t width = 0;
 };
-
-constexpr int64_t kMaxListedFiles = 1'000'000;
 
 Result<NumberFormat> parseNumberFormat(const std::string& pattern, const std::string& file,
                                        std::string_view field) {
@@ -54,7 +54,8 @@ Result<NumberFormat> parseNumberFormat(const std::string& pattern, const std::st
 }
 
 std::string formatNumber(const NumberFormat& f, int64_t value) {
-  std::string digits = std::to_string(value < 0 ? -value : value);
+  std::string digits =
+      value < 0 ? std::to_string(uint64_t{0} - uint64_t(value)) : std::to_string(value);
   const size_t body = digits.size() + (value < 0 ? 1 : 0);
   std::string padded;
   if (body < f.width) padded.assign(f.width - body, f.zeroPad ? '0' : ' ');
@@ -80,13 +81,20 @@ Result<std::vector<std::string>> expandNumberedFiles(const std::vector<std::stri
   if (step == 0 || (step > 0 && last < first) || (step < 0 && last > first))
     return badField(file, field, "a step that walks from min to max",
                     cat(words[1], " ", words[2], " ", words[3]));
-  const int64_t count = (last - first) / step + 1;
-  if (count > kMaxListedFiles)
-    return makeError(ErrorCode::kTooLarge, file, ": header field '", field, "': ", count,
-                     " files listed, more than ", kMaxListedFiles);
+  // |last - first| / |step| in unsigned arithmetic: the int64 difference and INT64_MIN / -1
+  // both overflow.
+  const uint64_t span =
+      last >= first ? uint64_t(last) - uint64_t(first) : uint64_t(first) - uint64_t(last);
+  const uint64_t stride = step > 0 ? uint64_t(step) : uint64_t{0} - uint64_t(step);
+  const uint64_t count = span / stride + 1;
+  if (span / stride >= limits::kMaxListedFiles)
+    return makeError(ErrorCode::kTooLarge, file, ": header field '", field, "': ", span / stride,
+                     " + 1 files listed, more than ", limits::kMaxListedFiles);
   std::vector<std::string> names;
   names.reserve(static_cast<size_t>(count));
-  for (int64_t i = 0; i < count; ++i) names.push_back(formatNumber(format, first + i * step));
+  // first + i * step stays between first and last, so it fits in int64.
+  for (uint64_t i = 0; i < count; ++i)
+    names.push_back(formatNumber(format, int64_t(uint64_t(first) + i * uint64_t(step))));
   return names;
 }
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "convert/readers/reader_common.h"
 #include "convert/readers/text_stream.h"
 
 namespace voxlink::convert {
@@ -172,6 +173,7 @@ Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
                      " --value NAME ...`");
   size_t column = 0;
   VolumeInfo info;
+  info.path = path;
   if (!options.variable.empty()) {
     const auto it = std::find_if(
         header.names.begin(), header.names.end(),
@@ -194,9 +196,8 @@ Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
     return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB title '", header.title,
                      "' does not give the grid size (\"nx ny nz\"); pass --dims X,Y,Z");
   info.dims = titleDims ? *titleDims : *options.dims;
-  for (int a = 0; a < 3; ++a)
-    if (info.dims[a] == 0)
-      return makeError(ErrorCode::kInvalidArgument, path, ": --dims: axis ", a, " is 0");
+  if (Status s = checkVolumeShape(info, titleDims ? "title" : "--dims"); !s)
+    return Error{titleDims ? ErrorCode::kCorrupt : ErrorCode::kInvalidArgument, s.message()};
   if (options.type && *options.type != ScalarType::kF64)
     return makeError(ErrorCode::kInvalidArgument, path, ": GSLIB values are read as f64; --type ",
                      scalarName(*options.type), " cannot apply");

@@ -1,11 +1,13 @@
 #include "convert/readers/image_stack_reader.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 #include "convert/readers/file_list.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/reader_registry.h"
+#include "format/regular_file.h"
 #include "imageio/image_io.h"
 
 namespace voxlink::convert {
@@ -67,6 +69,36 @@ class ImageStackSource final : public VolumeSource {
   bool multiPage_;
 };
 
+// Netpbm headers: OpenImageIO accepts maxval 0 (every pixel would divide by zero) silently.
+// "P2"/"P5" (and P3/P6), then width, height and maxval as decimal words; '#' starts a comment.
+Status checkNetpbmHeader(const std::string& file) {
+  const std::string ext = lowerExtension(file);
+  if (ext != ".pgm" && ext != ".pnm" && ext != ".ppm") return Status::ok();
+  VOXLINK_ASSIGN_OR_RETURN(std::string head, format::readRegularFilePrefix(file, 1024));
+  if (head.size() < 2 || head[0] != 'P' || head[1] < '1' || head[1] > '6') return Status::ok();
+  if (head[1] == '1' || head[1] == '4') return Status::ok();  // bitmaps have no maxval
+  size_t at = 2;
+  uint64_t words[3] = {0, 0, 0};
+  for (uint64_t& w : words) {
+    for (;;) {
+      while (at < head.size() && std::isspace(static_cast<unsigned char>(head[at]))) ++at;
+      if (at < head.size() && head[at] == '#') {
+        while (at < head.size() && head[at] != '\n') ++at;
+        continue;
+      }
+      break;
+    }
+    const size_t start = at;
+    while (at < head.size() && std::isdigit(static_cast<unsigned char>(head[at])) && w < 1000000)
+      w = w * 10 + static_cast<uint64_t>(head[at++] - '0');
+    if (at == start) return Status::ok();  // not a header we can read: the image library decides
+  }
+  if (words[2] == 0 || words[2] > 65535)
+    return makeError(ErrorCode::kCorrupt, file, ": Netpbm header field 'maxval': ", words[2],
+                     ", expected 1..65535");
+  return Status::ok();
+}
+
 }  // namespace
 
 bool isSliceImageName(const std::string& path) {
@@ -95,12 +127,14 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
       return naturalLess(fs::path(a).filename().string(), fs::path(b).filename().string());
     });
     for (const std::string& file : files) {
+      VOXLINK_RETURN_IF_ERROR(checkNetpbmHeader(file));
       VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(file));
       VOXLINK_RETURN_IF_ERROR(checkSlice(spec, file, shape));
     }
     slices = files.size();
   } else {
     files.push_back(path);
+    VOXLINK_RETURN_IF_ERROR(checkNetpbmHeader(path));
     VOXLINK_ASSIGN_OR_RETURN(int pages, imageio::subimageCount(path));
     for (int page = 0; page < pages; ++page) {
       VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(path, page));

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "format/regular_file.h"
+
 namespace voxlink::convert {
 
 struct InflateStream::ZState {
@@ -26,6 +28,7 @@ Result<std::unique_ptr<InflateStream>> InflateStream::open(const std::string& pa
   stream->path_ = path;
   stream->label_ = std::move(label);
   stream->offset_ = offset;
+  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "data file"));
   stream->file_ = std::fopen(path.c_str(), "rb");
   if (!stream->file_) return makeError(ErrorCode::kIo, stream->label_, ": cannot open ", path);
   stream->input_.resize(kInputChunk);
@@ -80,6 +83,24 @@ Result<bool> InflateStream::anotherGzipMemberFollows() {
   return z_->s.avail_in >= 2 && z_->s.next_in[0] == 0x1f && z_->s.next_in[1] == 0x8b;
 }
 
+// After the last member only zero padding may follow (gzip itself warns about anything else);
+// other bytes mean a damaged or concatenated file and are an error, not silently dropped.
+Status InflateStream::checkNothingTrails() {
+  uint64_t seen = 0;
+  for (;;) {
+    for (uInt i = 0; i < z_->s.avail_in; ++i)
+      if (z_->s.next_in[i] != 0)
+        return makeError(ErrorCode::kCorrupt, label_,
+                         ": trailing garbage after the end of the compressed stream (a non-zero "
+                         "byte ",
+                         seen + i, " bytes past it, after ", produced_, " decoded bytes)");
+    seen += z_->s.avail_in;
+    z_->s.avail_in = 0;
+    VOXLINK_ASSIGN_OR_RETURN(bool more, fillInput());
+    if (!more) return Status::ok();
+  }
+}
+
 Result<uint64_t> InflateStream::decode(uint8_t* dst, uint64_t bytes) {
   uint64_t done = 0;
   while (done < bytes && !streamDone_) {
@@ -97,6 +118,7 @@ Result<uint64_t> InflateStream::decode(uint8_t* dst, uint64_t bytes) {
         inflateReset(&z_->s);
       } else {
         streamDone_ = true;
+        VOXLINK_RETURN_IF_ERROR(checkNothingTrails());
       }
       continue;
     }

@@ -44,6 +44,7 @@ class InflateStream {
   Result<uint64_t> decode(uint8_t* dst, uint64_t bytes);
   Result<bool> fillInput();
   Result<bool> anotherGzipMemberFollows();
+  Status checkNothingTrails();
 
   std::string path_;
   std::string label_;

@@ -1,15 +1,17 @@
 #include "convert/readers/metaimage_header.h"
 
+#include <cmath>
 #include <map>
 #include <set>
 
 #include "convert/readers/file_list.h"
 #include "convert/readers/text_header.h"
+#include "format/limits.h"
 
 namespace voxlink::convert {
 namespace {
 
-constexpr size_t kMaxHeaderBytes = size_t{1} << 20;
+constexpr size_t kMaxHeaderBytes = limits::kMaxTextHeaderBytes;
 
 Result<ScalarType> metaType(std::string_view value, const std::string& file) {
   static const std::map<std::string, ScalarType, std::less<>> types = {
@@ -92,6 +94,8 @@ class MetaImageParser {
     } else if (key == "Offset" || key == "Origin" || key == "Position") {
       VOXLINK_ASSIGN_OR_RETURN(std::vector<double> v, parseDoubles(value, path_, key));
       if (v.size() < 3) return badField(path_, key, "3 numbers", value);
+      for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(v[a])) return badField(path_, key, "3 finite numbers", value);
       h_.offset = Vec3{v[0], v[1], v[2]};
     } else if (key == "TransformMatrix" || key == "Rotation" || key == "Orientation") {
       VOXLINK_ASSIGN_OR_RETURN(std::vector<double> m, parseDoubles(value, path_, key));

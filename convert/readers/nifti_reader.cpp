@@ -1,22 +1,62 @@
 #include "convert/readers/nifti_reader.h"
 
 #include <nifti2_io.h>
+#include <zlib.h>
 
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include "convert/readers/axes.h"
 #include "convert/readers/data_pieces.h"
 #include "convert/readers/reader_common.h"
 #include "convert/readers/reader_registry.h"
 #include "convert/readers/rescale.h"
+#include "format/stderr_capture.h"
 
 namespace voxlink::convert {
 namespace {
 
 // nifti_image::byteorder values; nifti2_io.h defines MSB_FIRST only for its own .c file.
 constexpr int kMsbFirst = 2;
+
+// pixdim[1..3] as stored: libnifti replaces 0, negative and NaN values by 1 without saying so.
+// NIfTI-1 keeps float pixdim[8] at byte 76, NIfTI-2 double pixdim[8] at byte 104; sizeof_hdr
+// (348 or 540, in either byte order) tells which. zlib reads plain and gzip files alike.
+std::optional<std::array<double, 3>> storedPixdim(const std::string& path) {
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) return std::nullopt;
+  uint8_t h[168] = {};
+  const int got = gzread(f, h, sizeof h);
+  gzclose(f);
+  if (got < 108) return std::nullopt;
+  uint32_t size = 0;
+  std::memcpy(&size, h, 4);
+  const bool swap = size == __builtin_bswap32(348u) || size == __builtin_bswap32(540u);
+  if (swap) size = __builtin_bswap32(size);
+  std::array<double, 3> out{};
+  for (int a = 0; a < 3; ++a) {
+    if (size == 348) {
+      uint32_t bits;
+      std::memcpy(&bits, h + 76 + 4 * (a + 1), 4);
+      if (swap) bits = __builtin_bswap32(bits);
+      float v;
+      std::memcpy(&v, &bits, 4);
+      out[a] = v;
+    } else if (size == 540 && got >= 168) {
+      uint64_t bits;
+      std::memcpy(&bits, h + 104 + 8 * (a + 1), 8);
+      if (swap) bits = __builtin_bswap64(bits);
+      std::memcpy(&out[a], &bits, 8);
+    } else {
+      return std::nullopt;
+    }
+  }
+  return out;
+}
 
 struct NiftiDeleter {
   void operator()(nifti_image* nim) const { nifti_image_free(nim); }
@@ -82,10 +122,18 @@ Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path,
                                                 const OpenOptions& options) {
   static std::once_flag quiet;
   std::call_once(quiet, [] { nifti_set_debug_level(0); });  // errors come back as ours
-  std::unique_ptr<nifti_image, NiftiDeleter> nim(nifti_image_read(path.c_str(), 0));
+  std::unique_ptr<nifti_image, NiftiDeleter> nim;
+  std::string reason;
+  {
+    // libnifti prints its complaints to stderr; they become part of our one line instead.
+    format::StderrCapture capture;
+    nim.reset(nifti_image_read(path.c_str(), 0));
+    reason = capture.firstLine();
+  }
   if (!nim)
     return makeError(ErrorCode::kCorrupt, path,
-                     ": not a readable NIfTI-1/NIfTI-2 header (libnifti2 refused it)");
+                     ": not a readable NIfTI-1/NIfTI-2 header (libnifti2 refused it",
+                     reason.empty() ? "" : ": ", reason, ")");
   if (nim->nifti_type == NIFTI_FTYPE_ASCII)
     return makeError(ErrorCode::kUnsupported, path, ": NIfTI ASCII files are not supported");
 
@@ -114,6 +162,19 @@ Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path,
   for (int a = 0; a < 3; ++a) {
     info.dims[a] = static_cast<uint32_t>(dims[a]);
     info.spacing[a] = std::fabs(nim->pixdim[a + 1]);
+  }
+  // libnifti turned 0, negative or NaN pixdim into 1: an error for NaN/inf (unless --spacing
+  // replaces it), a note for 0 (written by some tools for "unknown").
+  if (const auto stored = storedPixdim(path)) {
+    for (int a = 0; a < 3; ++a) {
+      const double v = (*stored)[a];
+      if (!std::isfinite(v) && !options.spacing)
+        return makeError(ErrorCode::kCorrupt, path, ": header field 'pixdim[", a + 1, "]': ", v,
+                         " is not a spacing; give --spacing X,Y,Z");
+      if (v == 0 && !options.spacing)
+        info.notes.push_back(cat("header field 'pixdim[", a + 1,
+                                 "]' is 0 (unknown): spacing 1 used; give --spacing to set it"));
+    }
   }
   VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, path, "pixdim"));
   if (nim->xyz_units == NIFTI_UNITS_METER || nim->xyz_units == NIFTI_UNITS_MICRON)

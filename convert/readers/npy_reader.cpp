@@ -5,6 +5,7 @@
 
 #include "convert/readers/byte_order.h"
 #include "convert/readers/raw_reader.h"
+#include "convert/readers/reader_common.h"
 #include "format/mapped_file.h"
 
 namespace voxlink::convert {
@@ -278,7 +279,8 @@ Result<std::unique_ptr<VolumeSource>> openNpy(const std::string& path, const Ope
   if (options.type && *options.type != info.type)
     return makeError(ErrorCode::kSizeMismatch, path, ": npy header field 'descr': '", h.descr,
                      "' disagrees with --type ", scalarName(*options.type));
-  const uint64_t needed = info.voxelCount() * scalarSize(info.type);
+  VOXLINK_RETURN_IF_ERROR(checkVolumeShape(info, "shape"));
+  const uint64_t needed = info.voxelCount() * scalarSize(info.type);  // bounded by the check
   const uint64_t available = file.size() - h.dataOffset;
   if (available < needed)
     return makeError(ErrorCode::kTruncated, path, ": npy data: shape needs ", needed,

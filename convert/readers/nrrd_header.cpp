@@ -2,17 +2,19 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
 
 #include "convert/readers/file_list.h"
 #include "convert/readers/text_header.h"
+#include "format/limits.h"
 
 namespace voxlink::convert {
 namespace {
 
-constexpr size_t kMaxHeaderBytes = size_t{1} << 20;
+constexpr size_t kMaxHeaderBytes = limits::kMaxTextHeaderBytes;
 
 // Every field spelling teem accepts, mapped to one canonical name.
 const std::map<std::string, std::string>& fieldNames() {
@@ -249,6 +251,8 @@ class NrrdParser {
     } else if (field == "space origin") {
       VOXLINK_ASSIGN_OR_RETURN(auto v, parseVector(value, vectorComponents(value), path_, field));
       if (!v) return badField(path_, field, "a vector like (0,0,0)", value);
+      for (double c : *v)
+        if (!std::isfinite(c)) return badField(path_, field, "finite coordinates", value);
       h_.origin = *v;
     } else if (field == "encoding") {
       const std::string lower = toLower(value);

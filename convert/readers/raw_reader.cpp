@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "convert/readers/byte_order.h"
+#include "convert/readers/reader_common.h"
 #include "format/mapped_file.h"
 
 namespace voxlink::convert {
@@ -50,8 +51,9 @@ class RawSource final : public VolumeSource {
 Result<std::unique_ptr<VolumeSource>> openRawData(const std::string& dataPath, VolumeInfo info,
                                                   Endian endian, uint64_t headerBytes,
                                                   bool exactSize) {
+  VOXLINK_RETURN_IF_ERROR(checkVolumeShape(info, "dims"));
   VOXLINK_ASSIGN_OR_RETURN(format::MappedFile file, format::MappedFile::open(dataPath));
-  const uint64_t needed = info.voxelCount() * scalarSize(info.type);
+  const uint64_t needed = info.voxelCount() * scalarSize(info.type);  // bounded by checkVolumeShape
   const uint64_t available = file.size() > headerBytes ? file.size() - headerBytes : 0;
   const std::string shape = cat(info.dims[0], "x", info.dims[1], "x", info.dims[2], " ", scalarName(info.type));
   if (available < needed)
@@ -67,9 +69,9 @@ Result<std::unique_ptr<VolumeSource>> openRaw(const std::string& path, const Ope
     return makeError(ErrorCode::kInvalidArgument, path, ": a raw file needs --dims X,Y,Z and --type (u8, i8, u16, i16, u32, i32, f32, f64)");
   VolumeInfo info;
   info.dims = *options.dims;
-  for (int a = 0; a < 3; ++a)
-    if (info.dims[a] == 0)
-      return makeError(ErrorCode::kInvalidArgument, path, ": --dims: axis ", a, " is 0");
+  info.path = path;
+  if (Status s = checkVolumeShape(info, "--dims"); !s)
+    return Error{ErrorCode::kInvalidArgument, s.message()};
   info.type = *options.type;
   if (options.spacing) info.spacing = *options.spacing;
   info.path = path;

@@ -3,21 +3,30 @@
 #include <cmath>
 #include <fstream>
 
+#include "format/regular_file.h"
+
 namespace voxlink::convert {
 
 Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file,
                  std::string_view field) {
-  uint64_t voxels = 1;
+  const char* kind = field.starts_with("--") ? "option" : "header field";
   for (int a = 0; a < 3; ++a) {
     if (dims[a] == 0)
-      return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': axis ", a,
+      return makeError(ErrorCode::kCorrupt, file, ": ", kind, " '", field, "': axis ", a,
                        " has size 0");
-    if (dims[a] > UINT32_MAX || voxels > kMaxVoxels / dims[a])
-      return makeError(ErrorCode::kTooLarge, file, ": header field '", field, "': ", dims[0], "x",
-                       dims[1], "x", dims[2], " is more than ", kMaxVoxels, " voxels");
-    voxels *= dims[a];
+    if (dims[a] > limits::kMaxAxis)
+      return makeError(ErrorCode::kTooLarge, file, ": ", kind, " '", field, "': axis ", a,
+                       " has size ", dims[a], ", more than ", limits::kMaxAxis);
   }
+  const auto voxels = checkedProduct({dims[0], dims[1], dims[2]});
+  if (!voxels || *voxels > limits::kMaxVoxels)
+    return makeError(ErrorCode::kTooLarge, file, ": ", kind, " '", field, "': ", dims[0], "x",
+                     dims[1], "x", dims[2], " is more than ", limits::kMaxVoxels, " voxels");
   return Status::ok();
+}
+
+Status checkVolumeShape(const VolumeInfo& info, std::string_view field) {
+  return checkDims({info.dims[0], info.dims[1], info.dims[2]}, info.path, field);
 }
 
 Status checkSpacing(const std::array<double, 3>& spacing, const std::string& file,
@@ -26,6 +35,15 @@ Status checkSpacing(const std::array<double, 3>& spacing, const std::string& fil
     if (!std::isfinite(spacing[a]) || spacing[a] <= 0)
       return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': spacing of axis ",
                        a, " is ", spacing[a], ", expected a positive number");
+  return Status::ok();
+}
+
+Status checkOrigin(const std::array<double, 3>& origin, const std::string& file,
+                   std::string_view field) {
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(origin[a]))
+      return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "': origin of axis ",
+                       a, " is ", origin[a], ", expected a finite number");
   return Status::ok();
 }
 
@@ -46,6 +64,7 @@ Status applyOpenOptions(VolumeInfo& info, const OpenOptions& options) {
 }
 
 bool fileStartsWith(const std::string& path, std::string_view magic) {
+  if (!format::requireRegularFile(path)) return false;  // a FIFO would block the read
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::string head(magic.size(), '\0');

@@ -5,6 +5,8 @@
 #include <charconv>
 #include <fstream>
 
+#include "format/regular_file.h"
+
 namespace voxlink::convert {
 
 std::string_view trim(std::string_view text) {
@@ -42,15 +44,7 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
 }
 
 Result<std::string> readFilePrefix(const std::string& path, size_t maxBytes) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open for reading");
-  const auto size = static_cast<size_t>(std::max<std::streamoff>(in.tellg(), 0));
-  in.seekg(0);
-  std::string text(std::min(maxBytes, size), '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  if (in.bad()) return makeError(ErrorCode::kIo, path, ": read error");
-  text.resize(static_cast<size_t>(in.gcount()));
-  return text;
+  return format::readRegularFilePrefix(path, maxBytes);  // never blocks on a FIFO
 }
 
 std::optional<std::string_view> LineCursor::next(bool acceptUnterminated) {

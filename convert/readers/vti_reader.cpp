@@ -10,11 +10,11 @@
 #include "convert/readers/reader_common.h"
 #include "convert/readers/text_header.h"
 #include "convert/readers/xml_tags.h"
+#include "format/checked_math.h"
+#include "format/limits.h"
 
 namespace voxlink::convert {
 namespace {
-
-constexpr size_t kMaxFileBytes = size_t{4} << 30;
 
 Result<std::vector<uint8_t>> decodeBase64(std::string_view text, const std::string& file) {
   static const auto table = [] {
@@ -88,22 +88,43 @@ Result<std::vector<uint8_t>> decodeArray(Next next, const Layout& l) {
   VOXLINK_ASSIGN_OR_RETURN(std::vector<uint8_t> h, next(3 * l.headerWord));
   const uint64_t blocks = word(h.data(), l), blockSize = word(h.data() + l.headerWord, l);
   const uint64_t lastSize = word(h.data() + 2 * l.headerWord, l);
-  if (blocks == 0 || blocks > (uint64_t{1} << 24) || blockSize == 0)
-    return bad("bad compression header (", blocks, " blocks of ", blockSize, ")");
-  const uint64_t total = (blocks - 1) * blockSize + (lastSize ? lastSize : blockSize);
-  if (total != l.expected)
-    return makeError(ErrorCode::kSizeMismatch, l.file, ": DataArray: ", total,
-                     " bytes, the extent needs ", l.expected);
+  // Every size below comes from the file: products and sums are checked, and the output is
+  // allocated only once the compressed blocks are known to be present and large enough.
+  // (VTK writes its default block size even for arrays smaller than one block.)
+  if (blocks == 0 || blocks > limits::kMaxVtiBlocks || blockSize == 0 || lastSize > blockSize)
+    return bad("bad compression header (", blocks, " blocks of ", blockSize, ", last ", lastSize,
+               ")");
+  const auto full = checkedMul(blocks - 1, blockSize);
+  const auto total = full ? checkedAdd(*full, lastSize ? lastSize : blockSize) : std::nullopt;
+  if (!total || *total != l.expected)
+    return makeError(ErrorCode::kSizeMismatch, l.file, ": DataArray: ", blocks, " blocks of ",
+                     blockSize, " bytes (last ", lastSize, ") do not make the ", l.expected,
+                     " bytes the extent needs");
   VOXLINK_ASSIGN_OR_RETURN(std::vector<uint8_t> sizes, next(blocks * l.headerWord));
   uint64_t compressedTotal = 0;
-  for (uint64_t b = 0; b < blocks; ++b) compressedTotal += word(sizes.data() + b * l.headerWord, l);
+  for (uint64_t b = 0; b < blocks; ++b) {
+    const uint64_t csize = word(sizes.data() + b * l.headerWord, l);
+    const uint64_t want = b + 1 == blocks && lastSize ? lastSize : blockSize;
+    const auto sum = checkedAdd(compressedTotal, csize);
+    const auto most = checkedMul(csize, limits::kMaxZlibRatio);
+    if (!sum || *sum > limits::kMaxWholeFileBytes || !most || *most + 64 < want)
+      return bad("compressed block ", b, " of ", csize, " bytes cannot hold ", want, " bytes");
+    compressedTotal = *sum;
+  }
   VOXLINK_ASSIGN_OR_RETURN(std::vector<uint8_t> packed, next(compressedTotal));
-  std::vector<uint8_t> out(total);
+  std::vector<uint8_t> out;
+  try {
+    out.resize(*total);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, l.file, ": DataArray: ", *total,
+                     " bytes do not fit in memory");
+  }
   uint64_t in = 0;
   for (uint64_t b = 0; b < blocks; ++b) {
     const uint64_t csize = word(sizes.data() + b * l.headerWord, l);
     uLongf outSize = static_cast<uLongf>(b + 1 == blocks && lastSize ? lastSize : blockSize);
     const uLongf want = outSize;
+    // b * blockSize + want <= total and in + csize <= compressedTotal hold by the checks above.
     const int rc = uncompress(out.data() + b * blockSize, &outSize, packed.data() + in,
                               static_cast<uLong>(csize));
     if (rc != Z_OK || outSize != want)
@@ -162,7 +183,7 @@ const std::string& requireAttribute(const XmlTag& tag, const std::string& key, S
 }  // namespace
 
 Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const OpenOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(std::string xml, readFilePrefix(path, kMaxFileBytes));
+  VOXLINK_ASSIGN_OR_RETURN(std::string xml, readFilePrefix(path, limits::kMaxWholeFileBytes));
   VOXLINK_ASSIGN_OR_RETURN(auto root, findTag(xml, "VTKFile", path));
   if (!root || !root->attribute("type") || *root->attribute("type") != "ImageData")
     return makeError(ErrorCode::kCorrupt, path,
@@ -211,6 +232,7 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
   if (const std::string* o = image->attribute("Origin")) {
     VOXLINK_ASSIGN_OR_RETURN(std::vector<double> v, parseDoubles(*o, path, "Origin", 3));
     origin = {v[0], v[1], v[2]};
+    VOXLINK_RETURN_IF_ERROR(checkOrigin(origin, path, "Origin"));
   }
   std::array<Vec3, 3> axes{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
   if (const std::string* d = image->attribute("Direction")) {

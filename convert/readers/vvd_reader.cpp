@@ -8,11 +8,12 @@
 #include "convert/readers/reader_common.h"
 #include "convert/readers/text_header.h"
 #include "convert/readers/xml_tags.h"
+#include "format/limits.h"
 
 namespace voxlink::convert {
 namespace {
 
-constexpr size_t kMaxHeaderBytes = size_t{16} << 20;  // histograms and previews make .vvd big
+constexpr size_t kMaxHeaderBytes = limits::kMaxVvdHeaderBytes;
 
 Result<ScalarType> voreenFormat(const std::string& format, const std::string& file) {
   static const std::map<std::string, ScalarType> formats = {
@@ -106,7 +107,10 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
   } else {
     info.notes.push_back("no Spacing meta item: spacing 1 1 1");
   }
-  if (offset) info.origin = *offset;
+  if (offset) {
+    info.origin = *offset;
+    VOXLINK_RETURN_IF_ERROR(checkOrigin(info.origin, path, "MetaItem Offset"));
+  }
   if (xml.find("name=\"RealWorldMapping\"") != std::string::npos)
     info.notes.push_back("RealWorldMapping meta item not applied: values are the raw file's");
   if (xml.find("name=\"Transformation\"") != std::string::npos)

@@ -1,10 +1,15 @@
 #include "samples/kriging/grid_writer.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <charconv>
 #include <cstring>
 #include <filesystem>
+#include <utility>
 #include <vector>
+
+#include "format/output_file.h"
 
 namespace voxlink::kriging {
 namespace {
@@ -54,23 +59,28 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
     return makeError(ErrorCode::kInvalidArgument, path,
                      ": output name must end in .nhdr (raw + NRRD header) or .npy");
   }
-  w->tempPath_ = w->dataPath_ + ".tmp";
-  w->file_ = std::fopen(w->tempPath_.c_str(), "wb");
-  if (!w->file_)
-    return makeError(ErrorCode::kIo, w->tempPath_, ": cannot create: ", std::strerror(errno));
+  if (w->nrrd_) VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(path));
+  // A unique O_EXCL temporary (never a fixed name a symlink could be planted at); the data and
+  // the header are renamed into place together by finish().
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(w->dataPath_));
+  w->tempPath_ = temp.path;
+  w->file_ = fdopen(temp.fd, "wb");
+  if (!w->file_) {
+    ::close(temp.fd);
+    format::discardTemp(temp.path);
+    return makeError(ErrorCode::kIo, path, ": cannot create: ", std::strerror(errno));
+  }
   if (!w->nrrd_) {
     const std::string header = npyHeader(info.type, info.dims);
     if (std::fwrite(header.data(), 1, header.size(), w->file_) != header.size())
-      return makeError(ErrorCode::kIo, w->tempPath_, ": write failed: ", std::strerror(errno));
+      return makeError(ErrorCode::kIo, w->dataPath_, ": write failed: ", std::strerror(errno));
   }
   return w;
 }
 
 GridWriter::~GridWriter() {
-  if (file_) {
-    std::fclose(file_);
-    std::remove(tempPath_.c_str());
-  }
+  if (file_) std::fclose(file_);
+  if (!tempPath_.empty()) format::discardTemp(tempPath_);
 }
 
 Status GridWriter::append(uint32_t count, const double* slices) {
@@ -83,7 +93,7 @@ Status GridWriter::append(uint32_t count, const double* slices) {
     written = std::fwrite(f.data(), sizeof(float), n, file_);
   }
   if (written != n)
-    return makeError(ErrorCode::kIo, tempPath_, ": write failed: ", std::strerror(errno));
+    return makeError(ErrorCode::kIo, dataPath_, ": write failed: ", std::strerror(errno));
   slicesWritten_ += count;
   return Status::ok();
 }
@@ -92,32 +102,36 @@ Status GridWriter::finish() {
   if (slicesWritten_ != info_.dims[2])
     return makeError(ErrorCode::kInvalidArgument, path_, ": ", slicesWritten_, " slices written, ",
                      info_.dims[2], " expected");
-  const bool ok = std::fclose(file_) == 0;
+  const bool flushed = std::fflush(file_) == 0;
+  const bool ok = std::fclose(file_) == 0 && flushed;
   file_ = nullptr;
-  if (!ok) return makeError(ErrorCode::kIo, tempPath_, ": close failed: ", std::strerror(errno));
-  std::error_code ec;
-  std::filesystem::rename(tempPath_, dataPath_, ec);
-  if (ec)
-    return makeError(ErrorCode::kIo, dataPath_, ": cannot rename from ", tempPath_, ": ",
-                     ec.message());
-  if (nrrd_) {
-    std::FILE* h = std::fopen(path_.c_str(), "w");
-    if (!h) return makeError(ErrorCode::kIo, path_, ": cannot create: ", std::strerror(errno));
-    const auto& d = info_.dims;
-    const auto& s = info_.spacing;
-    const auto& o = info_.origin;
-    const std::string text =
-        cat("NRRD0004\n# written by voxlink krige\n",
-            "type: ", info_.type == ScalarType::kF32 ? "float" : "double", "\n",
-            "dimension: 3\nsizes: ", d[0], " ", d[1], " ", d[2], "\n", "space dimension: 3\n",
-            "space directions: (", num(s[0]), ",0,0) (0,", num(s[1]), ",0) (0,0,", num(s[2]), ")\n",
-            "space origin: (", num(o[0]), ",", num(o[1]), ",", num(o[2]), ")\n",
-            "endian: little\nencoding: raw\n",
-            "data file: ", std::filesystem::path(dataPath_).filename().string(), "\n");
-    const bool wrote = std::fputs(text.c_str(), h) >= 0;
-    if (std::fclose(h) != 0 || !wrote) return makeError(ErrorCode::kIo, path_, ": write failed");
+  if (!ok) return makeError(ErrorCode::kIo, dataPath_, ": write failed: ", std::strerror(errno));
+  if (!nrrd_) return format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_);
+  const auto& d = info_.dims;
+  const auto& s = info_.spacing;
+  const auto& o = info_.origin;
+  const std::string text =
+      cat("NRRD0004\n# written by voxlink krige\n",
+          "type: ", info_.type == ScalarType::kF32 ? "float" : "double", "\n",
+          "dimension: 3\nsizes: ", d[0], " ", d[1], " ", d[2], "\n", "space dimension: 3\n",
+          "space directions: (", num(s[0]), ",0,0) (0,", num(s[1]), ",0) (0,0,", num(s[2]), ")\n",
+          "space origin: (", num(o[0]), ",", num(o[1]), ",", num(o[2]), ")\n",
+          "endian: little\nencoding: raw\n",
+          "data file: ", std::filesystem::path(dataPath_).filename().string(), "\n");
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile header, format::createTempBeside(path_));
+  std::FILE* h = fdopen(header.fd, "w");
+  const bool wrote = h && std::fputs(text.c_str(), h) >= 0;
+  const bool closed = h ? std::fclose(h) == 0 : ::close(header.fd) == 0;
+  if (!wrote || !closed) {
+    format::discardTemp(header.path);
+    return makeError(ErrorCode::kIo, path_, ": write failed: ", std::strerror(errno));
   }
-  return Status::ok();
+  // Both files are complete: the data, then the header that names it, are moved into place.
+  if (Status s = format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_); !s) {
+    format::discardTemp(header.path);
+    return s;
+  }
+  return format::commitTemp(header.path, path_);
 }
 
 }  // namespace voxlink::kriging

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "format/regular_file.h"
+
 namespace voxlink::kriging {
 namespace {
 
@@ -188,6 +190,7 @@ Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection
 }
 
 Result<PointSet> readPoints(const std::string& path, const ColumnSelection& columns) {
+  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "sample file"));  // a FIFO would block
   std::ifstream in(path);
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
   std::string first;

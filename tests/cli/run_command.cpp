@@ -11,12 +11,16 @@
 
 namespace voxlink::testing {
 
-CommandResult runVoxlink(const std::vector<std::string>& args) {
+CommandResult runVoxlink(const std::vector<std::string>& args) { return runVoxlink(args, {}); }
+
+CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions& options) {
   TempDir dir;
-  const std::string outPath = dir.file("stdout"), errPath = dir.file("stderr");
+  const std::string outPath = options.stdoutPath.empty() ? dir.file("stdout") : options.stdoutPath;
+  const std::string errPath = dir.file("stderr");
   CommandResult result;
   const pid_t pid = fork();
   if (pid == 0) {
+    if (options.timeoutSeconds > 0) alarm(options.timeoutSeconds);
     const int out = open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, 1);
@@ -39,9 +43,33 @@ CommandResult runVoxlink(const std::vector<std::string>& args) {
     s << in.rdbuf();
     return s.str();
   };
-  result.out = slurp(outPath);
+  if (options.stdoutPath.empty()) result.out = slurp(outPath);
   result.err = slurp(errPath);
   return result;
+}
+
+int startVoxlink(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int null = open("/dev/null", O_WRONLY);
+    dup2(null, 1);
+    dup2(null, 2);
+    std::vector<char*> argv;
+    std::string exe = VOXLINK_EXECUTABLE;
+    argv.push_back(exe.data());
+    std::vector<std::string> copy = args;
+    for (std::string& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(exe.c_str(), argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+int waitVoxlink(int pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 }  // namespace voxlink::testing

@@ -14,4 +14,15 @@ struct CommandResult {
 // Runs VOXLINK_EXECUTABLE with `args` (no shell involved).
 CommandResult runVoxlink(const std::vector<std::string>& args);
 
+struct RunOptions {
+  std::string stdoutPath;       // where stdout goes (e.g. /dev/full); empty: captured
+  unsigned timeoutSeconds = 0;  // SIGALRM after this many seconds (a hang fails, not blocks)
+};
+CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions& options);
+
+// Starts VOXLINK_EXECUTABLE in the background (stdout and stderr to /dev/null); returns its pid.
+int startVoxlink(const std::vector<std::string>& args);
+// Waits for a started command; its exit status, or 128 + the signal that ended it.
+int waitVoxlink(int pid);
+
 }  // namespace voxlink::testing

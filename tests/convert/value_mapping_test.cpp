@@ -51,3 +51,31 @@ TEST(ValueMapping, RequestedType) {
 
 }  // namespace
 }  // namespace voxlink::convert
+
+namespace voxlink::convert {
+namespace {
+
+TEST(ValueMapping, F64BeyondFloatRangeIsScaledNotInfinite) {
+  for (double hi : {1e300, 3.4e38, 0x1p127, 1.7e308}) {
+    SCOPED_TRACE(hi);
+    auto m = chooseValueMapping(ScalarType::kF64, -hi, hi, std::nullopt, 0);
+    ASSERT_TRUE(m) << m.message();
+    EXPECT_EQ(m->type, StoredType::kF32);
+    for (double v : {hi, -hi, hi / 3, 1.0, 0.0}) {
+      const double back = m->decode(m->encode(v));
+      EXPECT_TRUE(std::isfinite(back)) << v;
+      EXPECT_LE(std::abs(back - v), m->errorBound) << v;
+    }
+  }
+  // Within f32 rounding of the largest double nothing can hold it: a one-line error.
+  auto top = chooseValueMapping(ScalarType::kF64, 0, 1.7976931348623157e308, std::nullopt, 0);
+  ASSERT_FALSE(top);
+  EXPECT_NE(top.message().find("cannot be stored"), std::string::npos) << top.message();
+  // Within float's range nothing changes.
+  auto m = chooseValueMapping(ScalarType::kF64, -1e30, 1e30, std::nullopt, 0);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->scale, 1.0);
+}
+
+}  // namespace
+}  // namespace voxlink::convert

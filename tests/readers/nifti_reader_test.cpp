@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 
 #include "tests/readers/reader_test_util.h"
 
@@ -136,6 +137,38 @@ TEST(NiftiReader, RefusesTimeSeriesAndComplexData) {
   complex.resize(352 + 64);
   writeBytes(dir.file("c.nii"), complex);
   expectError(openVolume(dir.file("c.nii")), ErrorCode::kUnsupported, {"c.nii", "datatype", "32"});
+}
+
+}  // namespace
+}  // namespace voxlink::convert::testing
+
+namespace voxlink::convert::testing {
+namespace {
+
+// libnifti turns pixdim 0 and NaN into 1 silently: NaN must be an error naming the field, 0 a
+// note, and --spacing takes over from either.
+TEST(NiftiReader, PixdimZeroIsANoteAndNaNAnError) {
+  TempDir dir;
+  const auto raw = patternBytes(4 * 3 * 2, 5);
+  auto write = [&](const char* name, std::array<float, 3> pixdim) {
+    std::vector<uint8_t> file = niftiHeader({3, 4, 3, 2, 1, 1, 1, 1}, 2, 8, pixdim, 0, 0);
+    file.insert(file.end(), raw.begin(), raw.end());
+    writeBytes(dir.file(name), file);
+  };
+  write("nan.nii", {1.0f, std::numeric_limits<float>::quiet_NaN(), 1.0f});
+  expectError(openVolume(dir.file("nan.nii")), ErrorCode::kCorrupt,
+              {"nan.nii", "'pixdim[2]'", "--spacing"});
+  OpenOptions spacing;
+  spacing.spacing = std::array<double, 3>{1, 2, 3};
+  auto given = openOrDie(dir.file("nan.nii"), spacing);
+  ASSERT_TRUE(given);
+  EXPECT_EQ(given->info().spacing, (std::array<double, 3>{1, 2, 3}));
+
+  write("zero.nii", {0.0f, 1.0f, 1.0f});
+  auto zero = openOrDie(dir.file("zero.nii"));
+  ASSERT_TRUE(zero);
+  EXPECT_TRUE(hasNote(zero->info(), "'pixdim[1]' is 0")) << notesOf(zero->info());
+  EXPECT_EQ(zero->info().spacing[0], 1.0);
 }
 
 }  // namespace

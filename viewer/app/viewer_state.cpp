@@ -4,13 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
+#include "format/validator.h"
 #include "viewer/core/tf_presets.h"
 
 namespace voxlink::viewer {
 
 Status ViewerState::load(const std::string& path, bool keepTf) {
-  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, format::VoxLinkFile::open(path));
+  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, format::openValidatedFile(path));
   auto next = std::make_unique<format::VoxLinkFile>(std::move(opened));
   VOXLINK_ASSIGN_OR_RETURN(auto r, VoxLinkRenderer::create(*next));
   file = std::move(next);
@@ -22,7 +24,7 @@ Status ViewerState::load(const std::string& path, bool keepTf) {
   // Show the stored range and the TF's points, with a margin, so removed ranges are visible too.
   double lo = h.valueMin, hi = h.valueMax;
   for (const auto& p : tf.opacity) lo = std::min(lo, p.value), hi = std::max(hi, p.value);
-  if (!(lo < hi)) hi = lo + 1;
+  std::tie(lo, hi) = displayRange(lo, hi);
   const double margin = 0.1 * (hi - lo);
   editor.setView(lo - margin, hi + margin);
   histogram = valueHistogram(*file, lo - margin, hi + margin, 256);

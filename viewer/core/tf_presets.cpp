@@ -6,6 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "format/limits.h"
+#include "format/regular_file.h"
+
 namespace voxlink::viewer {
 namespace {
 
@@ -58,8 +61,9 @@ Result<format::TransferFunction> tfPreset(const std::string& name, double lo, do
     if (name != p.name) continue;
     format::TransferFunction tf;
     tf.name = name;
-    for (const auto& [t, a] : p.opacity) tf.opacity.push_back({lo + t * (hi - lo), a});
-    for (const auto& [t, c] : p.color) tf.color.push_back({lo + t * (hi - lo), c});
+    // (1 - t) lo + t hi: exact at both ends and finite even when hi - lo overflows.
+    for (const auto& [t, a] : p.opacity) tf.opacity.push_back({(1 - t) * lo + t * hi, a});
+    for (const auto& [t, c] : p.color) tf.color.push_back({(1 - t) * lo + t * hi, c});
     return tf;
   }
   std::string known;
@@ -78,9 +82,21 @@ format::TransferFunction defaultTransferFunction(const format::VoxLinkFile& file
   } catch (const nlohmann::json::exception&) {
     // No usable META: fall through to the preset.
   }
-  double lo = file.header().valueMin, hi = file.header().valueMax;
-  if (!(lo < hi)) hi = lo + 1.0;
-  return *tfPreset("ct-bone", lo, hi);
+  const auto [lo, hi] = displayRange(file.header().valueMin, file.header().valueMax);
+  auto tf = tfPreset("ct-bone", lo, hi);
+  return tf ? *tf : format::TransferFunction{};  // unreachable: displayRange gives lo < hi
+}
+
+std::pair<double, double> displayRange(double lo, double hi) {
+  if (!std::isfinite(lo) && !std::isfinite(hi)) return {0.0, 1.0};  // NaN range: no voxels
+  if (!std::isfinite(lo)) lo = hi;
+  if (!std::isfinite(hi)) hi = lo;
+  if (lo > hi) std::swap(lo, hi);
+  if (lo < hi) return {lo, hi};
+  // One value: a width that still changes lo at its magnitude (1e20 + 1 == 1e20).
+  const double width = std::max(1.0, std::abs(lo) * 1e-3);
+  if (std::isfinite(lo + width)) return {lo, lo + width};
+  return {lo - width, lo};
 }
 
 Result<format::TransferFunction> parseParaViewPreset(const std::string& text, const std::string& where,
@@ -144,11 +160,10 @@ Result<format::TransferFunction> parseParaViewPreset(const std::string& text, co
 
 Result<format::TransferFunction> importParaViewPreset(const std::string& path,
                                                       const ParaViewImport& options) {
-  std::ifstream in(path);
-  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open ParaView preset");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseParaViewPreset(text.str(), path, options);
+  VOXLINK_ASSIGN_OR_RETURN(
+      std::string text,
+      format::readRegularFile(path, limits::kMaxTransferFunctionBytes, "ParaView preset"));
+  return parseParaViewPreset(text, path, options);
 }
 
 }  // namespace voxlink::viewer

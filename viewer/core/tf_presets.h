@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "format/error.h"
@@ -14,6 +15,10 @@ namespace voxlink::viewer {
 std::vector<std::string> tfPresetNames();  // "ct-bone", "ct-soft-tissue", ...
 // The preset stretched over [lo, hi] (source units); fails on an unknown name or lo >= hi.
 Result<format::TransferFunction> tfPreset(const std::string& name, double lo, double hi);
+
+// [lo, hi] with lo < hi, both finite, for showing a stored range [valueMin, valueMax]: a single
+// value (even 1e20 or the largest double) gets a width, a NaN or infinite bound is replaced.
+std::pair<double, double> displayRange(double lo, double hi);
 
 // What a file opens with: the TF recorded in META (classification.tf) when there is one,
 // otherwise "ct-bone" over the stored value range.

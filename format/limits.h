@@ -1,0 +1,34 @@
+// Every size limit VoxLink applies to input, named once. Files and command lines are checked
+// against these before anything is allocated; docs/reliability.md lists them with the reason.
+// The limits of the .vxl layout itself (brick sizes, 2^32 stored voxels, 2^16 voxels per axis)
+// are part of the format and live in format/layout.h.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "format/layout.h"
+
+namespace voxlink::limits {
+
+// Voxels along one axis of any dense input; the .vxl format's own per-axis limit, so `stats`
+// and `convert` accept the same inputs.
+inline constexpr uint64_t kMaxAxis = format::kMaxDim;
+// Voxels of any dense input (2^40): hostile headers fail before allocating.
+inline constexpr uint64_t kMaxVoxels = uint64_t{1} << 40;
+// Bytes of a file that a reader holds in memory whole (VTK XML image data).
+inline constexpr uint64_t kMaxWholeFileBytes = uint64_t{4} << 30;
+// Compressed blocks in one VTK XML data array.
+inline constexpr uint64_t kMaxVtiBlocks = uint64_t{1} << 24;
+// zlib cannot expand data by more than about 1032:1; a block that claims more is corrupt.
+inline constexpr uint64_t kMaxZlibRatio = 1032;
+// Data files a numbered list (NRRD `data file: s%d.raw 1 93 1`, MetaImage) may name.
+inline constexpr uint64_t kMaxListedFiles = 1'000'000;
+// Bytes of a text header (NRRD, MetaImage).
+inline constexpr size_t kMaxTextHeaderBytes = size_t{1} << 20;
+// Bytes of a .vvd header (histograms and previews make them big).
+inline constexpr size_t kMaxVvdHeaderBytes = size_t{16} << 20;
+// Bytes of a transfer function JSON file.
+inline constexpr uint64_t kMaxTransferFunctionBytes = uint64_t{64} << 20;
+
+}  // namespace voxlink::limits

@@ -1,0 +1,118 @@
+#include "format/output_file.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+namespace voxlink::format {
+namespace {
+
+constexpr size_t kSlots = 32;
+// 0 free, 1 being filled or emptied, 2 holds a path the handler may unlink.
+std::array<std::atomic<int>, kSlots> slotState{};
+std::array<std::array<char, PATH_MAX>, kSlots> slotPath{};
+
+void onSignal(int sig) {
+  for (size_t i = 0; i < kSlots; ++i)
+    if (slotState[i].load() == 2) ::unlink(slotPath[i].data());
+  ::signal(sig, SIG_DFL);
+  ::raise(sig);
+}
+
+const char* kindOf(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode) || S_ISBLK(mode)) return "a device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+}  // namespace
+
+Status checkOutputTarget(const std::string& target, const std::vector<std::string>& inputs) {
+  struct stat out {};
+  if (::stat(target.c_str(), &out) != 0) return Status::ok();  // does not exist yet
+  if (!S_ISREG(out.st_mode))
+    return makeError(ErrorCode::kInvalidArgument, target, ": output exists and is ",
+                     kindOf(out.st_mode), "; give a file name to write");
+  for (const std::string& input : inputs) {
+    struct stat in {};
+    if (::stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
+      return makeError(ErrorCode::kInvalidArgument, target, ": output is the input file ", input,
+                       "; give another output name");
+  }
+  return Status::ok();
+}
+
+Result<TempFile> createTempBeside(const std::string& target, std::string_view suffix) {
+  VOXLINK_RETURN_IF_ERROR(checkOutputTarget(target));
+  std::filesystem::path dir = std::filesystem::path(target).parent_path();
+  if (dir.empty()) dir = ".";
+  // Short on purpose: the name must fit NAME_MAX whatever the target's name is.
+  std::string pattern = (dir / ".vl-XXXXXX").string() + std::string(suffix);
+  const int fd = mkostemps(pattern.data(), static_cast<int>(suffix.size()), O_CLOEXEC);
+  if (fd < 0)
+    return makeError(ErrorCode::kIo, target, ": cannot create a temporary file in ", dir.string(),
+                     ": ", std::strerror(errno));
+  fchmod(fd, 0644);  // mkstemp makes 0600; outputs are ordinary readable files
+  registerTempForCleanup(pattern);
+  return TempFile{fd, pattern};
+}
+
+Status commitTemp(const std::string& tempPath, const std::string& target) {
+  if (std::rename(tempPath.c_str(), target.c_str()) != 0) {
+    const int e = errno;
+    discardTemp(tempPath);
+    return makeError(ErrorCode::kIo, target,
+                     ": cannot move the finished file into place: ", std::strerror(e));
+  }
+  unregisterTempForCleanup(tempPath);
+  return Status::ok();
+}
+
+void discardTemp(const std::string& tempPath) {
+  ::unlink(tempPath.c_str());
+  unregisterTempForCleanup(tempPath);
+}
+
+void registerTempForCleanup(const std::string& path) {
+  if (path.size() >= PATH_MAX) return;
+  for (size_t i = 0; i < kSlots; ++i) {
+    int expected = 0;
+    if (!slotState[i].compare_exchange_strong(expected, 1)) continue;
+    std::memcpy(slotPath[i].data(), path.c_str(), path.size() + 1);
+    slotState[i].store(2);
+    return;
+  }
+}
+
+void unregisterTempForCleanup(const std::string& path) {
+  for (size_t i = 0; i < kSlots; ++i) {
+    int expected = 2;
+    if (!slotState[i].compare_exchange_strong(expected, 1)) continue;
+    if (path == slotPath[i].data()) {
+      slotState[i].store(0);
+      return;
+    }
+    slotState[i].store(2);
+  }
+}
+
+void removeTempsOnSignals() {
+  struct sigaction sa {};
+  sa.sa_handler = onSignal;
+  sigemptyset(&sa.sa_mask);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+}
+
+}  // namespace voxlink::format
