@@ -1,6 +1,6 @@
 // voxlink render FILE.vxl -o out.png: one frame through EGL (no X server), written as PNG or
-// EXR. With --reference it also renders the float64 reference from the dense source and prints
-// the image error.
+// EXR. With --reference it also renders the float64 reference (from the dense source; for a
+// scene, the same voxel scene) and prints the image error.
 #include <chrono>
 #include <cstdio>
 
@@ -10,6 +10,7 @@
 #include "format/validator.h"
 #include "viewer/core/recorded_source.h"
 #include "viewer/core/reference_renderer.h"
+#include "viewer/core/scene_reference_renderer.h"
 #include "viewer/gl/gl_context.h"
 #include "viewer/gl/voxlink_renderer.h"
 
@@ -28,7 +29,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Image to write (.png: 8-bit sRGB, .exr: linear half float)")->required();
   args->render.add(cmd);
   cmd->add_flag("--reference", args->reference,
-                "Also render the float64 reference from the dense source and print PSNR and max error");
+                "Also render the float64 reference (from the dense source; a scene: the same voxel scene) and print PSNR and max error");
   cmd->add_option("--reference-output", args->referenceOut, "Write the reference image here (implies --reference)");
   args->source.add(cmd);
   return [args] {
@@ -60,12 +61,17 @@ CommandRunner addRenderCommand(CLI::App& app) {
                 std::string(viewer::samplingName(settings->sampling)).c_str(), seconds,
                 (*context)->description().c_str());
     if (!args->reference && args->referenceOut.empty()) return 0;
-    auto sourceOptions = args->source.openOptions();
-    if (!sourceOptions) return reportError(sourceOptions.error());
-    auto dense = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
-    if (!dense) return reportError(dense.error());
-    const viewer::ReferenceRenderer reference(*dense, *tf);
-    const viewer::Image truth = reference.render(camera, *settings);
+    viewer::Image truth;
+    if (file->isScene()) {
+      // A scene's reference traces the same voxel scene in float64 (its geometry has no dense source).
+      truth = viewer::SceneReferenceRenderer(*file, *tf).render(camera, *settings);
+    } else {
+      auto sourceOptions = args->source.openOptions();
+      if (!sourceOptions) return reportError(sourceOptions.error());
+      auto dense = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
+      if (!dense) return reportError(dense.error());
+      truth = viewer::ReferenceRenderer(*dense, *tf).render(camera, *settings);
+    }
     if (!args->referenceOut.empty())
       if (Status s = viewer::writeImage(truth, args->referenceOut); !s) return reportError(s);
     auto error = viewer::compareImages(image, truth);

@@ -5,6 +5,7 @@
 #include "cli/command.h"
 #include "cli/progress_bar.h"
 #include "format/file_writer.h"
+#include "format/output_file.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 
@@ -32,6 +33,10 @@ CommandRunner addSceneCommand(CLI::App& app) {
     if (!build->parsed()) return 2;
     auto description = scene::readSceneDescription(o->input);
     if (!description) return reportError(description.error());
+    std::vector<std::string> inputs = {o->input};
+    for (const scene::SceneObject& object : description->objects)
+      if (!object.path.empty()) inputs.push_back(object.path);
+    if (Status s = format::checkOutputTarget(o->output, inputs); !s) return reportError(s);
     if (o->resolution) description->grid.resolution = o->resolution;
     if (o->brick) description->grid.brickSize = o->brick;
     ProgressBar bar(o->progress || stderrIsTerminal());
