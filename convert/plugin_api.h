@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "format/footprint.h"
 #include "format/voxlink_file.h"
 

@@ -1,10 +1,10 @@
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "convert/readers/raw_reader.h"
-#include "convert/readers/reader_registry.h"
+#include "sources/readers/raw_reader.h"
+#include "sources/readers/reader_registry.h"
 
 namespace voxlink::convert {
 

@@ -1,4 +1,4 @@
-#include "convert/readers/axes.h"
+#include "sources/readers/axes.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "convert/readers/byte_order.h"
+#include "sources/readers/byte_order.h"
 
 #include <cstring>
 

@@ -1,4 +1,4 @@
-#include "convert/readers/child_probe.h"
+#include "sources/readers/child_probe.h"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -1,4 +1,4 @@
-#include "convert/readers/data_pieces.h"
+#include "sources/readers/data_pieces.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "convert/readers/byte_order.h"
-#include "convert/readers/inflate_stream.h"
-#include "convert/readers/raw_reader.h"
+#include "sources/readers/byte_order.h"
+#include "sources/readers/inflate_stream.h"
+#include "sources/readers/raw_reader.h"
 
 namespace voxlink::convert {
 namespace {

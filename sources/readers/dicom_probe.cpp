@@ -1,9 +1,9 @@
-#include "convert/readers/dicom_probe.h"
+#include "sources/readers/dicom_probe.h"
 
 #include <fstream>
 #include <string_view>
 
-#include "convert/readers/text_header.h"
+#include "sources/readers/text_header.h"
 
 namespace voxlink::convert {
 

@@ -1,4 +1,4 @@
-#include "convert/readers/dicom_reader.h"
+#include "sources/readers/dicom_reader.h"
 
 #include <gdcmImageReader.h>
 
@@ -7,10 +7,10 @@
 #include <cstring>
 #include <vector>
 
-#include "convert/readers/dicom_series.h"
-#include "convert/readers/gdcm_messages.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/rescale.h"
+#include "sources/readers/dicom_series.h"
+#include "sources/readers/gdcm_messages.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/rescale.h"
 
 namespace voxlink::convert {
 namespace {

@@ -1,4 +1,4 @@
-#include "convert/readers/dicom_series.h"
+#include "sources/readers/dicom_series.h"
 
 #include <gdcmAttribute.h>
 #include <gdcmReader.h>
@@ -11,12 +11,12 @@
 #include <map>
 #include <optional>
 
-#include "convert/readers/dicom_probe.h"
-#include "convert/readers/file_list.h"
-#include "convert/readers/gdcm_guard.h"
-#include "convert/readers/gdcm_messages.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/text_header.h"
+#include "sources/readers/dicom_probe.h"
+#include "sources/readers/file_list.h"
+#include "sources/readers/gdcm_guard.h"
+#include "sources/readers/gdcm_messages.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/text_header.h"
 
 namespace voxlink::convert {
 namespace {

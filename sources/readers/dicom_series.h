@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "convert/readers/axes.h"
+#include "sources/readers/axes.h"
 #include "format/error.h"
 #include "format/scalar_type.h"
 

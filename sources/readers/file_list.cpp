@@ -1,9 +1,9 @@
-#include "convert/readers/file_list.h"
+#include "sources/readers/file_list.h"
 
 #include <cctype>
 #include <filesystem>
 
-#include "convert/readers/text_header.h"
+#include "sources/readers/text_header.h"
 
 namespace voxlink::convert {
 namespace {

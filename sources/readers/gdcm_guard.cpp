@@ -1,4 +1,4 @@
-#include "convert/readers/gdcm_guard.h"
+#include "sources/readers/gdcm_guard.h"
 
 #include <gdcmImageReader.h>
 #include <gdcmReader.h>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "convert/readers/child_probe.h"
+#include "sources/readers/child_probe.h"
 
 namespace voxlink::convert {
 

@@ -1,4 +1,4 @@
-#include "convert/readers/gdcm_messages.h"
+#include "sources/readers/gdcm_messages.h"
 
 #include <gdcmTrace.h>
 

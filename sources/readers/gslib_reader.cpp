@@ -1,4 +1,4 @@
-#include "convert/readers/gslib_reader.h"
+#include "sources/readers/gslib_reader.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <cstring>
 #include <sstream>
 
-#include "convert/readers/text_stream.h"
+#include "sources/readers/text_stream.h"
 
 namespace voxlink::convert {
 namespace {

@@ -1,11 +1,11 @@
-#include "convert/readers/image_stack_reader.h"
+#include "sources/readers/image_stack_reader.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "convert/readers/file_list.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/reader_registry.h"
+#include "sources/readers/file_list.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/reader_registry.h"
 #include "imageio/image_io.h"
 
 namespace voxlink::convert {

@@ -1,4 +1,4 @@
-#include "convert/readers/inflate_stream.h"
+#include "sources/readers/inflate_stream.h"
 
 #include <zlib.h>
 

@@ -1,10 +1,10 @@
-#include "convert/readers/metaimage_header.h"
+#include "sources/readers/metaimage_header.h"
 
 #include <map>
 #include <set>
 
-#include "convert/readers/file_list.h"
-#include "convert/readers/text_header.h"
+#include "sources/readers/file_list.h"
+#include "sources/readers/text_header.h"
 
 namespace voxlink::convert {
 namespace {

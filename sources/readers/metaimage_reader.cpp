@@ -1,10 +1,10 @@
-#include "convert/readers/metaimage_reader.h"
+#include "sources/readers/metaimage_reader.h"
 
 #include <filesystem>
 
-#include "convert/readers/data_pieces.h"
-#include "convert/readers/metaimage_header.h"
-#include "convert/readers/reader_common.h"
+#include "sources/readers/data_pieces.h"
+#include "sources/readers/metaimage_header.h"
+#include "sources/readers/reader_common.h"
 
 namespace voxlink::convert {
 

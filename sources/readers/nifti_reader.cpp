@@ -1,4 +1,4 @@
-#include "convert/readers/nifti_reader.h"
+#include "sources/readers/nifti_reader.h"
 
 #include <nifti2_io.h>
 
@@ -6,11 +6,11 @@
 #include <limits>
 #include <mutex>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/data_pieces.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/reader_registry.h"
-#include "convert/readers/rescale.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/data_pieces.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/reader_registry.h"
+#include "sources/readers/rescale.h"
 
 namespace voxlink::convert {
 namespace {

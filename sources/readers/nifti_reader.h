@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 

@@ -1,10 +1,10 @@
-#include "convert/readers/npy_reader.h"
+#include "sources/readers/npy_reader.h"
 
 #include <cstring>
 #include <fstream>
 
-#include "convert/readers/byte_order.h"
-#include "convert/readers/raw_reader.h"
+#include "sources/readers/byte_order.h"
+#include "sources/readers/raw_reader.h"
 #include "format/mapped_file.h"
 
 namespace voxlink::convert {

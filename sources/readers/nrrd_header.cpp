@@ -1,4 +1,4 @@
-#include "convert/readers/nrrd_header.h"
+#include "sources/readers/nrrd_header.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,8 +6,8 @@
 #include <map>
 #include <set>
 
-#include "convert/readers/file_list.h"
-#include "convert/readers/text_header.h"
+#include "sources/readers/file_list.h"
+#include "sources/readers/text_header.h"
 
 namespace voxlink::convert {
 namespace {

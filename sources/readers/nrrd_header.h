@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/data_pieces.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/data_pieces.h"
 #include "format/error.h"
 #include "format/scalar_type.h"
 

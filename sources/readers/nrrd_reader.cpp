@@ -1,12 +1,12 @@
-#include "convert/readers/nrrd_reader.h"
+#include "sources/readers/nrrd_reader.h"
 
 #include <cmath>
 #include <filesystem>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/data_pieces.h"
-#include "convert/readers/nrrd_header.h"
-#include "convert/readers/reader_common.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/data_pieces.h"
+#include "sources/readers/nrrd_header.h"
+#include "sources/readers/reader_common.h"
 
 namespace voxlink::convert {
 namespace {

@@ -1,8 +1,8 @@
-#include "convert/readers/raw_reader.h"
+#include "sources/readers/raw_reader.h"
 
 #include <cstring>
 
-#include "convert/readers/byte_order.h"
+#include "sources/readers/byte_order.h"
 #include "format/mapped_file.h"
 
 namespace voxlink::convert {

@@ -1,4 +1,4 @@
-#include "convert/readers/reader_common.h"
+#include "sources/readers/reader_common.h"
 
 #include <cmath>
 #include <fstream>

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 

@@ -1,22 +1,22 @@
-#include "convert/readers/reader_registry.h"
+#include "sources/readers/reader_registry.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "convert/readers/dicom_probe.h"
-#include "convert/readers/dicom_reader.h"
-#include "convert/readers/dicom_series.h"
-#include "convert/readers/image_stack_reader.h"
-#include "convert/readers/metaimage_reader.h"
-#include "convert/readers/nifti_reader.h"
-#include "convert/readers/nrrd_reader.h"
-#include "convert/readers/gslib_reader.h"
-#include "convert/readers/npy_reader.h"
-#include "convert/readers/raw_reader.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/vdb_reader.h"
-#include "convert/readers/vti_reader.h"
-#include "convert/readers/vvd_reader.h"
+#include "sources/readers/dicom_probe.h"
+#include "sources/readers/dicom_reader.h"
+#include "sources/readers/dicom_series.h"
+#include "sources/readers/image_stack_reader.h"
+#include "sources/readers/metaimage_reader.h"
+#include "sources/readers/nifti_reader.h"
+#include "sources/readers/nrrd_reader.h"
+#include "sources/readers/gslib_reader.h"
+#include "sources/readers/npy_reader.h"
+#include "sources/readers/raw_reader.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/vdb_reader.h"
+#include "sources/readers/vti_reader.h"
+#include "sources/readers/vvd_reader.h"
 
 namespace voxlink::convert {
 

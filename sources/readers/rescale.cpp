@@ -1,4 +1,4 @@
-#include "convert/readers/rescale.h"
+#include "sources/readers/rescale.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 

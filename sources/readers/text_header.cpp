@@ -1,4 +1,4 @@
-#include "convert/readers/text_header.h"
+#include "sources/readers/text_header.h"
 
 #include <algorithm>
 #include <cctype>

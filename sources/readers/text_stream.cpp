@@ -1,4 +1,4 @@
-#include "convert/readers/text_stream.h"
+#include "sources/readers/text_stream.h"
 
 #include <zip.h>
 

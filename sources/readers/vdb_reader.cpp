@@ -1,4 +1,4 @@
-#include "convert/readers/vdb_reader.h"
+#include "sources/readers/vdb_reader.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cstring>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/child_probe.h"
-#include "convert/readers/reader_common.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/child_probe.h"
+#include "sources/readers/reader_common.h"
 
 namespace voxlink::convert {
 namespace {

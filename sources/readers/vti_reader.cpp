@@ -1,15 +1,15 @@
-#include "convert/readers/vti_reader.h"
+#include "sources/readers/vti_reader.h"
 
 #include <zlib.h>
 
 #include <cstring>
 #include <map>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/byte_order.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/text_header.h"
-#include "convert/readers/xml_tags.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/byte_order.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/text_header.h"
+#include "sources/readers/xml_tags.h"
 
 namespace voxlink::convert {
 namespace {

@@ -1,13 +1,13 @@
-#include "convert/readers/vvd_reader.h"
+#include "sources/readers/vvd_reader.h"
 
 #include <map>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/data_pieces.h"
-#include "convert/readers/file_list.h"
-#include "convert/readers/reader_common.h"
-#include "convert/readers/text_header.h"
-#include "convert/readers/xml_tags.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/data_pieces.h"
+#include "sources/readers/file_list.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/text_header.h"
+#include "sources/readers/xml_tags.h"
 
 namespace voxlink::convert {
 namespace {

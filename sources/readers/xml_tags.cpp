@@ -1,4 +1,4 @@
-#include "convert/readers/xml_tags.h"
+#include "sources/readers/xml_tags.h"
 
 #include <algorithm>
 #include <cctype>

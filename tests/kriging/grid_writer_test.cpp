@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::kriging {

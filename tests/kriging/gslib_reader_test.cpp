@@ -1,12 +1,12 @@
 // GSLIB / GEO-EAS grids: the real SGeMS exports (zipped) and files written here.
-#include "convert/readers/gslib_reader.h"
+#include "sources/readers/gslib_reader.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::convert {

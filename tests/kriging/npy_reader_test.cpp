@@ -1,10 +1,10 @@
 // Every .npy variant the reader accepts, written here per the specification, must load as
 // the same volume: logical a[z][y][x] = 100 z + 10 y + x (mod the type's range).
-#include "convert/readers/npy_reader.h"
+#include "sources/readers/npy_reader.h"
 
 #include <gtest/gtest.h>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "samples/kriging/grid_writer.h"
 #include "tests/kriging/npy_test_util.h"
 #include "tests/support/test_util.h"

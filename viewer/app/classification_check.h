@@ -21,13 +21,6 @@ struct FileClassification {
 // back to source units. A file without a record keeps everything as far as we know.
 FileClassification fileClassification(const format::VoxLinkFile& file);
 
-// Sorted, merged union.
-std::vector<format::ValueInterval> mergeIntervals(std::vector<format::ValueInterval> set);
-// The values not in the set (the set need not be merged).
-std::vector<format::ValueInterval> complementIntervals(const std::vector<format::ValueInterval>& set);
-std::vector<format::ValueInterval> intersectIntervals(const std::vector<format::ValueInterval>& a,
-                                                      const std::vector<format::ValueInterval>& b);
-
 // Values the classification removed (the complement of what it keeps).
 std::vector<format::ValueInterval> removedValues(const FileClassification& c);
 // Values the TF gives opacity that the classification removed: non-empty means the file cannot
