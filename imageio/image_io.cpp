@@ -5,45 +5,43 @@
 #include <atomic>
 #include <filesystem>
 
-#include "imageio/backend.h"
+#include "plugins/imageio_plugin_api.h"
 #include "plugins/plugin_loader.h"
 
 namespace voxlink::imageio {
 namespace {
 
-Result<Backend*> backend() {
-  using Create = Backend* (*)();
-  VOXLINK_ASSIGN_OR_RETURN(
-      void* entry, plugins::pluginEntry("libvoxlink_imageio_oiio.so", "voxlink_imageio_backend"));
-  static Backend* instance = reinterpret_cast<Create>(entry)();
-  return instance;
+using Plugin = plugins::ImageIoPluginApi;
+
+Result<const Plugin*> plugin() {
+  return plugins::pluginApi<Plugin>(plugins::kImageIoPlugin, plugins::kImageIoPluginEntry);
 }
 
 }  // namespace
 
 Result<std::string> pluginPath() {
-  VOXLINK_RETURN_IF_ERROR(backend().status());
-  return plugins::pluginLocation("libvoxlink_imageio_oiio.so");
+  VOXLINK_RETURN_IF_ERROR(plugin().status());
+  return plugins::pluginLocation(plugins::kImageIoPlugin);
 }
 
 Result<ImageSpec> probe(const std::string& path, int subimage) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->probe(path, subimage);
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
+  return p->probe(path, subimage);
 }
 
 Result<int> subimageCount(const std::string& path) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->subimageCount(path);
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
+  return p->subimageCount(path);
 }
 
 Status read(const std::string& path, int subimage, int channels, ScalarType as, void* dst) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
-  return b->read(path, subimage, channels, as, dst);
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
+  return p->read(path, subimage, channels, as, dst);
 }
 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
              const void* pixels, bool halfFloat, const char* colorSpace) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
   // Written beside the destination under a temporary name that keeps the extension (it picks
   // the format), then renamed: a failed write never leaves a partial image at `path`.
   static std::atomic<unsigned> serial{0};
@@ -52,7 +50,7 @@ Status write(const std::string& path, int width, int height, int channels, Scala
       target.parent_path() / cat(".", target.stem().string(), ".tmp-", getpid(), "-", serial++,
                                  target.extension().string());
   const std::string tempPath = temp.string();
-  Status written = b->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
+  Status written = p->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
   std::error_code ec;
   if (!written) {
     std::filesystem::remove(temp, ec);

@@ -1,7 +1,7 @@
-// The OpenImageIO plugin: every call to OpenImageIO in VoxLink is in this file.
+// libvoxlink_imageio_oiio.so: every call to OpenImageIO in VoxLink is in this file.
 #include <OpenImageIO/imageio.h>
 
-#include "imageio/backend.h"
+#include "plugins/imageio_plugin_api.h"
 
 namespace voxlink::imageio {
 namespace {
@@ -50,48 +50,47 @@ Result<std::unique_ptr<OIIO::ImageInput>> openInput(const std::string& path) {
   return std::unique_ptr<OIIO::ImageInput>(std::move(in));
 }
 
-class OiioBackend final : public Backend {
- public:
-  Result<ImageSpec> probe(const std::string& path, int subimage) override {
-    VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
-    if (!in->seek_subimage(subimage, 0))
-      return makeError(ErrorCode::kInvalidArgument, path, ": no page ", subimage);
-    return fromOiio(in->spec());
-  }
+Result<ImageSpec> oiioProbe(const std::string& path, int subimage) {
+  VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
+  if (!in->seek_subimage(subimage, 0))
+    return makeError(ErrorCode::kInvalidArgument, path, ": no page ", subimage);
+  return fromOiio(in->spec());
+}
 
-  Result<int> subimageCount(const std::string& path) override {
-    VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
-    int count = 0;
-    while (in->seek_subimage(count, 0)) ++count;
-    return count;
-  }
+Result<int> oiioSubimageCount(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
+  int count = 0;
+  while (in->seek_subimage(count, 0)) ++count;
+  return count;
+}
 
-  Status read(const std::string& path, int subimage, int channels, ScalarType as, void* dst) override {
-    VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
-    if (!in->read_image(subimage, 0, 0, channels, toOiio(as), dst))
-      return makeError(ErrorCode::kCorrupt, path, subimage ? cat(": page ", subimage) : std::string(),
-                       ": cannot read pixels (", in->geterror(), ")");
-    return Status::ok();
-  }
+Status oiioRead(const std::string& path, int subimage, int channels, ScalarType as, void* dst) {
+  VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
+  if (!in->read_image(subimage, 0, 0, channels, toOiio(as), dst))
+    return makeError(ErrorCode::kCorrupt, path, subimage ? cat(": page ", subimage) : std::string(),
+                     ": cannot read pixels (", in->geterror(), ")");
+  return Status::ok();
+}
 
-  Status write(const std::string& path, int width, int height, int channels, ScalarType from,
-               const void* pixels, bool halfFloat, const char* colorSpace) override {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out)
-      return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (", OIIO::geterror(), ")");
-    OIIO::ImageSpec spec(width, height, channels, halfFloat ? TypeDesc::HALF : TypeDesc::UINT8);
-    if (colorSpace) spec.attribute("oiio:ColorSpace", colorSpace);
-    if (!out->open(path, spec)) return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
-    if (!out->write_image(toOiio(from), pixels)) return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
-    if (!out->close()) return makeError(ErrorCode::kIo, path, ": close failed: ", out->geterror());
-    return Status::ok();
-  }
-};
+Status oiioWrite(const std::string& path, int width, int height, int channels, ScalarType from,
+                 const void* pixels, bool halfFloat, const char* colorSpace) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out)
+    return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (", OIIO::geterror(), ")");
+  OIIO::ImageSpec spec(width, height, channels, halfFloat ? TypeDesc::HALF : TypeDesc::UINT8);
+  if (colorSpace) spec.attribute("oiio:ColorSpace", colorSpace);
+  if (!out->open(path, spec)) return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
+  if (!out->write_image(toOiio(from), pixels)) return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
+  if (!out->close()) return makeError(ErrorCode::kIo, path, ": close failed: ", out->geterror());
+  return Status::ok();
+}
 
 }  // namespace
 }  // namespace voxlink::imageio
 
-extern "C" __attribute__((visibility("default"))) voxlink::imageio::Backend* voxlink_imageio_backend() {
-  static voxlink::imageio::OiioBackend backend;
-  return &backend;
+const voxlink::plugins::ImageIoPluginApi* voxlink_imageio_plugin() {
+  namespace io = voxlink::imageio;
+  static const voxlink::plugins::ImageIoPluginApi api{&io::oiioProbe, &io::oiioSubimageCount,
+                                                      &io::oiioRead, &io::oiioWrite};
+  return &api;
 }

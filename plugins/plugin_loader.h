@@ -15,7 +15,7 @@ namespace voxlink::plugins {
 Result<void*> pluginEntry(const std::string& fileName, const char* entry);
 
 // A plugin's entry is a function returning a pointer to its table of functions (`Api`, a struct
-// of function pointers; see convert/plugin_api.h). Loads the plugin on first use.
+// of function pointers; see plugins/plugin_api.h). Loads the plugin on first use.
 template <class Api>
 Result<const Api*> pluginApi(const std::string& fileName, const char* entry) {
   VOXLINK_ASSIGN_OR_RETURN(void* e, pluginEntry(fileName, entry));
