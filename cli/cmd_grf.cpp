@@ -6,9 +6,9 @@
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
-#include "samples/kriging/field_statistics.h"
-#include "samples/kriging/grf.h"
-#include "samples/kriging/grid_writer.h"
+#include "geostat/field_statistics.h"
+#include "geostat/grf.h"
+#include "geostat/grid_writer.h"
 
 namespace voxlink::cli {
 namespace {

@@ -1,4 +1,4 @@
-#include "samples/kriging/cholesky.h"
+#include "geostat/cholesky.h"
 
 #include <algorithm>
 #include <cmath>

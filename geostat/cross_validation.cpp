@@ -1,4 +1,4 @@
-#include "samples/kriging/cross_validation.h"
+#include "geostat/cross_validation.h"
 
 #include <cmath>
 

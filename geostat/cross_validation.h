@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "samples/kriging/kriging.h"
+#include "geostat/kriging.h"
 
 namespace voxlink::kriging {
 

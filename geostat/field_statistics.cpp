@@ -1,4 +1,4 @@
-#include "samples/kriging/field_statistics.h"
+#include "geostat/field_statistics.h"
 
 #include <algorithm>
 #include <cmath>

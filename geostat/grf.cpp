@@ -1,4 +1,4 @@
-#include "samples/kriging/grf.h"
+#include "geostat/grf.h"
 
 #include <fftw3.h>
 

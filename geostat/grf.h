@@ -13,7 +13,7 @@
 #include <functional>
 #include <string>
 
-#include "samples/kriging/grf_kernel.h"
+#include "geostat/grf_kernel.h"
 
 namespace voxlink::kriging {
 

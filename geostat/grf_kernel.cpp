@@ -1,4 +1,4 @@
-#include "samples/kriging/grf_kernel.h"
+#include "geostat/grf_kernel.h"
 
 #include <fftw3.h>
 

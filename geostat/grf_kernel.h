@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "samples/kriging/variogram.h"
+#include "geostat/variogram.h"
 
 namespace voxlink::kriging {
 

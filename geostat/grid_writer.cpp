@@ -1,4 +1,4 @@
-#include "samples/kriging/grid_writer.h"
+#include "geostat/grid_writer.h"
 
 #include <cerrno>
 #include <charconv>

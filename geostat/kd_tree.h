@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "samples/kriging/point_set.h"
+#include "geostat/point_set.h"
 
 namespace voxlink::kriging {
 

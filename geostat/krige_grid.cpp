@@ -1,4 +1,4 @@
-#include "samples/kriging/krige_grid.h"
+#include "geostat/krige_grid.h"
 
 #include <algorithm>
 #include <atomic>

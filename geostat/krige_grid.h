@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "samples/kriging/kriging.h"
+#include "geostat/kriging.h"
 
 namespace voxlink::kriging {
 

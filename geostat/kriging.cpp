@@ -1,4 +1,4 @@
-#include "samples/kriging/kriging.h"
+#include "geostat/kriging.h"
 
 #include <algorithm>
 #include <numeric>

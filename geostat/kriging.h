@@ -17,10 +17,10 @@
 #include <memory>
 #include <vector>
 
-#include "samples/kriging/cholesky.h"
-#include "samples/kriging/kd_tree.h"
-#include "samples/kriging/point_set.h"
-#include "samples/kriging/variogram.h"
+#include "geostat/cholesky.h"
+#include "geostat/kd_tree.h"
+#include "geostat/point_set.h"
+#include "geostat/variogram.h"
 
 namespace voxlink::kriging {
 

@@ -1,4 +1,4 @@
-#include "samples/kriging/point_set.h"
+#include "geostat/point_set.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "samples/kriging/variogram_fit.h"
+#include "geostat/variogram_fit.h"
 
 #include <algorithm>
 #include <cmath>

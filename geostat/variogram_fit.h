@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "samples/kriging/point_set.h"
-#include "samples/kriging/variogram.h"
+#include "geostat/point_set.h"
+#include "geostat/variogram.h"
 
 namespace voxlink::kriging {
 

@@ -1,13 +1,13 @@
 // Random fields: the empirical mean, variance and axis variograms must match the model within
 // tolerances derived from the sample size and the model's own correlation (a correlated
 // field's statistics fluctuate far more than N independent draws would).
-#include "samples/kriging/grf.h"
+#include "geostat/grf.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "samples/kriging/field_statistics.h"
+#include "geostat/field_statistics.h"
 
 namespace voxlink::kriging {
 namespace {

@@ -7,9 +7,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "samples/kriging/cross_validation.h"
-#include "samples/kriging/variogram_fit.h"
-#include "tests/kriging/walker_lake_data.h"
+#include "geostat/cross_validation.h"
+#include "geostat/variogram_fit.h"
+#include "tests/geostat/walker_lake_data.h"
 
 namespace voxlink::kriging {
 namespace {

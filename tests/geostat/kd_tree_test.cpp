@@ -1,4 +1,4 @@
-#include "samples/kriging/kd_tree.h"
+#include "geostat/kd_tree.h"
 
 #include <gtest/gtest.h>
 

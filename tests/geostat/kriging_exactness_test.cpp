@@ -4,7 +4,7 @@
 
 #include <numeric>
 
-#include "tests/kriging/kriging_test_util.h"
+#include "tests/geostat/kriging_test_util.h"
 
 namespace voxlink::kriging {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "samples/kriging/krige_grid.h"
-#include "tests/kriging/kriging_test_util.h"
+#include "geostat/krige_grid.h"
+#include "tests/geostat/kriging_test_util.h"
 
 namespace voxlink::kriging {
 namespace {

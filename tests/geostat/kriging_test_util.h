@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "samples/kriging/kriging.h"
+#include "geostat/kriging.h"
 
 namespace voxlink::kriging::test {
 

@@ -1,4 +1,4 @@
-#include "samples/kriging/variogram.h"
+#include "geostat/variogram.h"
 
 #include <gtest/gtest.h>
 

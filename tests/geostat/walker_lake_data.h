@@ -2,7 +2,7 @@
 // 260 x 300 grid they were drawn from.
 #pragma once
 
-#include "samples/kriging/point_set.h"
+#include "geostat/point_set.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::kriging::test {

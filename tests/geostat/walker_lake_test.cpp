@@ -5,10 +5,10 @@
 
 #include <cmath>
 
-#include "samples/kriging/cross_validation.h"
-#include "samples/kriging/krige_grid.h"
-#include "samples/kriging/variogram_fit.h"
-#include "tests/kriging/walker_lake_data.h"
+#include "geostat/cross_validation.h"
+#include "geostat/krige_grid.h"
+#include "geostat/variogram_fit.h"
+#include "tests/geostat/walker_lake_data.h"
 
 namespace voxlink::kriging {
 namespace {

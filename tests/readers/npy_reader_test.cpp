@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "sources/volume_source.h"
-#include "samples/kriging/grid_writer.h"
-#include "tests/kriging/npy_test_util.h"
+#include "geostat/grid_writer.h"
+#include "tests/readers/npy_test_util.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::convert {
