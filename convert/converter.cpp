@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "convert/brick_passes.h"
-#include "convert/keep_test.h"
+#include "convert/keep_rule.h"
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
 #include "convert/worker_pool.h"

@@ -117,6 +117,9 @@ struct SectionEntry {    // 32 bytes; the table is SectionEntry[sectionCount]
 static_assert(sizeof(SectionEntry) == 32);
 static_assert(offsetof(SectionEntry, offset) == 8);
 static_assert(offsetof(SectionEntry, crc) == 24);
+// Most table entries a reader accepts (a file has the kRequiredSections and may add others):
+// a damaged sectionCount must not make the reader walk a table of billions of entries.
+inline constexpr uint32_t kMaxSectionCount = 1024;
 
 // --- Brick-local coordinates ("VoxLink space") -----------------------------------------------
 // Rows run along the predominant axis a (depth axis w). The two other axes are taken in cyclic

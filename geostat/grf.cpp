@@ -97,9 +97,9 @@ std::string GrfReport::text() const {
 
 Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
   for (int a = 0; a < 3; ++a)
-    if (spec.dims[a] == 0 || spec.dims[a] > (1u << 19))
+    if (spec.dims[a] == 0 || spec.dims[a] > kMaxGrfAxis)
       return makeError(ErrorCode::kInvalidArgument, "random field: dims axis ", a,
-                       " must be in 1..524288, got ", spec.dims[a]);
+                       " must be in 1..", kMaxGrfAxis, ", got ", spec.dims[a]);
   VOXLINK_ASSIGN_OR_RETURN(const Variogram variogram, Variogram::make(spec.model));
   const auto start = std::chrono::steady_clock::now();
   GrfReport report;

@@ -17,6 +17,10 @@
 
 namespace voxlink::kriging {
 
+// Largest field extent per axis: the noise lattice packs each coordinate, which runs a kernel
+// radius beyond the field, into a 21-bit part of its hash key (grf.cpp, kCoordinateBias).
+inline constexpr uint32_t kMaxGrfAxis = 1u << 19;
+
 struct GrfSpec {
   std::array<uint32_t, 3> dims{64, 64, 64};
   VariogramParams model;  // lengths in voxels; sill = variance of the field

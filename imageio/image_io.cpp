@@ -19,11 +19,6 @@ Result<const Plugin*> plugin() {
 
 }  // namespace
 
-Result<std::string> pluginPath() {
-  VOXLINK_RETURN_IF_ERROR(plugin().status());
-  return plugins::pluginLocation(plugins::kImageIoPlugin);
-}
-
 Result<ImageSpec> probe(const std::string& path, int subimage) {
   VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
   return p->probe(path, subimage);

@@ -22,7 +22,4 @@ Result<const Api*> pluginApi(const std::string& fileName, const char* entry) {
   return reinterpret_cast<const Api* (*)()>(e)();
 }
 
-// Where `fileName` was loaded from (after a successful pluginEntry()).
-std::string pluginLocation(const std::string& fileName);
-
 }  // namespace voxlink::plugins

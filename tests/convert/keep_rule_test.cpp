@@ -1,5 +1,5 @@
-// The converter's fast keep tests agree with Classification::keeps() on every value.
-#include "convert/keep_test.h"
+// The converter's fast keep rules agree with Classification::keeps() on every value.
+#include "convert/keep_rule.h"
 
 #include <gtest/gtest.h>
 
@@ -39,7 +39,7 @@ void checkType() {
   }
 }
 
-TEST(KeepTest, FastFormsAgreeWithClassificationOnEveryValue) {
+TEST(KeepRule, FastFormsAgreeWithClassificationOnEveryValue) {
   checkType<uint8_t>();
   checkType<int8_t>();
   checkType<uint16_t>();
