@@ -1,6 +1,6 @@
 // The VoxLink file layout, version 1: plain structs whose every field carries its byte offset.
-// docs/format.md is the prose spec of the same thing; tests/format_layout_test.cpp and
-// tests/glsl_layout_test.cpp keep this header, the spec and the shaders in step.
+// docs/format.md is the prose spec of the same thing; the static_asserts below and
+// tests/viewer/glsl_layout_test.cpp keep this header, the spec and the shaders in step.
 //
 // A file is: FileHeader at offset 0, then sections, each starting on a kSectionAlignment
 // boundary, then the section table (SectionEntry[sectionCount]). Everything is little-endian.
