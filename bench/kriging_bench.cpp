@@ -12,9 +12,9 @@
 #include <fstream>
 #include <string>
 
-#include "samples/kriging/grf.h"
-#include "samples/kriging/krige_grid.h"
-#include "samples/kriging/variogram_fit.h"
+#include "geostat/grf.h"
+#include "geostat/krige_grid.h"
+#include "geostat/variogram_fit.h"
 
 using namespace voxlink;
 using namespace voxlink::kriging;

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 using namespace voxlink;
 

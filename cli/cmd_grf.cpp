@@ -6,9 +6,9 @@
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
-#include "samples/kriging/field_statistics.h"
-#include "samples/kriging/grf.h"
-#include "samples/kriging/grid_writer.h"
+#include "geostat/field_statistics.h"
+#include "geostat/grf.h"
+#include "geostat/grid_writer.h"
 
 namespace voxlink::cli {
 namespace {
@@ -28,9 +28,9 @@ int runGrf(const GrfArgs& a) {
   if (!dims) return reportError(dims.error());
   GrfSpec spec;
   for (int i = 0; i < 3; ++i) {
-    if ((*dims)[i] < 1 || (*dims)[i] != std::floor((*dims)[i]) || (*dims)[i] > 524288)
+    if ((*dims)[i] < 1 || (*dims)[i] != std::floor((*dims)[i]) || (*dims)[i] > kMaxGrfAxis)
       return reportError(makeError(ErrorCode::kInvalidArgument, "--dims: axis ", i,
-                                   " must be an integer in 1..524288"));
+                                   " must be an integer in 1..", kMaxGrfAxis));
     spec.dims[i] = static_cast<uint32_t>((*dims)[i]);
   }
   auto model = parseVariogram(a.variogram);

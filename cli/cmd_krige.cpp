@@ -8,10 +8,10 @@
 #include "cli/command.h"
 #include "cli/krige_options.h"
 #include "format/output_file.h"
-#include "samples/kriging/cross_validation.h"
-#include "samples/kriging/grid_writer.h"
-#include "samples/kriging/krige_grid.h"
-#include "samples/kriging/variogram_fit.h"
+#include "geostat/cross_validation.h"
+#include "geostat/grid_writer.h"
+#include "geostat/krige_grid.h"
+#include "geostat/variogram_fit.h"
 
 namespace voxlink::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "format/transfer_function.h"
 #include "format/voxlink_file.h"
 #include "viewer/core/camera.h"

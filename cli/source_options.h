@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::cli {
 

@@ -8,8 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "convert/brick_passes.h"
-#include "convert/keep_test.h"
+#include "convert/brick_count_pass.h"
+#include "convert/brick_encode_pass.h"
+#include "convert/keep_rule.h"
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
 #include "convert/worker_pool.h"
@@ -83,7 +84,7 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
       const uint32_t bz = bz0 + static_cast<uint32_t>(job / rowsPerLayer());
       const uint32_t by = static_cast<uint32_t>(job % rowsPerLayer());
       uint16_t* counts = census.counts.data() + (uint64_t{bz} * shape.grid[1] + by) * shape.grid[0];
-      countBrickRow<T>(window, shape, bz, by, keep, trackRange, counts, results[worker]);
+      countBrickRow<T>(BrickRow{window, shape, bz, by}, keep, trackRange, counts, results[worker]);
     });
     window.release();
     for (const CountResult& r : results) {
@@ -175,8 +176,9 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
       const uint32_t bz = static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
       const uint32_t by = static_cast<uint32_t>(rowOfBricks % shape.grid[1]);
       const uint16_t* counts = census.counts.data() + rowOfBricks * shape.grid[0];
-      encodeBrickRow<T>(window, shape, bz, by, keep, mapping, counts, census.firstOccupied[rowOfBricks],
-                        census.voxelBase.data(), out, stride, stats[worker]);
+      encodeBrickRow<T>(BrickRow{window, shape, bz, by}, keep, mapping,
+                        RowCensus{counts, census.firstOccupied[rowOfBricks], census.voxelBase.data()},
+                        out, stride, stats[worker]);
     });
     window.release();
     for (const EncodeStats& s : stats)

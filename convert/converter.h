@@ -12,7 +12,7 @@
 #include <string>
 
 #include "convert/classification.h"
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "convert/moments.h"
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 

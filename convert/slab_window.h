@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 

@@ -9,6 +9,8 @@
 #include <utility>
 #include <variant>
 
+#include "format/check.h"
+
 namespace voxlink {
 
 enum class ErrorCode {
@@ -53,9 +55,13 @@ class [[nodiscard]] Status {
   static Status ok() { return {}; }
   bool isOk() const { return !error_.has_value(); }
   explicit operator bool() const { return isOk(); }
-  const Error& error() const { return *error_; }
-  const std::string& message() const { return error_->message; }
-  ErrorCode code() const { return error_->code; }
+  // Only on a failed Status (checked: an OK one has no error to give).
+  const Error& error() const {
+    VOXLINK_CHECK(error_.has_value(), "Status::error() called on an OK status");
+    return *error_;
+  }
+  const std::string& message() const { return error().message; }
+  ErrorCode code() const { return error().code; }
 
  private:
   std::optional<Error> error_;
@@ -67,7 +73,8 @@ class [[nodiscard]] Result {
  public:
   Result(T value) : v_(std::move(value)) {}
   Result(Error error) : v_(std::move(error)) {}
-  Result(Status status) : v_(status.error()) {}  // only from a failed Status
+  // Only from a failed Status (checked: an OK one carries no value to hold).
+  Result(Status status) : v_(errorOf(status)) {}
   bool isOk() const { return std::holds_alternative<T>(v_); }
   explicit operator bool() const { return isOk(); }
   T& value() & { return std::get<T>(v_); }
@@ -82,6 +89,11 @@ class [[nodiscard]] Result {
   Status status() const { return isOk() ? Status() : Status(error()); }
 
  private:
+  static Error errorOf(const Status& status) {
+    VOXLINK_CHECK(!status.isOk(), "Result built from an OK Status");
+    return status.error();
+  }
+
   std::variant<T, Error> v_;
 };
 

@@ -8,7 +8,7 @@
 // gradients (walls, slabs, shells) decode exactly. t = 255 is reserved: kZeroGradient marks a
 // gradient that is zero or not finite. Encoding rounds theta and phi to the nearest step; over
 // uniformly random directions the angular error is about 0.354 deg mean and 0.786 deg max
-// (tests/gradient_codec_test.cpp measures it). shaders/gradient_codec.glsl decodes the same way.
+// (tests/format/gradient_codec_test.cpp measures it); shaders/gradient_codec.glsl decodes alike.
 #pragma once
 
 #include <array>

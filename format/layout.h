@@ -1,9 +1,9 @@
 // The VoxLink file layout, versions 1 and 2: plain structs whose every field carries its byte
 // offset. Version 1 holds a sparse volume; version 2 (a scene) adds geometry to the same bricks
-// and rows: surface fragments, sphere references, a material table and a mask of the voxels that
-// carry volume samples. A file with volume data only is always written as version 1.
-// docs/format.md is the prose spec of the same thing; tests/format_layout_test.cpp and
-// tests/glsl_layout_test.cpp keep this header, the spec and the shaders in step.
+// and rows: surface fragments, sphere references, a material table and masks saying which
+// voxels carry what. A file with volume data only is always written as version 1.
+// docs/format.md is the prose spec of the same thing; the static_asserts below and
+// tests/viewer/glsl_layout_test.cpp keep this header, the spec and the shaders in step.
 //
 // A file is: FileHeader at offset 0, then sections, each starting on a kSectionAlignment
 // boundary, then the section table (SectionEntry[sectionCount]). Everything is little-endian.
@@ -189,6 +189,9 @@ struct SectionEntry {    // 32 bytes; the table is SectionEntry[sectionCount]
 static_assert(sizeof(SectionEntry) == 32);
 static_assert(offsetof(SectionEntry, offset) == 8);
 static_assert(offsetof(SectionEntry, crc) == 24);
+// Most table entries a reader accepts (a file has the kRequiredSections and may add others):
+// a damaged sectionCount must not make the reader walk a table of billions of entries.
+inline constexpr uint32_t kMaxSectionCount = 1024;
 
 // --- Brick-local coordinates ("VoxLink space") -----------------------------------------------
 // Rows run along the predominant axis a (depth axis w). The two other axes are taken in cyclic

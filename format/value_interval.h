@@ -23,4 +23,11 @@ bool anyContains(const std::vector<ValueInterval>& set, double v);
 // "[60, inf)", "(-inf, -1.96) u (1.96, inf)"
 std::string describeIntervals(const std::vector<ValueInterval>& set);
 
+// Sorted, merged union.
+std::vector<ValueInterval> mergeIntervals(std::vector<ValueInterval> set);
+// The values not in the set (the set need not be merged).
+std::vector<ValueInterval> complementIntervals(const std::vector<ValueInterval>& set);
+std::vector<ValueInterval> intersectIntervals(const std::vector<ValueInterval>& a,
+                                              const std::vector<ValueInterval>& b);
+
 }  // namespace voxlink::format

@@ -149,7 +149,7 @@ Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& w
   if (h.voxelCount > kMaxVoxels || h.voxelCount > h.occupiedBrickCount * n3 || h.voxelCount < h.occupiedBrickCount)
     return makeError(ErrorCode::kCorrupt, where, ": header.voxelCount: ", h.voxelCount, " does not fit ", h.occupiedBrickCount, " occupied bricks of ", n3, " voxels");
   VOXLINK_RETURN_IF_ERROR(checkSceneCounts(h, where));
-  if (h.sectionTableOffset > fileBytes || h.sectionCount > 1024 ||
+  if (h.sectionTableOffset > fileBytes || h.sectionCount > kMaxSectionCount ||
       h.sectionTableOffset + uint64_t{h.sectionCount} * sizeof(SectionEntry) > fileBytes)
     return makeError(ErrorCode::kTruncated, where, ": header.sectionTableOffset: table of ", h.sectionCount, " entries at byte ", h.sectionTableOffset, " lies beyond the end of the ", fileBytes, "-byte file");
   return Status::ok();

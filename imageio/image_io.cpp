@@ -7,26 +7,19 @@
 
 #include "format/output_file.h"
 #include "format/stderr_capture.h"
-#include "imageio/backend.h"
+#include "plugins/imageio_plugin_api.h"
 #include "plugins/plugin_loader.h"
 
 namespace voxlink::imageio {
 namespace {
 
-Result<Backend*> backend() {
-  using Create = Backend* (*)();
-  VOXLINK_ASSIGN_OR_RETURN(
-      void* entry, plugins::pluginEntry("libvoxlink_imageio_oiio.so", "voxlink_imageio_backend"));
-  static Backend* instance = reinterpret_cast<Create>(entry)();
-  return instance;
+using Plugin = plugins::ImageIoPluginApi;
+
+Result<const Plugin*> plugin() {
+  return plugins::pluginApi<Plugin>(plugins::kImageIoPlugin, plugins::kImageIoPluginEntry);
 }
 
 }  // namespace
-
-Result<std::string> pluginPath() {
-  VOXLINK_RETURN_IF_ERROR(backend().status());
-  return plugins::pluginLocation("libvoxlink_imageio_oiio.so");
-}
 
 // libpng (under OpenImageIO) prints warnings such as "libpng warning: iCCP: known incorrect
 // sRGB profile" to stderr: captured, so our messages stay one line; a failure quotes it.
@@ -39,40 +32,40 @@ R quoting(const format::StderrCapture& capture, R result) {
 }
 
 Result<ImageSpec> probe(const std::string& path, int subimage) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
   format::StderrCapture capture;
-  return quoting(capture, b->probe(path, subimage));
+  return quoting(capture, p->probe(path, subimage));
 }
 
 Result<int> subimageCount(const std::string& path) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
   format::StderrCapture capture;
-  return quoting(capture, b->subimageCount(path));
+  return quoting(capture, p->subimageCount(path));
 }
 
 Status read(const std::string& path, int subimage, int channels, ScalarType as, void* dst) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
   format::StderrCapture capture;
-  return quoting(capture, b->read(path, subimage, channels, as, dst));
+  return quoting(capture, p->read(path, subimage, channels, as, dst));
 }
 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
              const void* pixels, bool halfFloat, const char* colorSpace) {
-  VOXLINK_ASSIGN_OR_RETURN(Backend * b, backend());
+  VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
   // Written beside the destination under a unique temporary name (O_EXCL) that keeps the
   // extension (it picks the format), then renamed: a failed write never leaves a partial image
-  // at `path`. The backend checks every write and the close (a full disk fails there).
+  // at `path`. The plugin checks every write and the close (a full disk fails there).
   const std::string extension = std::filesystem::path(path).extension().string();
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, extension));
   ::close(temp.fd);  // the backend opens the file by name
   const std::string tempPath = temp.path;
   format::StderrCapture capture;
-  Status written = b->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
+  Status written = p->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
   if (written) {
     // Image libraries do not all report a short write (a full disk left truncated PNGs behind
     // with success): the file must read back whole before it replaces anything.
     std::vector<float> back(size_t(width) * size_t(height) * size_t(channels));
-    if (Status s = b->read(tempPath, 0, channels, ScalarType::kF32, back.data()); !s)
+    if (Status s = p->read(tempPath, 0, channels, ScalarType::kF32, back.data()); !s)
       written = makeError(ErrorCode::kIo, path,
                           ": write failed: the written image does not read "
                           "back (disk full?)");

@@ -33,7 +33,4 @@ Status read(const std::string& path, int subimage, int channels, ScalarType as, 
 Status write(const std::string& path, int width, int height, int channels, ScalarType from,
              const void* pixels, bool halfFloat, const char* colorSpace);
 
-// Where the plugin was found, or the error saying where it was looked for.
-Result<std::string> pluginPath();
-
 }  // namespace voxlink::imageio

@@ -13,7 +13,6 @@ namespace {
 
 struct Loaded {
   void* entry = nullptr;
-  std::string path;
   std::string error;
 };
 
@@ -55,7 +54,6 @@ Loaded load(const std::string& fileName, const char* entry) {
     }
     result.entry = dlsym(handle, entry);
     if (!result.entry) result.error = cat(path, ": not a VoxLink plugin (no ", entry, ")");
-    result.path = path;
     return result;
   }
   result.error = cat(fileName, " (built with VoxLink) was not found in ", tried,
@@ -71,12 +69,6 @@ Result<void*> pluginEntry(const std::string& fileName, const char* entry) {
   if (it == loaded.end()) it = loaded.emplace(fileName, load(fileName, entry)).first;
   if (!it->second.entry) return makeError(ErrorCode::kUnsupported, it->second.error);
   return it->second.entry;
-}
-
-std::string pluginLocation(const std::string& fileName) {
-  std::lock_guard lock(mutex);
-  auto it = loaded.find(fileName);
-  return it == loaded.end() ? std::string() : it->second.path;
 }
 
 }  // namespace voxlink::plugins

@@ -14,7 +14,12 @@ namespace voxlink::plugins {
 // in the build tree and in the install prefix, in that order.
 Result<void*> pluginEntry(const std::string& fileName, const char* entry);
 
-// Where `fileName` was loaded from (after a successful pluginEntry()).
-std::string pluginLocation(const std::string& fileName);
+// A plugin's entry is a function returning a pointer to its table of functions (`Api`, a struct
+// of function pointers; see plugins/plugin_api.h). Loads the plugin on first use.
+template <class Api>
+Result<const Api*> pluginApi(const std::string& fileName, const char* entry) {
+  VOXLINK_ASSIGN_OR_RETURN(void* e, pluginEntry(fileName, entry));
+  return reinterpret_cast<const Api* (*)()>(e)();
+}
 
 }  // namespace voxlink::plugins

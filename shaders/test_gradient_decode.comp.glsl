@@ -5,7 +5,7 @@ layout(local_size_x = 64) in;
 
 #include "gradient_codec.glsl"
 
-layout(std430, binding = 0) writeonly restrict buffer Decoded { vec4 decoded[]; };
+layout(std430, binding = VXL_RESULTS_BINDING) writeonly restrict buffer Decoded { vec4 decoded[]; };
 
 void main() {
   uint code = gl_GlobalInvocationID.x;

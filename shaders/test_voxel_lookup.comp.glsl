@@ -10,7 +10,7 @@ uniform ivec3 uDims;
 
 // Per cell: voxel index or -1, stored value bits, gradient code, and the voxel found by the
 // row walk's neighbour step (the next list element along the predominant axis) or -1.
-layout(std430, binding = 15) writeonly restrict buffer Results { ivec4 results[]; };
+layout(std430, binding = VXL_RESULTS_BINDING) writeonly restrict buffer Results { ivec4 results[]; };
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -145,6 +145,11 @@ TEST(CliScene, BadInputIsOneLine) {
   EXPECT_NE(r.err.find("nan.obj"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
+  // The output may not be one of the scene's inputs.
+  writeText(dir.file("self.scene.json"), R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
+  r = runVoxlink({"scene", "build", dir.file("self.scene.json"), "-o", dir.file("self.scene.json")});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("self.scene.json"), std::string::npos) << r.err;
   writeText(dir.file("empty.scene.json"), R"({"objects": []})");
   r = runVoxlink({"scene", "build", dir.file("empty.scene.json"), "-o", dir.file("out.vxl")});
   EXPECT_NE(r.status, 0);

@@ -4,11 +4,11 @@
 
 #include <algorithm>
 
-#include "convert/readers/axes.h"
-#include "convert/readers/file_list.h"
-#include "convert/readers/inflate_stream.h"
-#include "convert/readers/rescale.h"
-#include "convert/readers/text_header.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/file_list.h"
+#include "sources/readers/inflate_stream.h"
+#include "sources/readers/rescale.h"
+#include "sources/readers/text_header.h"
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "convert/readers/file_list.h"
+#include "sources/readers/file_list.h"
 #include "tests/kriging/npy_test_util.h"
 #include "tests/readers/reader_test_util.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::convert::testing {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "convert/readers/reader_registry.h"
+#include "sources/readers/reader_registry.h"
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {

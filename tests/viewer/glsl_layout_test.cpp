@@ -20,6 +20,11 @@
 namespace voxlink::viewer {
 namespace {
 
+// Storage-buffer bindings of the test shaders' result arrays (VXL_RESULTS_BINDING in
+// shaders/test_gradient_decode.comp.glsl and shaders/test_voxel_lookup.comp.glsl).
+constexpr GLuint kDecodeResultsBinding = 0;
+constexpr GLuint kLookupResultsBinding = 15;
+
 std::vector<float> gradientTableForTest() {
   std::vector<float> t;
   for (int theta = 0; theta <= format::kPolarSteps; ++theta) {
@@ -38,7 +43,8 @@ std::vector<float> gradientTableForTest() {
 TEST(GlslLayout, GradientDecodeMatchesCppForEveryCode) {
   VOXLINK_REQUIRE_GL();
   auto program = ComputeProgram::build("test_gradient_decode.comp.glsl",
-                                       {{"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)}});
+                                       {{"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)},
+                                        {"VXL_RESULTS_BINDING", std::to_string(kDecodeResultsBinding)}});
   ASSERT_TRUE(program) << program.message();
   const auto table = gradientTableForTest();
   GlStorageBuffer tableBuffer = createStorageBuffer(table.data(), table.size() * sizeof(float));
@@ -46,7 +52,7 @@ TEST(GlslLayout, GradientDecodeMatchesCppForEveryCode) {
   glNamedBufferStorage(out.id(), 65536 * 16, nullptr, GL_MAP_READ_BIT);
   program->use();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGradientTableBinding, tableBuffer.buffer.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kDecodeResultsBinding, out.id());
   glDispatchCompute(65536 / 64, 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::vector<float> decoded(65536 * 4);
@@ -118,7 +124,9 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   ASSERT_TRUE(sections) << sections.message();
   EXPECT_GT(sections->bindingCount(), 7u) << "no section was split";
 
-  auto program = ComputeProgram::build("test_voxel_lookup.comp.glsl", voxlinkDefines(file->header()),
+  auto defines = voxlinkDefines(file->header());
+  defines.push_back({"VXL_RESULTS_BINDING", std::to_string(kLookupResultsBinding)});
+  auto program = ComputeProgram::build("test_voxel_lookup.comp.glsl", defines,
                                        {{"voxlink_sections.glsl", sections->glsl()}});
   ASSERT_TRUE(program) << program.message();
   const auto& d = dense.dims;
@@ -130,7 +138,7 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   glUniform3i(program->uniform("uDims"), GLint(d[0]), GLint(d[1]), GLint(d[2]));
   glUniform3i(program->uniform("uBrickGrid"), GLint(file->header().brickGrid[0]),
               GLint(file->header().brickGrid[1]), GLint(file->header().brickGrid[2]));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, out.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLookupResultsBinding, out.id());
   glDispatchCompute((total + 63) / 64, 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::vector<int32_t> results(size_t(total) * 4);

@@ -9,7 +9,7 @@
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
 #include "viewer/app/reclassifier.h"
-#include "viewer/core/classification_check.h"
+#include "viewer/app/classification_check.h"
 
 namespace voxlink::viewer {
 namespace {

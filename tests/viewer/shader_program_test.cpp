@@ -4,6 +4,7 @@
 
 #include "tests/viewer/gl_test_context.h"
 #include "viewer/gl/shader_program.h"
+#include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
 namespace {
@@ -53,7 +54,9 @@ TEST(ShaderProgram, CompileErrorsNameTheIncludedFile) {
 TEST(ShaderProgram, ShippedDisplayAndTestProgramsCompile) {
   VOXLINK_REQUIRE_GL();
   EXPECT_TRUE(ComputeProgram::build("display.comp.glsl"));
-  EXPECT_TRUE(ComputeProgram::build("test_gradient_decode.comp.glsl", {{"VXL_GRADIENT_TABLE_BINDING", "63"}}));
+  EXPECT_TRUE(ComputeProgram::build("test_gradient_decode.comp.glsl",
+                                    {{"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)},
+                                     {"VXL_RESULTS_BINDING", "0"}}));
 }
 
 }  // namespace

@@ -5,12 +5,17 @@
 #include <random>
 
 #include "format/half.h"
-#include "viewer/core/classification_check.h"
+#include "format/value_interval.h"
+#include "viewer/app/classification_check.h"
 #include "viewer/core/tf_presets.h"
 #include "viewer/core/tf_table.h"
 
 namespace voxlink::viewer {
 namespace {
+
+using format::complementIntervals;
+using format::intersectIntervals;
+using format::mergeIntervals;
 
 format::TransferFunction stepTf() {
   format::TransferFunction tf;

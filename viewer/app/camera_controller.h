@@ -25,8 +25,6 @@ class CameraController {
   // A mouse button is held down on the view (the renderer drops its resolution meanwhile).
   bool dragging() const { return dragging_; }
   const Camera& camera() const { return camera_; }
-  void setCamera(const Camera& c) { camera_ = c; }
-  void setHome(const Camera& c) { home_ = c; }
   void reset() { camera_ = home_; }
 
   static constexpr double kOrbitDegPerPixel = 0.4;

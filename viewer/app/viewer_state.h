@@ -9,7 +9,7 @@
 #include "format/voxlink_file.h"
 #include "viewer/app/reclassifier.h"
 #include "viewer/app/tf_editor.h"
-#include "viewer/core/classification_check.h"
+#include "viewer/app/classification_check.h"
 #include "viewer/core/value_histogram.h"
 #include "viewer/gl/voxlink_renderer.h"
 

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "format/error.h"
 #include "viewer/core/camera.h"
 

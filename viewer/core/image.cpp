@@ -76,31 +76,4 @@ Status writeImage(const Image& image, const std::string& path) {
   return imageio::write(path, w, h, 3, ScalarType::kU8, bytes.data(), /*halfFloat=*/false, "sRGB");
 }
 
-Result<Image> readImage(const std::string& path) {
-  VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(path));
-  const int channels = spec.channels;
-  if (spec.width <= 0 || spec.height <= 0 || channels < 1 || spec.depth > 1)
-    return makeError(ErrorCode::kUnsupported, path, ": not a 2D image");
-  std::vector<float> data(size_t(spec.width) * spec.height * channels);
-  VOXLINK_RETURN_IF_ERROR(imageio::read(path, 0, channels, ScalarType::kF32, data.data()));
-  const bool linear = spec.halfFloat || spec.type == ScalarType::kF32 || spec.type == ScalarType::kF64;
-  Image img(uint32_t(spec.width), uint32_t(spec.height));
-  for (size_t i = 0; i < size_t(spec.width) * spec.height; ++i) {
-    for (int c = 0; c < 4; ++c) {
-      float v = c < channels ? data[i * channels + c] : (c == 3 ? 1.0f : data[i * channels]);
-      if (c < 3 && !linear) v = static_cast<float>(srgbDecode(v));
-      img.rgba[i * 4 + c] = v;
-    }
-  }
-  return img;
-}
-
-Image differenceImage(const Image& a, const Image& b, double gain) {
-  Image d(a.width, a.height);
-  if (a.width != b.width || a.height != b.height) return d;
-  for (size_t i = 0; i < a.rgba.size(); ++i)
-    d.rgba[i] = (i % 4 == 3) ? 1.0f : static_cast<float>(std::min(1.0, gain * std::abs(a.rgba[i] - b.rgba[i])));
-  return d;
-}
-
 }  // namespace voxlink::viewer

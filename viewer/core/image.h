@@ -36,11 +36,6 @@ Result<ImageError> compareImages(const Image& a, const Image& b, double threshol
 // Writes PNG (8-bit sRGB-encoded RGB, opaque) or EXR (half-float linear RGBA, alpha = coverage)
 // by the file's extension; other extensions OpenImageIO knows get 8-bit sRGB RGB.
 Status writeImage(const Image& image, const std::string& path);
-// Reads any image OpenImageIO knows into linear float RGBA (PNG/JPEG: sRGB decoded).
-Result<Image> readImage(const std::string& path);
-
-// |a - b| per pixel, scaled by `gain`, as a viewable image (docs pictures of the error).
-Image differenceImage(const Image& a, const Image& b, double gain);
 
 double srgbEncode(double linear);
 double srgbDecode(double encoded);

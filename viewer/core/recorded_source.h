@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "convert/volume_source.h"
+#include "sources/volume_source.h"
 #include "format/voxlink_file.h"
 #include "viewer/core/dense_volume.h"
 

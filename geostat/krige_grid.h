@@ -1,0 +1,52 @@
+// Kriging onto a regular grid, z slice by z slice (x fastest), on all cores, with a summary of
+// what the solver had to do: the numbers a user needs to trust (or distrust) the result.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <string>
+
+#include "geostat/kriging.h"
+
+namespace voxlink::kriging {
+
+struct GridSpec {
+  std::array<uint32_t, 3> dims{1, 1, 1};
+  std::array<double, 3> origin{0, 0, 0};  // coordinates of node (0, 0, 0)
+  std::array<double, 3> spacing{1, 1, 1};
+
+  uint64_t sliceNodes() const { return uint64_t{dims[0]} * dims[1]; }
+  uint64_t nodeCount() const { return sliceNodes() * dims[2]; }
+  Point3 node(uint32_t i, uint32_t j, uint32_t k) const {
+    return {origin[0] + i * spacing[0], origin[1] + j * spacing[1], origin[2] + k * spacing[2]};
+  }
+};
+
+struct KrigingSummary {
+  uint64_t nodes = 0;
+  uint64_t nodesWithoutData = 0;  // no sample within --max-distance (written as the no-data value)
+  uint64_t systemsFactored = 0;   // distinct neighbour sets factored
+  uint64_t systemsReused = 0;     // nodes whose neighbour set equalled the previous node's
+  uint64_t regularizedNodes = 0;  // nodes whose system needed a diagonal jitter
+  double worstCondition = 0;      // largest 1-norm condition estimate of any system
+  double largestJitter = 0;
+  double meanNeighbours = 0;
+  double seconds = 0;
+
+  std::string text() const;  // a few lines for the command's summary
+};
+
+// Receives finished slices [z0, z0 + count): values and variances, x fastest.
+using SliceSink = std::function<Status(uint32_t z0, uint32_t count, const double* values,
+                                       const double* variances)>;
+
+struct GridKrigingOptions {
+  unsigned threads = 0;         // 0: hardware concurrency
+  double noData = NAN;          // value (and variance) where ordinary kriging has no sample
+  uint32_t slicesPerBatch = 1;  // slices computed before each call of the sink
+};
+
+Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,
+                                 const GridKrigingOptions& options = {});
+
+}  // namespace voxlink::kriging

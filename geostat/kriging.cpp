@@ -1,0 +1,201 @@
+#include "geostat/kriging.h"
+
+#include <algorithm>
+#include <numeric>
+
+namespace voxlink::kriging {
+namespace {
+
+constexpr double kFirstJitter = 1e-12;
+constexpr double kLastJitter = 1e-4;
+constexpr size_t kMaxSystemSize = 4096;  // 128 MiB of matrix per thread, O(n^3) per system
+
+double distance(const Point3& a, const Point3& b) {
+  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+}  // namespace
+
+Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
+                            const KrigingOptions& options) {
+  if (points.size() == 0) return makeError(ErrorCode::kInvalidArgument, "kriging: no samples");
+  if (options.kind == KrigingKind::kSimple && !std::isfinite(options.simpleMean))
+    return makeError(ErrorCode::kInvalidArgument, "kriging: simple kriging needs a finite --mean");
+  const size_t systemSize =
+      options.maxNeighbours == 0 ? points.size() : std::min(options.maxNeighbours, points.size());
+  if (systemSize > kMaxSystemSize)
+    return makeError(ErrorCode::kTooLarge, "kriging: ",
+                     options.maxNeighbours == 0 ? "global kriging of " : "neighbourhoods of ",
+                     systemSize, " samples need a dense ", systemSize, " x ", systemSize,
+                     " system (limit ", kMaxSystemSize, "); use --neighbours 16..256");
+  if (!(options.maxDistance > 0))
+    return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ",
+                     options.maxDistance);
+  Point3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(points.coords[i][a]))
+        return makeError(ErrorCode::kNonFinite, "kriging: sample ", i,
+                         " has a non-finite coordinate");
+      lo[a] = std::min(lo[a], points.coords[i][a]);
+      hi[a] = std::max(hi[a], points.coords[i][a]);
+    }
+    if (!std::isfinite(points.values[i]))
+      return makeError(ErrorCode::kNonFinite, "kriging: sample ", i, " has a non-finite value");
+  }
+  Kriger k(variogram);
+  k.options_ = options;
+  for (int a = 0; a < 3; ++a) k.centre_[a] = 0.5 * (lo[a] + hi[a]);
+  const double diagonal = distance(lo, hi);
+  if (k.options_.mergeDistance < 0) k.options_.mergeDistance = 1e-9 * diagonal;
+
+  std::vector<Point3> centred(points.size());
+  for (size_t i = 0; i < points.size(); ++i)
+    for (int a = 0; a < 3; ++a) centred[i][a] = points.coords[i][a] - k.centre_[a];
+
+  // Merge samples closer than mergeDistance into their average (values and positions).
+  const KdTree all(centred);
+  std::vector<char> taken(points.size(), 0);
+  std::vector<Neighbour> close;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (taken[i]) continue;
+    all.nearest(centred[i], 64, k.options_.mergeDistance, close);
+    Point3 sum{0, 0, 0};
+    double valueSum = 0, vmin = INFINITY, vmax = -INFINITY;
+    size_t count = 0;
+    for (const Neighbour& n : close) {
+      if (taken[n.index]) continue;
+      taken[n.index] = 1;
+      for (int a = 0; a < 3; ++a) sum[a] += centred[n.index][a];
+      valueSum += points.values[n.index];
+      vmin = std::min(vmin, points.values[n.index]);
+      vmax = std::max(vmax, points.values[n.index]);
+      ++count;
+    }
+    if (count == 0) {  // i lies farther than 64 coincident points away; keep it alone
+      taken[i] = 1;
+      k.coords_.push_back(centred[i]);
+      k.values_.push_back(points.values[i]);
+      continue;
+    }
+    k.merged_ += count - 1;
+    if (count > 1) k.mergedSpread_ = std::max(k.mergedSpread_, vmax - vmin);
+    for (int a = 0; a < 3; ++a) sum[a] /= static_cast<double>(count);
+    k.coords_.push_back(sum);
+    k.values_.push_back(valueSum / static_cast<double>(count));
+  }
+  k.dataMean_ = std::accumulate(k.values_.begin(), k.values_.end(), 0.0) /
+                static_cast<double>(k.values_.size());
+  if (options.kind == KrigingKind::kSimple) k.dataMean_ = options.simpleMean;
+  k.tree_ = std::make_shared<KdTree>(k.coords_);
+  return k;
+}
+
+Status Kriger::solveSystem(KrigingWorkspace& ws, size_t n) const {
+  ws.matrix.resize(n * n);
+  for (size_t i = 0; i < n; ++i) {
+    const Point3& pi = coords_[ws.key[i]];
+    ws.matrix[i * n + i] = variogram_.sill();
+    for (size_t j = 0; j < i; ++j) {
+      const double c = variogram_.covariance(std::max(distance(pi, coords_[ws.key[j]]), 1e-300));
+      ws.matrix[i * n + j] = c;
+      ws.matrix[j * n + i] = c;
+    }
+  }
+  const double sill = variogram_.sill();
+  double jitter = 0;
+  for (;;) {
+    if (ws.factor.factor(ws.matrix, n, jitter)) {
+      const double condition = ws.factor.conditionEstimate();
+      if (condition <= options_.maxCondition) {
+        ws.cachedCondition = condition;
+        ws.cachedJitter = jitter;
+        break;
+      }
+    }
+    jitter = jitter == 0 ? kFirstJitter * sill : jitter * 10;
+    if (jitter > kLastJitter * sill * 1.0000001)
+      return makeError(ErrorCode::kInvalidArgument, "kriging: the covariance matrix of ", n,
+                       " samples stays singular (condition > ", options_.maxCondition,
+                       ") even with a diagonal jitter of ", kLastJitter,
+                       " x sill; merge near-duplicate samples (--merge-distance) or add a nugget");
+  }
+  ws.onesSolved.assign(n, 1.0);
+  ws.factor.solve(ws.onesSolved.data());
+  ws.onesSum = std::accumulate(ws.onesSolved.begin(), ws.onesSolved.end(), 0.0);
+  ws.cachedKey = ws.key;
+  ws.cacheValid = true;
+  ++ws.systemsFactored;
+  return Status::ok();
+}
+
+Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude) const {
+  const Point3 q{p[0] - centre_[0], p[1] - centre_[1], p[2] - centre_[2]};
+  const bool global = options_.maxNeighbours == 0 || options_.maxNeighbours >= coords_.size();
+  const size_t k = global ? coords_.size() : options_.maxNeighbours + 1 + (exclude >= 0 ? 1 : 0);
+  tree_->nearest(q, k, options_.maxDistance, ws.neighbours);
+  if (exclude >= 0)
+    std::erase_if(ws.neighbours, [&](const Neighbour& n) { return n.index == exclude; });
+  Prediction out;
+  if (!global && ws.neighbours.size() > options_.maxNeighbours) {
+    const double kth = ws.neighbours[options_.maxNeighbours - 1].distance;
+    out.tieAtCutoff =
+        ws.neighbours[options_.maxNeighbours].distance - kth <= 1e-12 * std::max(kth, 1.0);
+    ws.neighbours.resize(options_.maxNeighbours);
+  }
+  const size_t n = ws.neighbours.size();
+  out.neighbours = static_cast<uint32_t>(n);
+  if (n == 0) {
+    if (options_.kind == KrigingKind::kSimple) {  // no data: the known mean and the full sill
+      out.value = options_.simpleMean;
+      out.variance = variogram_.sill();
+      out.hasData = true;
+    }
+    return out;
+  }
+  ws.key.resize(n);
+  for (size_t i = 0; i < n; ++i) ws.key[i] = ws.neighbours[i].index;
+  std::sort(ws.key.begin(), ws.key.end());
+  if (ws.cacheValid && ws.key == ws.cachedKey) {
+    ++ws.systemsReused;
+  } else {
+    VOXLINK_RETURN_IF_ERROR(solveSystem(ws, n));
+  }
+  ws.rhs.resize(n);
+  for (size_t i = 0; i < n; ++i) ws.rhs[i] = variogram_.covariance(distance(q, coords_[ws.key[i]]));
+  std::vector<double>& a = ws.matrix;  // reused as scratch: the factor keeps its own copy
+  a.assign(ws.rhs.begin(), ws.rhs.end());
+  ws.factor.solve(a.data());
+  double estimate = dataMean_, variance = variogram_.sill();
+  ws.weights.resize(n);
+  if (options_.kind == KrigingKind::kOrdinary) {
+    const double mu =
+        (std::accumulate(a.begin(), a.begin() + static_cast<long>(n), 0.0) - 1.0) / ws.onesSum;
+    for (size_t i = 0; i < n; ++i) {
+      const double w = a[i] - mu * ws.onesSolved[i];
+      ws.weights[i] = w;
+      estimate += w * (values_[ws.key[i]] - dataMean_);
+      variance -= w * ws.rhs[i];
+    }
+    variance -= mu;
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      ws.weights[i] = a[i];
+      estimate += a[i] * (values_[ws.key[i]] - dataMean_);
+      variance -= a[i] * ws.rhs[i];
+    }
+  }
+  // Rounding can leave -1e-16 * sill where the variance is 0 (at a sample).
+  out.value = estimate;
+  out.variance = std::max(variance, 0.0);
+  out.condition = ws.cachedCondition;
+  out.jitter = ws.cachedJitter;
+  out.hasData = true;
+  if (!std::isfinite(out.value) || !std::isfinite(out.variance))
+    return makeError(ErrorCode::kNonFinite, "kriging: non-finite prediction at (", p[0], ", ", p[1],
+                     ", ", p[2], ") from ", n, " samples");
+  return out;
+}
+
+}  // namespace voxlink::kriging

@@ -1,0 +1,98 @@
+// Ordinary and simple kriging of scattered samples: one prediction and its kriging variance per
+// location, from all samples (global) or the k nearest within a radius (local).
+//
+// Numerical safeguards, each reported rather than hidden:
+//  - coordinates are centred on the data's bounding box, so UTM-sized coordinates (1e6) lose
+//    no digits in distance computations;
+//  - samples closer than mergeDistance are merged (values averaged), since coincident samples
+//    make the covariance matrix exactly singular;
+//  - each system is solved by Cholesky with a 1-norm condition estimate; when it fails or the
+//    condition exceeds maxCondition, a diagonal jitter (a micro-nugget, sill * 1e-12, growing
+//    tenfold up to sill * 1e-4) is added and the largest jitter used is reported; beyond that
+//    the prediction is refused with a message.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "geostat/cholesky.h"
+#include "geostat/kd_tree.h"
+#include "geostat/point_set.h"
+#include "geostat/variogram.h"
+
+namespace voxlink::kriging {
+
+enum class KrigingKind { kOrdinary, kSimple };
+
+struct KrigingOptions {
+  KrigingKind kind = KrigingKind::kOrdinary;
+  double simpleMean = 0.0;   // known mean for simple kriging
+  size_t maxNeighbours = 0;  // 0: all samples (global kriging)
+  double maxDistance = INFINITY;
+  double mergeDistance = -1.0;  // < 0: 1e-9 times the bounding-box diagonal
+  double maxCondition = 1e12;
+};
+
+struct Prediction {
+  double value = NAN;
+  double variance = NAN;
+  uint32_t neighbours = 0;
+  double condition = 0;  // 1-norm condition estimate of the covariance matrix (0: no system)
+  double jitter = 0;     // diagonal regularization that was needed
+  bool hasData = false;  // false: no sample in reach (ordinary kriging cannot predict)
+  // Local search only: the k-th and (k+1)-th nearest samples are equally far, so another
+  // implementation may legitimately pick a different neighbour set.
+  bool tieAtCutoff = false;
+};
+
+// Per-thread scratch space and the cached factorization of the last neighbour set.
+struct KrigingWorkspace {
+  std::vector<Neighbour> neighbours;
+  std::vector<uint32_t> key, cachedKey;
+  std::vector<double> matrix, rhs, onesSolved;
+  std::vector<double> weights;  // of the last prediction, in the order of `key`
+  Cholesky factor;
+  double cachedCondition = 0, cachedJitter = 0, onesSum = 0;
+  bool cacheValid = false;
+  uint64_t systemsFactored = 0, systemsReused = 0;
+};
+
+class Kriger {
+ public:
+  static Result<Kriger> make(const PointSet& points, const Variogram& variogram,
+                             const KrigingOptions& options);
+
+  // Prediction at p (in the input's coordinates). `exclude` leaves one sample out
+  // (cross-validation).
+  Result<Prediction> predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude = -1) const;
+
+  size_t sampleCount() const { return values_.size(); }
+  // Sample i after merging, in the input's coordinates, and its value.
+  Point3 sample(size_t i) const {
+    return {coords_[i][0] + centre_[0], coords_[i][1] + centre_[1], coords_[i][2] + centre_[2]};
+  }
+  double sampleValue(size_t i) const { return values_[i]; }
+  size_t mergedSamples() const { return merged_; }
+  double largestMergedSpread() const { return mergedSpread_; }
+  const Variogram& variogram() const { return variogram_; }
+  const KrigingOptions& options() const { return options_; }
+  Point3 centre() const { return centre_; }
+
+ private:
+  Kriger(const Variogram& v) : variogram_(v) {}
+  Status solveSystem(KrigingWorkspace& ws, size_t n) const;
+
+  Variogram variogram_;
+  KrigingOptions options_;
+  Point3 centre_{0, 0, 0};
+  std::vector<Point3> coords_;  // centred
+  std::vector<double> values_;
+  double dataMean_ = 0;  // values are kriged as residuals from it for precision
+  size_t merged_ = 0;
+  double mergedSpread_ = 0;
+  std::shared_ptr<KdTree> tree_;
+};
+
+}  // namespace voxlink::kriging

@@ -1,0 +1,117 @@
+#include "sources/readers/child_probe.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <exception>
+#include <string>
+
+namespace voxlink::convert {
+
+namespace {
+
+constexpr uint32_t kThrownMarker = 0xFFFFFFFFu;  // followed by the message, up to EOF
+constexpr std::chrono::seconds kChildTimeLimit{300};
+
+void writeAll(int fd, const void* data, size_t bytes) {
+  const auto* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    const ssize_t n = write(fd, p, bytes);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) _exit(0);  // the parent is gone
+    p += n;
+    bytes -= static_cast<size_t>(n);
+  }
+}
+
+}  // namespace
+
+ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
+  ProbeOutcome outcome;
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) return outcome;  // not leaked into programs run meanwhile
+  const pid_t child = fork();
+  if (child < 0) {
+    close(fds[0]);
+    close(fds[1]);
+    return outcome;
+  }
+  if (child == 0) {
+    close(fds[0]);
+    const int devNull = open("/dev/null", O_WRONLY);
+    if (devNull >= 0) dup2(devNull, STDERR_FILENO);  // the library's and assert's messages
+    const int out = fds[1];
+    const MarkFn mark = [out](uint32_t i) { writeAll(out, &i, sizeof i); };
+    std::string thrown;
+    try {
+      work(mark);
+      _exit(0);
+    } catch (const std::exception& e) {
+      thrown = e.what();
+    } catch (...) {
+      thrown = "unknown exception";
+    }
+    writeAll(out, &kThrownMarker, sizeof kThrownMarker);
+    writeAll(out, thrown.data(), thrown.size());
+    _exit(0);
+  }
+  close(fds[1]);
+  // Everything the child wrote: marks, then maybe the exception marker and its message. A child
+  // that neither finishes nor dies in time (forked from a process whose other threads held a
+  // lock the child then needs) is killed, and the caller reads unguarded.
+  std::string received;
+  char buffer[4096];
+  const auto deadline = std::chrono::steady_clock::now() + kChildTimeLimit;
+  bool timedOut = false;
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        deadline - std::chrono::steady_clock::now());
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = left.count() > 0 ? poll(&p, 1, static_cast<int>(left.count())) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready <= 0) {
+      timedOut = true;
+      break;
+    }
+    const ssize_t n = read(fds[0], buffer, sizeof buffer);
+    if (n > 0) {
+      received.append(buffer, static_cast<size_t>(n));
+      continue;
+    }
+    if (n < 0 && errno == EINTR) continue;
+    break;
+  }
+  close(fds[0]);
+  if (timedOut) {
+    kill(child, SIGKILL);
+    while (waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+    }
+    return ProbeOutcome{};
+  }
+  for (size_t at = 0; at + sizeof(uint32_t) <= received.size(); at += sizeof(uint32_t)) {
+    uint32_t index;
+    std::memcpy(&index, received.data() + at, sizeof index);
+    if (index == kThrownMarker) {
+      outcome.thrown = received.substr(at + sizeof index);
+      break;
+    }
+    outcome.lastMark = index;
+  }
+  int status = 0;
+  while (waitpid(child, &status, 0) < 0) {
+    if (errno != EINTR) return outcome;
+  }
+  if (WIFSIGNALED(status)) {
+    outcome.died = true;
+    outcome.signal = WTERMSIG(status);
+  }
+  return outcome;
+}
+
+}  // namespace voxlink::convert

@@ -1,0 +1,127 @@
+#include "sources/readers/dicom_reader.h"
+
+#include <gdcmImageReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "sources/readers/dicom_series.h"
+#include "sources/readers/gdcm_messages.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/rescale.h"
+
+namespace voxlink::convert {
+namespace {
+
+class DicomSource final : public VolumeSource {
+ public:
+  DicomSource(VolumeInfo info, DicomSeries series, bool rescale)
+      : series_(std::move(series)), rescale_(rescale) {
+    info_ = std::move(info);
+  }
+
+  bool randomAccess() const override { return true; }
+
+  Status read(uint32_t z0, uint32_t count, void* dst) override {
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
+    const uint64_t storedBytes = info_.sliceVoxels() * scalarSize(series_.storedType);
+    auto* out = static_cast<uint8_t*>(dst);
+    for (uint32_t z = z0; z < z0 + count; ++z) {
+      const DicomSlice& slice = series_.slices[z];
+      uint8_t* target = out + uint64_t{z - z0} * info_.sliceBytes();
+      if (rescale_) scratch_.resize(storedBytes);
+      VOXLINK_RETURN_IF_ERROR(
+          readPixels(slice.path, rescale_ ? scratch_.data() : target, storedBytes));
+      if (rescale_)
+        convertRescaled(scratch_.data(), series_.storedType, target, info_.type,
+                        info_.sliceVoxels(), slice.slope, slice.intercept);
+    }
+    return Status::ok();
+  }
+
+ private:
+  Status readPixels(const std::string& file, uint8_t* dst, uint64_t bytes) {
+    gdcm::ImageReader reader;
+    reader.SetFileName(file.c_str());
+    GdcmMessages messages;
+    if (!reader.Read())
+      return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot read the image",
+                       messages.reason());
+    const gdcm::Image& image = reader.GetImage();
+    if (image.GetColumns() != info_.dims[0] || image.GetRows() != info_.dims[1])
+      return makeError(ErrorCode::kSizeMismatch, file, ": pixel data is ", image.GetColumns(), "x",
+                       image.GetRows(), ", the series is ", info_.dims[0], "x", info_.dims[1]);
+    if (image.GetBufferLength() != bytes)
+      return makeError(ErrorCode::kSizeMismatch, file,
+                       ": tag PixelData (7FE0,0010): ", image.GetBufferLength(), " bytes decoded, ",
+                       bytes, " expected");
+    if (!image.GetBuffer(reinterpret_cast<char*>(dst)))
+      return makeError(ErrorCode::kCorrupt, file,
+                       ": tag PixelData (7FE0,0010): GDCM cannot decode it", messages.reason());
+    return Status::ok();
+  }
+
+  DicomSeries series_;
+  bool rescale_;
+  std::vector<uint8_t> scratch_;
+};
+
+bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
+
+}  // namespace
+
+Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
+                                                            const OpenOptions& options) {
+  VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir));
+  const std::array<uint64_t, 3> dims{series.columns, series.rows, series.slices.size()};
+  VOXLINK_RETURN_IF_ERROR(checkDims(dims, dir, "Columns Rows slices"));
+
+  VolumeInfo info;
+  info.path = dir;
+  info.format = "dicom";
+  for (int a = 0; a < 3; ++a) info.dims[a] = static_cast<uint32_t>(dims[a]);
+  info.spacing = {series.columnSpacing, series.rowSpacing, series.sliceSpacing};
+  info.origin = series.slices.front().position;
+  info.notes = series.notes;
+  const AxesSummary axes = summarizeAxes(
+      {series.rowDirection, series.columnDirection, series.normal}, "ImageOrientationPatient axes");
+  if (!axes.note.empty()) info.notes.push_back(axes.note);
+
+  // Rescale: the value range of BitsStored through every slice's slope and intercept.
+  const bool isSigned = voxlink::isSigned(series.storedType);
+  const double storedMin = isSigned ? -std::ldexp(1.0, series.bitsStored - 1) : 0.0;
+  const double storedMax = isSigned ? std::ldexp(1.0, series.bitsStored - 1) - 1
+                                    : std::ldexp(1.0, series.bitsStored) - 1;
+  bool identity = true, allIntegral = true;
+  double lo = 0, hi = 0, minSlope = 0, maxSlope = 0, minIntercept = 0, maxIntercept = 0;
+  for (size_t i = 0; i < series.slices.size(); ++i) {
+    const DicomSlice& s = series.slices[i];
+    identity = identity && s.slope == 1 && s.intercept == 0;
+    allIntegral = allIntegral && integral(s.slope) && integral(s.intercept);
+    const double a = storedMin * s.slope + s.intercept, b = storedMax * s.slope + s.intercept;
+    lo = i ? std::min({lo, a, b}) : std::min(a, b);
+    hi = i ? std::max({hi, a, b}) : std::max(a, b);
+    minSlope = i ? std::min(minSlope, s.slope) : s.slope;
+    maxSlope = i ? std::max(maxSlope, s.slope) : s.slope;
+    minIntercept = i ? std::min(minIntercept, s.intercept) : s.intercept;
+    maxIntercept = i ? std::max(maxIntercept, s.intercept) : s.intercept;
+  }
+  info.type =
+      identity ? series.storedType : typeForValueRange(series.storedType, lo, hi, allIntegral);
+  if (!identity) {
+    const bool uniform = minSlope == maxSlope && minIntercept == maxIntercept;
+    info.notes.push_back(uniform ? cat("RescaleSlope/RescaleIntercept applied: value = stored ",
+                                       scalarName(series.storedType), " * ", minSlope, " + ",
+                                       minIntercept, ", served as ", scalarName(info.type))
+                                 : cat("RescaleSlope/RescaleIntercept applied per slice (slopes ",
+                                       minSlope, "..", maxSlope, ", intercepts ", minIntercept,
+                                       "..", maxIntercept, "), served as ", scalarName(info.type)));
+  }
+  VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
+  return std::unique_ptr<VolumeSource>(
+      new DicomSource(std::move(info), std::move(series), !identity));
+}
+
+}  // namespace voxlink::convert

@@ -1,0 +1,14 @@
+// MetaImage volumes (.mhd + data file(s), .mha with LOCAL data), raw or zlib-compressed.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "sources/volume_source.h"
+
+namespace voxlink::convert {
+
+Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
+                                                    const OpenOptions& options);
+
+}  // namespace voxlink::convert

@@ -1,0 +1,85 @@
+#include "sources/volume_source.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "format/regular_file.h"
+#include "sources/readers/raw_reader.h"
+#include "sources/readers/reader_common.h"
+#include "sources/readers/reader_registry.h"
+
+namespace voxlink::convert {
+
+Status VolumeSource::checkSliceRange(uint32_t z0, uint32_t count) const {
+  if (uint64_t{z0} + count > info_.dims[2])
+    return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", uint64_t{z0} + count,
+                     ") beyond z size ", info_.dims[2]);
+  return Status::ok();
+}
+
+Result<std::vector<uint8_t>> readAll(VolumeSource& source) {
+  const VolumeInfo& info = source.info();
+  const uint64_t bytes = info.voxelCount() * scalarSize(info.type);
+  std::vector<uint8_t> data;
+  try {
+    data.resize(bytes);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, info.path, ": ", bytes, " bytes do not fit in memory");
+  }
+  VOXLINK_RETURN_IF_ERROR(source.rewind());
+  VOXLINK_RETURN_IF_ERROR(source.read(0, info.dims[2], data.data()));
+  return data;
+}
+
+std::vector<std::string> readerNames() {
+  std::vector<std::string> names;
+  for (const ReaderEntry& r : readerRegistry()) names.push_back(r.name);
+  return names;
+}
+
+namespace {
+
+// Every reader checks its header before allocating; this repeats the shape limits on whatever a
+// reader returns, so no command (convert, stats, ...) sees a volume beyond them.
+Result<std::unique_ptr<VolumeSource>> checked(Result<std::unique_ptr<VolumeSource>> source) {
+  if (!source) return source;
+  const VolumeInfo& info = (*source)->info();
+  VOXLINK_RETURN_IF_ERROR(checkVolumeShape(info, "dims"));
+  // Readers name the field when they check; this catches any reader that does not.
+  VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, info.path, "spacing"));
+  VOXLINK_RETURN_IF_ERROR(checkOrigin(info.origin, info.path, "origin"));
+  return source;
+}
+
+Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
+                                                     const OpenOptions& options) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    return makeError(ErrorCode::kIo, path, ": no such file or directory");
+  // Folders hold DICOM series and image stacks; anything else must be a regular file (a FIFO
+  // or device would block the readers' probes forever).
+  if (!std::filesystem::is_directory(path, ec))
+    VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "volume"));
+  const auto& registry = readerRegistry();
+  if (!options.format.empty()) {
+    for (const ReaderEntry& r : registry)
+      if (r.name == options.format) return r.open(path, options);
+    std::string known;
+    for (const ReaderEntry& r : registry) known += (known.empty() ? "" : ", ") + r.name;
+    return makeError(ErrorCode::kInvalidArgument, path, ": --format ", options.format, " is not one of: ", known);
+  }
+  for (const ReaderEntry& r : registry)
+    if (r.matches(path)) return r.open(path, options);
+  // A file no reader claims is raw when dims and type were given.
+  if (options.dims && options.type) return openRaw(path, options);
+  return makeError(ErrorCode::kUnsupported, path, ": unknown volume format; give --format, or --dims and --type for a raw file");
+}
+
+}  // namespace
+
+Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path,
+                                                 const OpenOptions& options) {
+  return checked(openWithReader(path, options));
+}
+
+}  // namespace voxlink::convert

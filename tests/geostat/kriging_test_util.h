@@ -1,0 +1,34 @@
+// Small point sets for the kriging tests.
+#pragma once
+
+#include <random>
+
+#include "geostat/kriging.h"
+
+namespace voxlink::kriging::test {
+
+inline PointSet randomPoints(size_t n, uint32_t seed, double extent = 100.0, int dimension = 2) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, extent);
+  std::normal_distribution<double> value(10, 3);
+  PointSet s;
+  s.dimension = dimension;
+  for (size_t i = 0; i < n; ++i) {
+    s.coords.push_back({u(rng), u(rng), dimension == 3 ? u(rng) : 0.0});
+    s.values.push_back(value(rng));
+  }
+  return s;
+}
+
+inline Variogram model(VariogramType type, double nugget, double psill, double range,
+                       double nu = 0.5) {
+  return Variogram::make({type, nugget, psill, range, nu}).value();
+}
+
+inline Kriger kriger(const PointSet& s, const Variogram& v, KrigingOptions o = {}) {
+  auto k = Kriger::make(s, v, o);
+  if (!k) throw std::runtime_error(k.message());
+  return std::move(k).value();
+}
+
+}  // namespace voxlink::kriging::test
