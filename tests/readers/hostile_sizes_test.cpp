@@ -6,7 +6,7 @@
 #include <cstring>
 
 #include "sources/readers/file_list.h"
-#include "tests/kriging/npy_test_util.h"
+#include "tests/readers/npy_test_util.h"
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
