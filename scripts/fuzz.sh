@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/, clang 14, ASan + UBSan) in ./build-fuzz and runs each for
+# SECONDS (default 60). Seeds come from ../shared/data (fuzz/make_seeds.py) and the kept crash
+# inputs in tests/data/fuzz-regressions; new corpus entries stay in build-fuzz/fuzz-corpus.
+# FUZZ_TARGETS="nrrd vti" picks targets. A crash, leak, timeout or out-of-memory input is left in
+# build-fuzz/fuzz-artifacts/<target>/ and makes the script fail. One line per target reports
+# executions, coverage (libFuzzer's cov:) and findings; logs are in build-fuzz/fuzz-logs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+build=build-fuzz
+data_dir=${VOXLINK_DATA_DIR:-../shared/data}
+launcher=()
+if command -v ccache > /dev/null; then
+  launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
+  -DVOXLINK_FUZZ=ON -DVOXLINK_BUILD_TESTS=OFF -DVOXLINK_DATA_DIR="$(realpath -m "$data_dir")" \
+  "${launcher[@]}" > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+# The .vxl seeds are converted by the normal build's voxlink when there is one (CI builds it
+# first); otherwise by a sanitized one built here.
+voxlink=${VOXLINK_EXE:-build/cli/voxlink}
+fuzz_targets=(voxlink_fuzzers)
+if [[ ! -x "$voxlink" ]]; then
+  voxlink="$build/cli/voxlink"
+  fuzz_targets+=(voxlink)
+fi
+cmake --build "$build" -j "$(nproc)" --target "${fuzz_targets[@]}"
+
+rm -rf "$build/fuzz-seeds"
+if [[ -d "$data_dir" ]]; then
+  python3 fuzz/make_seeds.py "$data_dir" "$build/fuzz-seeds" "$voxlink"
+else
+  echo "fuzz.sh: $data_dir missing: fuzzing from the kept regression inputs only" >&2
+fi
+
+targets=${FUZZ_TARGETS:-$(cat "$build/fuzz/targets.txt")}
+mkdir -p "$build/fuzz-logs"
+failed=()
+printf '%-18s %8s %12s %8s %6s  %s\n' target seconds execs cov ft findings
+for t in $targets; do
+  corpus="$build/fuzz-corpus/$t"
+  artifacts="$build/fuzz-artifacts/$t"
+  mkdir -p "$corpus" "$artifacts"
+  dirs=("$corpus")
+  for extra in "$build/fuzz-seeds/$t" "tests/data/fuzz-regressions/$t"; do
+    [[ -d "$extra" ]] && dirs+=("$extra")
+  done
+  log="$build/fuzz-logs/$t.log"
+  rc=0
+  # 2 GB of memory per input: a header asking for more must be refused, not allocated.
+  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=2048 \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "${dirs[@]}" \
+    > "$log" 2>&1 || rc=$?
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+  ft=$(grep -o 'ft: [0-9]*' "$log" | tail -1 | cut -d' ' -f2)
+  findings=$(find "$artifacts" -type f | wc -l)
+  printf '%-18s %8s %12s %8s %6s  %s\n' "$t" "$seconds" "${execs:-?}" "${cov:-?}" "${ft:-?}" \
+    "$findings"
+  if [[ $rc -ne 0 || $findings -ne 0 ]]; then
+    failed+=("$t")
+    grep -m3 -E 'ERROR|SUMMARY|runtime error' "$log" >&2 || tail -5 "$log" >&2
+  fi
+done
+if [[ ${#failed[@]} -ne 0 ]]; then
+  echo "fuzz.sh: findings in: ${failed[*]} (inputs in $build/fuzz-artifacts, logs in $build/fuzz-logs)" >&2
+  exit 1
+fi
