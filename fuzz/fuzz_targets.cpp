@@ -18,9 +18,7 @@ constexpr std::array kTargets{
     FuzzTarget{"dicom", fuzzDicom},
     FuzzTarget{"image_stack", fuzzImageStack},
     FuzzTarget{"transfer_function", fuzzTransferFunction},
-#ifdef VOXLINK_FUZZ_HAS_VIEWER
     FuzzTarget{"paraview_preset", fuzzParaViewPreset},
-#endif
     FuzzTarget{"kriging_points", fuzzKrigingPoints},
 };
 

@@ -34,7 +34,7 @@ struct FuzzTarget {
   Status (*run)(Input);
 };
 
-// Every target built into this library (the ParaView one only with the viewer).
+// Every target, in the order scripts/fuzz.sh runs them.
 std::span<const FuzzTarget> fuzzTargets();
 const FuzzTarget* findFuzzTarget(std::string_view name);
 

@@ -53,7 +53,7 @@ def nrrd_seeds(s, d):
     data = b"".join(slices)[: 3 * slice_bytes]
     s.add("nrrd", "attached_raw",
           b"NRRD0004\ntype: short\ndimension: 3\nsizes: 64 64 3\nencoding: raw\n"
-          b"endian: big\nspace directions: (3,0,0) (0,3,0) (0,0,1.5)\nspace origin: (1,2,3)\n\n"
+          b"endian: big\nspace: left-posterior-superior\nspace directions: (3,0,0) (0,3,0) (0,0,1.5)\nspace origin: (1,2,3)\n\n"
           + data)
     flair = read(d, "mri/niivue_FLAIR.nrrd")
     header = flair[: flair.index(b"\n\n") + 2].replace(b"sizes: 124 160 140", b"sizes: 124 160 2")
@@ -95,7 +95,8 @@ def metaimage_seeds(s, d):
 def nifti_seeds(s, d):
     nii = gzip.decompress(read(d, "mri/vtk_avg152T1_RL_nifti.nii.gz"))
     header = bytearray(nii[:352])
-    struct.pack_into("<h", header, 46, 2)  # dim[3]: two slices
+    order = "<" if struct.unpack("<i", nii[:4])[0] == 348 else ">"
+    struct.pack_into(order + "h", header, 46, 2)  # dim[3]: two slices
     small = bytes(header) + nii[352 : 352 + 91 * 109 * 2]
     s.add("nifti", "avg152_plain", small)
     s.add("nifti", "avg152_gzip", gzip.compress(small))
@@ -197,6 +198,13 @@ def image_seeds(s, out):
         with open(path, "rb") as f:
             data = f.read()
         s.add("image_stack", os.path.basename(path), data)
+    tiffs = [p for p in made if p.endswith(".tif")]
+    if tiffs:
+        multi = os.path.join(tmp, "pages.tif")
+        if subprocess.run(["oiiotool", tiffs[0], tiffs[0], "--siappend", "-o", multi],
+                          capture_output=True).returncode == 0:
+            with open(multi, "rb") as f:
+                s.add("image_stack", "multipage.tif", f.read())
     pngs = [p for p in made if p.endswith(".png")]
     if pngs:
         with open(pngs[0], "rb") as f:
@@ -228,7 +236,9 @@ def kriging_seeds(s, d):
     s.add("kriging_points", "meuse_quoted_na",
           b'"X","Y","V"\n181072,333611,1022\n181025,333558,NA\n"181165",333537,640\n')
     s.add("kriging_points", "xyz", b"X,Y,Z,V\n0,0,0,1\n1,0,2,3.5\n0,1,1,-2\n")
-    s.add("kriging_points", "geoeas", read(d, "geostat/vtk_b_100sampledatawl.sgems", 1200))
+    geoeas = read(d, "geostat/vtk_b_100sampledatawl.sgems", 1200)
+    geoeas = geoeas[: geoeas.rindex(b"\n") + 1]
+    s.add("kriging_points", "geoeas", geoeas.replace(b"U-random-samplingtrans", b"V"))
 
 
 def vxl_seeds(s, d, out, voxlink):

@@ -13,9 +13,8 @@ Status fuzzKrigingPoints(Input input) {
   const std::string path = scratch().write(splitFuzzFiles(input, "input.csv"));
   const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
   const std::string_view firstLine = text.substr(0, text.find('\n'));
-  kriging::ColumnSelection columns;
-  columns.value = "V";
-  if (firstLine.find('Z') != std::string_view::npos) columns.z = "Z";
+  const bool hasZ = firstLine.find('Z') != std::string_view::npos;
+  const kriging::ColumnSelection columns{"X", "Y", hasZ ? "Z" : "", "V"};
   auto points = kriging::readPoints(path, columns);
   if (!points) return points.status();
   return Status::ok();
