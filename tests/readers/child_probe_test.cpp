@@ -1,0 +1,40 @@
+// probeInChild (convert/readers/child_probe.h): a crash in the child is seen as a crash even when
+// the parent has crash handlers of its own that would exit instead (libFuzzer, crash reporters).
+#include "convert/readers/child_probe.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdlib>
+
+namespace voxlink::convert {
+namespace {
+
+void exitQuietly(int) { _exit(3); }
+
+TEST(ProbeInChild, ChildAbortIsADeathEvenWithTheParentsAbortHandler) {
+  struct sigaction mine {
+  }, previous{};
+  mine.sa_handler = exitQuietly;
+  sigemptyset(&mine.sa_mask);
+  ASSERT_EQ(sigaction(SIGABRT, &mine, &previous), 0);
+  const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) {
+    mark(7);
+    std::abort();
+  });
+  sigaction(SIGABRT, &previous, nullptr);
+  EXPECT_TRUE(outcome.died);
+  EXPECT_EQ(outcome.signal, SIGABRT);
+  ASSERT_TRUE(outcome.lastMark.has_value());
+  EXPECT_EQ(*outcome.lastMark, 7u);
+}
+
+TEST(ProbeInChild, ChildThatFinishesSurvives) {
+  const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) { mark(1); });
+  EXPECT_FALSE(outcome.died);
+  EXPECT_FALSE(outcome.thrown.has_value());
+}
+
+}  // namespace
+}  // namespace voxlink::convert
