@@ -114,8 +114,16 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
   if (WIFSIGNALED(status)) {
     outcome.died = true;
     outcome.signal = WTERMSIG(status);
+  } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    outcome.died = true;
+    outcome.exitStatus = WEXITSTATUS(status);
   }
   return outcome;
+}
+
+std::string describeDeath(const ProbeOutcome& outcome) {
+  if (outcome.signal != 0) return strsignal(outcome.signal);
+  return "exit status " + std::to_string(outcome.exitStatus);
 }
 
 }  // namespace voxlink::convert

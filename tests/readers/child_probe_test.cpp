@@ -30,6 +30,18 @@ TEST(ProbeInChild, ChildAbortIsADeathEvenWithTheParentsAbortHandler) {
   EXPECT_EQ(*outcome.lastMark, 7u);
 }
 
+TEST(ProbeInChild, ChildThatExitsWithAFailureStatusDied) {
+  // What a sanitizer's report does in the child: print and exit with status 1.
+  const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) {
+    mark(2);
+    _exit(1);
+  });
+  EXPECT_TRUE(outcome.died);
+  EXPECT_EQ(outcome.signal, 0);
+  EXPECT_EQ(outcome.exitStatus, 1);
+  EXPECT_EQ(describeDeath(outcome), "exit status 1");
+}
+
 TEST(ProbeInChild, ChildThatFinishesSurvives) {
   const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) { mark(1); });
   EXPECT_FALSE(outcome.died);
