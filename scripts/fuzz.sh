@@ -15,6 +15,7 @@ launcher=()
 if command -v ccache > /dev/null; then
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
+mkdir -p "$build"
 # -O1 and line tables: quick to build on 2 cores, fast enough to fuzz, reports name lines. No
 # viewer (GL) and no tests: the targets need the readers, format/ and samples/kriging only.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -22,7 +23,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
   -DVOXLINK_FUZZ=ON -DVOXLINK_BUILD_TESTS=OFF -DVOXLINK_BUILD_VIEWER=OFF -DVOXLINK_DATA_DIR="$(realpath -m "$data_dir")" \
-  "${launcher[@]}" > "$build.configure.log" 2>&1 || { cat "$build.configure.log"; exit 1; }
+  "${launcher[@]}" > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 # The .vxl seeds are converted by the normal build's voxlink when there is one (CI builds it
 # first); otherwise by a sanitized one built here.
 voxlink=${VOXLINK_EXE:-build/cli/voxlink}
