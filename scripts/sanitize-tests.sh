@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer (LeakSanitizer comes with
 # ASan) in ./build-asan and runs the whole test suite there. Any sanitizer report fails the
-# test it happens in. Leaks inside Mesa/LLVM (GL tests on llvmpipe) are suppressed by library in
-# scripts/sanitizers/lsan.supp; nothing of ours is. Extra arguments go to cmake.
+# test it happens in. Leaks inside libraries that are not ours are suppressed by library in
+# scripts/sanitizers/lsan.supp; the GL tests (viewer_tests) run without leak checking (below).
+# Extra arguments go to cmake.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-asan
@@ -21,4 +22,9 @@ supp=$(realpath scripts/sanitizers/lsan.supp)
 export ASAN_OPTIONS=detect_leaks=1:allocator_may_return_null=1:detect_stack_use_after_return=0
 export LSAN_OPTIONS=suppressions=$supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir "$build" --output-on-failure -j "$(nproc)"
+ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -LE viewer_tests
+# The GL tests run without LeakSanitizer: at exit its thread walk crashes on llvmpipe's worker
+# threads ("Tracer caught signal 11") and Mesa's JIT-compiled shader code leaks from a module
+# with no name, which no suppression can match. ASan and UBSan stay on.
+ASAN_OPTIONS=${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0} \
+  ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -L viewer_tests
