@@ -161,13 +161,15 @@ Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection
   if (!std::getline(in, title) || !std::getline(in, countLine))
     return makeError(ErrorCode::kTruncated, path,
                      ": GEO-EAS header: expected a title line and a variable count");
+  // strtol's end pointer points into this string, so it must outlive the check.
+  const std::string countText = trim(countLine);
   char* end = nullptr;
-  const long count = std::strtol(trim(countLine).c_str(), &end, 10);
+  const long count = std::strtol(countText.c_str(), &end, 10);
   if (*end != '\0' || count < 1 || count > 10000)
     return makeError(
         ErrorCode::kInvalidArgument, path,
         ": GEO-EAS header: line 2 'number of variables': expected an integer in 1..10000, got '",
-        trim(countLine), "'");
+        countText, "'");
   std::vector<std::string> names;
   std::string line;
   for (long i = 0; i < count; ++i) {

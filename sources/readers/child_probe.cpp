@@ -44,6 +44,10 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
   }
   if (child == 0) {
     close(fds[0]);
+    // The parent's crash handlers (a crash reporter, libFuzzer, a sanitizer) would turn a crash
+    // into an ordinary exit, which reads as "survived": the child must die by the signal.
+    for (const int crash : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS})
+      signal(crash, SIG_DFL);
     const int devNull = open("/dev/null", O_WRONLY);
     if (devNull >= 0) dup2(devNull, STDERR_FILENO);  // the library's and assert's messages
     const int out = fds[1];
@@ -110,8 +114,16 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
   if (WIFSIGNALED(status)) {
     outcome.died = true;
     outcome.signal = WTERMSIG(status);
+  } else if (WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+    outcome.died = true;
+    outcome.exitStatus = WEXITSTATUS(status);
   }
   return outcome;
+}
+
+std::string describeDeath(const ProbeOutcome& outcome) {
+  if (outcome.signal != 0) return strsignal(outcome.signal);
+  return "exit status " + std::to_string(outcome.exitStatus);
 }
 
 }  // namespace voxlink::convert

@@ -11,8 +11,11 @@
 namespace voxlink::convert {
 
 struct ProbeOutcome {
-  bool died = false;  // killed by a signal
-  int signal = 0;
+  // Killed by a signal, or ended with a failure status before finishing (a sanitizer's report
+  // exits with status 1 instead of a signal).
+  bool died = false;
+  int signal = 0;                     // 0 when it exited
+  int exitStatus = 0;                 // when it exited
   std::optional<uint32_t> lastMark;   // the last mark(i) the child made
   std::optional<std::string> thrown;  // what() of an exception that ended `work`
 };
@@ -22,6 +25,9 @@ struct ProbeOutcome {
 // repeat a slow failing read. When no child can be started the outcome is empty (not died, not
 // thrown): the caller then reads unguarded; so does a child that runs past 5 minutes (killed).
 using MarkFn = std::function<void(uint32_t)>;
+// "Segmentation fault", "exit status 1": how a child that died ended, for messages.
+std::string describeDeath(const ProbeOutcome& outcome);
+
 ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work);
 
 }  // namespace voxlink::convert

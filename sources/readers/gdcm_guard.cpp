@@ -36,7 +36,7 @@ Status checkGdcmSurvives(const std::vector<std::string>& files) {
   });
   if (outcome.died && outcome.lastMark && *outcome.lastMark < files.size())
     return makeError(ErrorCode::kCorrupt, files[*outcome.lastMark],
-                     ": GDCM crashed reading this file (", strsignal(outcome.signal),
+                     ": GDCM crashed reading this file (", describeDeath(outcome),
                      "); the file is damaged or not DICOM");
   return Status::ok();
 }

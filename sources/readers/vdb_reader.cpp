@@ -99,7 +99,7 @@ Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path,
   });
   if (probe.died)
     return makeError(ErrorCode::kCorrupt, path, ": OpenVDB crashed reading this file (",
-                     strsignal(probe.signal), "); the file is damaged");
+                     describeDeath(probe), "); the file is damaged");
   if (probe.thrown)  // the same read here would throw the same, maybe slowly
     return makeError(ErrorCode::kCorrupt, path, ": OpenVDB cannot read it (", *probe.thrown, ")");
   openvdb::GridBase::Ptr base;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -43,6 +44,14 @@ const std::vector<Preset>& presets() {
 double parseNumber(const nlohmann::json& j) {
   if (j.is_number()) return j.get<double>();
   return std::nan("");
+}
+
+// A preset's "Name": empty when absent, nullopt when it is not a string (json::value would throw).
+std::optional<std::string> presetName(const nlohmann::json& preset) {
+  const auto it = preset.find("Name");
+  if (it == preset.end()) return std::string();
+  if (!it->is_string()) return std::nullopt;
+  return it->get<std::string>();
 }
 
 }  // namespace
@@ -112,7 +121,7 @@ Result<format::TransferFunction> parseParaViewPreset(const std::string& text, co
     preset = &j;
   } else if (j.is_array()) {
     for (const auto& p : j)
-      if (p.is_object() && (options.name.empty() || p.value("Name", "") == options.name)) {
+      if (p.is_object() && (options.name.empty() || presetName(p) == options.name)) {
         preset = &p;
         break;
       }
@@ -120,7 +129,11 @@ Result<format::TransferFunction> parseParaViewPreset(const std::string& text, co
   if (!preset)
     return makeError(ErrorCode::kInvalidArgument, where, ": no ParaView preset",
                      options.name.empty() ? "" : " named '" + options.name + "'");
-  const std::string name = preset->value("Name", "");
+  const std::optional<std::string> maybeName = presetName(*preset);
+  if (!maybeName)
+    return makeError(ErrorCode::kInvalidArgument, where, ": field 'Name': ",
+                     preset->at("Name").type_name(), " is not a string");
+  const std::string& name = *maybeName;
   if (!preset->contains("RGBPoints") || !(*preset)["RGBPoints"].is_array())
     return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': field 'RGBPoints' missing (indexed or annotation presets are not supported)");
   const auto& rgb = (*preset)["RGBPoints"];

@@ -1,0 +1,287 @@
+#!/usr/bin/env python3
+"""Builds the fuzz seed corpora from ../shared/data (small files, or real headers cut down to a
+few slices of real data) plus a few hand-made variants the data set lacks (LIST file lists,
+appended VTI data, Fortran-order npy, ...). Nothing large is committed: scripts/fuzz.sh runs
+this into the build dir. Usage: make_seeds.py DATA_DIR OUT_DIR [VOXLINK_EXE]"""
+import base64
+import gzip
+import io
+import os
+import struct
+import subprocess
+import sys
+import zipfile
+import zlib
+
+MARK = b"\n==> %s <==\n"
+
+
+def bundle(main, *extra):
+    """One fuzz input: the main file, then (name, bytes) files beside it (fuzz/fuzz_input.h)."""
+    out = main
+    for name, data in extra:
+        out += MARK % name.encode() + data
+    return out
+
+
+class Seeds:
+    def __init__(self, out):
+        self.out = out
+
+    def add(self, target, name, data):
+        folder = os.path.join(self.out, target)
+        os.makedirs(folder, exist_ok=True)
+        with open(os.path.join(folder, name), "wb") as f:
+            f.write(data)
+
+
+def read(data_dir, rel, limit=None):
+    with open(os.path.join(data_dir, rel), "rb") as f:
+        return f.read() if limit is None else f.read(limit)
+
+
+def nrrd_seeds(s, d):
+    slice_bytes = 64 * 64 * 2
+    slices = [read(d, "ct/vtk_headsq/quarter.%d" % i) for i in (1, 2, 3)]
+    numbered = (b"NRRD0004\ndimension: 3\nsizes: 64 64 3\nspacings: 3.2 3.2 1.5\n"
+                b"endian: little\ntype: short\nencoding: raw\ndata file: quarter.%d 1 3 1\n")
+    s.add("nrrd", "headsq_numbered",
+          bundle(numbered, *[("quarter.%d" % (i + 1), slices[i]) for i in range(3)]))
+    listed = (b"NRRD0004\ndimension: 3\nsizes: 64 64 2\nendian: little\ntype: short\n"
+              b"encoding: raw\ndata file: LIST 2\nquarter.1\nquarter.2\n")
+    s.add("nrrd", "headsq_list", bundle(listed, ("quarter.1", slices[0]), ("quarter.2", slices[1])))
+    data = b"".join(slices)[: 3 * slice_bytes]
+    s.add("nrrd", "attached_raw",
+          b"NRRD0004\ntype: short\ndimension: 3\nsizes: 64 64 3\nencoding: raw\n"
+          b"endian: big\nspace: left-posterior-superior\nspace directions: (3,0,0) (0,3,0) (0,0,1.5)\nspace origin: (1,2,3)\n\n"
+          + data)
+    flair = read(d, "mri/niivue_FLAIR.nrrd")
+    header = flair[: flair.index(b"\n\n") + 2].replace(b"sizes: 124 160 140", b"sizes: 124 160 2")
+    raw = zlib.decompressobj(16 + zlib.MAX_WBITS).decompress(flair[flair.index(b"\n\n") + 2 :],
+                                                             124 * 160 * 2)
+    s.add("nrrd", "flair_gzip_oblique", header + gzip.compress(raw[: 124 * 160 * 2]))
+    nucleon = read(d, "volume/voreen_nucleon/nucleon.nrrd")
+    s.add("nrrd", "nucleon_detached",
+          bundle(nucleon.replace(b"sizes: 41 41 41", b"sizes: 41 41 3"),
+                 ("nucleon.raw", read(d, "volume/voreen_nucleon/nucleon.raw", 41 * 41 * 3))))
+    lidc = read(d, "ct/vtkjs_LIDC2/LIDC2.nhdr").replace(b"sizes: 256 256 133", b"sizes: 32 32 4")
+    s.add("nrrd", "lidc_gzip_detached",
+          bundle(lidc, ("b1ad142a1ebc80f957fcdc329e876d51.gz", gzip.compress(bytes(range(256)) * 16))))
+
+
+def metaimage_seeds(s, d):
+    mhd = read(d, "mri/vtk_HeadMRVolume.mhd").replace(b"48 62 42", b"48 62 3")
+    raw = read(d, "mri/vtk_HeadMRVolume.raw", 48 * 62 * 3)
+    s.add("metaimage", "head_mr", bundle(mhd, ("HeadMRVolume.raw", raw)))
+    mha = read(d, "mri/niivue_mha.mha")
+    split = mha.index(b"ElementDataFile = LOCAL\n") + len(b"ElementDataFile = LOCAL\n")
+    voxels = zlib.decompress(mha[split:])[: 64 * 64 * 2 * 2]
+    packed = zlib.compress(voxels)
+    header = mha[:split].replace(b"DimSize = 64 64 37", b"DimSize = 64 64 2").replace(
+        b"CompressedDataSize = 131270", b"CompressedDataSize = %d" % len(packed))
+    s.add("metaimage", "mha_zlib_local", header + packed)
+    listed = (b"ObjectType = Image\nNDims = 3\nDimSize = 48 62 2\nElementType = MET_UCHAR\n"
+              b"ElementDataFile = LIST\na.raw\nb.raw\n")
+    s.add("metaimage", "list",
+          bundle(listed, ("a.raw", raw[: 48 * 62]), ("b.raw", raw[48 * 62 : 2 * 48 * 62])))
+    numbered = (b"NDims = 3\nDimSize = 48 62 2\nElementType = MET_USHORT\nElementByteOrderMSB = True\n"
+                b"ElementDataFile = s%03d.raw 1 2 1\n")
+    s.add("metaimage", "numbered",
+          bundle(numbered, ("s001.raw", raw[: 48 * 62 * 2]), ("s002.raw", raw[: 48 * 62 * 2])))
+    frog = read(d, "volume/vtk_frogtissue/frogtissue.mhd")
+    s.add("metaimage", "frog_header_only", frog)
+
+
+def nifti_seeds(s, d):
+    nii = gzip.decompress(read(d, "mri/vtk_avg152T1_RL_nifti.nii.gz"))
+    header = bytearray(nii[:352])
+    order = "<" if struct.unpack("<i", nii[:4])[0] == 348 else ">"
+    struct.pack_into(order + "h", header, 46, 2)  # dim[3]: two slices
+    small = bytes(header) + nii[352 : 352 + 91 * 109 * 2]
+    s.add("nifti", "avg152_plain", small)
+    s.add("nifti", "avg152_gzip", gzip.compress(small))
+
+
+def vvd_seeds(s, d):
+    vvd = (b'<?xml version="1.0" ?>\n<VoreenData version="1">\n<Volumes>\n<Volume>\n'
+           b'<RawData filename="walnut.raw" format="uint16" x="128" y="96" z="2" />\n'
+           b'<MetaData>\n<MetaItem name="Offset" type="Vec3MetaData"><value x="-1" y="-0.75" '
+           b'z="-0.89" /></MetaItem>\n<MetaItem name="Spacing" type="Vec3MetaData"><value '
+           b'x="0.015625" y="0.015625" z="0.015625" /></MetaItem>\n</MetaData>\n</Volume>\n'
+           b'</Volumes>\n</VoreenData>\n')
+    raw = read(d, "ct/voreen_walnut/walnut.raw", 128 * 96 * 2 * 2)
+    s.add("vvd", "walnut", bundle(vvd, ("walnut.raw", raw)))
+    s.add("vvd", "walnut_header_prefix", read(d, "ct/voreen_walnut/walnut.vvd", 2048))
+
+
+def vti_seeds(s, d):
+    values = struct.pack("<64f", *[i * 0.25 for i in range(64)])
+    head = (b'<?xml version="1.0"?>\n<VTKFile type="ImageData" version="0.1" '
+            b'byte_order="LittleEndian" header_type="%s"%s>\n<ImageData WholeExtent="0 3 0 3 0 3" '
+            b'Origin="0 0 0" Spacing="1 1 2">\n<Piece Extent="0 3 0 3 0 3">\n'
+            b'<PointData Scalars="v">\n')
+    tail = b"</PointData>\n</Piece>\n</ImageData>\n%s</VTKFile>\n"
+    inline = base64.b64encode(struct.pack("<I", len(values)) + values)
+    s.add("vti", "inline_base64",
+          head % (b"UInt32", b"") + b'<DataArray type="Float32" Name="v" format="binary">'
+          + inline + b"</DataArray>\n" + tail % b"")
+    packed = zlib.compress(values)
+    blocks = struct.pack("<QQQQ", 1, len(values), len(values), len(packed)) + packed
+    s.add("vti", "zlib_uint64",
+          head % (b"UInt64", b' compressor="vtkZLibDataCompressor"')
+          + b'<DataArray type="Float32" Name="v" format="binary">'
+          + base64.b64encode(blocks[:32]) + base64.b64encode(packed) + b"</DataArray>\n"
+          + tail % b"")
+    s.add("vti", "appended_raw",
+          head % (b"UInt32", b"") + b'<DataArray type="Float32" Name="v" format="appended" '
+          b'offset="0"/>\n' + tail % (b'<AppendedData encoding="raw">_'
+                                      + struct.pack("<I", len(values)) + values
+                                      + b"\n</AppendedData>\n"))
+    s.add("vti", "hydrogen_prefix", read(d, "volume/vtk_hydrogen.vti", 4096))
+
+
+def npy_header(descr, shape, fortran=False, version=1):
+    text = "{'descr': '%s', 'fortran_order': %s, 'shape': %s, }" % (
+        descr, "True" if fortran else "False", repr(tuple(shape)))
+    size_bytes = 2 if version == 1 else 4
+    total = 6 + 2 + size_bytes + len(text) + 1
+    text += " " * ((64 - total % 64) % 64) + "\n"
+    length = struct.pack("<H" if version == 1 else "<I", len(text))
+    return b"\x93NUMPY" + bytes([version, 0]) + length + text.encode("latin1")
+
+
+def npy_seeds(s, d):
+    tooth = read(d, "ct/tooth_103x94x161_uint8.raw", 103 * 94 * 2)
+    s.add("npy", "u1_c", npy_header("|u1", (2, 94, 103)) + tooth)
+    s.add("npy", "f4_fortran", npy_header("<f4", (4, 3, 2), fortran=True) + struct.pack("<24f", *range(24)))
+    s.add("npy", "i2_big_v2", npy_header(">i2", (3, 5), version=2) + struct.pack(">15h", *range(15)))
+    s.add("npy", "f8_1d_v3", npy_header("<f8", (7,), version=3) + struct.pack("<7d", *range(7)))
+
+
+def gslib_seeds(s, d):
+    s.add("gslib", "sgems_small", b"3 2 2\n2\nporosity\nfacies\n" +
+          b"".join(b"%d.5 %d\n" % (i, i % 2) for i in range(12)))
+    s.add("gslib", "geoeas_dims_title", b"a grid\n1\nvalue\n" + b"".join(b"-999\n1e3\n" for _ in range(4)))
+    packed = io.BytesIO()
+    with zipfile.ZipFile(packed, "w", zipfile.ZIP_DEFLATED) as z:
+        z.writestr("grid.sgems", b"2 2 2\n1\nv\n" + b"".join(b"%d\n" % i for i in range(8)))
+    s.add("gslib", "zipped", packed.getvalue())
+
+
+def raw_seeds(s, d):
+    options = struct.pack("<HHHBB", 103, 94, 2, 0, 0)  # u8 (type byte 0 -> u8), little, no header
+    s.add("raw", "tooth_u8", options + read(d, "ct/tooth_103x94x161_uint8.raw", 103 * 94 * 2))
+    options = struct.pack("<HHHBB", 64, 64, 2, 3, 0x80 | 16)  # i16, big, 16 header bytes
+    s.add("raw", "headsq_i16_big_header", options + bytes(16) + read(d, "ct/vtk_headsq/quarter.1") * 2)
+
+
+def dicom_seeds(s, d):
+    s.add("dicom", "ct_head_one", read(d, "ct/slicer_CTHeadAxialDicom/CTHead1.dcm"))
+    s.add("dicom", "ct_head_two", bundle(read(d, "ct/slicer_CTHeadAxialDicom/CTHead1.dcm"),
+                                         ("CTHead2.dcm", read(d, "ct/slicer_CTHeadAxialDicom/CTHead2.dcm"))))
+    s.add("dicom", "rtdose_multiframe", read(d, "dicom_multiframe/pydicom_rtdose.dcm"))
+
+
+def image_seeds(s, out):
+    tmp = os.path.join(out, "tmp-images")
+    os.makedirs(tmp, exist_ok=True)
+    made = []
+    for name, args in (("gray8.png", ["--pattern", "checker:width=4:height=4", "8x8", "1"]),
+                       ("rgb16.tif", ["--pattern", "fill:top=0.1:bottom=0.9", "8x6", "3", "-d", "uint16"])):
+        path = os.path.join(tmp, name)
+        try:
+            subprocess.run(["oiiotool"] + args + ["-o", path], check=True, capture_output=True)
+        except (OSError, subprocess.CalledProcessError):
+            continue
+        made.append(path)
+    for path in made:
+        with open(path, "rb") as f:
+            data = f.read()
+        s.add("image_stack", os.path.basename(path), data)
+    tiffs = [p for p in made if p.endswith(".tif")]
+    if tiffs:
+        multi = os.path.join(tmp, "pages.tif")
+        if subprocess.run(["oiiotool", tiffs[0], tiffs[0], "--siappend", "-o", multi],
+                          capture_output=True).returncode == 0:
+            with open(multi, "rb") as f:
+                s.add("image_stack", "multipage.tif", f.read())
+    pngs = [p for p in made if p.endswith(".png")]
+    if pngs:
+        with open(pngs[0], "rb") as f:
+            png = f.read()
+        s.add("image_stack", "two_slices", bundle(png, ("slice1.png", png)))
+
+
+def tf_seeds(s, root):
+    for rel in ("samples/headsq/skin-bone.tf.json", "bench/tf/tooth.tf.json"):
+        with open(os.path.join(root, rel), "rb") as f:
+            s.add("transfer_function", os.path.basename(rel), f.read())
+    s.add("transfer_function", "minimal",
+          b'{"format":"voxlink-transfer-function","version":1,"opacity":[[0,0],[1,1]],'
+          b'"color":[[0,0,0,0],[1,1,1,1]]}')
+
+
+def paraview_seeds(s):
+    s.add("paraview_preset", "cool_warm",
+          b'[{"ColorSpace":"Diverging","Name":"Cool to Warm","NanColor":[1,1,0],'
+          b'"RGBPoints":[0,0.23,0.299,0.754,0.5,0.865,0.865,0.865,1,0.706,0.016,0.15]}]')
+    s.add("paraview_preset", "with_points",
+          b'{"Name":"bone","RGBPoints":[-1000,0,0,0,500,1,0.9,0.8,3000,1,1,1],'
+          b'"Points":[-1000,0,0.5,0,400,0,0.5,0,3000,0.8,0.5,0]}')
+
+
+def kriging_seeds(s, d):
+    s.add("kriging_points", "walker_head", b"".join(
+        read(d, "geostat/gstat_csv/walker.csv").splitlines(keepends=True)[:40]))
+    s.add("kriging_points", "meuse_quoted_na",
+          b'"X","Y","V"\n181072,333611,1022\n181025,333558,NA\n"181165",333537,640\n')
+    s.add("kriging_points", "xyz", b"X,Y,Z,V\n0,0,0,1\n1,0,2,3.5\n0,1,1,-2\n")
+    geoeas = read(d, "geostat/vtk_b_100sampledatawl.sgems", 1200)
+    geoeas = geoeas[: geoeas.rindex(b"\n") + 1]
+    s.add("kriging_points", "geoeas", geoeas.replace(b"U-random-samplingtrans", b"V"))
+
+
+def vxl_seeds(s, d, out, voxlink):
+    if not voxlink:
+        return
+    tmp = os.path.join(out, "tmp-vxl")
+    os.makedirs(tmp, exist_ok=True)
+    neghip = read(d, "volume/neghip_64x64x64_uint8.raw")
+    crop = b"".join(neghip[(z * 64 + y) * 64 + 24 : (z * 64 + y) * 64 + 40]
+                    for z in range(24, 40) for y in range(24, 40))
+    src = os.path.join(tmp, "crop.raw")
+    with open(src, "wb") as f:
+        f.write(crop)
+    for name, extra in (("u8_b4", ["--brick", "4"]), ("f16_b8_x", ["--value-type", "f16", "--axis", "x"]),
+                        ("u16_b8_y", ["--value-type", "u16", "--axis", "y"])):
+        dst = os.path.join(tmp, name + ".vxl")
+        cmd = [voxlink, "convert", src, "--dims", "16,16,16", "--type", "u8", "--threshold", "60",
+               "-o", dst, "-q"] + extra
+        if subprocess.run(cmd, capture_output=True).returncode == 0:
+            with open(dst, "rb") as f:
+                s.add("vxl", name, f.read())
+
+
+def main():
+    data_dir, out = sys.argv[1], sys.argv[2]
+    voxlink = sys.argv[3] if len(sys.argv) > 3 else None
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    s = Seeds(out)
+    nrrd_seeds(s, data_dir)
+    metaimage_seeds(s, data_dir)
+    nifti_seeds(s, data_dir)
+    vvd_seeds(s, data_dir)
+    vti_seeds(s, data_dir)
+    npy_seeds(s, data_dir)
+    gslib_seeds(s, data_dir)
+    raw_seeds(s, data_dir)
+    dicom_seeds(s, data_dir)
+    image_seeds(s, out)
+    tf_seeds(s, root)
+    paraview_seeds(s)
+    kriging_seeds(s, data_dir)
+    vxl_seeds(s, data_dir, out, voxlink)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,12 @@
+// GSLIB / GEO-EAS grids: plain text, or (zip magic "PK") the single member of a .zip.
+#include "sources/readers/gslib_reader.h"
+#include "fuzz/targets/volume_readers.h"
+
+namespace voxlink::fuzz {
+
+Status fuzzGslib(Input input) {
+  return openAndDrain(input, startsWithZip(input) ? "input.gslib.zip" : "input.gslib",
+                      convert::openGslib);
+}
+
+}  // namespace voxlink::fuzz

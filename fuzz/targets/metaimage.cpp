@@ -1,0 +1,11 @@
+// MetaImage headers with LOCAL data or data files given as extra files (one, numbered, LIST).
+#include "sources/readers/metaimage_reader.h"
+#include "fuzz/targets/volume_readers.h"
+
+namespace voxlink::fuzz {
+
+Status fuzzMetaImage(Input input) {
+  return openAndDrain(input, "input.mhd", convert::openMetaImage);
+}
+
+}  // namespace voxlink::fuzz

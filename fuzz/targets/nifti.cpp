@@ -1,0 +1,12 @@
+// NIfTI-1/2 single files; a gzip stream (magic 1f 8b) is named .nii.gz so it is decompressed.
+#include "sources/readers/nifti_reader.h"
+#include "fuzz/targets/volume_readers.h"
+
+namespace voxlink::fuzz {
+
+Status fuzzNifti(Input input) {
+  return openAndDrain(input, startsWithGzip(input) ? "input.nii.gz" : "input.nii",
+                      convert::openNifti);
+}
+
+}  // namespace voxlink::fuzz

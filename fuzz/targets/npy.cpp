@@ -1,0 +1,15 @@
+// NumPy .npy: the in-memory header parser, then the file reader (mapped, C or Fortran order).
+#include "sources/readers/npy_reader.h"
+#include "fuzz/targets/volume_readers.h"
+
+namespace voxlink::fuzz {
+
+Status fuzzNpy(Input input) {
+  auto header = convert::parseNpyHeader(input.data(), input.size(), "input.npy");
+  Status opened = openAndDrain(input, "input.npy", convert::openNpy);
+  // The parser and the reader must agree on whether the header is acceptable.
+  if (!header && opened) return header.status();
+  return opened;
+}
+
+}  // namespace voxlink::fuzz

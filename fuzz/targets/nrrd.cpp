@@ -1,0 +1,10 @@
+// NRRD, attached (.nrrd) or detached with data files given as extra files (one per slice, numbered
+// or LIST).
+#include "sources/readers/nrrd_reader.h"
+#include "fuzz/targets/volume_readers.h"
+
+namespace voxlink::fuzz {
+
+Status fuzzNrrd(Input input) { return openAndDrain(input, "input.nrrd", convert::openNrrd); }
+
+}  // namespace voxlink::fuzz

@@ -1,0 +1,9 @@
+// Voreen .vvd XML headers; the raw file they name is an extra file.
+#include "sources/readers/vvd_reader.h"
+#include "fuzz/targets/volume_readers.h"
+
+namespace voxlink::fuzz {
+
+Status fuzzVvd(Input input) { return openAndDrain(input, "input.vvd", convert::openVvd); }
+
+}  // namespace voxlink::fuzz

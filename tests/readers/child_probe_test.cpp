@@ -1,0 +1,52 @@
+// probeInChild (sources/readers/child_probe.h): a crash in the child is seen as a crash even when
+// the parent has crash handlers of its own that would exit instead (libFuzzer, crash reporters).
+#include "sources/readers/child_probe.h"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstdlib>
+
+namespace voxlink::convert {
+namespace {
+
+void exitQuietly(int) { _exit(3); }
+
+TEST(ProbeInChild, ChildAbortIsADeathEvenWithTheParentsAbortHandler) {
+  struct sigaction mine {
+  }, previous{};
+  mine.sa_handler = exitQuietly;
+  sigemptyset(&mine.sa_mask);
+  ASSERT_EQ(sigaction(SIGABRT, &mine, &previous), 0);
+  const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) {
+    mark(7);
+    std::abort();
+  });
+  sigaction(SIGABRT, &previous, nullptr);
+  EXPECT_TRUE(outcome.died);
+  EXPECT_EQ(outcome.signal, SIGABRT);
+  ASSERT_TRUE(outcome.lastMark.has_value());
+  EXPECT_EQ(*outcome.lastMark, 7u);
+}
+
+TEST(ProbeInChild, ChildThatExitsWithAFailureStatusDied) {
+  // What a sanitizer's report does in the child: print and exit with status 1.
+  const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) {
+    mark(2);
+    _exit(1);
+  });
+  EXPECT_TRUE(outcome.died);
+  EXPECT_EQ(outcome.signal, 0);
+  EXPECT_EQ(outcome.exitStatus, 1);
+  EXPECT_EQ(describeDeath(outcome), "exit status 1");
+}
+
+TEST(ProbeInChild, ChildThatFinishesSurvives) {
+  const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) { mark(1); });
+  EXPECT_FALSE(outcome.died);
+  EXPECT_FALSE(outcome.thrown.has_value());
+}
+
+}  // namespace
+}  // namespace voxlink::convert
