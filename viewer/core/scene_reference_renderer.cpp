@@ -1,12 +1,11 @@
 #include "viewer/core/scene_reference_renderer.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "format/gradient_codec.h"
 #include "viewer/core/render_model.h"
+#include "viewer/core/render_rows.h"
 
 namespace voxlink::viewer {
 
@@ -62,15 +61,7 @@ SceneReferenceRenderer::Frame SceneReferenceRenderer::makeFrame(const Camera& ca
 
 Image SceneReferenceRenderer::render(const Camera& camera, const RenderSettings& settings) const {
   const Frame f = makeFrame(camera, settings);
-  Image image(settings.width, settings.height);
-  tbb::parallel_for(uint32_t{0}, settings.height, [&](uint32_t y) {
-    for (uint32_t x = 0; x < settings.width; ++x) {
-      const auto c = trace(camera.primaryRay(x, y, settings.width, settings.height), f);
-      float* p = image.pixel(x, y);
-      for (int i = 0; i < 4; ++i) p[i] = static_cast<float>(c[i]);
-    }
-  });
-  return image;
+  return renderRows(camera, settings, [&](const Ray& ray) { return trace(ray, f); });
 }
 
 std::array<double, 4> SceneReferenceRenderer::traceRay(const Ray& ray, const Camera& camera,
