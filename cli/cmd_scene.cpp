@@ -12,9 +12,11 @@
 namespace voxlink::cli {
 
 CommandRunner addSceneCommand(CLI::App& app) {
-  auto* scene = app.add_subcommand("scene", "Build VoxLink scenes from meshes, spheres and volumes");
+  auto* scene =
+      app.add_subcommand("scene", "Build VoxLink scenes from meshes, spheres and volumes");
   scene->require_subcommand(1);
-  auto* build = scene->add_subcommand("build", "Voxelize a scene file's objects into one .vxl (docs/scene.md)");
+  auto* build = scene->add_subcommand(
+      "build", "Voxelize a scene file's objects into one .vxl (docs/scene.md)");
   struct Options {
     std::string input, output;
     uint32_t resolution = 0, brick = 0;
@@ -23,12 +25,15 @@ CommandRunner addSceneCommand(CLI::App& app) {
   auto o = std::make_shared<Options>();
   build->add_option("scene", o->input, "scene file (JSON)")->required();
   build->add_option("-o,--output", o->output, "output .vxl")->required();
-  build->add_option("--resolution", o->resolution,
-                    "voxels along the scene's longest axis (overrides grid.resolution; ignored with a volume)")
+  build
+      ->add_option("--resolution", o->resolution,
+                   "voxels along the scene's longest axis (overrides grid.resolution; ignored with "
+                   "a volume)")
       ->check(CLI::Range(2u, 65536u));
   build->add_option("--brick", o->brick, "brick edge 4, 8, 16 or 32 (overrides grid.brick)")
       ->check(CLI::IsMember({4u, 8u, 16u, 32u}));
-  build->add_flag("--progress", o->progress, "draw the progress bar even when stderr is not a terminal");
+  build->add_flag("--progress", o->progress,
+                  "draw the progress bar even when stderr is not a terminal");
   return [o, build] {
     if (!build->parsed()) return 2;
     auto description = scene::readSceneDescription(o->input);
@@ -40,23 +45,28 @@ CommandRunner addSceneCommand(CLI::App& app) {
     if (o->resolution) description->grid.resolution = o->resolution;
     if (o->brick) description->grid.brickSize = o->brick;
     ProgressBar bar(o->progress || stderrIsTerminal());
-    auto built = scene::buildScene(*description, [&](const char* stage, double f) { bar.update(f, stage); });
+    auto built =
+        scene::buildScene(*description, [&](const char* stage, double f) { bar.update(f, stage); });
     if (!built) return reportError(built.error());
     bar.update(1.0, "write");
     Status written = format::writeBrickedVolume(o->output, built->volume);
     bar.finish();
     if (!written) return reportError(written.error());
     const scene::SceneBuildReport& r = built->report;
-    std::printf("%s: %ux%ux%u [%u], %llu voxels (%llu surface from %llu triangles, %llu sphere from %llu spheres, "
-                "%llu volume), %llu materials; normal error mean %.2f / p95 %.2f / max %.2f deg; "
-                "load %.2f s, voxelize %.2f s, merge %.2f s\n",
-                o->output.c_str(), r.dims[0], r.dims[1], r.dims[2], built->volume.description.brickSize,
-                (unsigned long long)built->volume.voxelCount(), (unsigned long long)r.surfaceVoxels,
-                (unsigned long long)r.triangles, (unsigned long long)r.sphereVoxels, (unsigned long long)r.spheres,
-                (unsigned long long)r.volumeVoxels, (unsigned long long)r.materials, r.normalError.meanDegrees,
-                r.normalError.p95Degrees, r.normalError.maxDegrees, r.loadSeconds, r.voxelizeSeconds,
-                r.mergeSeconds);
-    return std::fflush(stdout) == 0 && !std::ferror(stdout) ? 0 : reportError(makeError(ErrorCode::kIo, "stdout: write failed"));
+    std::printf(
+        "%s: %ux%ux%u [%u], %llu voxels (%llu surface from %llu triangles, %llu sphere from %llu "
+        "spheres, "
+        "%llu volume), %llu materials; normal error mean %.2f / p95 %.2f / max %.2f deg; "
+        "load %.2f s, voxelize %.2f s, merge %.2f s\n",
+        o->output.c_str(), r.dims[0], r.dims[1], r.dims[2], built->volume.description.brickSize,
+        (unsigned long long)built->volume.voxelCount(), (unsigned long long)r.surfaceVoxels,
+        (unsigned long long)r.triangles, (unsigned long long)r.sphereVoxels,
+        (unsigned long long)r.spheres, (unsigned long long)r.volumeVoxels,
+        (unsigned long long)r.materials, r.normalError.meanDegrees, r.normalError.p95Degrees,
+        r.normalError.maxDegrees, r.loadSeconds, r.voxelizeSeconds, r.mergeSeconds);
+    return std::fflush(stdout) == 0 && !std::ferror(stdout)
+               ? 0
+               : reportError(makeError(ErrorCode::kIo, "stdout: write failed"));
   };
 }
 

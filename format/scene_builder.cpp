@@ -13,9 +13,15 @@ namespace {
 double storedToSource(const VolumeDescription& d, uint32_t bits) {
   double stored = 0;
   switch (d.valueType) {
-    case StoredType::kU8: stored = bits & 0xFF; break;
-    case StoredType::kU16: stored = bits & 0xFFFF; break;
-    case StoredType::kF16: stored = halfToFloat(static_cast<uint16_t>(bits)); break;
+    case StoredType::kU8:
+      stored = bits & 0xFF;
+      break;
+    case StoredType::kU16:
+      stored = bits & 0xFFFF;
+      break;
+    case StoredType::kF16:
+      stored = halfToFloat(static_cast<uint16_t>(bits));
+      break;
     case StoredType::kF32: {
       float f;
       std::memcpy(&f, &bits, 4);
@@ -48,7 +54,8 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
   VOXLINK_RETURN_IF_ERROR(checkDescription(description_));
   const VolumeDescription& d = description_;
   if (materials_.size() > kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, materials_.size(), " materials exceed the format's limit of ", kMaxMaterials);
+    return makeError(ErrorCode::kTooLarge, materials_.size(),
+                     " materials exceed the format's limit of ", kMaxMaterials);
   struct Keyed {
     uint64_t key;
     const Entry* entry;
@@ -58,11 +65,15 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
   bool geometry = false;
   for (const Entry& e : entries_) {
     if (e.x >= d.dims[0] || e.y >= d.dims[1] || e.z >= d.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, ") lies outside the ", d.dims[0], "x", d.dims[1], "x", d.dims[2], " volume");
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                       ") lies outside the ", d.dims[0], "x", d.dims[1], "x", d.dims[2], " volume");
     if (e.kind == kSurfaceFragment && surfaceMaterial(e.payload) >= materials_.size())
-      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, "): material ", surfaceMaterial(e.payload), " is not in the table of ", materials_.size());
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                       "): material ", surfaceMaterial(e.payload), " is not in the table of ",
+                       materials_.size());
     if (e.kind == kSphere && e.payload >= spheres_.size())
-      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, "): sphere ", e.payload, " is not in the table of ", spheres_.size());
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                       "): sphere ", e.payload, " is not in the table of ", spheres_.size());
     geometry = geometry || e.kind != kVolume;
     keyed.push_back({fileOrderKey(d, e.x, e.y, e.z), &e});
   }
@@ -92,7 +103,8 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
       const bool repeated = j > i && keyed[j - 1].entry->kind == e.kind;
       if (e.kind == kVolume) {
         if (repeated)
-          return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, ") given two volume samples");
+          return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                           ") given two volume samples");
         volume = true;
         bits = e.payload;
         gradient = e.gradient;
@@ -101,7 +113,8 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
         hi = std::max(hi, v);
       } else if (e.kind == kSurfaceFragment) {
         if (repeated)
-          return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, ") given two surface fragments");
+          return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                           ") given two surface fragments");
         surface = e.payload;
       } else if (!(repeated && keyed[j - 1].entry->payload == e.payload)) {
         scene.sphereRefs.push_back(e.payload);  // a sphere named twice counts once
@@ -126,7 +139,8 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
     ++voxel;
     i = j;
   }
-  if (!spheres_.empty()) scene.sphereRefStart.push_back(static_cast<uint32_t>(scene.sphereRefs.size()));
+  if (!spheres_.empty())
+    scene.sphereRefStart.push_back(static_cast<uint32_t>(scene.sphereRefs.size()));
 
   VOXLINK_ASSIGN_OR_RETURN(BrickedVolume built, bricks.build(std::move(metaJson)));
   built.description.valueMin = std::isfinite(lo) ? lo : 0.0;
@@ -137,7 +151,8 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
   size_t slot = 0;
   for (uint64_t v = 0; v < voxel; ++v) {
     if (!((scene.volumeMask[v / 32] >> (v % 32)) & 1u)) continue;
-    std::memmove(built.values.data() + slot * valueSize, built.values.data() + v * valueSize, valueSize);
+    std::memmove(built.values.data() + slot * valueSize, built.values.data() + v * valueSize,
+                 valueSize);
     built.gradients[slot] = built.gradients[v];
     ++slot;
   }

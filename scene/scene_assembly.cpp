@@ -20,7 +20,9 @@ namespace voxlink::scene {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 float clamp01(float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; }
 
@@ -39,7 +41,8 @@ format::MaterialRecord toRecord(const geometry::Material& m, float specular, flo
     r.reflectivity /= sum;
     r.transmission = 1.0f - r.reflectivity;
   }
-  r.refractiveIndex = std::isfinite(m.refractiveIndex) ? std::clamp(m.refractiveIndex, 1.0f, 10.0f) : 1.0f;
+  r.refractiveIndex =
+      std::isfinite(m.refractiveIndex) ? std::clamp(m.refractiveIndex, 1.0f, 10.0f) : 1.0f;
   r.specular = clamp01(specular);
   r.shininess = std::isfinite(shininess) ? std::clamp(shininess, 0.0f, 1e6f) : 0.0f;
   return r;
@@ -61,7 +64,8 @@ std::array<float, 3> cpkColor(const std::string& element) {
 class MaterialTable {
  public:
   explicit MaterialTable(const SceneDescription& scene) : scene_(scene) {
-    for (const auto& [name, m] : scene.materials) add(name, toRecord(m.material, m.specular, m.shininess));
+    for (const auto& [name, m] : scene.materials)
+      add(name, toRecord(m.material, m.specular, m.shininess));
   }
   uint16_t named(const std::string& name) const {
     for (size_t i = 0; i < names_.size(); ++i)
@@ -85,7 +89,7 @@ class MaterialTable {
 };
 
 struct PlacedGeometry {
-  geometry::TriangleMesh mesh;  // world coordinates, materials of the scene table
+  geometry::TriangleMesh mesh;            // world coordinates, materials of the scene table
   std::vector<geometry::Sphere> spheres;  // world coordinates, materials of the scene table
   geometry::Bounds3 bounds;
 };
@@ -98,17 +102,21 @@ void grow(geometry::Bounds3& b, double x, double y, double z, double r = 0) {
   }
 }
 
-Status placeMesh(const SceneObject& o, MaterialTable& table, PlacedGeometry& out, SceneBuildReport& report) {
+Status placeMesh(const SceneObject& o, MaterialTable& table, PlacedGeometry& out,
+                 SceneBuildReport& report) {
   VOXLINK_ASSIGN_OR_RETURN(geometry::TriangleMesh mesh, geometry::loadMesh(o.path));
   std::vector<uint16_t> materialOf(mesh.materials.size());
   for (size_t m = 0; m < mesh.materials.size(); ++m)
-    materialOf[m] = o.material ? table.named(*o.material)
-                               : table.add(mesh.materials[m].name, toRecord(mesh.materials[m], 0, 0));
+    materialOf[m] = o.material
+                        ? table.named(*o.material)
+                        : table.add(mesh.materials[m].name, toRecord(mesh.materials[m], 0, 0));
   if (table.size() > format::kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ", format::kMaxMaterials, " materials");
+    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ",
+                     format::kMaxMaterials, " materials");
   const uint32_t base = static_cast<uint32_t>(out.mesh.vertexCount());
   for (size_t v = 0; v < mesh.vertexCount(); ++v) {
-    const auto p = o.transform.apply({mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]});
+    const auto p = o.transform.apply(
+        {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]});
     for (double c : p) out.mesh.positions.push_back(static_cast<float>(c));
   }
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
@@ -119,13 +127,15 @@ Status placeMesh(const SceneObject& o, MaterialTable& table, PlacedGeometry& out
       grow(out.bounds, p[0], p[1], p[2]);
     }
     const uint16_t m = mesh.triangleMaterials.empty() ? 0 : mesh.triangleMaterials[t];
-    out.mesh.triangleMaterials.push_back(materialOf.empty() ? table.named(o.material.value_or("")) : materialOf[m]);
+    out.mesh.triangleMaterials.push_back(materialOf.empty() ? table.named(o.material.value_or(""))
+                                                            : materialOf[m]);
   }
   report.triangles += mesh.triangleCount();
   return Status::ok();
 }
 
-Status placeSpheres(const SceneObject& o, MaterialTable& table, PlacedGeometry& out, SceneBuildReport& report) {
+Status placeSpheres(const SceneObject& o, MaterialTable& table, PlacedGeometry& out,
+                    SceneBuildReport& report) {
   const double scale = o.transform.uniformScale();
   std::vector<geometry::Sphere> spheres;
   std::vector<uint16_t> materialOf;
@@ -134,7 +144,8 @@ Status placeSpheres(const SceneObject& o, MaterialTable& table, PlacedGeometry& 
     for (int a = 0; a < 3; ++a) s.center[a] = float(o.center[a]);
     s.radius = float(o.radius);
     spheres.push_back(s);
-    materialOf.push_back(o.material ? table.named(*o.material) : table.add("sphere", toRecord({}, 0, 0)));
+    materialOf.push_back(o.material ? table.named(*o.material)
+                                    : table.add("sphere", toRecord({}, 0, 0)));
   } else {
     VOXLINK_ASSIGN_OR_RETURN(geometry::ParticleSet set, geometry::loadParticles(o.path));
     spheres = std::move(set.spheres);
@@ -153,7 +164,8 @@ Status placeSpheres(const SceneObject& o, MaterialTable& table, PlacedGeometry& 
     if (materialOf.empty()) materialOf.push_back(table.add("particle", toRecord({}, 0, 0)));
   }
   if (table.size() > format::kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ", format::kMaxMaterials, " materials");
+    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ",
+                     format::kMaxMaterials, " materials");
   for (geometry::Sphere s : spheres) {
     const auto c = o.transform.apply({s.center[0], s.center[1], s.center[2]});
     for (int a = 0; a < 3; ++a) s.center[a] = float(c[a]);
@@ -190,13 +202,19 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
     const SceneObject& o = scene.objects[i];
     stage("load", double(i) / scene.objects.size());
     switch (o.kind) {
-      case ObjectKind::kMesh: VOXLINK_RETURN_IF_ERROR(placeMesh(o, table, placed, report)); break;
+      case ObjectKind::kMesh:
+        VOXLINK_RETURN_IF_ERROR(placeMesh(o, table, placed, report));
+        break;
       case ObjectKind::kParticles:
-      case ObjectKind::kSphere: VOXLINK_RETURN_IF_ERROR(placeSpheres(o, table, placed, report)); break;
+      case ObjectKind::kSphere:
+        VOXLINK_RETURN_IF_ERROR(placeSpheres(o, table, placed, report));
+        break;
       case ObjectKind::kVolume: {
         VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, format::VoxLinkFile::open(o.path));
         if (f.isScene())
-          return makeError(ErrorCode::kUnsupported, o.path, ": a scene (version 2) cannot be a scene's volume; give the volume's own .vxl");
+          return makeError(
+              ErrorCode::kUnsupported, o.path,
+              ": a scene (version 2) cannot be a scene's volume; give the volume's own .vxl");
         VOXLINK_RETURN_IF_ERROR(format::validateFile(f).status());
         volume.emplace(std::move(f));
         break;
@@ -227,8 +245,10 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
     d.flags = h.flags;
   } else {
     if (placed.mesh.triangleCount() == 0 && placed.spheres.empty())
-      return makeError(ErrorCode::kInvalidArgument, scene.path, ": objects: the scene holds no geometry and no volume");
-    VOXLINK_ASSIGN_OR_RETURN(geometry::VoxelGrid fitted, geometry::fitGrid(placed.bounds, scene.grid.resolution));
+      return makeError(ErrorCode::kInvalidArgument, scene.path,
+                       ": objects: the scene holds no geometry and no volume");
+    VOXLINK_ASSIGN_OR_RETURN(geometry::VoxelGrid fitted,
+                             geometry::fitGrid(placed.bounds, scene.grid.resolution));
     for (int a = 0; a < 3; ++a) {
       d.dims[a] = fitted.dims[a];
       d.spacing[a] = fitted.spacing;
@@ -255,9 +275,11 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
         mesh.positions[3 * v + a] = float((mesh.positions[3 * v + a] - d.origin[a]) / d.spacing[a]);
     geometry::VoxelGrid indexGrid;
     indexGrid.dims = d.dims;
-    VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface, geometry::voxelizeSurface(mesh, indexGrid));
+    VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface,
+                             geometry::voxelizeSurface(mesh, indexGrid));
     for (const geometry::SurfaceVoxel& v : surface.voxels) {
-      const double n[3] = {v.normal[0] / d.spacing[0], v.normal[1] / d.spacing[1], v.normal[2] / d.spacing[2]};
+      const double n[3] = {v.normal[0] / d.spacing[0], v.normal[1] / d.spacing[1],
+                           v.normal[2] / d.spacing[2]};
       builder.addSurface(v.x, v.y, v.z, format::encodeGradient(n[0], n[1], n[2]), v.material);
     }
     report.surfaceVoxels = surface.voxels.size();
@@ -269,16 +291,21 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   if (!placed.spheres.empty()) {
     const double s0 = d.spacing[0];
     if (std::abs(d.spacing[1] - s0) > 1e-9 * s0 || std::abs(d.spacing[2] - s0) > 1e-9 * s0)
-      return makeError(ErrorCode::kUnsupported, scene.path, ": spheres need cubic voxels; the volume's spacing is ", d.spacing[0], " x ", d.spacing[1], " x ", d.spacing[2]);
+      return makeError(ErrorCode::kUnsupported, scene.path,
+                       ": spheres need cubic voxels; the volume's spacing is ", d.spacing[0], " x ",
+                       d.spacing[1], " x ", d.spacing[2]);
     geometry::VoxelGrid grid;
     grid.dims = d.dims;
     grid.origin = d.origin;
     grid.spacing = s0;
-    VOXLINK_ASSIGN_OR_RETURN(geometry::SphereVoxelization spheres, geometry::voxelizeSpheres(placed.spheres, grid, geometry::kDefaultMaxSphereOverlaps,
-                                                                      geometry::SphereFill::kShell));
+    VOXLINK_ASSIGN_OR_RETURN(
+        geometry::SphereVoxelization spheres,
+        geometry::voxelizeSpheres(placed.spheres, grid, geometry::kDefaultMaxSphereOverlaps,
+                                  geometry::SphereFill::kShell));
     for (size_t n = 0; n < spheres.voxels.size(); ++n)
       for (uint64_t r = spheres.offsets[n]; r < spheres.offsets[n + 1]; ++r)
-        builder.addSphereRef(spheres.voxels[n][0], spheres.voxels[n][1], spheres.voxels[n][2], spheres.sphereIds[r]);
+        builder.addSphereRef(spheres.voxels[n][0], spheres.voxels[n][1], spheres.voxels[n][2],
+                             spheres.sphereIds[r]);
     report.sphereVoxels = spheres.voxels.size();
     report.sphereRefs = spheres.sphereIds.size();
     for (const geometry::Sphere& s : placed.spheres) {
@@ -306,7 +333,8 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   for (const Light& l : scene.lights)
     lights.push_back({{"position", l.position}, {"color", l.color}, {"intensity", l.intensity}});
   meta["scene"]["lights"] = lights;
-  if (!scene.cameraJson.empty()) meta["scene"]["camera"] = nlohmann::ordered_json::parse(scene.cameraJson);
+  if (!scene.cameraJson.empty())
+    meta["scene"]["camera"] = nlohmann::ordered_json::parse(scene.cameraJson);
   meta["scene"]["normal_error_degrees"] = {{"mean", report.normalError.meanDegrees},
                                            {"p95", report.normalError.p95Degrees},
                                            {"max", report.normalError.maxDegrees}};

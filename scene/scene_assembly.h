@@ -38,6 +38,7 @@ struct SceneBuildOutput {
 // `progress(stage, fraction)` is called between stages ("load", "voxelize", "merge").
 using SceneProgress = std::function<void(const char* stage, double fraction)>;
 
-Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress = {});
+Result<SceneBuildOutput> buildScene(const SceneDescription& scene,
+                                    const SceneProgress& progress = {});
 
 }  // namespace voxlink::scene

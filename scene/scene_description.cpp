@@ -42,7 +42,8 @@ class Fields {
       fail(where, "expected an array of " + std::to_string(N) + " numbers");
       return out;
     }
-    for (size_t i = 0; i < N; ++i) out[i] = number(j[i], where + "[" + std::to_string(i) + "]", lo, hi);
+    for (size_t i = 0; i < N; ++i)
+      out[i] = number(j[i], where + "[" + std::to_string(i) + "]", lo, hi);
     return out;
   }
   std::string string(const json& j, const std::string& where) {
@@ -131,7 +132,9 @@ Transform readTransform(const json& j, const std::string& where, Fields& f) {
 
 SceneMaterial readMaterial(const json& j, const std::string& where, Fields& f) {
   SceneMaterial out;
-  f.onlyKeys(j, where, {"color", "opacity", "emission", "reflectivity", "transmission", "ior", "specular", "shininess"});
+  f.onlyKeys(j, where,
+             {"color", "opacity", "emission", "reflectivity", "transmission", "ior", "specular",
+              "shininess"});
   if (!f.ok()) return out;
   geometry::Material& m = out.material;
   if (j.contains("color")) {
@@ -143,13 +146,16 @@ SceneMaterial readMaterial(const json& j, const std::string& where, Fields& f) {
     m.emission = {float(e[0]), float(e[1]), float(e[2])};
   }
   if (j.contains("opacity")) m.opacity = float(f.number(j["opacity"], where + ".opacity", 0, 1));
-  if (j.contains("reflectivity")) m.reflectivity = float(f.number(j["reflectivity"], where + ".reflectivity", 0, 1));
-  if (j.contains("transmission")) m.transmission = float(f.number(j["transmission"], where + ".transmission", 0, 1));
+  if (j.contains("reflectivity"))
+    m.reflectivity = float(f.number(j["reflectivity"], where + ".reflectivity", 0, 1));
+  if (j.contains("transmission"))
+    m.transmission = float(f.number(j["transmission"], where + ".transmission", 0, 1));
   if (j.contains("ior")) m.refractiveIndex = float(f.number(j["ior"], where + ".ior", 1, 10));
-  if (j.contains("specular")) out.specular = float(f.number(j["specular"], where + ".specular", 0, 1));
-  if (j.contains("shininess")) out.shininess = float(f.number(j["shininess"], where + ".shininess", 0, 1e6));
-  if (m.reflectivity + m.transmission > 1.0f)
-    f.fail(where, "reflectivity + transmission exceed 1");
+  if (j.contains("specular"))
+    out.specular = float(f.number(j["specular"], where + ".specular", 0, 1));
+  if (j.contains("shininess"))
+    out.shininess = float(f.number(j["shininess"], where + ".shininess", 0, 1e6));
+  if (m.reflectivity + m.transmission > 1.0f) f.fail(where, "reflectivity + transmission exceed 1");
   return out;
 }
 
@@ -167,11 +173,13 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
       f.onlyKeys(j, where, {"type", "file", "transform", "material"});
     else
       f.onlyKeys(j, where, {"type", "file", "transform", "material", "radius_scale"});
-    if (j.contains("radius_scale")) o.radiusScale = f.number(j["radius_scale"], where + ".radius_scale", 1e-6, 1e6);
+    if (j.contains("radius_scale"))
+      o.radiusScale = f.number(j["radius_scale"], where + ".radius_scale", 1e-6, 1e6);
   } else if (type == "sphere") {
     o.kind = ObjectKind::kSphere;
     f.onlyKeys(j, where, {"type", "center", "radius", "transform", "material"});
-    if (!j.contains("center") || !j.contains("radius")) f.fail(where, "a sphere needs \"center\" and \"radius\"");
+    if (!j.contains("center") || !j.contains("radius"))
+      f.fail(where, "a sphere needs \"center\" and \"radius\"");
     if (!f.ok()) return o;
     o.center = f.vector<3>(j["center"], where + ".center", -1e12, 1e12);
     o.radius = f.number(j["radius"], where + ".radius", 1e-12, 1e12);
@@ -207,20 +215,23 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
 
 std::array<double, 3> Transform::apply(const std::array<double, 3>& p) const {
   std::array<double, 3> r{};
-  for (int i = 0; i < 3; ++i) r[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
+  for (int i = 0; i < 3; ++i)
+    r[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
   return r;
 }
 
 double Transform::uniformScale() const {
   // Columns of the linear part must be orthogonal and of equal length.
   double len[3];
-  for (int c = 0; c < 3; ++c) len[c] = std::sqrt(m[c] * m[c] + m[4 + c] * m[4 + c] + m[8 + c] * m[8 + c]);
+  for (int c = 0; c < 3; ++c)
+    len[c] = std::sqrt(m[c] * m[c] + m[4 + c] * m[4 + c] + m[8 + c] * m[8 + c]);
   for (int a = 0; a < 3; ++a)
     for (int b = a + 1; b < 3; ++b) {
       const double dot = m[a] * m[b] + m[4 + a] * m[4 + b] + m[8 + a] * m[8 + b];
       if (std::abs(dot) > 1e-9 * len[a] * len[b]) return 0;
     }
-  if (std::abs(len[0] - len[1]) > 1e-9 * len[0] || std::abs(len[0] - len[2]) > 1e-9 * len[0]) return 0;
+  if (std::abs(len[0] - len[1]) > 1e-9 * len[0] || std::abs(len[0] - len[2]) > 1e-9 * len[0])
+    return 0;
   return len[0];
 }
 
@@ -246,15 +257,20 @@ Result<SceneDescription> parseSceneDescription(const std::string& text, const st
       scene.grid.resolution = uint32_t(f.number(g["resolution"], "grid.resolution", 2, 65536));
     if (f.ok() && g.contains("brick")) {
       const double n = f.number(g["brick"], "grid.brick", 4, 32);
-      if (!format::isValidBrickSize(uint32_t(n)) || n != std::floor(n)) f.fail("grid.brick", "expected 4, 8, 16 or 32");
+      if (!format::isValidBrickSize(uint32_t(n)) || n != std::floor(n))
+        f.fail("grid.brick", "expected 4, 8, 16 or 32");
       scene.grid.brickSize = uint32_t(n);
     }
     if (f.ok() && g.contains("axis")) {
       const std::string axis = f.string(g["axis"], "grid.axis");
-      if (axis == "x") scene.grid.axis = format::Axis::kX;
-      else if (axis == "y") scene.grid.axis = format::Axis::kY;
-      else if (axis == "z") scene.grid.axis = format::Axis::kZ;
-      else f.fail("grid.axis", "\"" + axis + "\" is not x, y or z");
+      if (axis == "x")
+        scene.grid.axis = format::Axis::kX;
+      else if (axis == "y")
+        scene.grid.axis = format::Axis::kY;
+      else if (axis == "z")
+        scene.grid.axis = format::Axis::kZ;
+      else
+        f.fail("grid.axis", "\"" + axis + "\" is not x, y or z");
     }
   }
   if (f.ok() && j.contains("materials")) {
@@ -270,11 +286,13 @@ Result<SceneDescription> parseSceneDescription(const std::string& text, const st
     f.fail("objects", "expected an array of objects");
   if (f.ok()) {
     for (size_t i = 0; i < j["objects"].size() && f.ok(); ++i)
-      scene.objects.push_back(readObject(j["objects"][i], "objects[" + std::to_string(i) + "]", base, scene, f));
+      scene.objects.push_back(
+          readObject(j["objects"][i], "objects[" + std::to_string(i) + "]", base, scene, f));
   }
   int volumes = 0;
   for (const SceneObject& o : scene.objects) volumes += o.kind == ObjectKind::kVolume;
-  if (f.ok() && volumes > 1) f.fail("objects", "at most one volume per scene (the scene grid is the volume's grid)");
+  if (f.ok() && volumes > 1)
+    f.fail("objects", "at most one volume per scene (the scene grid is the volume's grid)");
   if (f.ok() && j.contains("lights")) {
     if (!j["lights"].is_array()) f.fail("lights", "expected an array");
     for (size_t i = 0; f.ok() && i < j["lights"].size(); ++i) {
@@ -283,10 +301,13 @@ Result<SceneDescription> parseSceneDescription(const std::string& text, const st
       f.onlyKeys(l, where, {"position", "color", "intensity"});
       if (!f.ok()) break;
       Light light;
-      if (!l.contains("position")) f.fail(where, "needs a \"position\"");
-      else light.position = f.vector<3>(l["position"], where + ".position", -1e12, 1e12);
+      if (!l.contains("position"))
+        f.fail(where, "needs a \"position\"");
+      else
+        light.position = f.vector<3>(l["position"], where + ".position", -1e12, 1e12);
       if (l.contains("color")) light.color = f.vector<3>(l["color"], where + ".color", 0, 1e6);
-      if (l.contains("intensity")) light.intensity = f.number(l["intensity"], where + ".intensity", 0, 1e12);
+      if (l.contains("intensity"))
+        light.intensity = f.number(l["intensity"], where + ".intensity", 0, 1e12);
       scene.lights.push_back(light);
     }
   }

@@ -35,7 +35,7 @@ struct SceneObject {
   ObjectKind kind = ObjectKind::kMesh;
   std::string path;  // resolved against the scene file's folder; empty for kSphere
   Transform transform;
-  std::optional<std::string> material;  // a scene material overriding the file's own
+  std::optional<std::string> material;    // a scene material overriding the file's own
   std::array<double, 3> center{0, 0, 0};  // kSphere
   double radius = 0;                      // kSphere
   double radiusScale = 1;                 // kParticles: multiplies every radius

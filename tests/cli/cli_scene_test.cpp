@@ -56,8 +56,10 @@ TEST(CliScene, MoleculeBesideBunnyWithExactSpheres) {
   TempDir dir;
   const std::string scene = dir.file("mol.scene.json");
   writeText(scene, R"({"grid": {"resolution": 96}, "objects": [
-      {"type": "particles", "file": ")" + dataPath("particles/biopython_2XHE.pdb") + R"("},
-      {"type": "mesh", "file": ")" + dataPath("mesh/bunny_npm.obj") + R"(",
+      {"type": "particles", "file": ")" +
+                       dataPath("particles/biopython_2XHE.pdb") + R"("},
+      {"type": "mesh", "file": ")" +
+                       dataPath("mesh/bunny_npm.obj") + R"(",
        "transform": {"scale": 4, "translate": [60, -60, 20]}}]})");
   auto r = runVoxlink({"scene", "build", scene, "-o", dir.file("mol.vxl")});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -69,15 +71,16 @@ TEST(CliScene, MoleculeBesideBunnyWithExactSpheres) {
   auto info = runVoxlink({"info", dir.file("mol.vxl"), "--no-vdb"});
   ASSERT_EQ(info.status, 0) << info.err;
   EXPECT_NE(info.out.find("6315 spheres"), std::string::npos) << info.out;
-  auto render = runVoxlink({"render", dir.file("mol.vxl"), "-o", dir.file("mol.png"), "--size", "64x64"});
+  auto render =
+      runVoxlink({"render", dir.file("mol.vxl"), "-o", dir.file("mol.png"), "--size", "64x64"});
   EXPECT_EQ(render.status, 0) << render.err;
 }
 
 TEST(CliScene, VolumeOnlySceneKeepsTheConvertersVoxels) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   TempDir dir;
-  auto c = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161", "--type", "u8",
-                       "--threshold", "60", "-o", dir.file("tooth.vxl"), "-q"});
+  auto c = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161",
+                       "--type", "u8", "--threshold", "60", "-o", dir.file("tooth.vxl"), "-q"});
   ASSERT_EQ(c.status, 0) << c.err;
   writeText(dir.file("t.scene.json"), R"({"objects": [{"type": "volume", "file": "tooth.vxl"}]})");
   auto r = runVoxlink({"scene", "build", dir.file("t.scene.json"), "-o", dir.file("scene.vxl")});
@@ -89,7 +92,8 @@ TEST(CliScene, VolumeOnlySceneKeepsTheConvertersVoxels) {
   for (format::SectionId id : format::kRequiredSections) {
     if (id == format::SectionId::kMeta) continue;
     const auto x = a->sectionBytes(id), y = b->sectionBytes(id);
-    EXPECT_TRUE(x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin())) << format::sectionName(id);
+    EXPECT_TRUE(x.size() == y.size() && std::equal(x.begin(), x.end(), y.begin()))
+        << format::sectionName(id);
   }
   EXPECT_EQ(a->header().valueMin, b->header().valueMin);
   EXPECT_EQ(a->header().valueMax, b->header().valueMax);
@@ -99,11 +103,13 @@ TEST(CliScene, GeometryInsideACtVolume) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   VOXLINK_REQUIRE_DATA("mesh/bunny_npm.obj");
   TempDir dir;
-  auto c = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161", "--type", "u8",
-                       "--threshold", "60", "-o", dir.file("tooth.vxl"), "-q"});
+  auto c = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161",
+                       "--type", "u8", "--threshold", "60", "-o", dir.file("tooth.vxl"), "-q"});
   ASSERT_EQ(c.status, 0) << c.err;
-  writeText(dir.file("t.scene.json"), R"({"objects": [{"type": "volume", "file": "tooth.vxl"},
-      {"type": "mesh", "file": ")" + dataPath("mesh/bunny_npm.obj") + R"(", "transform": {"scale": 5, "translate": [50, 20, 80]}},
+  writeText(
+      dir.file("t.scene.json"), R"({"objects": [{"type": "volume", "file": "tooth.vxl"},
+      {"type": "mesh", "file": ")" + dataPath("mesh/bunny_npm.obj") +
+                                    R"(", "transform": {"scale": 5, "translate": [50, 20, 80]}},
       {"type": "sphere", "center": [20, 20, 20], "radius": 8}]})");
   auto r = runVoxlink({"scene", "build", dir.file("t.scene.json"), "-o", dir.file("scene.vxl")});
   ASSERT_EQ(r.status, 0) << r.err;
@@ -132,7 +138,8 @@ TEST(CliScene, GeometryInsideACtVolume) {
 
 TEST(CliScene, BadInputIsOneLine) {
   TempDir dir;
-  writeText(dir.file("bad.scene.json"), R"({"objects": [{"type": "mesh", "file": "missing.obj"}]})");
+  writeText(dir.file("bad.scene.json"),
+            R"({"objects": [{"type": "mesh", "file": "missing.obj"}]})");
   auto r = runVoxlink({"scene", "build", dir.file("bad.scene.json"), "-o", dir.file("out.vxl")});
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
@@ -146,8 +153,10 @@ TEST(CliScene, BadInputIsOneLine) {
   EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
   // The output may not be one of the scene's inputs.
-  writeText(dir.file("self.scene.json"), R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
-  r = runVoxlink({"scene", "build", dir.file("self.scene.json"), "-o", dir.file("self.scene.json")});
+  writeText(dir.file("self.scene.json"),
+            R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
+  r = runVoxlink(
+      {"scene", "build", dir.file("self.scene.json"), "-o", dir.file("self.scene.json")});
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("self.scene.json"), std::string::npos) << r.err;
   writeText(dir.file("empty.scene.json"), R"({"objects": []})");

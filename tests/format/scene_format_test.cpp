@@ -235,7 +235,8 @@ TEST_F(SceneBadInput, GoodFileValidates) { EXPECT_EQ(problem(), ""); }
 TEST_F(SceneBadInput, SurfaceMaterialOutOfTable) {
   uint32_t* surface = section<uint32_t>(SectionId::kSurface);
   surface[1] = surfaceWord(surfaceNormal(surface[1]), 9);
-  EXPECT_NE(problem().find("section SURF: entry 1 names material 9"), std::string::npos) << problem();
+  EXPECT_NE(problem().find("section SURF: entry 1 names material 9"), std::string::npos)
+      << problem();
 }
 
 TEST_F(SceneBadInput, SurfaceWithZeroNormal) {
@@ -245,7 +246,8 @@ TEST_F(SceneBadInput, SurfaceWithZeroNormal) {
 
 TEST_F(SceneBadInput, VolumeMaskDisagreesWithCount) {
   section<uint32_t>(SectionId::kVolumeMask)[0] |= 0x4;  // voxel 2 (spheres only) marked too
-  EXPECT_NE(problem().find("section VMSK: 3 voxels marked, header.volumeVoxelCount says 2"), std::string::npos)
+  EXPECT_NE(problem().find("section VMSK: 3 voxels marked, header.volumeVoxelCount says 2"),
+            std::string::npos)
       << problem();
 }
 

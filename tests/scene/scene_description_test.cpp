@@ -1,9 +1,9 @@
 // The scene file: what it accepts, and the one-line errors naming the JSON path of a bad field.
+#include "scene/scene_description.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "scene/scene_description.h"
 
 namespace voxlink::scene {
 namespace {
@@ -27,7 +27,8 @@ TEST(SceneDescription, ReadsEveryField) {
     ],
     "lights": [{"position": [0, 5, 0], "color": [1, 1, 1], "intensity": 2}],
     "camera": {"azimuth": 10, "elevation": 5, "fov": 40, "up": "y"}
-  })", "dir/s.scene.json");
+  })",
+                                 "dir/s.scene.json");
   ASSERT_TRUE(r) << r.message();
   EXPECT_EQ(r->grid.resolution, 512u);
   EXPECT_EQ(r->grid.brickSize, 16u);
@@ -51,7 +52,8 @@ TEST(SceneDescription, ReadsEveryField) {
 }
 
 TEST(SceneDescription, DefaultsWhenSilent) {
-  auto r = parseSceneDescription(R"({"objects": [{"type": "sphere", "center": [0,0,0], "radius": 1}]})", "s.json");
+  auto r = parseSceneDescription(
+      R"({"objects": [{"type": "sphere", "center": [0,0,0], "radius": 1}]})", "s.json");
   ASSERT_TRUE(r) << r.message();
   EXPECT_EQ(r->grid.resolution, 256u);
   EXPECT_EQ(r->grid.brickSize, 8u);
@@ -65,31 +67,46 @@ TEST(SceneDescription, ErrorsNameTheField) {
                 .find("objects[0].radius: -1 is not in"),
             std::string::npos)
       << problem(R"({"objects": [{"type": "sphere", "center": [0,0,0], "radius": -1}]})");
-  EXPECT_NE(problem(R"({"objects": [{"type": "cube"}]})").find("objects[0].type: \"cube\""), std::string::npos);
-  EXPECT_NE(problem(R"({"objects": [{"type": "mesh"}]})").find("objects[0]: needs a \"file\""), std::string::npos);
+  EXPECT_NE(problem(R"({"objects": [{"type": "cube"}]})").find("objects[0].type: \"cube\""),
+            std::string::npos);
+  EXPECT_NE(problem(R"({"objects": [{"type": "mesh"}]})").find("objects[0]: needs a \"file\""),
+            std::string::npos);
   EXPECT_NE(problem(R"({"objects": [{"type": "mesh", "file": "a.obj", "material": "nope"}]})")
                 .find("objects[0].material: \"nope\" is not in \"materials\""),
             std::string::npos);
-  EXPECT_NE(problem(R"({"grid": {"brick": 12}, "objects": []})").find("grid.brick"), std::string::npos);
-  EXPECT_NE(problem(R"({"grid": {"resolution": 1}, "objects": []})").find("grid.resolution"), std::string::npos);
-  EXPECT_NE(problem(R"({"grid": {"resoluton": 64}, "objects": []})").find("grid.resoluton: unknown field"),
+  EXPECT_NE(problem(R"({"grid": {"brick": 12}, "objects": []})").find("grid.brick"),
             std::string::npos);
-  EXPECT_NE(problem(R"({"materials": {"m": {"reflectivity": 0.7, "transmission": 0.5}}, "objects": []})")
-                .find("materials.m: reflectivity + transmission exceed 1"),
+  EXPECT_NE(problem(R"({"grid": {"resolution": 1}, "objects": []})").find("grid.resolution"),
             std::string::npos);
-  EXPECT_NE(problem(R"({"materials": {"m": {"color": [1, 0, "x"]}}, "objects": []})").find("materials.m.color[2]"),
+  EXPECT_NE(problem(R"({"grid": {"resoluton": 64}, "objects": []})")
+                .find("grid.resoluton: unknown field"),
             std::string::npos);
-  EXPECT_NE(problem(R"({"objects": [{"type": "volume", "file": "a.vxl"}, {"type": "volume", "file": "b.vxl"}]})")
-                .find("at most one volume"),
+  EXPECT_NE(
+      problem(R"({"materials": {"m": {"reflectivity": 0.7, "transmission": 0.5}}, "objects": []})")
+          .find("materials.m: reflectivity + transmission exceed 1"),
+      std::string::npos);
+  EXPECT_NE(problem(R"({"materials": {"m": {"color": [1, 0, "x"]}}, "objects": []})")
+                .find("materials.m.color[2]"),
             std::string::npos);
-  EXPECT_NE(problem(R"({"objects": [{"type": "particles", "file": "a.pdb", "transform": {"scale": [1, 2, 1]}}]})")
-                .find("uniform scale"),
+  EXPECT_NE(
+      problem(
+          R"({"objects": [{"type": "volume", "file": "a.vxl"}, {"type": "volume", "file": "b.vxl"}]})")
+          .find("at most one volume"),
+      std::string::npos);
+  EXPECT_NE(
+      problem(
+          R"({"objects": [{"type": "particles", "file": "a.pdb", "transform": {"scale": [1, 2, 1]}}]})")
+          .find("uniform scale"),
+      std::string::npos);
+  EXPECT_NE(
+      problem(
+          R"({"objects": [{"type": "mesh", "file": "a.obj", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1]}}]})")
+          .find("last row must be 0 0 0 1"),
+      std::string::npos);
+  EXPECT_NE(problem(R"({"objects": [], "camera": {"up": "x"}})").find("camera.up"),
             std::string::npos);
-  EXPECT_NE(problem(R"({"objects": [{"type": "mesh", "file": "a.obj", "transform": {"matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,1,1]}}]})")
-                .find("last row must be 0 0 0 1"),
-            std::string::npos);
-  EXPECT_NE(problem(R"({"objects": [], "camera": {"up": "x"}})").find("camera.up"), std::string::npos);
-  EXPECT_NE(problem(R"({"objects": [], "lights": [{"color": [1,1,1]}]})").find("lights[0]: needs a \"position\""),
+  EXPECT_NE(problem(R"({"objects": [], "lights": [{"color": [1,1,1]}]})")
+                .find("lights[0]: needs a \"position\""),
             std::string::npos);
 }
 

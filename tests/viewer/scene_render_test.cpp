@@ -80,14 +80,17 @@ Result<format::BrickedVolume> makeScene(format::Axis axis, uint32_t brick, bool 
   for (uint32_t k = 0; k < kDims[2]; ++k)
     for (uint32_t j = 0; j < kDims[1]; ++j)
       for (uint32_t i = 0; i < kDims[0]; ++i) {
-        if (j == 2) b.addSurface(i, j, k, up, 0);
-        else if (withWall && std::abs(double(i) + k - 44.0) <= 1.0 && j > 2) b.addSurface(i, j, k, oblique, 1);
+        if (j == 2)
+          b.addSurface(i, j, k, up, 0);
+        else if (withWall && std::abs(double(i) + k - 44.0) <= 1.0 && j > 2)
+          b.addSurface(i, j, k, oblique, 1);
         if (withSpheres)
           for (uint32_t s = 0; s < 2; ++s)
             if (sphereOverlaps(kSpheres[s], i, j, k)) b.addSphereRef(i, j, k, s);
         const double dx = i - 30.0, dy = j - 9.0, dz = k - 24.0;
         const double r2 = dx * dx + dy * dy + dz * dz;
-        if (withBlob && r2 < 20) b.addVolumeSample(i, j, k, uint32_t(250 - 5 * r2), format::encodeGradient(-dx, -dy, -dz));
+        if (withBlob && r2 < 20)
+          b.addVolumeSample(i, j, k, uint32_t(250 - 5 * r2), format::encodeGradient(-dx, -dy, -dz));
       }
   return b.build("{}");
 }
@@ -97,8 +100,8 @@ struct Rendered {
   ImageError error;
 };
 
-Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec, bool shadows, uint32_t w = 96,
-                     uint32_t h = 80) {
+Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec, bool shadows,
+                     uint32_t w = 96, uint32_t h = 80) {
   Rendered out;
   auto renderer = VoxLinkRenderer::create(file);
   EXPECT_TRUE(renderer) << renderer.message();
@@ -143,10 +146,11 @@ TEST(SceneRender, GlMatchesReferenceOnEveryAxisAndBrickSize) {
         spec.azimuthDeg = shadows ? 35 : -50;
         spec.elevationDeg = shadows ? 25 : 40;
         const Rendered r = renderScene(*file, spec, shadows);
-        std::printf("axis %d brick %u shadows %d: PSNR %.2f dB, max %.4f\n", int(axis), brick, int(shadows),
-                    r.error.psnr, r.error.maxError);
+        std::printf("axis %d brick %u shadows %d: PSNR %.2f dB, max %.4f\n", int(axis), brick,
+                    int(shadows), r.error.psnr, r.error.maxError);
         EXPECT_EQ(r.error.nonFinite, 0u);
-        EXPECT_GE(r.error.psnr, kTargetPsnr) << "axis " << int(axis) << " brick " << brick << " shadows " << shadows;
+        EXPECT_GE(r.error.psnr, kTargetPsnr)
+            << "axis " << int(axis) << " brick " << brick << " shadows " << shadows;
         EXPECT_GT(coverage(r.reference), 0.15);
       }
     }
@@ -220,8 +224,10 @@ TEST(SceneRender, LitFloorFollowsTheShadingFormula) {
   const Camera camera = Camera::framing((*renderer)->geometry().worldBox(), spec);
   const RenderSettings settings;
   const auto& l = settings.shading.lightDirection;
-  const glm::dvec3 toLight = glm::normalize(camera.toWorld(glm::normalize(glm::dvec3(l[0], l[1], l[2]))));
-  const double expected = (settings.shading.ambient + settings.shading.diffuse * std::max(toLight.y, 0.0)) * 0.7;
+  const glm::dvec3 toLight =
+      glm::normalize(camera.toWorld(glm::normalize(glm::dvec3(l[0], l[1], l[2]))));
+  const double expected =
+      (settings.shading.ambient + settings.shading.diffuse * std::max(toLight.y, 0.0)) * 0.7;
   const float* p = r.gl.pixel(32, 32);
   EXPECT_NEAR(p[0], expected, 2e-3);
   EXPECT_NEAR(p[3], 1.0, 1e-6);
@@ -241,7 +247,8 @@ TEST(SceneRender, TrilinearSamplingOfAScene) {
   s.width = s.height = 16;
   s.sampling = Sampling::kTrilinear;
   RenderTarget target;
-  const Status st = (*renderer)->render(Camera::framing((*renderer)->geometry().worldBox(), {}), s, target);
+  const Status st =
+      (*renderer)->render(Camera::framing((*renderer)->geometry().worldBox(), {}), s, target);
   ASSERT_FALSE(st.isOk());
   EXPECT_NE(st.message().find("voxel sampling"), std::string::npos) << st.message();
 }

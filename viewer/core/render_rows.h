@@ -17,7 +17,8 @@ Image renderRows(const Camera& camera, const RenderSettings& settings, const Tra
   Image image(settings.width, settings.height);
   tbb::parallel_for(uint32_t{0}, settings.height, [&](uint32_t y) {
     for (uint32_t x = 0; x < settings.width; ++x) {
-      const std::array<double, 4> c = trace(camera.primaryRay(x, y, settings.width, settings.height));
+      const std::array<double, 4> c =
+          trace(camera.primaryRay(x, y, settings.width, settings.height));
       float* p = image.pixel(x, y);
       for (int i = 0; i < 4; ++i) p[i] = static_cast<float>(c[i]);
     }

@@ -31,7 +31,8 @@ glm::dvec3 decoded(uint16_t code) {
 
 }  // namespace
 
-SceneReferenceRenderer::SceneReferenceRenderer(const format::VoxLinkFile& file, const format::TransferFunction& tf)
+SceneReferenceRenderer::SceneReferenceRenderer(const format::VoxLinkFile& file,
+                                               const format::TransferFunction& tf)
     : file_(file), tf_(tf), locator_(file), index_(file) {
   const format::FileHeader& h = file.header();
   for (int a = 0; a < 3; ++a) {
@@ -41,12 +42,16 @@ SceneReferenceRenderer::SceneReferenceRenderer(const format::VoxLinkFile& file, 
   }
 }
 
-glm::dvec3 SceneReferenceRenderer::toIndex(const glm::dvec3& w) const { return (w - origin_) / spacing_ + 0.5; }
-glm::dvec3 SceneReferenceRenderer::toWorld(const glm::dvec3& i) const { return origin_ + (i - 0.5) * spacing_; }
+glm::dvec3 SceneReferenceRenderer::toIndex(const glm::dvec3& w) const {
+  return (w - origin_) / spacing_ + 0.5;
+}
+glm::dvec3 SceneReferenceRenderer::toWorld(const glm::dvec3& i) const {
+  return origin_ + (i - 0.5) * spacing_;
+}
 glm::dvec3 SceneReferenceRenderer::dirToIndex(const glm::dvec3& d) const { return d / spacing_; }
 
-SceneReferenceRenderer::Frame SceneReferenceRenderer::makeFrame(const Camera& camera,
-                                                                const RenderSettings& settings) const {
+SceneReferenceRenderer::Frame SceneReferenceRenderer::makeFrame(
+    const Camera& camera, const RenderSettings& settings) const {
   Frame f;
   f.settings = settings;
   const auto& l = settings.shading.lightDirection;
@@ -70,8 +75,9 @@ std::array<double, 4> SceneReferenceRenderer::traceRay(const Ray& ray, const Cam
 }
 
 // Nearest t >= max(ta, 0) of the voxel's spheres inside its chord [ta, tz).
-bool SceneReferenceRenderer::firstSphereHit(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d, double ta,
-                                            double tz, Hit& hit) const {
+bool SceneReferenceRenderer::firstSphereHit(uint64_t voxel, const glm::dvec3& o,
+                                            const glm::dvec3& d, double ta, double tz,
+                                            Hit& hit) const {
   const auto [begin, end] = index_.sphereRefs(voxel);
   const auto refs = file_.sphereRefs();
   const auto spheres = file_.spheres();
@@ -81,7 +87,8 @@ bool SceneReferenceRenderer::firstSphereHit(uint64_t voxel, const glm::dvec3& o,
     const glm::dvec3 centre = toIndex({s.center[0], s.center[1], s.center[2]});
     const double radius = s.radius / spacing_.x;
     const glm::dvec3 oc = o - centre;
-    const double a = glm::dot(d, d), halfB = glm::dot(oc, d), c = glm::dot(oc, oc) - radius * radius;
+    const double a = glm::dot(d, d), halfB = glm::dot(oc, d),
+                 c = glm::dot(oc, oc) - radius * radius;
     const double disc = halfB * halfB - a * c;
     if (disc < 0) continue;
     const double root = std::sqrt(disc), tMin = std::max(ta, 0.0);
@@ -92,19 +99,22 @@ bool SceneReferenceRenderer::firstSphereHit(uint64_t voxel, const glm::dvec3& o,
   return hit.t < HUGE_VAL;
 }
 
-double SceneReferenceRenderer::geometryTransmittance(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d,
-                                                     double ta, double tz) const {
+double SceneReferenceRenderer::geometryTransmittance(uint64_t voxel, const glm::dvec3& o,
+                                                     const glm::dvec3& d, double ta,
+                                                     double tz) const {
   double transmittance = 1.0;
   const uint32_t word = index_.surfaceWord(voxel);
   const auto materials = file_.materials();
-  if (word != format::kNoSurface) transmittance *= 1.0 - materials[format::surfaceMaterial(word)].opacity;
+  if (word != format::kNoSurface)
+    transmittance *= 1.0 - materials[format::surfaceMaterial(word)].opacity;
   Hit hit;
   if (firstSphereHit(voxel, o, d, ta, tz, hit))
     transmittance *= 1.0 - materials[file_.spheres()[hit.sphere].material].opacity;
   return transmittance;
 }
 
-double SceneReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint, const Frame& f) const {
+double SceneReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint,
+                                                   const Frame& f) const {
   const glm::dvec3 start = worldPoint + f.toLight * f.unit;
   auto [t0, t1] = intersectBox(start, f.toLight, f.box.lo, f.box.hi);
   t0 = std::max(t0, 0.0);
@@ -117,7 +127,9 @@ double SceneReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint,
     if (i < 0) return true;
     if (file_.isScene()) transmittance *= geometryTransmittance(uint64_t(i), o, d, ta, tb);
     const int64_t slot = index_.volumeSlot(uint64_t(i));
-    if (slot >= 0) transmittance *= 1.0 - correctedAlpha(tf_.opacityAt(file_.value(uint64_t(slot))), tb - ta, f.unit);
+    if (slot >= 0)
+      transmittance *=
+          1.0 - correctedAlpha(tf_.opacityAt(file_.value(uint64_t(slot))), tb - ta, f.unit);
     return transmittance >= stopAt;
   });
   return transmittance;
@@ -125,10 +137,12 @@ double SceneReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint,
 
 void SceneReferenceRenderer::compositeSurface(const format::MaterialRecord& m, glm::dvec3 n,
                                               const glm::dvec3& indexPoint, const glm::dvec3& toEye,
-                                              const Frame& f, glm::dvec3& color, double& transmittance) const {
+                                              const Frame& f, glm::dvec3& color,
+                                              double& transmittance) const {
   if (glm::dot(n, toEye) < 0) n = -n;  // fragments are two-sided
   const glm::dvec3 c(m.color[0], m.color[1], m.color[2]);
-  const ShadedTerms s = shadeSurface(c, m.specular, m.shininess, n, f.toLight, toEye, f.settings.shading);
+  const ShadedTerms s =
+      shadeSurface(c, m.specular, m.shininess, n, f.toLight, toEye, f.settings.shading);
   double shadow = 1.0;
   if (f.settings.shading.shadows && f.settings.shading.enabled && glm::dot(n, f.toLight) > 0)
     shadow = shadowTransmittance(toWorld(indexPoint) + n * (kSurfaceShadowBias * f.unit), f);
@@ -153,13 +167,14 @@ std::array<double, 4> SceneReferenceRenderer::trace(const Ray& ray, const Frame&
     if (file_.isScene()) {
       const uint32_t word = index_.surfaceWord(i);
       if (word != format::kNoSurface)
-        compositeSurface(materials[format::surfaceMaterial(word)], decoded(format::surfaceNormal(word)), o + ta * d,
-                         toEye, f, color, transmittance);
+        compositeSurface(materials[format::surfaceMaterial(word)],
+                         decoded(format::surfaceNormal(word)), o + ta * d, toEye, f, color,
+                         transmittance);
       Hit hit;
       if (transmittance > stopAt && firstSphereHit(i, o, d, ta, tb, hit)) {
         const glm::dvec3 p = o + hit.t * d;
-        compositeSurface(materials[file_.spheres()[hit.sphere].material], glm::normalize(p - hit.centre), p, toEye,
-                         f, color, transmittance);
+        compositeSurface(materials[file_.spheres()[hit.sphere].material],
+                         glm::normalize(p - hit.centre), p, toEye, f, color, transmittance);
       }
       if (transmittance <= stopAt) return false;
     }
@@ -169,8 +184,9 @@ std::array<double, 4> SceneReferenceRenderer::trace(const Ray& ray, const Frame&
     const double a = correctedAlpha(tf_.opacityAt(v), tb - ta, f.unit);
     if (a > 0) {
       const auto rgb = tf_.colorAt(v);
-      const ShadedTerms s = shadeSample({rgb[0], rgb[1], rgb[2]}, 1.0, decoded(file_.gradientCodes()[uint64_t(slot)]), f.toLight,
-                                        toEye, f.settings.shading);
+      const ShadedTerms s =
+          shadeSample({rgb[0], rgb[1], rgb[2]}, 1.0, decoded(file_.gradientCodes()[uint64_t(slot)]),
+                      f.toLight, toEye, f.settings.shading);
       double shadow = 1.0;
       if (f.settings.shading.shadows && f.settings.shading.enabled)
         shadow = shadowTransmittance(toWorld(o + 0.5 * (ta + tb) * d), f);
@@ -180,8 +196,8 @@ std::array<double, 4> SceneReferenceRenderer::trace(const Ray& ray, const Frame&
     return transmittance > stopAt;
   });
   const auto& bg = f.settings.background;
-  return {color.r + transmittance * bg[0], color.g + transmittance * bg[1], color.b + transmittance * bg[2],
-          1.0 - transmittance};
+  return {color.r + transmittance * bg[0], color.g + transmittance * bg[1],
+          color.b + transmittance * bg[2], 1.0 - transmittance};
 }
 
 }  // namespace voxlink::viewer

@@ -25,7 +25,8 @@ class SceneReferenceRenderer {
 
   // Voxel sampling only, as the GL renderer draws scenes; rows in parallel.
   Image render(const Camera& camera, const RenderSettings& settings) const;
-  std::array<double, 4> traceRay(const Ray& ray, const Camera& camera, const RenderSettings& settings) const;
+  std::array<double, 4> traceRay(const Ray& ray, const Camera& camera,
+                                 const RenderSettings& settings) const;
 
  private:
   struct Frame;
@@ -33,10 +34,12 @@ class SceneReferenceRenderer {
   Frame makeFrame(const Camera& camera, const RenderSettings& settings) const;
   std::array<double, 4> trace(const Ray& ray, const Frame& f) const;
   void compositeSurface(const format::MaterialRecord& m, glm::dvec3 n, const glm::dvec3& indexPoint,
-                        const glm::dvec3& toEye, const Frame& f, glm::dvec3& color, double& transmittance) const;
-  bool firstSphereHit(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d, double ta, double tz,
-                      Hit& hit) const;
-  double geometryTransmittance(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d, double ta, double tz) const;
+                        const glm::dvec3& toEye, const Frame& f, glm::dvec3& color,
+                        double& transmittance) const;
+  bool firstSphereHit(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d, double ta,
+                      double tz, Hit& hit) const;
+  double geometryTransmittance(uint64_t voxel, const glm::dvec3& o, const glm::dvec3& d, double ta,
+                               double tz) const;
   double shadowTransmittance(const glm::dvec3& worldPoint, const Frame& f) const;
   glm::dvec3 toIndex(const glm::dvec3& world) const;
   glm::dvec3 toWorld(const glm::dvec3& index) const;
