@@ -3,12 +3,13 @@
 // (tools::copyFromDense with background 0 and tolerance THRESHOLD - 0.5), writes a
 // Blosc-compressed .vdb. No gradients. Prints one line: phases, voxels, memory, file size.
 //   voxlink_bench_vdb_peer IN.raw X Y Z THRESHOLD OUT.vdb
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <openvdb/openvdb.h>
-#include <openvdb/tools/Dense.h>
 #include <vector>
 
 int main(int argc, char** argv) {
@@ -17,7 +18,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   using Clock = std::chrono::steady_clock;
-  auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  auto seconds = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+  };
   const int nx = std::atoi(argv[2]), ny = std::atoi(argv[3]), nz = std::atoi(argv[4]);
   const float threshold = static_cast<float>(std::atof(argv[5]));
   openvdb::initialize();
@@ -41,11 +44,12 @@ int main(int argc, char** argv) {
   file.write({grid});
   file.close();
   const auto t3 = Clock::now();
-  std::printf("read %.3f s, copyFromDense %.3f s, write %.3f s, total %.3f s, active %llu, memUsage %llu B "
-              "(%.3f B/voxel), file %llu B\n",
-              seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t0, t3),
-              (unsigned long long)grid->activeVoxelCount(), (unsigned long long)grid->memUsage(),
-              double(grid->memUsage()) / double(grid->activeVoxelCount()),
-              (unsigned long long)std::filesystem::file_size(argv[6]));
+  std::printf(
+      "read %.3f s, copyFromDense %.3f s, write %.3f s, total %.3f s, active %llu, memUsage %llu B "
+      "(%.3f B/voxel), file %llu B\n",
+      seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t0, t3),
+      (unsigned long long)grid->activeVoxelCount(), (unsigned long long)grid->memUsage(),
+      double(grid->memUsage()) / double(grid->activeVoxelCount()),
+      (unsigned long long)std::filesystem::file_size(argv[6]));
   return 0;
 }

@@ -29,15 +29,20 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     RenderOptions render;
   };
   auto args = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand("bench-render", "Rendering benchmark: VoxLink vs dense ray caster, with PSNR");
+  auto* cmd = app.add_subcommand("bench-render",
+                                 "Rendering benchmark: VoxLink vs dense ray caster, with PSNR");
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--sizes", args->sizes, "Image sizes WxH")->capture_default_str();
   cmd->add_option("--samplings", args->samplings, "Sampling modes")
-      ->check(CLI::IsMember({"voxel", "trilinear"}))->capture_default_str();
-  cmd->add_option("--frames-per-turn", args->framesPerTurn, "Frames per 360 degree turn (two turns)")->capture_default_str();
+      ->check(CLI::IsMember({"voxel", "trilinear"}))
+      ->capture_default_str();
+  cmd->add_option("--frames-per-turn", args->framesPerTurn,
+                  "Frames per 360 degree turn (two turns)")
+      ->capture_default_str();
   cmd->add_flag("--no-dense", args->noDense, "Skip the dense 3D-texture ray caster");
   cmd->add_flag("--no-reference", args->noReference, "Skip the float64 reference (no PSNR)");
-  cmd->add_option("--pictures", args->pictures, "Directory for PNGs of each run's first frame and the reference");
+  cmd->add_option("--pictures", args->pictures,
+                  "Directory for PNGs of each run's first frame and the reference");
   args->source.add(cmd);
   args->render.add(cmd, false);
   return [args] {
@@ -91,18 +96,22 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     if (!args->noReference) reference.emplace(*dense, *tf);
 
     const auto& h = file->header();
-    std::printf("file: %s (%ux%ux%u, brick %u, %llu voxels = %.2f %% of %llu, %llu of %llu bricks occupied)\n",
-                args->path.c_str(), h.dims[0], h.dims[1], h.dims[2], h.brickSize,
-                (unsigned long long)h.voxelCount,
-                100.0 * double(h.voxelCount) / (double(h.dims[0]) * h.dims[1] * h.dims[2]),
-                (unsigned long long)(uint64_t{h.dims[0]} * h.dims[1] * h.dims[2]),
-                (unsigned long long)h.occupiedBrickCount, (unsigned long long)file->gridBrickCount());
+    std::printf(
+        "file: %s (%ux%ux%u, brick %u, %llu voxels = %.2f %% of %llu, %llu of %llu bricks "
+        "occupied)\n",
+        args->path.c_str(), h.dims[0], h.dims[1], h.dims[2], h.brickSize,
+        (unsigned long long)h.voxelCount,
+        100.0 * double(h.voxelCount) / (double(h.dims[0]) * h.dims[1] * h.dims[2]),
+        (unsigned long long)(uint64_t{h.dims[0]} * h.dims[1] * h.dims[2]),
+        (unsigned long long)h.occupiedBrickCount, (unsigned long long)file->gridBrickCount());
     const char* threads = std::getenv("LP_NUM_THREADS");
-    std::printf("GL: %s%s%s\n", (*context)->description().c_str(), threads ? ", LP_NUM_THREADS=" : "",
-                threads ? threads : "");
-    std::printf("protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; shadows %s\n\n",
-                o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
-                o.base.shading.shadows ? "on" : "off");
+    std::printf("GL: %s%s%s\n", (*context)->description().c_str(),
+                threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
+    std::printf(
+        "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; "
+        "shadows %s\n\n",
+        o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
+        o.base.shading.shadows ? "on" : "off");
     auto rows = viewer::runRenderBenchmark(renderers, reference ? &*reference : nullptr,
                                            (*voxlink)->geometry().worldBox(), o);
     if (!rows) return reportError(rows.error());

@@ -36,15 +36,19 @@ struct ConvertArgs {
 Result<convert::Classification> classificationFrom(const ConvertArgs& a) {
   const int given = !a.thresholds.empty() + !a.tfPath.empty() + !a.keepOutside.empty() + a.keepAll;
   if (given == 0)
-    return makeError(ErrorCode::kInvalidArgument, a.input, ": say what to keep: --threshold LO[,HI], --tf TF.json, --keep-outside LO,HI or --keep-all");
+    return makeError(ErrorCode::kInvalidArgument, a.input,
+                     ": say what to keep: --threshold LO[,HI], --tf TF.json, --keep-outside LO,HI "
+                     "or --keep-all");
   if (given > 1)
-    return makeError(ErrorCode::kInvalidArgument, "give only one of --threshold, --tf, --keep-outside, --keep-all");
+    return makeError(ErrorCode::kInvalidArgument,
+                     "give only one of --threshold, --tf, --keep-outside, --keep-all");
   if (!a.thresholds.empty()) return convert::thresholdClassification(a.thresholds);
   if (!a.tfPath.empty()) {
     VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf, format::loadTransferFunction(a.tfPath));
     return convert::tfClassification(tf);
   }
-  if (!a.keepOutside.empty()) return convert::keepOutsideClassification(a.keepOutside[0], a.keepOutside[1], a.mean, a.sigma);
+  if (!a.keepOutside.empty())
+    return convert::keepOutsideClassification(a.keepOutside[0], a.keepOutside[1], a.mean, a.sigma);
   return convert::keepAllClassification();
 }
 
@@ -67,13 +71,17 @@ int runConvert(const ConvertArgs& a) {
   ConvertArgs args = a;
   if (a.standardize) {
     if (a.keepOutside.empty() || a.mean || a.sigma)
-      return reportError(makeError(ErrorCode::kInvalidArgument, "--standardize goes with --keep-outside and without --mean/--sigma"));
+      return reportError(
+          makeError(ErrorCode::kInvalidArgument,
+                    "--standardize goes with --keep-outside and without --mean/--sigma"));
     auto moments = convert::measureMoments(**source, a.slab);
     if (!moments) return reportError(moments.error());
     if (!(moments->sigma > 0))
-      return reportError(makeError(ErrorCode::kInvalidArgument, a.input, ": data: every value is ", moments->mean, "; sigma is 0, nothing to standardize"));
-    std::printf("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n", a.input.c_str(),
-                moments->mean, moments->sigma, (unsigned long long)moments->count, moments->min, moments->max);
+      return reportError(makeError(ErrorCode::kInvalidArgument, a.input, ": data: every value is ",
+                                   moments->mean, "; sigma is 0, nothing to standardize"));
+    std::printf("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n",
+                a.input.c_str(), moments->mean, moments->sigma, (unsigned long long)moments->count,
+                moments->min, moments->max);
     args.mean = moments->mean;
     args.sigma = moments->sigma;
   }
@@ -98,8 +106,10 @@ int runConvert(const ConvertArgs& a) {
   const convert::VolumeInfo& info = (*source)->info();
   const double denseBytes = double(info.voxelCount()) * scalarSize(info.type);
   std::printf(
-      "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx smaller than "
-      "the dense %s source | values %s, max abs error %g | gradients polar16, error mean %.3f max %.3f deg "
+      "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx "
+      "smaller than "
+      "the dense %s source | values %s, max abs error %g | gradients polar16, error mean %.3f max "
+      "%.3f deg "
       "(%s sampled) | %.2f s (classify %.2f, write %.2f)\n",
       a.output.c_str(), humanCount(s.voxels).c_str(), humanCount(s.sourceVoxels).c_str(),
       100.0 * s.voxels / double(s.sourceVoxels), humanCount(s.occupiedBricks).c_str(),
@@ -108,7 +118,8 @@ int runConvert(const ConvertArgs& a) {
       std::string(scalarName(info.type)).c_str(), std::string(storedName(s.storedType)).c_str(),
       s.valueMaxAbsError, s.gradientMeanErrorDeg, s.gradientMaxErrorDeg,
       humanCount(s.gradientSamples).c_str(), s.seconds, s.countSeconds, s.writeSeconds);
-  for (const std::string& note : info.notes) std::printf("  note: %s\n", printableMessage(note).c_str());
+  for (const std::string& note : info.notes)
+    std::printf("  note: %s\n", printableMessage(note).c_str());
   return 0;
 }
 
@@ -117,12 +128,17 @@ int runConvert(const ConvertArgs& a) {
 CommandRunner addConvertCommand(CLI::App& app) {
   auto a = std::make_shared<ConvertArgs>();
   auto* cmd = app.add_subcommand("convert", "Pre-classify a dense volume and write a VoxLink file");
-  cmd->add_option("input", a->input, "Dense volume: NRRD, MetaImage, NIfTI, DICOM folder, image stack, VDB, raw, ...")->required();
+  cmd->add_option("input", a->input,
+                  "Dense volume: NRRD, MetaImage, NIfTI, DICOM folder, image stack, VDB, raw, ...")
+      ->required();
   cmd->add_option("-o,--output", a->output, "Output VoxLink file (.vxl)")->required();
   addSourceOptions(*cmd, a->source);
   auto* keep = cmd->add_option_group("classification", "What to keep (exactly one)");
-  keep->add_option("--threshold", a->thresholds, "Keep values >= LO, or in [LO,HI]; repeat for a union")->allow_extra_args(false);
-  keep->add_option("--tf", a->tfPath, "Keep values the transfer function (JSON) gives opacity > 0")->check(CLI::ExistingFile);
+  keep->add_option("--threshold", a->thresholds,
+                   "Keep values >= LO, or in [LO,HI]; repeat for a union")
+      ->allow_extra_args(false);
+  keep->add_option("--tf", a->tfPath, "Keep values the transfer function (JSON) gives opacity > 0")
+      ->check(CLI::ExistingFile);
   keep->add_option("--keep-outside", a->keepOutside, "Keep values outside [LO,HI], e.g. -1.96,1.96")
       ->delimiter(',')
       ->expected(2)
@@ -132,15 +148,24 @@ CommandRunner addConvertCommand(CLI::App& app) {
                   "With --keep-outside: standardize z = (v - mean) / sigma first")
       ->check(finiteNumber());
   cmd->add_option("--sigma", a->sigma, "With --keep-outside: see --mean")->check(finiteNumber());
-  cmd->add_flag("--standardize", a->standardize, "With --keep-outside: measure mean and sigma of the volume first");
-  cmd->add_option("--brick", a->brick, "Brick edge in voxels (8: most compact for sparse scans; 8 and 16 render equally fast)")->check(CLI::IsMember({4, 8, 16, 32}))->capture_default_str();
-  cmd->add_option("--axis", a->axis, "Predominant axis: rows of voxels run along it")->check(CLI::IsMember({"x", "y", "z"}))->capture_default_str();
-  cmd->add_option("--value-type", a->valueType, "Stored value type (default: smallest lossless)")->check(CLI::IsMember({"u8", "u16", "f16", "f32"}));
+  cmd->add_flag("--standardize", a->standardize,
+                "With --keep-outside: measure mean and sigma of the volume first");
+  cmd->add_option(
+         "--brick", a->brick,
+         "Brick edge in voxels (8: most compact for sparse scans; 8 and 16 render equally fast)")
+      ->check(CLI::IsMember({4, 8, 16, 32}))
+      ->capture_default_str();
+  cmd->add_option("--axis", a->axis, "Predominant axis: rows of voxels run along it")
+      ->check(CLI::IsMember({"x", "y", "z"}))
+      ->capture_default_str();
+  cmd->add_option("--value-type", a->valueType, "Stored value type (default: smallest lossless)")
+      ->check(CLI::IsMember({"u8", "u16", "f16", "f32"}));
   cmd->add_option("--error-bound", a->errorBound,
                   "Largest absolute value error allowed; picks the smallest type within it")
       ->check(finiteNumber());
   cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)")->capture_default_str();
-  cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")->capture_default_str();
+  cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "No progress bar");
   cmd->add_flag("--progress", a->progress, "Progress bar even when stderr is not a terminal");
   return [a] { return runConvert(*a); };

@@ -26,11 +26,15 @@ CommandRunner addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("render", "Render a VoxLink file to PNG or EXR (headless, EGL)");
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", args->output, "Image to write (.png: 8-bit sRGB, .exr: linear half float)")->required();
+  cmd->add_option("-o,--output", args->output,
+                  "Image to write (.png: 8-bit sRGB, .exr: linear half float)")
+      ->required();
   args->render.add(cmd);
   cmd->add_flag("--reference", args->reference,
-                "Also render the float64 reference (from the dense source; a scene: the same voxel scene) and print PSNR and max error");
-  cmd->add_option("--reference-output", args->referenceOut, "Write the reference image here (implies --reference)");
+                "Also render the float64 reference (from the dense source; a scene: the same voxel "
+                "scene) and print PSNR and max error");
+  cmd->add_option("--reference-output", args->referenceOut,
+                  "Write the reference image here (implies --reference)");
   args->source.add(cmd);
   return [args] {
     for (const std::string& out : {args->output, args->referenceOut})
@@ -49,12 +53,14 @@ CommandRunner addRenderCommand(CLI::App& app) {
     auto renderer = viewer::VoxLinkRenderer::create(*file);
     if (!renderer) return reportError(renderer.error());
     (*renderer)->setTransferFunction(*tf);
-    const viewer::Camera camera = viewer::Camera::framing((*renderer)->geometry().worldBox(), *spec);
+    const viewer::Camera camera =
+        viewer::Camera::framing((*renderer)->geometry().worldBox(), *spec);
     viewer::RenderTarget target;
     const auto start = std::chrono::steady_clock::now();
     if (Status s = (*renderer)->render(camera, *settings, target); !s) return reportError(s);
     const viewer::Image image = target.read();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (Status s = viewer::writeImage(image, args->output); !s) return reportError(s);
     std::printf("%s: %ux%u, %s sampling, %.3f s (first frame, includes shader compilation) on %s\n",
                 args->output.c_str(), settings->width, settings->height,
@@ -63,7 +69,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
     if (!args->reference && args->referenceOut.empty()) return 0;
     viewer::Image truth;
     if (file->isScene()) {
-      // A scene's reference traces the same voxel scene in float64 (its geometry has no dense source).
+      // A scene's reference traces the same voxel scene in float64 (its geometry has no dense
+      // source).
       truth = viewer::SceneReferenceRenderer(*file, *tf).render(camera, *settings);
     } else {
       auto sourceOptions = args->source.openOptions();
@@ -76,9 +83,11 @@ CommandRunner addRenderCommand(CLI::App& app) {
       if (Status s = viewer::writeImage(truth, args->referenceOut); !s) return reportError(s);
     auto error = viewer::compareImages(image, truth);
     if (!error) return reportError(error.error());
-    std::printf("against the float64 reference: PSNR %.2f dB, max error %.4f, %llu pixels off by more than 1/255, %llu non-finite\n",
-                error->psnr, error->maxError, (unsigned long long)error->pixelsOver,
-                (unsigned long long)error->nonFinite);
+    std::printf(
+        "against the float64 reference: PSNR %.2f dB, max error %.4f, %llu pixels off by more than "
+        "1/255, %llu non-finite\n",
+        error->psnr, error->maxError, (unsigned long long)error->pixelsOver,
+        (unsigned long long)error->nonFinite);
     return 0;
   };
 }

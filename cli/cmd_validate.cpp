@@ -8,7 +8,8 @@
 namespace voxlink::cli {
 
 CommandRunner addValidateCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("validate", "Check every checksum and structural invariant of VoxLink files");
+  auto* cmd = app.add_subcommand("validate",
+                                 "Check every checksum and structural invariant of VoxLink files");
   auto files = std::make_shared<std::vector<std::string>>();
   cmd->add_option("files", *files, "VoxLink files (.vxl)")->required()->check(CLI::ExistingFile);
   return [files] {
@@ -25,7 +26,8 @@ CommandRunner addValidateCommand(CLI::App& app) {
         continue;
       }
       std::printf("%s: ok (%llu bytes checksummed, %llu bricks, %llu voxels)\n", path.c_str(),
-                  (unsigned long long)report->bytesChecked, (unsigned long long)report->bricksChecked,
+                  (unsigned long long)report->bytesChecked,
+                  (unsigned long long)report->bricksChecked,
                   (unsigned long long)report->voxelsChecked);
     }
     return status;

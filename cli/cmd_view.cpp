@@ -22,8 +22,10 @@ CommandRunner addViewCommand(CLI::App& app) {
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--window", args->window, "Window size WxH")->capture_default_str();
   cmd->add_option("--frames", args->frames, "Quit after this many frames (smoke tests)");
-  cmd->add_option("--screenshot-on-exit", args->screenshot, "With --frames: write a screenshot before quitting");
-  cmd->add_option("--capture-window-on-exit", args->capture, "With --frames: write the whole window (panels included)");
+  cmd->add_option("--screenshot-on-exit", args->screenshot,
+                  "With --frames: write a screenshot before quitting");
+  cmd->add_option("--capture-window-on-exit", args->capture,
+                  "With --frames: write the whole window (panels included)");
   args->render.add(cmd, false);
   return [args] {
     auto file = format::openValidatedFile(args->path);

@@ -15,9 +15,12 @@ namespace voxlink::cli {
 int reportError(const Error& error) {
   std::fprintf(stderr, "voxlink: %s\n", printableMessage(error.message).c_str());
   switch (error.code) {
-    case ErrorCode::kInvalidArgument: return 2;
-    case ErrorCode::kIo: return 3;
-    default: return 1;
+    case ErrorCode::kInvalidArgument:
+      return 2;
+    case ErrorCode::kIo:
+      return 3;
+    default:
+      return 1;
   }
 }
 
@@ -58,10 +61,11 @@ int main(int argc, char** argv) {
                "voxlink"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxlink 0.1.0");
-  const CommandFactory factories[] = {addConvertCommand, addInfoCommand, addValidateCommand, addSceneCommand, addStatsCommand, addKrigeCommand,
-                                      addGrfCommand,
+  const CommandFactory factories[] = {
+      addConvertCommand, addInfoCommand,        addValidateCommand, addSceneCommand,
+      addStatsCommand,   addKrigeCommand,       addGrfCommand,
 #ifdef VOXLINK_WITH_VIEWER
-                                      addRenderCommand, addBenchRenderCommand, addViewCommand,
+      addRenderCommand,  addBenchRenderCommand, addViewCommand,
 #endif
   };
   std::vector<std::pair<CLI::App*, CommandRunner>> commands;

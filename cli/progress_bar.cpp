@@ -9,7 +9,8 @@ namespace voxlink::cli {
 
 bool stderrIsTerminal() { return isatty(STDERR_FILENO) == 1; }
 
-ProgressBar::ProgressBar(bool enabled) : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+ProgressBar::ProgressBar(bool enabled)
+    : enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
 
 ProgressBar::~ProgressBar() { finish(); }
 
@@ -21,9 +22,11 @@ void ProgressBar::update(double fraction, const char* stage) {
   lastStage_ = stage;
   const int width = 30;
   const int filled = permille * width / 1000;
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  std::fprintf(stderr, "\r[%.*s%*s] %5.1f%% %-12s %6.1f s", filled, "##############################",
-               width - filled, "", permille / 10.0, stage, elapsed);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::fprintf(stderr, "\r[%.*s%*s] %5.1f%% %-12s %6.1f s", filled,
+               "##############################", width - filled, "", permille / 10.0, stage,
+               elapsed);
   std::fflush(stderr);
 }
 

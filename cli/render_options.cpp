@@ -11,18 +11,24 @@ namespace voxlink::cli {
 void RenderOptions::add(CLI::App* cmd, bool withSize) {
   if (withSize) cmd->add_option("--size", size, "Image size WxH")->capture_default_str();
   cmd->add_option("--tf", tfPath, "Transfer function JSON (docs/transfer-function.md)");
-  cmd->add_option("--tf-preset", tfPreset, "Built-in transfer function stretched over the stored value range")
+  cmd->add_option("--tf-preset", tfPreset,
+                  "Built-in transfer function stretched over the stored value range")
       ->check(CLI::IsMember(viewer::tfPresetNames()));
-  cmd->add_option("--camera", camera, "AZ,EL[,DIST[,FOV]]: azimuth and elevation in degrees, distance "
-                                      "(1 frames the volume), vertical field of view (default 30,20,1,30)");
-  cmd->add_option("--up", up, "World axis pointing up on screen (default z, or the scene file's camera)")
+  cmd->add_option("--camera", camera,
+                  "AZ,EL[,DIST[,FOV]]: azimuth and elevation in degrees, distance "
+                  "(1 frames the volume), vertical field of view (default 30,20,1,30)");
+  cmd->add_option("--up", up,
+                  "World axis pointing up on screen (default z, or the scene file's camera)")
       ->check(CLI::IsMember({"y", "z", "-y", "-z"}));
   cmd->add_option("--sampling", sampling, "voxel (nearest, exact chords) or trilinear")
-      ->check(CLI::IsMember({"voxel", "trilinear"}))->capture_default_str();
-  cmd->add_option("--step", step, "Trilinear step in units of the smallest voxel spacing")->capture_default_str();
+      ->check(CLI::IsMember({"voxel", "trilinear"}))
+      ->capture_default_str();
+  cmd->add_option("--step", step, "Trilinear step in units of the smallest voxel spacing")
+      ->capture_default_str();
   cmd->add_flag("--shadows", shadows, "Shadow rays towards the light");
   cmd->add_flag("--no-shading", noShading, "Unlit colours (no Phong shading)");
-  cmd->add_option("--background", background, "Background colour R,G,B in [0, 1] (linear)")->capture_default_str();
+  cmd->add_option("--background", background, "Background colour R,G,B in [0, 1] (linear)")
+      ->capture_default_str();
 }
 
 Result<viewer::RenderSettings> RenderOptions::settings() const {
@@ -38,7 +44,8 @@ Result<viewer::RenderSettings> RenderOptions::settings() const {
   std::string item;
   for (int i = 0; i < 3; ++i) {
     if (!std::getline(in, item, ','))
-      return makeError(ErrorCode::kInvalidArgument, "--background: expected R,G,B, got '", background, "'");
+      return makeError(ErrorCode::kInvalidArgument, "--background: expected R,G,B, got '",
+                       background, "'");
     try {
       s.background[i] = std::stod(item);
     } catch (const std::exception&) {
@@ -54,7 +61,8 @@ Result<viewer::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& 
   // A scene's camera (META scene.camera, from its scene file) is the default view.
   const auto meta = nlohmann::json::parse(file.metaJson(), nullptr, /*allow_exceptions=*/false);
   const nlohmann::json* sceneCamera = nullptr;
-  if (meta.is_object() && meta.contains("scene") && meta["scene"].is_object() && meta["scene"].contains("camera"))
+  if (meta.is_object() && meta.contains("scene") && meta["scene"].is_object() &&
+      meta["scene"].contains("camera"))
     sceneCamera = &meta["scene"]["camera"];
   if (sceneCamera && sceneCamera->is_object()) {
     const nlohmann::json& c = *sceneCamera;
@@ -70,14 +78,16 @@ Result<viewer::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& 
   }
   if (!up.empty()) {
     auto axis = viewer::parseUpAxis(up);
-    if (!axis) return makeError(ErrorCode::kInvalidArgument, "--up: \"", up, "\" is not y, z, -y or -z");
+    if (!axis)
+      return makeError(ErrorCode::kInvalidArgument, "--up: \"", up, "\" is not y, z, -y or -z");
     defaults.up = *axis;
   }
   if (camera.empty()) return defaults;
   return viewer::parseCameraSpec(camera, defaults);
 }
 
-Result<format::TransferFunction> RenderOptions::transferFunction(const format::VoxLinkFile& file) const {
+Result<format::TransferFunction> RenderOptions::transferFunction(
+    const format::VoxLinkFile& file) const {
   if (!tfPath.empty()) return format::loadTransferFunction(tfPath);
   if (!tfPreset.empty()) {
     const auto [lo, hi] = viewer::displayRange(file.header().valueMin, file.header().valueMax);
@@ -87,7 +97,8 @@ Result<format::TransferFunction> RenderOptions::transferFunction(const format::V
 }
 
 void SourceOptions::add(CLI::App* cmd) {
-  cmd->add_option("--source", path, "Dense source volume (default: the one the file's META records)");
+  cmd->add_option("--source", path,
+                  "Dense source volume (default: the one the file's META records)");
   cmd->add_option("--source-dims", dims, "X,Y,Z of a raw --source");
   cmd->add_option("--source-type", type, "Element type of a raw --source (u8, i16, f32, ...)");
 }
@@ -99,12 +110,14 @@ Result<convert::OpenOptions> SourceOptions::openOptions() const {
     char c1 = 0, c2 = 0, extra = 0;
     if (std::sscanf(dims.c_str(), "%u%c%u%c%u%c", &d[0], &c1, &d[1], &c2, &d[2], &extra) != 5 ||
         c1 != ',' || c2 != ',')
-      return makeError(ErrorCode::kInvalidArgument, "--source-dims: expected X,Y,Z, got '", dims, "'");
+      return makeError(ErrorCode::kInvalidArgument, "--source-dims: expected X,Y,Z, got '", dims,
+                       "'");
     o.dims = d;
   }
   if (!type.empty()) {
     const auto t = parseScalarName(type);
-    if (!t) return makeError(ErrorCode::kInvalidArgument, "--source-type: unknown type '", type, "'");
+    if (!t)
+      return makeError(ErrorCode::kInvalidArgument, "--source-type: unknown type '", type, "'");
     o.type = *t;
   }
   if (o.dims && o.type) o.format = "raw";

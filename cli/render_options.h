@@ -6,9 +6,9 @@
 #include <memory>
 #include <string>
 
-#include "sources/volume_source.h"
 #include "format/transfer_function.h"
 #include "format/voxlink_file.h"
+#include "sources/volume_source.h"
 #include "viewer/core/camera.h"
 #include "viewer/core/render_settings.h"
 

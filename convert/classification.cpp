@@ -30,7 +30,8 @@ Result<double> boundFromJson(const nlohmann::json& j, const char* field) {
   if (j.is_number()) return j.get<double>();
   if (j.is_string() && j.get<std::string>() == "inf") return kInf;
   if (j.is_string() && j.get<std::string>() == "-inf") return -kInf;
-  return makeError(ErrorCode::kCorrupt, "classification.keep.", field, ": expected a number, \"inf\" or \"-inf\"");
+  return makeError(ErrorCode::kCorrupt, "classification.keep.", field,
+                   ": expected a number, \"inf\" or \"-inf\"");
 }
 
 }  // namespace
@@ -43,11 +44,15 @@ bool Classification::keeps(double v) const {
 
 std::string Classification::describe() const {
   switch (kind) {
-    case Kind::kAll: return "keep all";
-    case Kind::kThreshold: return "threshold " + format::describeIntervals(keep);
-    case Kind::kTransferFunction: return "transfer function opacity > 0 on " + format::describeIntervals(keep);
+    case Kind::kAll:
+      return "keep all";
+    case Kind::kThreshold:
+      return "threshold " + format::describeIntervals(keep);
+    case Kind::kTransferFunction:
+      return "transfer function opacity > 0 on " + format::describeIntervals(keep);
     case Kind::kKeepOutside:
-      return std::string("keep ") + (mean && sigma ? cat("z = (v - ", *mean, ") / ", *sigma, " in ") : "") +
+      return std::string("keep ") +
+             (mean && sigma ? cat("z = (v - ", *mean, ") / ", *sigma, " in ") : "") +
              format::describeIntervals(keep);
   }
   return "";
@@ -65,11 +70,14 @@ Result<Classification> thresholdClassification(const std::vector<std::string>& s
     } else {
       VOXLINK_ASSIGN_OR_RETURN(double lo, parseNumber(spec.substr(0, comma), what));
       VOXLINK_ASSIGN_OR_RETURN(double hi, parseNumber(spec.substr(comma + 1), what));
-      if (hi < lo) return makeError(ErrorCode::kInvalidArgument, what, ": upper bound ", hi, " is below lower bound ", lo);
+      if (hi < lo)
+        return makeError(ErrorCode::kInvalidArgument, what, ": upper bound ", hi,
+                         " is below lower bound ", lo);
       c.keep.push_back({lo, hi, false, false});
     }
   }
-  if (c.keep.empty()) return makeError(ErrorCode::kInvalidArgument, "--threshold: no interval given");
+  if (c.keep.empty())
+    return makeError(ErrorCode::kInvalidArgument, "--threshold: no interval given");
   return c;
 }
 
@@ -84,13 +92,16 @@ Classification tfClassification(const format::TransferFunction& tf) {
 Result<Classification> keepOutsideClassification(double lo, double hi, std::optional<double> mean,
                                                  std::optional<double> sigma) {
   if (!(lo <= hi) || !std::isfinite(lo) || !std::isfinite(hi))
-    return makeError(ErrorCode::kInvalidArgument, "--keep-outside ", lo, ",", hi, ": expected finite LO <= HI");
+    return makeError(ErrorCode::kInvalidArgument, "--keep-outside ", lo, ",", hi,
+                     ": expected finite LO <= HI");
   if (sigma && !(*sigma > 0 && std::isfinite(*sigma)))
-    return makeError(ErrorCode::kInvalidArgument, "--sigma ", *sigma, ": expected a finite value > 0");
+    return makeError(ErrorCode::kInvalidArgument, "--sigma ", *sigma,
+                     ": expected a finite value > 0");
   if (mean && !std::isfinite(*mean))
     return makeError(ErrorCode::kInvalidArgument, "--mean ", *mean, ": expected a finite value");
   if (mean.has_value() != sigma.has_value())
-    return makeError(ErrorCode::kInvalidArgument, "--keep-outside: give both mean and sigma to standardize, or neither");
+    return makeError(ErrorCode::kInvalidArgument,
+                     "--keep-outside: give both mean and sigma to standardize, or neither");
   Classification c;
   c.kind = Classification::Kind::kKeepOutside;
   c.keep = {{-kInf, lo, true, true}, {hi, kInf, true, true}};
@@ -104,14 +115,25 @@ Classification keepAllClassification() { return Classification{}; }
 nlohmann::json classificationToJson(const Classification& c) {
   nlohmann::ordered_json j;
   switch (c.kind) {
-    case Classification::Kind::kAll: j["kind"] = "all"; break;
-    case Classification::Kind::kThreshold: j["kind"] = "threshold"; break;
-    case Classification::Kind::kTransferFunction: j["kind"] = "transfer-function"; break;
-    case Classification::Kind::kKeepOutside: j["kind"] = "keep-outside"; break;
+    case Classification::Kind::kAll:
+      j["kind"] = "all";
+      break;
+    case Classification::Kind::kThreshold:
+      j["kind"] = "threshold";
+      break;
+    case Classification::Kind::kTransferFunction:
+      j["kind"] = "transfer-function";
+      break;
+    case Classification::Kind::kKeepOutside:
+      j["kind"] = "keep-outside";
+      break;
   }
   j["keep"] = nlohmann::ordered_json::array();
   for (const format::ValueInterval& i : c.keep)
-    j["keep"].push_back({{"lo", boundToJson(i.lo)}, {"hi", boundToJson(i.hi)}, {"lo_open", i.loOpen}, {"hi_open", i.hiOpen}});
+    j["keep"].push_back({{"lo", boundToJson(i.lo)},
+                         {"hi", boundToJson(i.hi)},
+                         {"lo_open", i.loOpen},
+                         {"hi_open", i.hiOpen}});
   if (c.mean && c.sigma) j["standardize"] = {{"mean", *c.mean}, {"sigma", *c.sigma}};
   if (c.tf) j["tf"] = nlohmann::json::parse(format::transferFunctionJson(*c.tf));
   j["description"] = c.describe();
@@ -123,11 +145,16 @@ Result<Classification> classificationFromJson(const nlohmann::json& j) {
     return makeError(ErrorCode::kCorrupt, "classification.kind: missing");
   Classification c;
   const std::string kind = j["kind"].get<std::string>();
-  if (kind == "all") c.kind = Classification::Kind::kAll;
-  else if (kind == "threshold") c.kind = Classification::Kind::kThreshold;
-  else if (kind == "transfer-function") c.kind = Classification::Kind::kTransferFunction;
-  else if (kind == "keep-outside") c.kind = Classification::Kind::kKeepOutside;
-  else return makeError(ErrorCode::kCorrupt, "classification.kind: unknown '", kind, "'");
+  if (kind == "all")
+    c.kind = Classification::Kind::kAll;
+  else if (kind == "threshold")
+    c.kind = Classification::Kind::kThreshold;
+  else if (kind == "transfer-function")
+    c.kind = Classification::Kind::kTransferFunction;
+  else if (kind == "keep-outside")
+    c.kind = Classification::Kind::kKeepOutside;
+  else
+    return makeError(ErrorCode::kCorrupt, "classification.kind: unknown '", kind, "'");
   if (j.contains("keep")) {
     for (const auto& i : j["keep"]) {
       format::ValueInterval interval{};
@@ -143,7 +170,8 @@ Result<Classification> classificationFromJson(const nlohmann::json& j) {
     c.sigma = j["standardize"].value("sigma", 1.0);
   }
   if (j.contains("tf")) {
-    VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf, format::parseTransferFunction(j["tf"].dump(), "classification.tf"));
+    VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf,
+                             format::parseTransferFunction(j["tf"].dump(), "classification.tf"));
     c.tf = std::move(tf);
   }
   return c;

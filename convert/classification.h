@@ -3,11 +3,10 @@
 // to a union of value intervals, recorded in the file's META section.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "format/error.h"
 #include "format/transfer_function.h"
@@ -18,8 +17,8 @@ namespace voxlink::convert {
 struct Classification {
   enum class Kind { kThreshold, kTransferFunction, kKeepOutside, kAll };
   Kind kind = Kind::kAll;
-  std::vector<format::ValueInterval> keep;      // what survives, in source units
-  std::optional<format::TransferFunction> tf;   // when kind == kTransferFunction
+  std::vector<format::ValueInterval> keep;     // what survives, in source units
+  std::optional<format::TransferFunction> tf;  // when kind == kTransferFunction
   // Keep-outside may first standardize values: z = (v - mean) / sigma.
   std::optional<double> mean, sigma;
 

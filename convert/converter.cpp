@@ -20,7 +20,9 @@ namespace voxlink::convert {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 constexpr const char* kGradientMethod =
     "central differences of source values per world unit, one-sided at the volume border";
@@ -89,7 +91,11 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
     window.release();
     for (const CountResult& r : results) {
       if (r.nonFinite)
-        return makeError(ErrorCode::kNonFinite, info.path, ": data: value ", r.nonFiniteValue, " at voxel (", r.nonFiniteAt[0], ", ", r.nonFiniteAt[1], ", ", r.nonFiniteAt[2], ") is not finite; VoxLink files hold finite values only (mask or replace NaN/Inf first)");
+        return makeError(ErrorCode::kNonFinite, info.path, ": data: value ", r.nonFiniteValue,
+                         " at voxel (", r.nonFiniteAt[0], ", ", r.nonFiniteAt[1], ", ",
+                         r.nonFiniteAt[2],
+                         ") is not finite; VoxLink files hold finite values only (mask or replace "
+                         "NaN/Inf first)");
     }
     report(0.25 * bz1 / layers(), "classifying");
   }
@@ -105,14 +111,15 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
     if (b % shape.grid[0] == 0) census.firstOccupied[b / shape.grid[0]] = census.occupied;
     if (census.counts[b] == 0) continue;
     census.occupancy[b >> 5] |= 1u << (b & 31);
-    if (census.voxels > format::kMaxVoxels)
-      break;
+    if (census.voxels > format::kMaxVoxels) break;
     census.voxelBase.push_back(static_cast<uint32_t>(census.voxels));
     census.voxels += census.counts[b];
     ++census.occupied;
   }
   if (census.voxels > format::kMaxVoxels)
-    return makeError(ErrorCode::kTooLarge, info.path, ": classification keeps more than ", format::kMaxVoxels, " voxels, the format's limit; keep fewer values or split the volume");
+    return makeError(ErrorCode::kTooLarge, info.path, ": classification keeps more than ",
+                     format::kMaxVoxels,
+                     " voxels, the format's limit; keep fewer values or split the volume");
   census.voxelBase.push_back(static_cast<uint32_t>(census.voxels));
   if (sizeof(T) == 1 && census.voxels > 0) {  // 8-bit sources: range not tracked, not needed
     census.keptMin = std::numeric_limits<T>::min();
@@ -143,10 +150,14 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
   SlabBuffers buffers[2];
   std::future<Status> pendingWrite;  // declared after buffers: joined before they go
   auto writeSlab = [&writer, n, maskWords, valueSize](const SlabBuffers& b) -> Status {
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowStart, b.k0 * n * n * 2, b.rows.data(), b.rows.size() * 2));
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowMask, b.k0 * maskWords * 4, b.masks.data(), b.masks.size() * 4));
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kValues, b.v0 * valueSize, b.values.data(), b.values.size()));
-    return writer.write(format::SectionId::kGradients, b.v0 * 2, b.gradients.data(), b.gradients.size() * 2);
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowStart, b.k0 * n * n * 2,
+                                         b.rows.data(), b.rows.size() * 2));
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowMask, b.k0 * maskWords * 4,
+                                         b.masks.data(), b.masks.size() * 4));
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kValues, b.v0 * valueSize,
+                                         b.values.data(), b.values.size()));
+    return writer.write(format::SectionId::kGradients, b.v0 * 2, b.gradients.data(),
+                        b.gradients.size() * 2);
   };
   unsigned slabsWritten = 0;
   const uint32_t stride = std::max(1u, options.errorSampleStride);
@@ -156,7 +167,8 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     const uint64_t rowBegin = uint64_t{bz0} * shape.grid[1];
     const uint64_t rowEnd = uint64_t{bz1} * shape.grid[1];
     const uint64_t k0 = census.firstOccupied[rowBegin];
-    const uint64_t k1 = rowEnd < census.firstOccupied.size() ? census.firstOccupied[rowEnd] : census.occupied;
+    const uint64_t k1 =
+        rowEnd < census.firstOccupied.size() ? census.firstOccupied[rowEnd] : census.occupied;
     if (k1 == k0) {
       report(0.25 + 0.75 * bz1 / layers(), "writing");
       continue;
@@ -170,20 +182,23 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     b.masks.assign((k1 - k0) * maskWords, 0);
     b.values.resize((v1 - v0) * valueSize);
     b.gradients.resize(v1 - v0);
-    const SlabOutput out{k0, v0, b.rows.data(), b.masks.data(), b.values.data(), b.gradients.data()};
+    const SlabOutput out{
+        k0, v0, b.rows.data(), b.masks.data(), b.values.data(), b.gradients.data()};
     pool.run(rowEnd - rowBegin, [&](size_t job, unsigned worker) {
       const uint64_t rowOfBricks = rowBegin + job;
       const uint32_t bz = static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
       const uint32_t by = static_cast<uint32_t>(rowOfBricks % shape.grid[1]);
       const uint16_t* counts = census.counts.data() + rowOfBricks * shape.grid[0];
-      encodeBrickRow<T>(BrickRow{window, shape, bz, by}, keep, mapping,
-                        RowCensus{counts, census.firstOccupied[rowOfBricks], census.voxelBase.data()},
-                        out, stride, stats[worker]);
+      encodeBrickRow<T>(
+          BrickRow{window, shape, bz, by}, keep, mapping,
+          RowCensus{counts, census.firstOccupied[rowOfBricks], census.voxelBase.data()}, out,
+          stride, stats[worker]);
     });
     window.release();
     for (const EncodeStats& s : stats)
       if (s.countMismatch)
-        return makeError(ErrorCode::kCorrupt, info.path, ": data: the source changed between the two passes of the conversion");
+        return makeError(ErrorCode::kCorrupt, info.path,
+                         ": data: the source changed between the two passes of the conversion");
     if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
     pendingWrite = std::async(std::launch::async, writeSlab, std::cref(b));
     report(0.25 + 0.75 * bz1 / layers(), "writing");
@@ -242,10 +257,11 @@ std::string metaJson(const VolumeInfo& info, const ConvertOptions& options,
   j["gradients"] = {{"method", kGradientMethod},
                     {"codec", "polar16"},
                     {"zero", s.zeroGradients},
-                    {"error_deg", {{"mean", s.gradientMeanErrorDeg},
-                                   {"max", s.gradientMaxErrorDeg},
-                                   {"samples", s.gradientSamples},
-                                   {"sample_stride", options.errorSampleStride}}}};
+                    {"error_deg",
+                     {{"mean", s.gradientMeanErrorDeg},
+                      {"max", s.gradientMaxErrorDeg},
+                      {"samples", s.gradientSamples},
+                      {"sample_stride", options.errorSampleStride}}}};
   return j.dump(2);
 }
 
@@ -259,7 +275,8 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   ConvertSummary& s = passes.summary;
   s.countSeconds = secondsSince(start);
   VOXLINK_ASSIGN_OR_RETURN(ValueMapping mapping,
-                           chooseValueMapping(info.type, census.keptMin, census.keptMax, options.storedType, options.errorBound));
+                           chooseValueMapping(info.type, census.keptMin, census.keptMax,
+                                              options.storedType, options.errorBound));
   if (info.type == ScalarType::kI8 && mapping.type == StoredType::kU8 && !mapping.quantized)
     mapping.offset = -128;  // the whole i8 range, lossless
   format::VolumeDescription d;
@@ -275,11 +292,15 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   d.valueErrorBound = mapping.errorBound;
   VOXLINK_RETURN_IF_ERROR(format::checkDescription(d));
   const format::FileHeader header = format::makeHeader(d, census.voxels, census.occupied);
-  VOXLINK_ASSIGN_OR_RETURN(format::FileWriter writer, format::FileWriter::create(outputPath, header));
+  VOXLINK_ASSIGN_OR_RETURN(format::FileWriter writer,
+                           format::FileWriter::create(outputPath, header));
   const std::vector<uint32_t> rank = format::rankFromOccupancy(census.occupancy);
-  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickOccupancy, 0, census.occupancy.data(), census.occupancy.size() * 4));
-  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickRank, 0, rank.data(), rank.size() * 4));
-  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickVoxelBase, 0, census.voxelBase.data(), census.voxelBase.size() * 4));
+  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickOccupancy, 0,
+                                       census.occupancy.data(), census.occupancy.size() * 4));
+  VOXLINK_RETURN_IF_ERROR(
+      writer.write(format::SectionId::kBrickRank, 0, rank.data(), rank.size() * 4));
+  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickVoxelBase, 0,
+                                       census.voxelBase.data(), census.voxelBase.size() * 4));
 
   const auto writeStart = Clock::now();
   EncodeStats stats;
@@ -290,7 +311,8 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   s.valueMaxAbsError = stats.maxAbsError;
   s.valueMaxRelError = stats.maxRelError;
   s.gradientSamples = stats.gradientSamples;
-  s.gradientMeanErrorDeg = stats.gradientSamples ? stats.gradientErrorNanoDeg * 1e-9 / stats.gradientSamples : 0.0;
+  s.gradientMeanErrorDeg =
+      stats.gradientSamples ? stats.gradientErrorNanoDeg * 1e-9 / stats.gradientSamples : 0.0;
   s.gradientMaxErrorDeg = stats.gradientMaxErrorDeg;
   s.zeroGradients = stats.zeroGradients;
   format::FileHeader& h = writer.header();
@@ -311,7 +333,9 @@ Result<ConvertSummary> runForType(Passes& passes, const std::string& outputPath)
   const Classification& c = passes.options.classification;
   if constexpr (std::is_integral_v<T>) {
     if (c.kind == Classification::Kind::kAll)
-      return run<T>(passes, RangeKeep<T>{std::numeric_limits<T>::min(), std::numeric_limits<T>::max()}, outputPath);
+      return run<T>(passes,
+                    RangeKeep<T>{std::numeric_limits<T>::min(), std::numeric_limits<T>::max()},
+                    outputPath);
     T lo, hi;
     if (!c.mean && c.keep.size() == 1) {
       if (!integerRange<T>(c.keep[0], lo, hi)) lo = 1, hi = 0;  // keeps nothing
@@ -331,12 +355,17 @@ Result<ConvertSummary> convertVolume(VolumeSource& source, const ConvertOptions&
                                      const std::string& outputPath) {
   const VolumeInfo& info = source.info();
   if (!format::isValidBrickSize(options.brickSize))
-    return makeError(ErrorCode::kInvalidArgument, "--brick ", options.brickSize, ": expected 4, 8, 16 or 32");
-  if (options.classification.kind != Classification::Kind::kAll && options.classification.keep.empty())
-    return makeError(ErrorCode::kInvalidArgument, info.path, ": the classification keeps no values (", options.classification.describe(), ")");
+    return makeError(ErrorCode::kInvalidArgument, "--brick ", options.brickSize,
+                     ": expected 4, 8, 16 or 32");
+  if (options.classification.kind != Classification::Kind::kAll &&
+      options.classification.keep.empty())
+    return makeError(ErrorCode::kInvalidArgument, info.path,
+                     ": the classification keeps no values (", options.classification.describe(),
+                     ")");
   for (int a = 0; a < 3; ++a) {
     if (info.dims[a] == 0 || info.dims[a] > format::kMaxDim)
-      return makeError(ErrorCode::kTooLarge, info.path, ": dims[", a, "] = ", info.dims[a], ": expected 1..", format::kMaxDim);
+      return makeError(ErrorCode::kTooLarge, info.path, ": dims[", a, "] = ", info.dims[a],
+                       ": expected 1..", format::kMaxDim);
   }
   Passes passes(source, options);
   GridShape& g = passes.shape;

@@ -12,9 +12,9 @@
 #include <string>
 
 #include "convert/classification.h"
-#include "sources/volume_source.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::convert {
 
@@ -22,11 +22,11 @@ struct ConvertOptions {
   uint32_t brickSize = 8;
   format::Axis axis = format::Axis::kZ;
   Classification classification;
-  unsigned threads = 0;        // 0: all hardware threads
-  uint32_t slabSlices = 64;    // z slices per slab; rounded up to a multiple of brickSize
+  unsigned threads = 0;      // 0: all hardware threads
+  uint32_t slabSlices = 64;  // z slices per slab; rounded up to a multiple of brickSize
   // Stored value type; empty chooses the smallest lossless type for the kept range (u8 stays u8).
   std::optional<StoredType> storedType;
-  double errorBound = 0.0;     // max abs error allowed when a lossy stored type is asked for
+  double errorBound = 0.0;  // max abs error allowed when a lossy stored type is asked for
   // How the source was opened, recorded in META so the file can be re-classified later.
   OpenOptions sourceOptions;
   const std::atomic<bool>* cancel = nullptr;  // set to stop early (kCancelled)
@@ -40,17 +40,17 @@ struct ConvertSummary {
   uint64_t sourceVoxels = 0;
   uint64_t occupiedBricks = 0;
   uint64_t bricks = 0;
-  uint64_t bytes = 0;                 // output file size
-  double seconds = 0;                 // wall time, both passes
-  double countSeconds = 0;            // pass 1
-  double writeSeconds = 0;            // pass 2 + commit
+  uint64_t bytes = 0;       // output file size
+  double seconds = 0;       // wall time, both passes
+  double countSeconds = 0;  // pass 1
+  double writeSeconds = 0;  // pass 2 + commit
   StoredType storedType = StoredType::kU8;
-  double valueMaxAbsError = 0;        // introduced by the stored type, source units
+  double valueMaxAbsError = 0;  // introduced by the stored type, source units
   double valueMaxRelError = 0;
-  double gradientMeanErrorDeg = 0;    // polar16 quantization, measured on sampled voxels
+  double gradientMeanErrorDeg = 0;  // polar16 quantization, measured on sampled voxels
   double gradientMaxErrorDeg = 0;
   uint64_t gradientSamples = 0;
-  uint64_t zeroGradients = 0;         // kept voxels whose gradient is zero
+  uint64_t zeroGradients = 0;  // kept voxels whose gradient is zero
 };
 
 Result<ConvertSummary> convertVolume(VolumeSource& source, const ConvertOptions& options,

@@ -20,6 +20,7 @@ struct Histogram {
 
 // Two streamed passes: moments (range), then counts in `bins` bins over [min, max]; integer
 // sources with a small range get one bin per value when `bins` allows.
-Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins = 64, uint32_t slabSlices = 64);
+Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins = 64,
+                                   uint32_t slabSlices = 64);
 
 }  // namespace voxlink::convert

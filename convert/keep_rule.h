@@ -26,7 +26,8 @@ struct TableKeep {
   static_assert(sizeof(T) <= 2 && std::is_integral_v<T>);
   const uint8_t* table;  // indexed by v - numeric_limits<T>::min()
   bool operator()(T v) const {
-    return table[static_cast<int32_t>(v) - static_cast<int32_t>(std::numeric_limits<T>::min())] != 0;
+    return table[static_cast<int32_t>(v) - static_cast<int32_t>(std::numeric_limits<T>::min())] !=
+           0;
   }
 };
 

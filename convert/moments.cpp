@@ -21,15 +21,15 @@ struct Accumulator {
 };
 
 template <class T>
-Status accumulateSlice(const T* v, uint64_t count, uint32_t z, const VolumeInfo& info, Accumulator& acc,
-                       double& lo, double& hi) {
+Status accumulateSlice(const T* v, uint64_t count, uint32_t z, const VolumeInfo& info,
+                       Accumulator& acc, double& lo, double& hi) {
   // Two passes over one slice: its mean first, then deviations from it.
   double sum = 0;
   for (uint64_t i = 0; i < count; ++i) {
     const double x = static_cast<double>(v[i]);
     if (!std::isfinite(x))
-      return makeError(ErrorCode::kNonFinite, info.path, ": data: value ", x, " at voxel (", i % info.dims[0], ", ",
-                       i / info.dims[0], ", ", z, ") is not finite");
+      return makeError(ErrorCode::kNonFinite, info.path, ": data: value ", x, " at voxel (",
+                       i % info.dims[0], ", ", i / info.dims[0], ", ", z, ") is not finite");
     sum += x;
   }
   Accumulator slice;
@@ -60,7 +60,8 @@ Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices) {
     for (uint32_t z = z0; z < z1; ++z) {
       Status s = dispatchScalar(info.type, [&](auto t) {
         using T = decltype(t);
-        return accumulateSlice(reinterpret_cast<const T*>(window.slice(z)), info.sliceVoxels(), z, info, acc, lo, hi);
+        return accumulateSlice(reinterpret_cast<const T*>(window.slice(z)), info.sliceVoxels(), z,
+                               info, acc, lo, hi);
       });
       VOXLINK_RETURN_IF_ERROR(s);
     }

@@ -6,7 +6,10 @@
 namespace voxlink::convert {
 
 SlabWindow::SlabWindow(VolumeSource& source, uint32_t halo)
-    : source_(source), halo_(halo), sliceBytes_(source.info().sliceBytes()), depth_(source.info().dims[2]) {}
+    : source_(source),
+      halo_(halo),
+      sliceBytes_(source.info().sliceBytes()),
+      depth_(source.info().dims[2]) {}
 
 Status SlabWindow::rewind() {
   release();
@@ -34,12 +37,14 @@ Status SlabWindow::load(uint32_t z0, uint32_t z1) {
   mapped_ = false;
   const uint64_t needed = uint64_t{end - first} * sliceBytes_;
   if (kept > 0) {
-    std::memmove(buffer_.data(), buffer_.data() + (keepFrom - first_) * sliceBytes_, kept * sliceBytes_);
+    std::memmove(buffer_.data(), buffer_.data() + (keepFrom - first_) * sliceBytes_,
+                 kept * sliceBytes_);
   }
   if (buffer_.size() < needed) buffer_.resize(needed);
   const uint32_t readFrom = first + kept;
   if (end > readFrom)
-    VOXLINK_RETURN_IF_ERROR(source_.read(readFrom, end - readFrom, buffer_.data() + uint64_t{kept} * sliceBytes_));
+    VOXLINK_RETURN_IF_ERROR(
+        source_.read(readFrom, end - readFrom, buffer_.data() + uint64_t{kept} * sliceBytes_));
   base_ = buffer_.data();
   first_ = first;
   end_ = end;

@@ -62,21 +62,28 @@ Result<ValueMapping> chooseValueMapping(ScalarType source, double keptMin, doubl
     keptMin = keptMax = 0.0;
   }
   if (!(errorBound >= 0) || !std::isfinite(errorBound))
-    return makeError(ErrorCode::kInvalidArgument, "--error-bound ", errorBound, ": expected a finite value >= 0");
+    return makeError(ErrorCode::kInvalidArgument, "--error-bound ", errorBound,
+                     ": expected a finite value >= 0");
   if (requested) {
     ValueMapping m = candidate(*requested, source, keptMin, keptMax);
     if (!std::isfinite(m.errorBound))
-      return makeError(ErrorCode::kInvalidArgument, "--value-type ", storedName(*requested), ": kept values up to ", std::max(std::abs(keptMin), std::abs(keptMax)), " do not fit its range");
+      return makeError(ErrorCode::kInvalidArgument, "--value-type ", storedName(*requested),
+                       ": kept values up to ", std::max(std::abs(keptMin), std::abs(keptMax)),
+                       " do not fit its range");
     if (errorBound > 0 && m.errorBound > errorBound)
-      return makeError(ErrorCode::kInvalidArgument, "--value-type ", storedName(*requested), " cannot meet --error-bound ", errorBound, " over the kept range [", keptMin, ", ", keptMax, "] (its bound is ", m.errorBound, ")");
+      return makeError(ErrorCode::kInvalidArgument, "--value-type ", storedName(*requested),
+                       " cannot meet --error-bound ", errorBound, " over the kept range [", keptMin,
+                       ", ", keptMax, "] (its bound is ", m.errorBound, ")");
     m.reason = "requested";
     return m;
   }
-  const std::vector<StoredType> bySize = {StoredType::kU8, StoredType::kU16, StoredType::kF16, StoredType::kF32};
+  const std::vector<StoredType> bySize = {StoredType::kU8, StoredType::kU16, StoredType::kF16,
+                                          StoredType::kF32};
   for (StoredType type : bySize) {
     ValueMapping m = candidate(type, source, keptMin, keptMax);
     if (errorBound > 0 ? m.errorBound <= errorBound : m.errorBound == 0.0) {
-      m.reason = errorBound > 0 ? cat("smallest type within error bound ", errorBound) : "smallest lossless type for the kept range";
+      m.reason = errorBound > 0 ? cat("smallest type within error bound ", errorBound)
+                                : "smallest lossless type for the kept range";
       return m;
     }
   }
@@ -87,7 +94,9 @@ Result<ValueMapping> chooseValueMapping(ScalarType source, double keptMin, doubl
                      std::max(std::abs(keptMin), std::abs(keptMax)),
                      " cannot be stored: f32 rounding overflows the largest double");
   if (errorBound > 0 && m.errorBound > errorBound)
-    return makeError(ErrorCode::kInvalidArgument, "--error-bound ", errorBound, ": no stored type meets it over the kept range [", keptMin, ", ", keptMax, "] (f32 guarantees ", m.errorBound, ")");
+    return makeError(ErrorCode::kInvalidArgument, "--error-bound ", errorBound,
+                     ": no stored type meets it over the kept range [", keptMin, ", ", keptMax,
+                     "] (f32 guarantees ", m.errorBound, ")");
   m.reason = "f32 (the widest stored type); rounding error measured";
   return m;
 }

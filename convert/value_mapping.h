@@ -21,17 +21,20 @@ struct ValueMapping {
   StoredType type = StoredType::kU8;
   double scale = 1.0;  // source = stored * scale + offset
   double offset = 0.0;
-  bool quantized = false;     // integer stored type over a scaled range (lossy)
-  double errorBound = 0.0;    // guaranteed max abs error of this mapping (0: lossless)
-  std::string reason;         // why this type, for the summary
+  bool quantized = false;   // integer stored type over a scaled range (lossy)
+  double errorBound = 0.0;  // guaranteed max abs error of this mapping (0: lossless)
+  std::string reason;       // why this type, for the summary
 
   // Stored bits of a source value (already known to lie in the kept range).
   uint32_t encode(double v) const {
     const double q = (v - offset) / scale;
     switch (type) {
-      case StoredType::kU8: return static_cast<uint32_t>(std::clamp(std::nearbyint(q), 0.0, 255.0));
-      case StoredType::kU16: return static_cast<uint32_t>(std::clamp(std::nearbyint(q), 0.0, 65535.0));
-      case StoredType::kF16: return format::floatToHalf(static_cast<float>(q));
+      case StoredType::kU8:
+        return static_cast<uint32_t>(std::clamp(std::nearbyint(q), 0.0, 255.0));
+      case StoredType::kU16:
+        return static_cast<uint32_t>(std::clamp(std::nearbyint(q), 0.0, 65535.0));
+      case StoredType::kF16:
+        return format::floatToHalf(static_cast<float>(q));
       case StoredType::kF32: {
         const float f = static_cast<float>(q);
         uint32_t bits;
@@ -45,8 +48,12 @@ struct ValueMapping {
     double stored = 0;
     switch (type) {
       case StoredType::kU8:
-      case StoredType::kU16: stored = bits; break;
-      case StoredType::kF16: stored = format::halfToFloat(static_cast<uint16_t>(bits)); break;
+      case StoredType::kU16:
+        stored = bits;
+        break;
+      case StoredType::kF16:
+        stored = format::halfToFloat(static_cast<uint16_t>(bits));
+        break;
       case StoredType::kF32: {
         float f;
         std::memcpy(&f, &bits, 4);
@@ -63,7 +70,6 @@ struct ValueMapping {
 // guaranteed error is within it, and 0 picks the smallest lossless type (f32 for f64 input,
 // whose rounding error is then measured and reported).
 Result<ValueMapping> chooseValueMapping(ScalarType source, double keptMin, double keptMax,
-                                        std::optional<StoredType> requested,
-                                        double errorBound);
+                                        std::optional<StoredType> requested, double errorBound);
 
 }  // namespace voxlink::convert

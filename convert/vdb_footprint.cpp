@@ -1,7 +1,8 @@
 #include "convert/vdb_footprint.h"
 
-#include <chrono>
 #include <openvdb/openvdb.h>
+
+#include <chrono>
 
 #include "format/voxel_locator.h"
 
@@ -15,17 +16,20 @@ Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFil
     auto accessor = grid->getAccessor();
     format::VoxelLocator locator(file);
     locator.forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t index) {
-      accessor.setValueOn(openvdb::Coord(int(x), int(y), int(z)), static_cast<float>(file.value(index)));
+      accessor.setValueOn(openvdb::Coord(int(x), int(y), int(z)),
+                          static_cast<float>(file.value(index)));
     });
   }
   grid->pruneGrid();  // as tools::copyFromDense does
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   format::PeerFootprint peer;
   peer.name = "OpenVDB FloatGrid";
   peer.bytes = grid->memUsage();
   peer.bytesPerVoxel = file.voxelCount() ? double(peer.bytes) / file.voxelCount() : 0.0;
   peer.seconds = seconds;
-  peer.note = "OpenVDB " OPENVDB_LIBRARY_VERSION_STRING ", values only (no gradients), pruned, in memory, active voxels = " +
+  peer.note = "OpenVDB " OPENVDB_LIBRARY_VERSION_STRING
+              ", values only (no gradients), pruned, in memory, active voxels = " +
               std::to_string(grid->activeVoxelCount());
   return peer;
 }

@@ -59,7 +59,7 @@ inline uint32_t zeroShift(const ZeroShift& z, uint32_t c) {
 }
 
 __attribute__((target("sse4.2"))) uint32_t crc32cHardware(const uint8_t* p, size_t n,
-                                                           uint32_t crc) {
+                                                          uint32_t crc) {
   uint64_t c = ~crc;
   if (n >= 3 * kStreamBytes) {
     static const ZeroShift shift = makeZeroShift();

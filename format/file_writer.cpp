@@ -29,17 +29,21 @@ uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
 Status checkDescription(const VolumeDescription& d) {
   if (!isValidBrickSize(d.brickSize))
-    return makeError(ErrorCode::kInvalidArgument, "brick size ", d.brickSize, ": expected 4, 8, 16 or 32");
+    return makeError(ErrorCode::kInvalidArgument, "brick size ", d.brickSize,
+                     ": expected 4, 8, 16 or 32");
   for (int a = 0; a < 3; ++a) {
     if (d.dims[a] == 0 || d.dims[a] > kMaxDim)
-      return makeError(ErrorCode::kTooLarge, "dims[", a, "] = ", d.dims[a], ": expected 1..", kMaxDim);
+      return makeError(ErrorCode::kTooLarge, "dims[", a, "] = ", d.dims[a], ": expected 1..",
+                       kMaxDim);
     if (!(std::isfinite(d.spacing[a]) && d.spacing[a] > 0))
-      return makeError(ErrorCode::kInvalidArgument, "spacing[", a, "] = ", d.spacing[a], ": expected a finite value > 0");
+      return makeError(ErrorCode::kInvalidArgument, "spacing[", a, "] = ", d.spacing[a],
+                       ": expected a finite value > 0");
     if (!std::isfinite(d.origin[a]))
       return makeError(ErrorCode::kInvalidArgument, "origin[", a, "] is not finite");
   }
   if (!std::isfinite(d.valueScale) || d.valueScale == 0 || !std::isfinite(d.valueOffset))
-    return makeError(ErrorCode::kInvalidArgument, "value mapping scale ", d.valueScale, " offset ", d.valueOffset, " is not finite and invertible");
+    return makeError(ErrorCode::kInvalidArgument, "value mapping scale ", d.valueScale, " offset ",
+                     d.valueOffset, " is not finite and invertible");
   return Status::ok();
 }
 
@@ -105,7 +109,9 @@ SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
 
 Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header) {
   if (header.voxelCount > kMaxVoxels)
-    return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount, " voxels exceed the format's limit of ", kMaxVoxels, "; classify more strictly or split the volume");
+    return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount,
+                     " voxels exceed the format's limit of ", kMaxVoxels,
+                     "; classify more strictly or split the volume");
   FileWriter w;
   w.path_ = path;
   w.header_ = header;
@@ -117,7 +123,8 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
   w.tempPath_ = temp.path;
   const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
   if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
-    return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd, " bytes: ", std::strerror(errno));
+    return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd,
+                     " bytes: ", std::strerror(errno));
   return w;
 }
 
@@ -159,7 +166,9 @@ Status FileWriter::writeRaw(uint64_t fileOffset, const void* data, size_t bytes)
 Status FileWriter::write(SectionId id, uint64_t offset, const void* data, size_t bytes) {
   const SectionEntry& e = layout_.entry(id);
   if (offset + bytes > e.bytes)
-    return makeError(ErrorCode::kInvalidArgument, path_, ": section ", sectionName(id), ": write of ", bytes, " bytes at ", offset, " exceeds its ", e.bytes, " bytes");
+    return makeError(ErrorCode::kInvalidArgument, path_, ": section ", sectionName(id),
+                     ": write of ", bytes, " bytes at ", offset, " exceeds its ", e.bytes,
+                     " bytes");
   VOXLINK_RETURN_IF_ERROR(writeRaw(e.offset + offset, data, bytes));
   std::lock_guard lock(*crcMutex_);
   RunningCrc& c = crcs_[static_cast<size_t>(&e - layout_.entries.data())];
@@ -176,7 +185,8 @@ Status FileWriter::commit(const std::string& metaJson) {
   if (fd_ < 0) return makeError(ErrorCode::kInvalidArgument, path_, ": writer already finished");
   layout_ = planSections(header_, metaJson.size());  // data offsets do not depend on META
   if (ftruncate(fd_, static_cast<off_t>(layout_.fileBytes)) != 0)
-    return makeError(ErrorCode::kIo, path_, ": cannot size output to ", layout_.fileBytes, " bytes: ", std::strerror(errno));
+    return makeError(ErrorCode::kIo, path_, ": cannot size output to ", layout_.fileBytes,
+                     " bytes: ", std::strerror(errno));
   VOXLINK_RETURN_IF_ERROR(write(SectionId::kMeta, 0, metaJson.data(), metaJson.size()));
   {
     // Sections written out of order or with gaps (left as zeros) are read back.
@@ -243,18 +253,23 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
     const uint64_t maskWords = ceilDiv(v.voxelCount(), 32);
     if (s.volumeMask.size() != maskWords || s.surfaceMask.size() != maskWords ||
         (!s.spheres.empty() && s.sphereMask.size() != maskWords))
-      return makeError(ErrorCode::kInvalidArgument, path, ": scene masks do not match the ", v.voxelCount(), " voxels");
+      return makeError(ErrorCode::kInvalidArgument, path, ": scene masks do not match the ",
+                       v.voxelCount(), " voxels");
     if (s.materials.size() > kMaxMaterials)
-      return makeError(ErrorCode::kTooLarge, path, ": ", s.materials.size(), " materials exceed the format's limit of ", kMaxMaterials);
+      return makeError(ErrorCode::kTooLarge, path, ": ", s.materials.size(),
+                       " materials exceed the format's limit of ", kMaxMaterials);
     makeSceneHeader(header, s);
     if (s.surface.size() != header.surfaceVoxelCount ||
         (!s.spheres.empty() && s.sphereRefStart.size() != header.sphereVoxelCount + 1))
-      return makeError(ErrorCode::kInvalidArgument, path, ": scene payloads do not match their masks");
+      return makeError(ErrorCode::kInvalidArgument, path,
+                       ": scene payloads do not match their masks");
   }
   const uint64_t slots = sampleSlots(header);
   const size_t valueBytes = slots * storedSize(v.description.valueType);
   if (v.values.size() != valueBytes || v.gradients.size() != slots)
-    return makeError(ErrorCode::kInvalidArgument, path, ": VALU/GRAD hold ", v.values.size(), " bytes/", v.gradients.size(), " codes, ", slots, " samples need ", valueBytes, "/", slots);
+    return makeError(ErrorCode::kInvalidArgument, path, ": VALU/GRAD hold ", v.values.size(),
+                     " bytes/", v.gradients.size(), " codes, ", slots, " samples need ", valueBytes,
+                     "/", slots);
   VOXLINK_ASSIGN_OR_RETURN(FileWriter writer, FileWriter::create(path, header));
   auto put = [&](SectionId id, const auto& vec) {
     using T = typename std::decay_t<decltype(vec)>::value_type;
@@ -313,13 +328,16 @@ Result<BrickedVolume> BrickedVolumeBuilder::build(std::string metaJson) const {
   std::vector<Entry> sorted = voxels_;
   for (Entry& e : sorted) {
     if (e.x >= d.dims[0] || e.y >= d.dims[1] || e.z >= d.dims[2])
-      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z, ") lies outside the ", d.dims[0], "x", d.dims[1], "x", d.dims[2], " volume");
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                       ") lies outside the ", d.dims[0], "x", d.dims[1], "x", d.dims[2], " volume");
     e.key = fileOrderKey(d, e.x, e.y, e.z);
   }
-  std::sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) { return a.key < b.key; });
+  std::sort(sorted.begin(), sorted.end(),
+            [](const Entry& a, const Entry& b) { return a.key < b.key; });
   for (size_t i = 1; i < sorted.size(); ++i)
     if (sorted[i].key == sorted[i - 1].key)
-      return makeError(ErrorCode::kInvalidArgument, "voxel (", sorted[i].x, ", ", sorted[i].y, ", ", sorted[i].z, ") added twice");
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", sorted[i].x, ", ", sorted[i].y, ", ",
+                       sorted[i].z, ") added twice");
 
   BrickedVolume v;
   v.description = d;
@@ -358,10 +376,21 @@ Result<BrickedVolume> BrickedVolumeBuilder::build(std::string metaJson) const {
       double stored = 0;
       const uint32_t bits = sorted[i].bits;
       switch (d.valueType) {
-        case StoredType::kU8: stored = bits & 0xFF; break;
-        case StoredType::kU16: stored = bits & 0xFFFF; break;
-        case StoredType::kF16: stored = halfToFloat(static_cast<uint16_t>(bits)); break;
-        case StoredType::kF32: { float f; std::memcpy(&f, &bits, 4); stored = f; break; }
+        case StoredType::kU8:
+          stored = bits & 0xFF;
+          break;
+        case StoredType::kU16:
+          stored = bits & 0xFFFF;
+          break;
+        case StoredType::kF16:
+          stored = halfToFloat(static_cast<uint16_t>(bits));
+          break;
+        case StoredType::kF32: {
+          float f;
+          std::memcpy(&f, &bits, 4);
+          stored = f;
+          break;
+        }
       }
       const double value = stored * d.valueScale + d.valueOffset;
       lo = std::min(lo, value);

@@ -113,14 +113,14 @@ void makeSceneHeader(FileHeader& header, const SceneSections& scene);
 struct BrickedVolume {
   VolumeDescription description;
   std::string metaJson = "{}";
-  std::vector<uint32_t> occupancy;   // BOCC
-  std::vector<uint32_t> rank;        // BRNK
-  std::vector<uint32_t> voxelBase;   // BVOX, occupied bricks + 1 entries
-  std::vector<uint16_t> rowStarts;   // ROWS
-  std::vector<uint32_t> rowMasks;    // MASK
-  std::vector<uint8_t> values;       // VALU, voxelCount * storedSize bytes (unpadded); empty in
-                                     //   a scene without volume samples (format/voxlink_file.h)
-  std::vector<uint16_t> gradients;   // GRAD, as VALU
+  std::vector<uint32_t> occupancy;     // BOCC
+  std::vector<uint32_t> rank;          // BRNK
+  std::vector<uint32_t> voxelBase;     // BVOX, occupied bricks + 1 entries
+  std::vector<uint16_t> rowStarts;     // ROWS
+  std::vector<uint32_t> rowMasks;      // MASK
+  std::vector<uint8_t> values;         // VALU, voxelCount * storedSize bytes (unpadded); empty in
+                                       //   a scene without volume samples (format/voxlink_file.h)
+  std::vector<uint16_t> gradients;     // GRAD, as VALU
   std::optional<SceneSections> scene;  // present: a version 2 file
 
   uint64_t voxelCount() const { return voxelBase.empty() ? 0 : voxelBase.back(); }

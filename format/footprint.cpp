@@ -19,16 +19,25 @@ SceneFootprint computeSceneFootprint(const VoxLinkFile& f) {
     switch (static_cast<SectionId>(e.id)) {
       case SectionId::kValues:
       case SectionId::kGradients:
-      case SectionId::kVolumeMask: s.volumeBytes += e.bytes; break;
+      case SectionId::kVolumeMask:
+        s.volumeBytes += e.bytes;
+        break;
       case SectionId::kSurface:
       case SectionId::kSurfaceMask:
-      case SectionId::kMaterials: s.surfaceBytes += e.bytes; break;
+      case SectionId::kMaterials:
+        s.surfaceBytes += e.bytes;
+        break;
       case SectionId::kSphereMask:
       case SectionId::kSpheres:
       case SectionId::kSphereRefStart:
-      case SectionId::kSphereRefs: s.sphereBytes += e.bytes; break;
-      case SectionId::kMeta: break;
-      default: s.structureBytes += e.bytes; break;
+      case SectionId::kSphereRefs:
+        s.sphereBytes += e.bytes;
+        break;
+      case SectionId::kMeta:
+        break;
+      default:
+        s.structureBytes += e.bytes;
+        break;
     }
   }
   return s;
@@ -53,7 +62,8 @@ FootprintReport computeFootprint(const VoxLinkFile& f) {
   const double perVoxel = r.voxels ? 1.0 / r.voxels : 0.0;
   uint64_t sectionTotal = 0;
   for (const SectionEntry& e : f.sectionTable()) {
-    r.sections.push_back({std::string(sectionName(static_cast<SectionId>(e.id))), e.bytes, e.bytes * perVoxel});
+    r.sections.push_back(
+        {std::string(sectionName(static_cast<SectionId>(e.id))), e.bytes, e.bytes * perVoxel});
     sectionTotal += e.bytes;
   }
   const uint64_t overhead = r.bytesTotal - sectionTotal;
@@ -79,18 +89,21 @@ std::string footprintTable(const FootprintReport& r) {
     out += line;
   };
   add("%s\n", r.path.c_str());
-  add("  %-22s %-16s %-12s %-12s %-11s %-10s\n", "resolution [brick]", "voxels", "non-empty %", "bricks %", "total MB", "B/voxel");
+  add("  %-22s %-16s %-12s %-12s %-11s %-10s\n", "resolution [brick]", "voxels", "non-empty %",
+      "bricks %", "total MB", "B/voxel");
   char res[64];
   std::snprintf(res, sizeof(res), "%ux%ux%u [%u]", r.dims[0], r.dims[1], r.dims[2], r.brickSize);
   add("  %-22s %-16llu %-12.3f %-12.2f %-11.2f %-10.3f\n", res, (unsigned long long)r.voxels,
       100.0 * r.occupancy, 100.0 * r.bricksNonemptyFraction, r.bytesTotal / 1e6, r.bytesPerVoxel);
   if (r.valueErrorBound == 0 && r.valueMaxAbsError == 0) {
-    add("  values %s (source %s), lossless: source = stored * %g + %g\n", r.valueType.c_str(), r.sourceType.c_str(),
-        r.valueScale, r.valueOffset);
+    add("  values %s (source %s), lossless: source = stored * %g + %g\n", r.valueType.c_str(),
+        r.sourceType.c_str(), r.valueScale, r.valueOffset);
   } else {
-    add("  values %s (source %s): source = stored * %g + %g; error bound %g %s, measured max abs %g, max rel %g\n",
+    add("  values %s (source %s): source = stored * %g + %g; error bound %g %s, measured max abs "
+        "%g, max rel %g\n",
         r.valueType.c_str(), r.sourceType.c_str(), r.valueScale, r.valueOffset, r.valueErrorBound,
-        r.valueMaxAbsError <= r.valueErrorBound ? "met" : "NOT met", r.valueMaxAbsError, r.valueMaxRelError);
+        r.valueMaxAbsError <= r.valueErrorBound ? "met" : "NOT met", r.valueMaxAbsError,
+        r.valueMaxRelError);
   }
   add("  %-22s %14s %10s\n", "section", "bytes", "B/voxel");
   for (const SectionFootprint& s : r.sections)
@@ -99,17 +112,21 @@ std::string footprintTable(const FootprintReport& r) {
   if (r.scene) {
     const SceneFootprint& s = *r.scene;
     auto mb = [](uint64_t bytes) { return bytes / 1e6; };
-    add("  scene: %llu volume voxels, %llu surface voxels (%llu materials), %llu sphere voxels (%llu spheres, %llu references)\n",
-        (unsigned long long)s.volumeVoxels, (unsigned long long)s.surfaceVoxels, (unsigned long long)s.materials,
-        (unsigned long long)s.sphereVoxels, (unsigned long long)s.spheres, (unsigned long long)s.sphereRefs);
-    add("  by kind: bricks+rows %.3f MB, volume %.3f MB, surfaces %.3f MB, spheres %.3f MB\n", mb(s.structureBytes),
-        mb(s.volumeBytes), mb(s.surfaceBytes), mb(s.sphereBytes));
+    add("  scene: %llu volume voxels, %llu surface voxels (%llu materials), %llu sphere voxels "
+        "(%llu spheres, %llu references)\n",
+        (unsigned long long)s.volumeVoxels, (unsigned long long)s.surfaceVoxels,
+        (unsigned long long)s.materials, (unsigned long long)s.sphereVoxels,
+        (unsigned long long)s.spheres, (unsigned long long)s.sphereRefs);
+    add("  by kind: bricks+rows %.3f MB, volume %.3f MB, surfaces %.3f MB, spheres %.3f MB\n",
+        mb(s.structureBytes), mb(s.volumeBytes), mb(s.surfaceBytes), mb(s.sphereBytes));
   }
   add("  dense source: %llu bytes; this file is %.2f%% of it (%.1fx smaller)\n",
-      (unsigned long long)r.denseSourceBytes, 100.0 * r.ratioVsDense, r.ratioVsDense > 0 ? 1.0 / r.ratioVsDense : 0.0);
+      (unsigned long long)r.denseSourceBytes, 100.0 * r.ratioVsDense,
+      r.ratioVsDense > 0 ? 1.0 / r.ratioVsDense : 0.0);
   if (r.peer) {
     const PeerFootprint& p = *r.peer;
-    add("  %s holding the same voxels: %llu bytes (%.3f B/voxel, measured in %.2f s); this file is %.2fx %s\n",
+    add("  %s holding the same voxels: %llu bytes (%.3f B/voxel, measured in %.2f s); this file is "
+        "%.2fx %s\n",
         p.name.c_str(), (unsigned long long)p.bytes, p.bytesPerVoxel, p.seconds,
         p.bytes ? double(r.bytesTotal) / p.bytes : 0.0, "its size");
     if (!p.note.empty()) add("  (%s)\n", p.note.c_str());
@@ -143,11 +160,16 @@ std::string footprintJson(const FootprintReport& r) {
   j["ratio_vs_dense"] = r.ratioVsDense;
   if (r.scene) {
     const SceneFootprint& s = *r.scene;
-    j["scene"] = {{"volume_voxels", s.volumeVoxels},   {"surface_voxels", s.surfaceVoxels},
-                  {"sphere_voxels", s.sphereVoxels},   {"materials", s.materials},
-                  {"spheres", s.spheres},              {"sphere_refs", s.sphereRefs},
-                  {"structure_bytes", s.structureBytes}, {"volume_bytes", s.volumeBytes},
-                  {"surface_bytes", s.surfaceBytes},   {"sphere_bytes", s.sphereBytes}};
+    j["scene"] = {{"volume_voxels", s.volumeVoxels},
+                  {"surface_voxels", s.surfaceVoxels},
+                  {"sphere_voxels", s.sphereVoxels},
+                  {"materials", s.materials},
+                  {"spheres", s.spheres},
+                  {"sphere_refs", s.sphereRefs},
+                  {"structure_bytes", s.structureBytes},
+                  {"volume_bytes", s.volumeBytes},
+                  {"surface_bytes", s.surfaceBytes},
+                  {"sphere_bytes", s.sphereBytes}};
   }
   if (r.peer) {
     j["peer"] = {{"name", r.peer->name},

@@ -19,10 +19,10 @@ struct SectionFootprint {
 };
 
 struct PeerFootprint {
-  std::string name;       // e.g. "OpenVDB FloatGrid"
-  uint64_t bytes = 0;     // measured in memory
+  std::string name;    // e.g. "OpenVDB FloatGrid"
+  uint64_t bytes = 0;  // measured in memory
   double bytesPerVoxel = 0;
-  double seconds = 0;     // time to build it
+  double seconds = 0;  // time to build it
   std::string note;
 };
 
@@ -44,20 +44,20 @@ struct FootprintReport {
   uint32_t dims[3] = {0, 0, 0};
   uint32_t brickSize = 0;
   uint64_t voxels = 0;
-  double occupancy = 0;              // stored voxels / grid voxels
+  double occupancy = 0;  // stored voxels / grid voxels
   uint64_t bricks = 0;
   uint64_t bricksOccupied = 0;
   double bricksNonemptyFraction = 0;
-  uint64_t bytesTotal = 0;           // the whole file: header, table, padding, every section
+  uint64_t bytesTotal = 0;  // the whole file: header, table, padding, every section
   double bytesPerVoxel = 0;
   std::vector<SectionFootprint> sections;
-  uint64_t denseSourceBytes = 0;     // dims x source element size
-  double ratioVsDense = 0;           // bytesTotal / denseSourceBytes
+  uint64_t denseSourceBytes = 0;  // dims x source element size
+  double ratioVsDense = 0;        // bytesTotal / denseSourceBytes
   std::string valueType;
   std::string sourceType;
   double valueScale = 1, valueOffset = 0;
-  double valueErrorBound = 0;    // what the stored type guarantees (0: lossless)
-  double valueMaxAbsError = 0;   // measured when the file was written
+  double valueErrorBound = 0;   // what the stored type guarantees (0: lossless)
+  double valueMaxAbsError = 0;  // measured when the file was written
   double valueMaxRelError = 0;
   std::optional<PeerFootprint> peer;
   std::optional<SceneFootprint> scene;  // version 2 files

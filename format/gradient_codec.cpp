@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 #include <numbers>
+#include <vector>
 
 namespace voxlink::format {
 namespace {
@@ -27,7 +27,8 @@ PolarTables makeTables() {
     const double inf = std::numeric_limits<double>::infinity();
     r.cosBoundary[0] = inf;
     r.cosBoundary[kPolarSteps + 1] = -inf;
-    for (int k = 0; k < kPolarSteps; ++k) r.cosBoundary[k + 1] = std::cos((k + 0.5) * pi / kPolarSteps);
+    for (int k = 0; k < kPolarSteps; ++k)
+      r.cosBoundary[k + 1] = std::cos((k + 0.5) * pi / kPolarSteps);
     r.tanBoundary[0] = -inf;
     r.tanBoundary[kAzimuthSteps / 8 + 1] = inf;
     for (int j = 0; j < kAzimuthSteps / 8; ++j)
@@ -64,7 +65,8 @@ inline const PolarTables& tables() { return kTables; }
 // binary search over the boundaries, without its unpredictable branches.
 inline double acosGuess(double x) {  // Abramowitz & Stegun 4.4.45, |error| <= 6.7e-5
   const double a = std::abs(x);
-  const double r = std::sqrt(1.0 - a) * (1.5707288 + a * (-0.2121144 + a * (0.0742610 - 0.0187293 * a)));
+  const double r =
+      std::sqrt(1.0 - a) * (1.5707288 + a * (-0.2121144 + a * (0.0742610 - 0.0187293 * a)));
   return x >= 0 ? r : std::numbers::pi - r;
 }
 
@@ -111,23 +113,28 @@ uint16_t encodeGradient(double x, double y, double z) {
 
 namespace {
 
-
-
 // atan(lo / hi) for 0 <= lo <= hi, hi > 0, to a few float ulps: range reduction about pi/8
 // folded into the one division, then the Cephes atanf minimax polynomial. Branch-free, so
 // loops over it vectorize.
 __attribute__((always_inline)) inline float atanRatio(float lo, float hi) {
-  const bool big = lo > 0.41421356237309505f * hi;  // ratio > tan(pi/8): atan(r) = pi/4 + atan((r-1)/(r+1))
+  const bool big =
+      lo > 0.41421356237309505f * hi;  // ratio > tan(pi/8): atan(r) = pi/4 + atan((r-1)/(r+1))
   const float x = (big ? lo - hi : lo) / (big ? lo + hi : hi);
   const float z = x * x;
-  const float p = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) * z * x + x;
+  const float p = (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
+                   3.33329491539e-1f) *
+                      z * x +
+                  x;
   return big ? 0.78539816339744831f + p : p;
 }
 
-// The encoding loop; the compiler vectorizes it. Both angles come from octant-reduced arctangents (one square root, two divisions per lane):
-// the polar angle as atan2(sqrt(x^2 + y^2), z), the azimuth from the first-octant ratio.
-__attribute__((always_inline)) inline void encodeLoop(const float* __restrict gx, const float* __restrict gy,
-                                                      const float* __restrict gz, uint16_t* __restrict codes, size_t count) {
+// The encoding loop; the compiler vectorizes it. Both angles come from octant-reduced arctangents
+// (one square root, two divisions per lane): the polar angle as atan2(sqrt(x^2 + y^2), z), the
+// azimuth from the first-octant ratio.
+__attribute__((always_inline)) inline void encodeLoop(const float* __restrict gx,
+                                                      const float* __restrict gy,
+                                                      const float* __restrict gz,
+                                                      uint16_t* __restrict codes, size_t count) {
   constexpr float kPi = 3.14159265358979323846f;
   constexpr float kHalfPi = 1.57079632679489662f;
   constexpr float kMaxFloat = std::numeric_limits<float>::max();
@@ -150,7 +157,8 @@ __attribute__((always_inline)) inline void encodeLoop(const float* __restrict gx
     // Azimuth: the first-octant angle, unfolded by the signs and the larger component.
     const float sx = std::abs(x), sy = std::abs(y);
     const float lo = std::min(sx, sy), hi = std::max(sx, sy);
-    int32_t j = static_cast<int32_t>(atanRatio(lo, hi > 0.0f ? hi : 1.0f) * (kAzimuthSteps / (2 * kPi)) + 0.5f);
+    int32_t j = static_cast<int32_t>(
+        atanRatio(lo, hi > 0.0f ? hi : 1.0f) * (kAzimuthSteps / (2 * kPi)) + 0.5f);
     j = std::min(std::max(j, 0), int32_t{kAzimuthSteps / 8});
     int32_t phi = sy > sx ? kAzimuthSteps / 4 - j : j;
     phi = x < 0 ? kAzimuthSteps / 2 - phi : phi;
@@ -164,8 +172,10 @@ __attribute__((always_inline)) inline void encodeLoop(const float* __restrict gx
 // The tail is padded to a full vector so it runs the same vector code, not a scalar epilogue.
 constexpr size_t kTail = 16;
 
-__attribute__((always_inline)) inline void encodeBatchBody(const float* __restrict gx, const float* __restrict gy,
-                                                           const float* __restrict gz, uint16_t* __restrict codes,
+__attribute__((always_inline)) inline void encodeBatchBody(const float* __restrict gx,
+                                                           const float* __restrict gy,
+                                                           const float* __restrict gz,
+                                                           uint16_t* __restrict codes,
                                                            size_t count) {
   const size_t body = count / kTail * kTail, rest = count - body;
   encodeLoop(gx, gy, gz, codes, body);
@@ -179,15 +189,17 @@ __attribute__((always_inline)) inline void encodeBatchBody(const float* __restri
 
 using EncodeBatchFn = void (*)(const float*, const float*, const float*, uint16_t*, size_t);
 
-void encodeBatchPortable(const float* gx, const float* gy, const float* gz, uint16_t* codes, size_t count) {
+void encodeBatchPortable(const float* gx, const float* gy, const float* gz, uint16_t* codes,
+                         size_t count) {
   encodeBatchBody(gx, gy, gz, codes, count);
 }
 
 #if defined(__x86_64__)
 // Explicit ISA lists rather than target_clones("arch=..."): an arch clone may not inline the
 // std:: helpers, which leaves calls in the loop and stops the vectorizer.
-__attribute__((target("avx2,fma"))) void encodeBatchAvx2(const float* gx, const float* gy, const float* gz,
-                                                         uint16_t* codes, size_t count) {
+__attribute__((target("avx2,fma"))) void encodeBatchAvx2(const float* gx, const float* gy,
+                                                         const float* gz, uint16_t* codes,
+                                                         size_t count) {
   encodeBatchBody(gx, gy, gz, codes, count);
 }
 
@@ -201,10 +213,11 @@ std::vector<BatchGradientEncoder> availableEncoders() {
   std::vector<BatchGradientEncoder> list;
 #if defined(__x86_64__)
   __builtin_cpu_init();  // this runs during static initialization, maybe before libgcc's own
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512dq"))
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq"))
     list.push_back({"avx512", encodeBatchAvx512});
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) list.push_back({"avx2", encodeBatchAvx2});
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    list.push_back({"avx2", encodeBatchAvx2});
 #endif
   list.push_back({"portable", encodeBatchPortable});
   return list;
@@ -214,7 +227,8 @@ const EncodeBatchFn encodeBatch = availableEncoders().front().encode;
 
 }  // namespace
 
-void encodeGradients(const float* x, const float* y, const float* z, uint16_t* codes, size_t count) {
+void encodeGradients(const float* x, const float* y, const float* z, uint16_t* codes,
+                     size_t count) {
   encodeBatch(x, y, z, codes, count);
 }
 

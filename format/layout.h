@@ -19,9 +19,9 @@
 namespace voxlink::format {
 
 inline constexpr char kMagic[8] = {'V', 'O', 'X', 'L', 'I', 'N', 'K', '\0'};
-inline constexpr uint16_t kVersionMajor = 1;  // a sparse volume
+inline constexpr uint16_t kVersionMajor = 1;       // a sparse volume
 inline constexpr uint16_t kVersionMajorScene = 2;  // a scene: geometry (+ volume) in one buffer
-inline constexpr uint16_t kVersionMinor = 0;  // readers accept any minor version
+inline constexpr uint16_t kVersionMinor = 0;       // readers accept any minor version
 // Readers accept the majors they know (1 and 2) and refuse later ones: a version 1 reader would
 // draw a version 2 file's geometry voxels as empty volume samples, so the major changed.
 inline constexpr uint32_t kByteOrderMark = 0x01020304u;  // reads 0x04030201 when swapped
@@ -46,42 +46,42 @@ enum HeaderFlags : uint32_t {
   kFlagGradientsInWorldSpace = 1u << 0,  // gradients are d(value)/d(world mm), not per index
 };
 
-struct FileHeader {                // 256 bytes at offset 0
-  char magic[8];                   // 8B (0)    kMagic
-  uint16_t versionMajor;           // 2B (8)    kVersionMajor
-  uint16_t versionMinor;           // 2B (10)   kVersionMinor
-  uint32_t byteOrderMark;          // 4B (12)   kByteOrderMark
-  uint32_t headerBytes;            // 4B (16)   sizeof(FileHeader)
-  uint32_t headerCrc;              // 4B (20)   CRC-32C of the 256 header bytes with this field 0
-  uint64_t sectionTableOffset;     // 8B (24)   byte offset of SectionEntry[sectionCount]
-  uint32_t sectionCount;           // 4B (32)
-  uint32_t brickSize;              // 4B (36)   n: 4, 8, 16 or 32 voxels per brick edge
-  uint32_t dims[3];                // 12B (40)  voxels along x, y, z (the source's dims)
-  uint32_t brickGrid[3];           // 12B (52)  ceil(dims / n) bricks along x, y, z
-  uint8_t predominantAxis;         // 1B (64)   Axis along which rows run (depth axis)
-  uint8_t valueType;               // 1B (65)   StoredType of the VALU section
-  uint8_t gradientCodec;           // 1B (66)   GradientCodec of the GRAD section
-  uint8_t sourceType;              // 1B (67)   ScalarType of the dense source
-  uint32_t flags;                  // 4B (68)   HeaderFlags
-  double spacing[3];               // 24B (72)  world size of a voxel along x, y, z
-  double origin[3];                // 24B (96)  world position of voxel (0,0,0)'s centre
-  double valueScale;               // 8B (120)  source value = stored * valueScale + valueOffset
-  double valueOffset;              // 8B (128)
-  double valueMin;                 // 8B (136)  smallest stored value, in source units
-  double valueMax;                 // 8B (144)  largest stored value, in source units
-  double valueMaxAbsError;         // 8B (152)  max |decoded - source| over stored voxels
-  double valueMaxRelError;         // 8B (160)  max |decoded - source| / |source| (source != 0)
-  uint64_t voxelCount;             // 8B (168)  stored voxels
-  uint64_t occupiedBrickCount;     // 8B (176)  bricks with at least one stored voxel
-  double valueErrorBound;          // 8B (184)  error bound asked for, 0 if none (lossless)
+struct FileHeader {             // 256 bytes at offset 0
+  char magic[8];                // 8B (0)    kMagic
+  uint16_t versionMajor;        // 2B (8)    kVersionMajor
+  uint16_t versionMinor;        // 2B (10)   kVersionMinor
+  uint32_t byteOrderMark;       // 4B (12)   kByteOrderMark
+  uint32_t headerBytes;         // 4B (16)   sizeof(FileHeader)
+  uint32_t headerCrc;           // 4B (20)   CRC-32C of the 256 header bytes with this field 0
+  uint64_t sectionTableOffset;  // 8B (24)   byte offset of SectionEntry[sectionCount]
+  uint32_t sectionCount;        // 4B (32)
+  uint32_t brickSize;           // 4B (36)   n: 4, 8, 16 or 32 voxels per brick edge
+  uint32_t dims[3];             // 12B (40)  voxels along x, y, z (the source's dims)
+  uint32_t brickGrid[3];        // 12B (52)  ceil(dims / n) bricks along x, y, z
+  uint8_t predominantAxis;      // 1B (64)   Axis along which rows run (depth axis)
+  uint8_t valueType;            // 1B (65)   StoredType of the VALU section
+  uint8_t gradientCodec;        // 1B (66)   GradientCodec of the GRAD section
+  uint8_t sourceType;           // 1B (67)   ScalarType of the dense source
+  uint32_t flags;               // 4B (68)   HeaderFlags
+  double spacing[3];            // 24B (72)  world size of a voxel along x, y, z
+  double origin[3];             // 24B (96)  world position of voxel (0,0,0)'s centre
+  double valueScale;            // 8B (120)  source value = stored * valueScale + valueOffset
+  double valueOffset;           // 8B (128)
+  double valueMin;              // 8B (136)  smallest stored value, in source units
+  double valueMax;              // 8B (144)  largest stored value, in source units
+  double valueMaxAbsError;      // 8B (152)  max |decoded - source| over stored voxels
+  double valueMaxRelError;      // 8B (160)  max |decoded - source| / |source| (source != 0)
+  uint64_t voxelCount;          // 8B (168)  stored voxels
+  uint64_t occupiedBrickCount;  // 8B (176)  bricks with at least one stored voxel
+  double valueErrorBound;       // 8B (184)  error bound asked for, 0 if none (lossless)
   // Version 2 (scene) counts; zero in version 1, where these bytes were reserved.
-  uint32_t materialCount;          // 4B (192)  entries of MATL
-  uint32_t sphereCount;            // 4B (196)  entries of SPHR (0: no SPHR, SROF, SRID)
-  uint64_t sphereRefCount;         // 8B (200)  entries of SRID
-  uint64_t surfaceVoxelCount;      // 8B (208)  voxels whose SURF word holds a fragment
-  uint64_t volumeVoxelCount;       // 8B (216)  voxels whose VMSK bit is set
-  uint64_t sphereVoxelCount;       // 8B (224)  voxels whose PMSK bit is set
-  uint8_t reserved[24];            // 24B (232) zero
+  uint32_t materialCount;      // 4B (192)  entries of MATL
+  uint32_t sphereCount;        // 4B (196)  entries of SPHR (0: no SPHR, SROF, SRID)
+  uint64_t sphereRefCount;     // 8B (200)  entries of SRID
+  uint64_t surfaceVoxelCount;  // 8B (208)  voxels whose SURF word holds a fragment
+  uint64_t volumeVoxelCount;   // 8B (216)  voxels whose VMSK bit is set
+  uint64_t sphereVoxelCount;   // 8B (224)  voxels whose PMSK bit is set
+  uint8_t reserved[24];        // 24B (232) zero
 };
 static_assert(sizeof(FileHeader) == 256);
 static_assert(offsetof(FileHeader, sectionTableOffset) == 24);
@@ -131,16 +131,17 @@ enum class SectionId : uint32_t {
 // (B = brick count of the grid, K = occupied bricks, n = brick size.)
 
 inline constexpr std::array<SectionId, 8> kRequiredSections = {
-    SectionId::kMeta,     SectionId::kBrickOccupancy, SectionId::kBrickRank,
-    SectionId::kBrickVoxelBase, SectionId::kRowStart, SectionId::kRowMask,
-    SectionId::kValues,   SectionId::kGradients};
+    SectionId::kMeta,           SectionId::kBrickOccupancy, SectionId::kBrickRank,
+    SectionId::kBrickVoxelBase, SectionId::kRowStart,       SectionId::kRowMask,
+    SectionId::kValues,         SectionId::kGradients};
 
 // Sections every version 2 file has, and those it has when sphereCount > 0. In version 2, VALU
 // and GRAD hold volumeVoxelCount entries (the VMSK slots), not one per voxel.
 inline constexpr std::array<SectionId, 4> kSceneSections = {
     SectionId::kMaterials, SectionId::kVolumeMask, SectionId::kSurfaceMask, SectionId::kSurface};
 inline constexpr std::array<SectionId, 4> kSphereSections = {
-    SectionId::kSpheres, SectionId::kSphereMask, SectionId::kSphereRefStart, SectionId::kSphereRefs};
+    SectionId::kSpheres, SectionId::kSphereMask, SectionId::kSphereRefStart,
+    SectionId::kSphereRefs};
 
 std::string_view sectionName(SectionId id);  // "META", ...
 
@@ -156,35 +157,35 @@ constexpr uint16_t surfaceNormal(uint32_t word) { return static_cast<uint16_t>(w
 constexpr uint16_t surfaceMaterial(uint32_t word) { return static_cast<uint16_t>(word >> 16); }
 inline constexpr uint32_t kMaxMaterials = 0xFFFF;  // material 0xFFFF is never used
 
-struct MaterialRecord {      // 64 bytes; linear RGB, every value finite
-  float color[3];            // 12B (0)   diffuse colour, [0, 1]
-  float opacity;             // 4B (12)   [0, 1]; 1 = opaque
-  float emission[3];         // 12B (16)  >= 0, added to the shaded colour
-  float reflectivity;        // 4B (28)   [0, 1]: share of a hit's light that is mirrored
-  float transmission;        // 4B (32)   [0, 1]: share that is refracted
-  float refractiveIndex;     // 4B (36)   >= 1 when transmission > 0
-  float specular;            // 4B (40)   [0, 1]: Phong highlight strength
-  float shininess;           // 4B (44)   Phong exponent, >= 0
-  uint32_t reserved[4];      // 16B (48)  zero
+struct MaterialRecord {   // 64 bytes; linear RGB, every value finite
+  float color[3];         // 12B (0)   diffuse colour, [0, 1]
+  float opacity;          // 4B (12)   [0, 1]; 1 = opaque
+  float emission[3];      // 12B (16)  >= 0, added to the shaded colour
+  float reflectivity;     // 4B (28)   [0, 1]: share of a hit's light that is mirrored
+  float transmission;     // 4B (32)   [0, 1]: share that is refracted
+  float refractiveIndex;  // 4B (36)   >= 1 when transmission > 0
+  float specular;         // 4B (40)   [0, 1]: Phong highlight strength
+  float shininess;        // 4B (44)   Phong exponent, >= 0
+  uint32_t reserved[4];   // 16B (48)  zero
 };
 static_assert(sizeof(MaterialRecord) == 64);
 static_assert(offsetof(MaterialRecord, reflectivity) == 28);
 
-struct SphereRecord {        // 32 bytes; an implicit sphere in world units
-  float center[3];           // 12B (0)
-  float radius;              // 4B (12)   > 0
-  uint32_t material;         // 4B (16)   < materialCount
-  uint32_t reserved[3];      // 12B (20)  zero
+struct SphereRecord {    // 32 bytes; an implicit sphere in world units
+  float center[3];       // 12B (0)
+  float radius;          // 4B (12)   > 0
+  uint32_t material;     // 4B (16)   < materialCount
+  uint32_t reserved[3];  // 12B (20)  zero
 };
 static_assert(sizeof(SphereRecord) == 32);
 
-struct SectionEntry {    // 32 bytes; the table is SectionEntry[sectionCount]
-  uint32_t id;           // 4B (0)   SectionId
-  uint32_t elementBytes; // 4B (4)   size of one element: 1 (META, u8 values), 2, 4
-  uint64_t offset;       // 8B (8)   byte offset from the start of the file, kSectionAlignment
-  uint64_t bytes;        // 8B (16)  payload bytes, a multiple of 4 (zero padding included)
-  uint32_t crc;          // 4B (24)  CRC-32C of the payload bytes
-  uint32_t reserved;     // 4B (28)  zero
+struct SectionEntry {     // 32 bytes; the table is SectionEntry[sectionCount]
+  uint32_t id;            // 4B (0)   SectionId
+  uint32_t elementBytes;  // 4B (4)   size of one element: 1 (META, u8 values), 2, 4
+  uint64_t offset;        // 8B (8)   byte offset from the start of the file, kSectionAlignment
+  uint64_t bytes;         // 8B (16)  payload bytes, a multiple of 4 (zero padding included)
+  uint32_t crc;           // 4B (24)  CRC-32C of the payload bytes
+  uint32_t reserved;      // 4B (28)  zero
 };
 static_assert(sizeof(SectionEntry) == 32);
 static_assert(offsetof(SectionEntry, offset) == 8);

@@ -43,7 +43,8 @@ Result<MappedFile> MappedFile::open(const std::string& path) {
     if (p == MAP_FAILED) {
       const int e = errno;
       ::close(fd);
-      return makeError(ErrorCode::kIo, path, ": cannot map ", file.size_, " bytes: ", std::strerror(e));
+      return makeError(ErrorCode::kIo, path, ": cannot map ", file.size_,
+                       " bytes: ", std::strerror(e));
     }
     file.data_ = static_cast<const uint8_t*>(p);
   }

@@ -15,14 +15,22 @@ bool isSigned(ScalarType type) {
 
 std::string_view scalarName(ScalarType type) {
   switch (type) {
-    case ScalarType::kU8: return "u8";
-    case ScalarType::kI8: return "i8";
-    case ScalarType::kU16: return "u16";
-    case ScalarType::kI16: return "i16";
-    case ScalarType::kU32: return "u32";
-    case ScalarType::kI32: return "i32";
-    case ScalarType::kF32: return "f32";
-    case ScalarType::kF64: return "f64";
+    case ScalarType::kU8:
+      return "u8";
+    case ScalarType::kI8:
+      return "i8";
+    case ScalarType::kU16:
+      return "u16";
+    case ScalarType::kI16:
+      return "i16";
+    case ScalarType::kU32:
+      return "u32";
+    case ScalarType::kI32:
+      return "i32";
+    case ScalarType::kF32:
+      return "f32";
+    case ScalarType::kF64:
+      return "f64";
   }
   return "?";
 }
@@ -39,20 +47,28 @@ bool isValidScalarType(uint8_t raw) { return raw >= 1 && raw <= 8; }
 
 size_t storedSize(StoredType type) {
   switch (type) {
-    case StoredType::kU8: return 1;
-    case StoredType::kU16: return 2;
-    case StoredType::kF16: return 2;
-    case StoredType::kF32: return 4;
+    case StoredType::kU8:
+      return 1;
+    case StoredType::kU16:
+      return 2;
+    case StoredType::kF16:
+      return 2;
+    case StoredType::kF32:
+      return 4;
   }
   return 0;
 }
 
 std::string_view storedName(StoredType type) {
   switch (type) {
-    case StoredType::kU8: return "u8";
-    case StoredType::kU16: return "u16";
-    case StoredType::kF16: return "f16";
-    case StoredType::kF32: return "f32";
+    case StoredType::kU8:
+      return "u8";
+    case StoredType::kU16:
+      return "u16";
+    case StoredType::kF16:
+      return "f16";
+    case StoredType::kF32:
+      return "f32";
   }
   return "?";
 }

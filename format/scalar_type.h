@@ -31,28 +31,60 @@ bool isValidScalarType(uint8_t raw);
 template <class F>
 decltype(auto) dispatchScalar(ScalarType type, F&& f) {
   switch (type) {
-    case ScalarType::kU8: return f(uint8_t{});
-    case ScalarType::kI8: return f(int8_t{});
-    case ScalarType::kU16: return f(uint16_t{});
-    case ScalarType::kI16: return f(int16_t{});
-    case ScalarType::kU32: return f(uint32_t{});
-    case ScalarType::kI32: return f(int32_t{});
-    case ScalarType::kF32: return f(float{});
-    case ScalarType::kF64: break;
+    case ScalarType::kU8:
+      return f(uint8_t{});
+    case ScalarType::kI8:
+      return f(int8_t{});
+    case ScalarType::kU16:
+      return f(uint16_t{});
+    case ScalarType::kI16:
+      return f(int16_t{});
+    case ScalarType::kU32:
+      return f(uint32_t{});
+    case ScalarType::kI32:
+      return f(int32_t{});
+    case ScalarType::kF32:
+      return f(float{});
+    case ScalarType::kF64:
+      break;
   }
   return f(double{});
 }
 
 template <class T>
 constexpr ScalarType scalarTypeOf();
-template <> constexpr ScalarType scalarTypeOf<uint8_t>() { return ScalarType::kU8; }
-template <> constexpr ScalarType scalarTypeOf<int8_t>() { return ScalarType::kI8; }
-template <> constexpr ScalarType scalarTypeOf<uint16_t>() { return ScalarType::kU16; }
-template <> constexpr ScalarType scalarTypeOf<int16_t>() { return ScalarType::kI16; }
-template <> constexpr ScalarType scalarTypeOf<uint32_t>() { return ScalarType::kU32; }
-template <> constexpr ScalarType scalarTypeOf<int32_t>() { return ScalarType::kI32; }
-template <> constexpr ScalarType scalarTypeOf<float>() { return ScalarType::kF32; }
-template <> constexpr ScalarType scalarTypeOf<double>() { return ScalarType::kF64; }
+template <>
+constexpr ScalarType scalarTypeOf<uint8_t>() {
+  return ScalarType::kU8;
+}
+template <>
+constexpr ScalarType scalarTypeOf<int8_t>() {
+  return ScalarType::kI8;
+}
+template <>
+constexpr ScalarType scalarTypeOf<uint16_t>() {
+  return ScalarType::kU16;
+}
+template <>
+constexpr ScalarType scalarTypeOf<int16_t>() {
+  return ScalarType::kI16;
+}
+template <>
+constexpr ScalarType scalarTypeOf<uint32_t>() {
+  return ScalarType::kU32;
+}
+template <>
+constexpr ScalarType scalarTypeOf<int32_t>() {
+  return ScalarType::kI32;
+}
+template <>
+constexpr ScalarType scalarTypeOf<float>() {
+  return ScalarType::kF32;
+}
+template <>
+constexpr ScalarType scalarTypeOf<double>() {
+  return ScalarType::kF64;
+}
 
 // How voxel values are held in the file's VALU section. Written to files: never renumber.
 enum class StoredType : uint8_t {

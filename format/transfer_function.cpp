@@ -85,42 +85,57 @@ Result<TransferFunction> parseTransferFunction(const std::string& text, const st
     return makeError(ErrorCode::kInvalidArgument, where, ": not valid JSON: ", e.what());
   }
   if (!j.is_object() || !j.contains("opacity"))
-    return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity': missing (a VoxLink transfer function is an object with 'opacity' and 'color' point lists)");
+    return makeError(ErrorCode::kInvalidArgument, where,
+                     ": field 'opacity': missing (a VoxLink transfer function is an object with "
+                     "'opacity' and 'color' point lists)");
   TransferFunction tf;
   tf.name = j.value("name", "");
   const auto& op = j["opacity"];
   if (!op.is_array() || op.empty())
-    return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity': expected a non-empty array of [value, alpha]");
+    return makeError(ErrorCode::kInvalidArgument, where,
+                     ": field 'opacity': expected a non-empty array of [value, alpha]");
   for (size_t i = 0; i < op.size(); ++i) {
     const auto& p = op[i];
     if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number())
-      return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i, "]': expected [value, alpha]");
+      return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i,
+                       "]': expected [value, alpha]");
     const double v = p[0].get<double>(), a = p[1].get<double>();
     if (!std::isfinite(v) || !(a >= 0 && a <= 1))
-      return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i, "]': value must be finite and alpha in [0, 1], got [", v, ", ", a, "]");
+      return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i,
+                       "]': value must be finite and alpha in [0, 1], got [", v, ", ", a, "]");
     if (!tf.opacity.empty() && v < tf.opacity.back().value)
-      return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i, "]': values must not decrease (", v, " after ", tf.opacity.back().value, ")");
+      return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i,
+                       "]': values must not decrease (", v, " after ", tf.opacity.back().value,
+                       ")");
     tf.opacity.push_back({v, a});
   }
   if (j.contains("color")) {
     const auto& col = j["color"];
     if (!col.is_array())
-      return makeError(ErrorCode::kInvalidArgument, where, ": field 'color': expected an array of [value, r, g, b]");
+      return makeError(ErrorCode::kInvalidArgument, where,
+                       ": field 'color': expected an array of [value, r, g, b]");
     for (size_t i = 0; i < col.size(); ++i) {
       const auto& p = col[i];
       if (!p.is_array() || p.size() != 4)
-        return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i, "]': expected [value, r, g, b]");
+        return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i,
+                         "]': expected [value, r, g, b]");
       ColorPoint c{};
       for (size_t k = 0; k < 4; ++k) {
         if (!p[k].is_number())
-          return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i, "]': element ", k, " is not a number");
+          return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i, "]': element ",
+                           k, " is not a number");
         const double x = p[k].get<double>();
         if (!std::isfinite(x) || (k > 0 && (x < 0 || x > 1)))
-          return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i, "]': value must be finite and r, g, b in [0, 1]");
-        if (k == 0) c.value = x; else c.rgb[k - 1] = x;
+          return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i,
+                           "]': value must be finite and r, g, b in [0, 1]");
+        if (k == 0)
+          c.value = x;
+        else
+          c.rgb[k - 1] = x;
       }
       if (!tf.color.empty() && c.value < tf.color.back().value)
-        return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i, "]': values must not decrease");
+        return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i,
+                         "]': values must not decrease");
       tf.color.push_back(c);
     }
   }
@@ -144,7 +159,8 @@ std::string transferFunctionJson(const TransferFunction& tf) {
   j["opacity"] = nlohmann::ordered_json::array();
   for (const OpacityPoint& p : tf.opacity) j["opacity"].push_back({p.value, p.alpha});
   j["color"] = nlohmann::ordered_json::array();
-  for (const ColorPoint& c : tf.color) j["color"].push_back({c.value, c.rgb[0], c.rgb[1], c.rgb[2]});
+  for (const ColorPoint& c : tf.color)
+    j["color"].push_back({c.value, c.rgb[0], c.rgb[1], c.rgb[2]});
   return j.dump(2);
 }
 

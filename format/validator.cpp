@@ -20,7 +20,8 @@ Status checkPadding(const VoxLinkFile& f, SectionId id, uint64_t used) {
   auto bytes = f.sectionBytes(id);
   for (uint64_t i = used; i < bytes.size(); ++i)
     if (bytes[i] != 0)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id), ": padding byte ", i, " is not zero");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id),
+                       ": padding byte ", i, " is not zero");
   return Status::ok();
 }
 
@@ -29,7 +30,9 @@ Status checkChecksums(const VoxLinkFile& f, ValidationReport& report) {
     auto bytes = f.sectionBytes(e);
     const uint32_t crc = crc32c(bytes.data(), bytes.size());
     if (crc != e.crc)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(static_cast<SectionId>(e.id)), ".crc: checksum mismatch (stored 0x", std::hex, e.crc, ", computed 0x", crc, ")");
+      return makeError(
+          ErrorCode::kCorrupt, f.path(), ": section ", sectionName(static_cast<SectionId>(e.id)),
+          ".crc: checksum mismatch (stored 0x", std::hex, e.crc, ", computed 0x", crc, ")");
     report.bytesChecked += bytes.size();
   }
   return Status::ok();
@@ -42,14 +45,18 @@ Status checkBrickLevel(const VoxLinkFile& f) {
   uint64_t total = 0;
   for (size_t w = 0; w < occupancy.size(); ++w) {
     if (rank[w] != total)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section BRNK: word ", w, " is ", rank[w], ", expected ", total, " occupied bricks before it");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section BRNK: word ", w, " is ", rank[w],
+                       ", expected ", total, " occupied bricks before it");
     total += static_cast<uint64_t>(std::popcount(occupancy[w]));
   }
   const uint64_t tailBits = occupancy.size() * 32 - bricks;
   if (tailBits > 0 && (occupancy.back() >> (32 - tailBits)) != 0)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section BOCC: bits set beyond the last of ", bricks, " bricks");
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section BOCC: bits set beyond the last of ",
+                     bricks, " bricks");
   if (total != f.occupiedBrickCount())
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section BOCC: ", total, " bricks marked occupied, header.occupiedBrickCount says ", f.occupiedBrickCount());
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section BOCC: ", total,
+                     " bricks marked occupied, header.occupiedBrickCount says ",
+                     f.occupiedBrickCount());
   return Status::ok();
 }
 
@@ -63,26 +70,33 @@ Status checkBricks(const VoxLinkFile& f, ValidationReport& report) {
   const auto occupancy = f.occupancyWords();
   const AxisFrame frame = axisFrame(f.predominantAxis());
   if (base[0] != 0)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section BVOX: entry 0 is ", base[0], ", expected 0");
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section BVOX: entry 0 is ", base[0],
+                     ", expected 0");
   if (base[f.occupiedBrickCount()] != f.voxelCount())
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section BVOX: last entry is ", base[f.occupiedBrickCount()], ", header.voxelCount is ", f.voxelCount());
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section BVOX: last entry is ",
+                     base[f.occupiedBrickCount()], ", header.voxelCount is ", f.voxelCount());
   std::vector<uint16_t> expectedRows(uint64_t{n} * n);
   uint64_t k = 0;
   for (uint64_t b = 0; b < f.gridBrickCount(); ++b) {
     if (((occupancy[b >> 5] >> (b & 31)) & 1u) == 0) continue;
     if (base[k + 1] <= base[k])
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section BVOX: occupied brick ", k, " (brick ", b, ") holds no voxels");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section BVOX: occupied brick ", k,
+                       " (brick ", b, ") holds no voxels");
     const uint32_t* mask = masks.data() + k * maskWords;
     const uint32_t count = rowStartsFromMasks(mask, n, expectedRows.data());
     if (count != base[k + 1] - base[k])
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section MASK: brick ", b, " has ", count, " voxel bits, BVOX gives it ", base[k + 1] - base[k], " voxels");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section MASK: brick ", b, " has ", count,
+                       " voxel bits, BVOX gives it ", base[k + 1] - base[k], " voxels");
     if (std::memcmp(expectedRows.data(), rows.data() + k * n * n, expectedRows.size() * 2) != 0)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section ROWS: row starts of brick ", b, " disagree with its MASK bits");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section ROWS: row starts of brick ", b,
+                       " disagree with its MASK bits");
     // Cells outside the volume (edge bricks) must be empty.
-    const uint32_t origin[3] = {static_cast<uint32_t>(b % h.brickGrid[0]) * n,
-                                static_cast<uint32_t>(b / h.brickGrid[0] % h.brickGrid[1]) * n,
-                                static_cast<uint32_t>(b / (uint64_t{h.brickGrid[0]} * h.brickGrid[1])) * n};
-    const uint32_t extent[3] = {std::min(n, h.dims[0] - origin[0]), std::min(n, h.dims[1] - origin[1]),
+    const uint32_t origin[3] = {
+        static_cast<uint32_t>(b % h.brickGrid[0]) * n,
+        static_cast<uint32_t>(b / h.brickGrid[0] % h.brickGrid[1]) * n,
+        static_cast<uint32_t>(b / (uint64_t{h.brickGrid[0]} * h.brickGrid[1])) * n};
+    const uint32_t extent[3] = {std::min(n, h.dims[0] - origin[0]),
+                                std::min(n, h.dims[1] - origin[1]),
                                 std::min(n, h.dims[2] - origin[2])};
     if (extent[0] < n || extent[1] < n || extent[2] < n) {
       for (uint32_t row = 0; row < n * n; ++row) {
@@ -91,7 +105,8 @@ Status checkBricks(const VoxLinkFile& f, ValidationReport& report) {
         const bool rowInside = row % n < extent[frame.u] && row / n < extent[frame.v];
         const uint32_t depthLimit = extent[frame.w] == 32 ? ~0u : (1u << extent[frame.w]) - 1u;
         if (!rowInside || (bits & ~depthLimit))
-          return makeError(ErrorCode::kCorrupt, f.path(), ": section MASK: brick ", b, " row ", row, " marks voxels outside the volume");
+          return makeError(ErrorCode::kCorrupt, f.path(), ": section MASK: brick ", b, " row ", row,
+                           " marks voxels outside the volume");
       }
     }
     ++k;
@@ -105,15 +120,19 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
   const auto grads = f.gradientCodes();
   for (uint64_t i = 0; i < grads.size(); ++i)
     if (!isCanonicalGradientCode(grads[i]))
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section GRAD: voxel ", i, " has the reserved or non-canonical code 0x", std::hex, grads[i]);
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section GRAD: voxel ", i,
+                       " has the reserved or non-canonical code 0x", std::hex, grads[i]);
   const double slack = 1e-9 * std::max(1.0, std::max(std::abs(h.valueMin), std::abs(h.valueMax)));
   const uint64_t slots = sampleSlots(h);
   for (uint64_t i = 0; i < slots; ++i) {
     const double v = f.value(i);
     if (!std::isfinite(v))
-      return makeError(ErrorCode::kNonFinite, f.path(), ": section VALU: voxel ", i, " is not finite");
+      return makeError(ErrorCode::kNonFinite, f.path(), ": section VALU: voxel ", i,
+                       " is not finite");
     if (v < h.valueMin - slack || v > h.valueMax + slack)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section VALU: voxel ", i, " = ", v, " lies outside header.valueMin/valueMax [", h.valueMin, ", ", h.valueMax, "]");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section VALU: voxel ", i, " = ", v,
+                       " lies outside header.valueMin/valueMax [", h.valueMin, ", ", h.valueMax,
+                       "]");
   }
   report.voxelsChecked = f.voxelCount();
   VOXLINK_RETURN_IF_ERROR(checkPadding(f, SectionId::kValues, slots * storedSize(f.valueType())));
@@ -129,7 +148,8 @@ Status checkMaterials(const VoxLinkFile& f) {
   for (size_t m = 0; m < materials.size(); ++m) {
     const MaterialRecord& r = materials[m];
     auto bad = [&](const char* field) {
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section MATL: material ", m, ".", field, " is out of range or not finite");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section MATL: material ", m, ".", field,
+                       " is out of range or not finite");
     };
     for (int c = 0; c < 3; ++c) {
       if (!finiteIn(r.color[c], 0, 1)) return bad("color");
@@ -152,13 +172,17 @@ Status checkSpheres(const VoxLinkFile& f) {
   const auto spheres = f.spheres();
   for (size_t s = 0; s < spheres.size(); ++s) {
     const SphereRecord& r = spheres[s];
-    const bool finite = std::isfinite(r.center[0]) && std::isfinite(r.center[1]) && std::isfinite(r.center[2]);
+    const bool finite =
+        std::isfinite(r.center[0]) && std::isfinite(r.center[1]) && std::isfinite(r.center[2]);
     if (!finite || !(std::isfinite(r.radius) && r.radius > 0))
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, " has a centre or radius that is not finite and positive");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s,
+                       " has a centre or radius that is not finite and positive");
     if (r.material >= f.header().materialCount)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, ".material ", r.material, " is not in the table of ", f.header().materialCount);
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, ".material ",
+                       r.material, " is not in the table of ", f.header().materialCount);
     if (r.reserved[0] || r.reserved[1] || r.reserved[2])
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s, ".reserved is not zero");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SPHR: sphere ", s,
+                       ".reserved is not zero");
   }
   return Status::ok();
 }
@@ -169,10 +193,12 @@ Status checkMask(const VoxLinkFile& f, SectionId id, std::span<const uint32_t> m
   uint64_t bits = 0;
   for (uint32_t w : mask) bits += static_cast<uint64_t>(std::popcount(w));
   if (bits != count)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id), ": ", bits, " voxels marked, header.", countName, " says ", count);
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id), ": ", bits,
+                     " voxels marked, header.", countName, " says ", count);
   const uint64_t tailBits = mask.size() * 32 - f.voxelCount();
   if (tailBits > 0 && (mask.back() >> (32 - tailBits)) != 0)
-    return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id), ": bits set beyond the last of ", f.voxelCount(), " voxels");
+    return makeError(ErrorCode::kCorrupt, f.path(), ": section ", sectionName(id),
+                     ": bits set beyond the last of ", f.voxelCount(), " voxels");
   return Status::ok();
 }
 
@@ -181,39 +207,55 @@ Status checkMask(const VoxLinkFile& f, SectionId id, std::span<const uint32_t> m
 Status checkSceneVoxels(const VoxLinkFile& f) {
   const FileHeader& h = f.header();
   const bool spheres = h.sphereCount > 0;
-  VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kVolumeMask, f.volumeMaskWords(), h.volumeVoxelCount, "volumeVoxelCount"));
-  VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kSurfaceMask, f.surfaceMaskWords(), h.surfaceVoxelCount, "surfaceVoxelCount"));
+  VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kVolumeMask, f.volumeMaskWords(),
+                                    h.volumeVoxelCount, "volumeVoxelCount"));
+  VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kSurfaceMask, f.surfaceMaskWords(),
+                                    h.surfaceVoxelCount, "surfaceVoxelCount"));
   if (spheres)
-    VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kSphereMask, f.sphereMaskWords(), h.sphereVoxelCount, "sphereVoxelCount"));
+    VOXLINK_RETURN_IF_ERROR(checkMask(f, SectionId::kSphereMask, f.sphereMaskWords(),
+                                      h.sphereVoxelCount, "sphereVoxelCount"));
   const auto surface = f.surfaceWords();
   for (uint64_t s = 0; s < h.surfaceVoxelCount; ++s) {
     const uint32_t word = surface[s];
     if (surfaceMaterial(word) >= h.materialCount)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: entry ", s, " names material ", surfaceMaterial(word), " of ", h.materialCount);
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: entry ", s,
+                       " names material ", surfaceMaterial(word), " of ", h.materialCount);
     if (surfaceNormal(word) == kZeroGradient || !isCanonicalGradientCode(surfaceNormal(word)))
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: entry ", s, " has the reserved or non-canonical normal code 0x", std::hex, surfaceNormal(word));
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SURF: entry ", s,
+                       " has the reserved or non-canonical normal code 0x", std::hex,
+                       surfaceNormal(word));
   }
   if (spheres) {
     const auto refStart = f.sphereRefStarts();
     const auto refs = f.sphereRefs();
     if (refStart[0] != 0 || refStart[h.sphereVoxelCount] != h.sphereRefCount)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: first/last entries ", refStart[0], "/", refStart[h.sphereVoxelCount], " (expected 0/", h.sphereRefCount, ")");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: first/last entries ",
+                       refStart[0], "/", refStart[h.sphereVoxelCount], " (expected 0/",
+                       h.sphereRefCount, ")");
     for (uint64_t s = 0; s < h.sphereVoxelCount; ++s) {
       const uint32_t begin = refStart[s], end = refStart[s + 1];
       if (end <= begin || end > h.sphereRefCount)
-        return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: entry ", s, " references [", begin, ", ", end, ") of ", h.sphereRefCount, " (a marked voxel names at least one sphere)");
+        return makeError(ErrorCode::kCorrupt, f.path(), ": section SROF: entry ", s,
+                         " references [", begin, ", ", end, ") of ", h.sphereRefCount,
+                         " (a marked voxel names at least one sphere)");
       for (uint32_t r = begin; r < end; ++r)
         if (refs[r] >= h.sphereCount || (r > begin && refs[r] <= refs[r - 1]))
-          return makeError(ErrorCode::kCorrupt, f.path(), ": section SRID: entry ", r, " names sphere ", refs[r], " (not ascending, or not in the table of ", h.sphereCount, ")");
+          return makeError(ErrorCode::kCorrupt, f.path(), ": section SRID: entry ", r,
+                           " names sphere ", refs[r], " (not ascending, or not in the table of ",
+                           h.sphereCount, ")");
     }
   }
-  const auto volume = f.volumeMaskWords(), surfaceMask = f.surfaceMaskWords(), sphereMask = f.sphereMaskWords();
+  const auto volume = f.volumeMaskWords(), surfaceMask = f.surfaceMaskWords(),
+             sphereMask = f.sphereMaskWords();
   for (size_t w = 0; w < volume.size(); ++w) {
-    const uint64_t first = uint64_t{w} * 32, inWord = std::min<uint64_t>(32, f.voxelCount() - first);
+    const uint64_t first = uint64_t{w} * 32,
+                   inWord = std::min<uint64_t>(32, f.voxelCount() - first);
     const uint32_t present = (inWord == 32 ? ~0u : (1u << inWord) - 1u);
     const uint32_t stored = volume[w] | surfaceMask[w] | (spheres ? sphereMask[w] : 0u);
     if ((stored & present) != present)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": sections VMSK/SMSK/PMSK: voxel ", first + std::countr_one(stored), " stores nothing (no volume sample, surface or sphere)");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": sections VMSK/SMSK/PMSK: voxel ",
+                       first + std::countr_one(stored),
+                       " stores nothing (no volume sample, surface or sphere)");
   }
   return Status::ok();
 }
@@ -238,14 +280,17 @@ Result<ValidationReport> validateFile(const VoxLinkFile& f) {
   VOXLINK_RETURN_IF_ERROR(checkChecksums(f, report));
   for (size_t i = 0; i < sizeof(f.header().reserved); ++i)
     if (f.header().reserved[i] != 0)
-      return makeError(ErrorCode::kCorrupt, f.path(), ": header.reserved: byte ", i, " is not zero");
+      return makeError(ErrorCode::kCorrupt, f.path(), ": header.reserved: byte ", i,
+                       " is not zero");
   if (f.voxelCount() > 0 && !(f.header().valueMin <= f.header().valueMax))
-    return makeError(ErrorCode::kCorrupt, f.path(), ": header.valueMin/valueMax: [", f.header().valueMin, ", ", f.header().valueMax, "] is not a range");
+    return makeError(ErrorCode::kCorrupt, f.path(), ": header.valueMin/valueMax: [",
+                     f.header().valueMin, ", ", f.header().valueMax, "] is not a range");
   VOXLINK_RETURN_IF_ERROR(checkBrickLevel(f));
   VOXLINK_RETURN_IF_ERROR(checkBricks(f, report));
   VOXLINK_RETURN_IF_ERROR(checkScene(f));
   VOXLINK_RETURN_IF_ERROR(checkVoxels(f, report));
-  const nlohmann::json meta = nlohmann::json::parse(f.metaJson(), nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json meta =
+      nlohmann::json::parse(f.metaJson(), nullptr, /*allow_exceptions=*/false);
   if (!meta.is_object())
     return makeError(ErrorCode::kCorrupt, f.path(), ": section META: not a JSON object");
   return report;

@@ -7,7 +7,9 @@
 namespace voxlink::format {
 namespace {
 
-bool empty(const ValueInterval& i) { return i.lo > i.hi || (i.lo == i.hi && (i.loOpen || i.hiOpen)); }
+bool empty(const ValueInterval& i) {
+  return i.lo > i.hi || (i.lo == i.hi && (i.loOpen || i.hiOpen));
+}
 
 }  // namespace
 
@@ -25,9 +27,15 @@ std::string describeIntervals(const std::vector<ValueInterval>& set) {
     const ValueInterval& i = set[k];
     if (k) out << " u ";
     out << (i.loOpen || std::isinf(i.lo) ? '(' : '[');
-    if (std::isinf(i.lo)) out << "-inf"; else out << i.lo;
+    if (std::isinf(i.lo))
+      out << "-inf";
+    else
+      out << i.lo;
     out << ", ";
-    if (std::isinf(i.hi)) out << "inf"; else out << i.hi;
+    if (std::isinf(i.hi))
+      out << "inf";
+    else
+      out << i.hi;
     out << (i.hiOpen || std::isinf(i.hi) ? ')' : ']');
   }
   return out.str();
@@ -77,12 +85,18 @@ std::vector<ValueInterval> intersectIntervals(const std::vector<ValueInterval>& 
   for (const ValueInterval& x : a)
     for (const ValueInterval& y : b) {
       ValueInterval r;
-      if (x.lo > y.lo) r.lo = x.lo, r.loOpen = x.loOpen;
-      else if (y.lo > x.lo) r.lo = y.lo, r.loOpen = y.loOpen;
-      else r.lo = x.lo, r.loOpen = x.loOpen || y.loOpen;
-      if (x.hi < y.hi) r.hi = x.hi, r.hiOpen = x.hiOpen;
-      else if (y.hi < x.hi) r.hi = y.hi, r.hiOpen = y.hiOpen;
-      else r.hi = x.hi, r.hiOpen = x.hiOpen || y.hiOpen;
+      if (x.lo > y.lo)
+        r.lo = x.lo, r.loOpen = x.loOpen;
+      else if (y.lo > x.lo)
+        r.lo = y.lo, r.loOpen = y.loOpen;
+      else
+        r.lo = x.lo, r.loOpen = x.loOpen || y.loOpen;
+      if (x.hi < y.hi)
+        r.hi = x.hi, r.hiOpen = x.hiOpen;
+      else if (y.hi < x.hi)
+        r.hi = y.hi, r.hiOpen = y.hiOpen;
+      else
+        r.hi = x.hi, r.hiOpen = x.hiOpen || y.hiOpen;
       if (!empty(r)) out.push_back(r);
     }
   return mergeIntervals(std::move(out));

@@ -20,24 +20,34 @@ uint64_t headerCrcOf(const FileHeader& header) {
 // The version 2 counts: zero in version 1; in version 2 bounded by the voxel count.
 Status checkSceneCounts(const FileHeader& h, const std::string& where) {
   if (h.versionMajor == kVersionMajor) {
-    if (h.materialCount || h.sphereCount || h.sphereRefCount || h.surfaceVoxelCount || h.volumeVoxelCount ||
-        h.sphereVoxelCount)
-      return makeError(ErrorCode::kCorrupt, where, ": header.materialCount..sphereVoxelCount: not zero in a version 1 file");
+    if (h.materialCount || h.sphereCount || h.sphereRefCount || h.surfaceVoxelCount ||
+        h.volumeVoxelCount || h.sphereVoxelCount)
+      return makeError(ErrorCode::kCorrupt, where,
+                       ": header.materialCount..sphereVoxelCount: not zero in a version 1 file");
     return Status::ok();
   }
   if (h.materialCount > kMaxMaterials)
-    return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: ", h.materialCount, " exceeds ", kMaxMaterials);
-  if (h.surfaceVoxelCount > h.voxelCount || h.volumeVoxelCount > h.voxelCount || h.sphereVoxelCount > h.voxelCount)
-    return makeError(ErrorCode::kCorrupt, where, ": header.surfaceVoxelCount/volumeVoxelCount/sphereVoxelCount: ", h.surfaceVoxelCount, "/", h.volumeVoxelCount, "/", h.sphereVoxelCount, " exceed header.voxelCount ", h.voxelCount);
+    return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: ", h.materialCount,
+                     " exceeds ", kMaxMaterials);
+  if (h.surfaceVoxelCount > h.voxelCount || h.volumeVoxelCount > h.voxelCount ||
+      h.sphereVoxelCount > h.voxelCount)
+    return makeError(
+        ErrorCode::kCorrupt, where,
+        ": header.surfaceVoxelCount/volumeVoxelCount/sphereVoxelCount: ", h.surfaceVoxelCount, "/",
+        h.volumeVoxelCount, "/", h.sphereVoxelCount, " exceed header.voxelCount ", h.voxelCount);
   if (h.sphereCount == 0 && h.sphereVoxelCount != 0)
-    return makeError(ErrorCode::kCorrupt, where, ": header.sphereVoxelCount: ", h.sphereVoxelCount, " voxels reference no spheres");
+    return makeError(ErrorCode::kCorrupt, where, ": header.sphereVoxelCount: ", h.sphereVoxelCount,
+                     " voxels reference no spheres");
   if (h.surfaceVoxelCount > 0 && h.materialCount == 0)
-    return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: 0, but ", h.surfaceVoxelCount, " surface voxels need materials");
+    return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: 0, but ",
+                     h.surfaceVoxelCount, " surface voxels need materials");
   if (h.sphereCount == 0 && h.sphereRefCount != 0)
-    return makeError(ErrorCode::kCorrupt, where, ": header.sphereRefCount: ", h.sphereRefCount, " references to no spheres");
+    return makeError(ErrorCode::kCorrupt, where, ": header.sphereRefCount: ", h.sphereRefCount,
+                     " references to no spheres");
   // Every sphere reference names a sphere once per voxel.
   if (h.sphereRefCount > h.voxelCount * uint64_t{h.sphereCount} || h.sphereRefCount > kMaxVoxels)
-    return makeError(ErrorCode::kCorrupt, where, ": header.sphereRefCount: ", h.sphereRefCount, " is more than the voxels and spheres allow");
+    return makeError(ErrorCode::kCorrupt, where, ": header.sphereRefCount: ", h.sphereRefCount,
+                     " is more than the voxels and spheres allow");
   return Status::ok();
 }
 
@@ -45,35 +55,57 @@ Status checkSceneCounts(const FileHeader& h, const std::string& where) {
 
 std::string_view sectionName(SectionId id) {
   switch (id) {
-    case SectionId::kMeta: return "META";
-    case SectionId::kBrickOccupancy: return "BOCC";
-    case SectionId::kBrickRank: return "BRNK";
-    case SectionId::kBrickVoxelBase: return "BVOX";
-    case SectionId::kRowStart: return "ROWS";
-    case SectionId::kRowMask: return "MASK";
-    case SectionId::kValues: return "VALU";
-    case SectionId::kGradients: return "GRAD";
-    case SectionId::kMaterials: return "MATL";
-    case SectionId::kSurface: return "SURF";
-    case SectionId::kVolumeMask: return "VMSK";
-    case SectionId::kSurfaceMask: return "SMSK";
-    case SectionId::kSphereMask: return "PMSK";
-    case SectionId::kSpheres: return "SPHR";
-    case SectionId::kSphereRefStart: return "SROF";
-    case SectionId::kSphereRefs: return "SRID";
+    case SectionId::kMeta:
+      return "META";
+    case SectionId::kBrickOccupancy:
+      return "BOCC";
+    case SectionId::kBrickRank:
+      return "BRNK";
+    case SectionId::kBrickVoxelBase:
+      return "BVOX";
+    case SectionId::kRowStart:
+      return "ROWS";
+    case SectionId::kRowMask:
+      return "MASK";
+    case SectionId::kValues:
+      return "VALU";
+    case SectionId::kGradients:
+      return "GRAD";
+    case SectionId::kMaterials:
+      return "MATL";
+    case SectionId::kSurface:
+      return "SURF";
+    case SectionId::kVolumeMask:
+      return "VMSK";
+    case SectionId::kSurfaceMask:
+      return "SMSK";
+    case SectionId::kSphereMask:
+      return "PMSK";
+    case SectionId::kSpheres:
+      return "SPHR";
+    case SectionId::kSphereRefStart:
+      return "SROF";
+    case SectionId::kSphereRefs:
+      return "SRID";
   }
   return "????";
 }
 
 uint32_t expectedElementBytes(const FileHeader& header, SectionId id) {
   switch (id) {
-    case SectionId::kMeta: return 1;
+    case SectionId::kMeta:
+      return 1;
     case SectionId::kRowStart:
-    case SectionId::kGradients: return 2;
-    case SectionId::kValues: return static_cast<uint32_t>(storedSize(static_cast<StoredType>(header.valueType)));
-    case SectionId::kMaterials: return sizeof(MaterialRecord);
-    case SectionId::kSpheres: return sizeof(SphereRecord);
-    default: return 4;
+    case SectionId::kGradients:
+      return 2;
+    case SectionId::kValues:
+      return static_cast<uint32_t>(storedSize(static_cast<StoredType>(header.valueType)));
+    case SectionId::kMaterials:
+      return sizeof(MaterialRecord);
+    case SectionId::kSpheres:
+      return sizeof(SphereRecord);
+    default:
+      return 4;
   }
 }
 
@@ -87,71 +119,109 @@ uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t m
   const uint64_t k = header.occupiedBrickCount;
   const uint64_t voxels = header.voxelCount;
   switch (id) {
-    case SectionId::kMeta: return alignUp(metaBytes, 4);
+    case SectionId::kMeta:
+      return alignUp(metaBytes, 4);
     case SectionId::kBrickOccupancy:
-    case SectionId::kBrickRank: return ceilDiv(bricks, 32) * 4;
-    case SectionId::kBrickVoxelBase: return (k + 1) * 4;
-    case SectionId::kRowStart: return alignUp(k * n * n * 2, 4);
-    case SectionId::kRowMask: return k * maskWordsPerBrick(static_cast<uint32_t>(n)) * 4;
-    case SectionId::kValues: return alignUp(sampleSlots(header) * storedSize(static_cast<StoredType>(header.valueType)), 4);
-    case SectionId::kGradients: return alignUp(sampleSlots(header) * 2, 4);
-    case SectionId::kMaterials: return uint64_t{header.materialCount} * sizeof(MaterialRecord);
+    case SectionId::kBrickRank:
+      return ceilDiv(bricks, 32) * 4;
+    case SectionId::kBrickVoxelBase:
+      return (k + 1) * 4;
+    case SectionId::kRowStart:
+      return alignUp(k * n * n * 2, 4);
+    case SectionId::kRowMask:
+      return k * maskWordsPerBrick(static_cast<uint32_t>(n)) * 4;
+    case SectionId::kValues:
+      return alignUp(sampleSlots(header) * storedSize(static_cast<StoredType>(header.valueType)),
+                     4);
+    case SectionId::kGradients:
+      return alignUp(sampleSlots(header) * 2, 4);
+    case SectionId::kMaterials:
+      return uint64_t{header.materialCount} * sizeof(MaterialRecord);
     case SectionId::kVolumeMask:
     case SectionId::kSurfaceMask:
-    case SectionId::kSphereMask: return ceilDiv(voxels, 32) * 4;
-    case SectionId::kSurface: return header.surfaceVoxelCount * 4;
-    case SectionId::kSpheres: return uint64_t{header.sphereCount} * sizeof(SphereRecord);
-    case SectionId::kSphereRefStart: return (header.sphereVoxelCount + 1) * 4;
-    case SectionId::kSphereRefs: return header.sphereRefCount * 4;
+    case SectionId::kSphereMask:
+      return ceilDiv(voxels, 32) * 4;
+    case SectionId::kSurface:
+      return header.surfaceVoxelCount * 4;
+    case SectionId::kSpheres:
+      return uint64_t{header.sphereCount} * sizeof(SphereRecord);
+    case SectionId::kSphereRefStart:
+      return (header.sphereVoxelCount + 1) * 4;
+    case SectionId::kSphereRefs:
+      return header.sphereRefCount * 4;
   }
   return 0;
 }
 
 Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& where) {
   if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0)
-    return makeError(ErrorCode::kNotAVoxLinkFile, where, ": header.magic: not a VoxLink file (expected \"VOXLINK\\0\")");
+    return makeError(ErrorCode::kNotAVoxLinkFile, where,
+                     ": header.magic: not a VoxLink file (expected \"VOXLINK\\0\")");
   if (h.byteOrderMark == kByteOrderMarkSwapped)
-    return makeError(ErrorCode::kByteOrder, where, ": header.byteOrderMark: file was written big-endian; this reader reads little-endian files only");
+    return makeError(ErrorCode::kByteOrder, where,
+                     ": header.byteOrderMark: file was written big-endian; this reader reads "
+                     "little-endian files only");
   if (h.byteOrderMark != kByteOrderMark)
-    return makeError(ErrorCode::kCorrupt, where, ": header.byteOrderMark: 0x", std::hex, h.byteOrderMark, " is not 0x01020304");
+    return makeError(ErrorCode::kCorrupt, where, ": header.byteOrderMark: 0x", std::hex,
+                     h.byteOrderMark, " is not 0x01020304");
   if (h.versionMajor != kVersionMajor && h.versionMajor != kVersionMajorScene)
-    return makeError(ErrorCode::kUnsupported, where, ": header.versionMajor: file is version ", h.versionMajor, ".", h.versionMinor, ", this reader reads versions ", kVersionMajor, ".x and ", kVersionMajorScene, ".x");
+    return makeError(ErrorCode::kUnsupported, where, ": header.versionMajor: file is version ",
+                     h.versionMajor, ".", h.versionMinor, ", this reader reads versions ",
+                     kVersionMajor, ".x and ", kVersionMajorScene, ".x");
   if (h.headerBytes != sizeof(FileHeader))
-    return makeError(ErrorCode::kCorrupt, where, ": header.headerBytes: ", h.headerBytes, " (expected ", sizeof(FileHeader), ")");
+    return makeError(ErrorCode::kCorrupt, where, ": header.headerBytes: ", h.headerBytes,
+                     " (expected ", sizeof(FileHeader), ")");
   if (headerCrcOf(h) != h.headerCrc)
-    return makeError(ErrorCode::kCorrupt, where, ": header.headerCrc: checksum mismatch (stored 0x", std::hex, h.headerCrc, ", computed 0x", headerCrcOf(h), ")");
+    return makeError(ErrorCode::kCorrupt, where, ": header.headerCrc: checksum mismatch (stored 0x",
+                     std::hex, h.headerCrc, ", computed 0x", headerCrcOf(h), ")");
   if (!isValidBrickSize(h.brickSize))
-    return makeError(ErrorCode::kCorrupt, where, ": header.brickSize: ", h.brickSize, " (expected 4, 8, 16 or 32)");
+    return makeError(ErrorCode::kCorrupt, where, ": header.brickSize: ", h.brickSize,
+                     " (expected 4, 8, 16 or 32)");
   for (int a = 0; a < 3; ++a) {
     if (h.dims[a] == 0 || h.dims[a] > kMaxDim)
-      return makeError(ErrorCode::kCorrupt, where, ": header.dims[", a, "]: ", h.dims[a], " (expected 1..", kMaxDim, ")");
+      return makeError(ErrorCode::kCorrupt, where, ": header.dims[", a, "]: ", h.dims[a],
+                       " (expected 1..", kMaxDim, ")");
     if (h.brickGrid[a] != ceilDiv(h.dims[a], h.brickSize))
-      return makeError(ErrorCode::kCorrupt, where, ": header.brickGrid[", a, "]: ", h.brickGrid[a], " (expected ceil(", h.dims[a], "/", h.brickSize, "))");
+      return makeError(ErrorCode::kCorrupt, where, ": header.brickGrid[", a, "]: ", h.brickGrid[a],
+                       " (expected ceil(", h.dims[a], "/", h.brickSize, "))");
     if (!(std::isfinite(h.spacing[a]) && h.spacing[a] > 0))
-      return makeError(ErrorCode::kCorrupt, where, ": header.spacing[", a, "]: ", h.spacing[a], " (expected a finite value > 0)");
+      return makeError(ErrorCode::kCorrupt, where, ": header.spacing[", a, "]: ", h.spacing[a],
+                       " (expected a finite value > 0)");
     if (!std::isfinite(h.origin[a]))
       return makeError(ErrorCode::kCorrupt, where, ": header.origin[", a, "]: not finite");
   }
   if (h.predominantAxis > 2)
-    return makeError(ErrorCode::kCorrupt, where, ": header.predominantAxis: ", int(h.predominantAxis), " (expected 0, 1 or 2)");
+    return makeError(ErrorCode::kCorrupt, where,
+                     ": header.predominantAxis: ", int(h.predominantAxis), " (expected 0, 1 or 2)");
   if (!isValidStoredType(h.valueType))
-    return makeError(ErrorCode::kUnsupported, where, ": header.valueType: ", int(h.valueType), " is not a known stored type");
+    return makeError(ErrorCode::kUnsupported, where, ": header.valueType: ", int(h.valueType),
+                     " is not a known stored type");
   if (h.gradientCodec != static_cast<uint8_t>(GradientCodec::kPolar16))
-    return makeError(ErrorCode::kUnsupported, where, ": header.gradientCodec: ", int(h.gradientCodec), " is not a known gradient codec");
+    return makeError(ErrorCode::kUnsupported, where,
+                     ": header.gradientCodec: ", int(h.gradientCodec),
+                     " is not a known gradient codec");
   if (!isValidScalarType(h.sourceType))
-    return makeError(ErrorCode::kCorrupt, where, ": header.sourceType: ", int(h.sourceType), " is not a known scalar type");
+    return makeError(ErrorCode::kCorrupt, where, ": header.sourceType: ", int(h.sourceType),
+                     " is not a known scalar type");
   if (!std::isfinite(h.valueScale) || h.valueScale == 0 || !std::isfinite(h.valueOffset))
-    return makeError(ErrorCode::kCorrupt, where, ": header.valueScale/valueOffset: not a finite, invertible mapping");
+    return makeError(ErrorCode::kCorrupt, where,
+                     ": header.valueScale/valueOffset: not a finite, invertible mapping");
   const uint64_t bricks = uint64_t{h.brickGrid[0]} * h.brickGrid[1] * h.brickGrid[2];
   const uint64_t n3 = uint64_t{h.brickSize} * h.brickSize * h.brickSize;
   if (h.occupiedBrickCount > bricks)
-    return makeError(ErrorCode::kCorrupt, where, ": header.occupiedBrickCount: ", h.occupiedBrickCount, " exceeds the ", bricks, " bricks of the grid");
-  if (h.voxelCount > kMaxVoxels || h.voxelCount > h.occupiedBrickCount * n3 || h.voxelCount < h.occupiedBrickCount)
-    return makeError(ErrorCode::kCorrupt, where, ": header.voxelCount: ", h.voxelCount, " does not fit ", h.occupiedBrickCount, " occupied bricks of ", n3, " voxels");
+    return makeError(ErrorCode::kCorrupt, where,
+                     ": header.occupiedBrickCount: ", h.occupiedBrickCount, " exceeds the ", bricks,
+                     " bricks of the grid");
+  if (h.voxelCount > kMaxVoxels || h.voxelCount > h.occupiedBrickCount * n3 ||
+      h.voxelCount < h.occupiedBrickCount)
+    return makeError(ErrorCode::kCorrupt, where, ": header.voxelCount: ", h.voxelCount,
+                     " does not fit ", h.occupiedBrickCount, " occupied bricks of ", n3, " voxels");
   VOXLINK_RETURN_IF_ERROR(checkSceneCounts(h, where));
   if (h.sectionTableOffset > fileBytes || h.sectionCount > kMaxSectionCount ||
       h.sectionTableOffset + uint64_t{h.sectionCount} * sizeof(SectionEntry) > fileBytes)
-    return makeError(ErrorCode::kTruncated, where, ": header.sectionTableOffset: table of ", h.sectionCount, " entries at byte ", h.sectionTableOffset, " lies beyond the end of the ", fileBytes, "-byte file");
+    return makeError(ErrorCode::kTruncated, where, ": header.sectionTableOffset: table of ",
+                     h.sectionCount, " entries at byte ", h.sectionTableOffset,
+                     " lies beyond the end of the ", fileBytes, "-byte file");
   return Status::ok();
 }
 
@@ -165,7 +235,8 @@ Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
 
 Result<VoxLinkFile> VoxLinkFile::fromBytes(std::vector<uint8_t> bytes, const std::string& name) {
   auto holder = std::make_shared<std::vector<uint8_t>>(std::move(bytes));
-  return parse(std::shared_ptr<const void>(holder, holder.get()), holder->data(), holder->size(), name);
+  return parse(std::shared_ptr<const void>(holder, holder.get()), holder->data(), holder->size(),
+               name);
 }
 
 Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const uint8_t* data,
@@ -173,7 +244,8 @@ Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const 
   if (size < sizeof(FileHeader)) {
     if (size >= sizeof(kMagic) && std::memcmp(data, kMagic, sizeof(kMagic)) != 0)
       return makeError(ErrorCode::kNotAVoxLinkFile, path, ": header.magic: not a VoxLink file");
-    return makeError(ErrorCode::kTruncated, path, ": header: file has ", size, " bytes, a header needs ", sizeof(FileHeader));
+    return makeError(ErrorCode::kTruncated, path, ": header: file has ", size,
+                     " bytes, a header needs ", sizeof(FileHeader));
   }
   if (reinterpret_cast<uintptr_t>(data) % 8 != 0)
     return makeError(ErrorCode::kInvalidArgument, path, ": buffer is not 8-byte aligned");
@@ -187,45 +259,61 @@ Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const 
 
   const FileHeader& h = *file.header_;
   file.table_.resize(h.sectionCount);
-  std::memcpy(file.table_.data(), data + h.sectionTableOffset, h.sectionCount * sizeof(SectionEntry));
+  std::memcpy(file.table_.data(), data + h.sectionTableOffset,
+              h.sectionCount * sizeof(SectionEntry));
   const std::string& where = file.path_;
   for (size_t i = 0; i < file.table_.size(); ++i) {
     const SectionEntry& e = file.table_[i];
     const std::string name(sectionName(static_cast<SectionId>(e.id)));
     if (e.offset % kSectionAlignment != 0)
-      return makeError(ErrorCode::kCorrupt, where, ": section ", name, ".offset: ", e.offset, " is not a multiple of ", kSectionAlignment);
+      return makeError(ErrorCode::kCorrupt, where, ": section ", name, ".offset: ", e.offset,
+                       " is not a multiple of ", kSectionAlignment);
     if (e.offset < sizeof(FileHeader) || e.offset > size || e.bytes > size - e.offset)
-      return makeError(ErrorCode::kTruncated, where, ": section ", name, ": bytes [", e.offset, ", ", e.offset + e.bytes, ") lie beyond the end of the ", size, "-byte file");
+      return makeError(ErrorCode::kTruncated, where, ": section ", name, ": bytes [", e.offset,
+                       ", ", e.offset + e.bytes, ") lie beyond the end of the ", size,
+                       "-byte file");
     if (e.bytes % 4 != 0)
-      return makeError(ErrorCode::kCorrupt, where, ": section ", name, ".bytes: ", e.bytes, " is not a multiple of 4");
+      return makeError(ErrorCode::kCorrupt, where, ": section ", name, ".bytes: ", e.bytes,
+                       " is not a multiple of 4");
     for (size_t j = 0; j < i; ++j) {
       const SectionEntry& o = file.table_[j];
       if (o.id == e.id)
-        return makeError(ErrorCode::kCorrupt, where, ": section ", name, ": appears twice in the section table");
+        return makeError(ErrorCode::kCorrupt, where, ": section ", name,
+                         ": appears twice in the section table");
       if (e.offset < o.offset + o.bytes && o.offset < e.offset + e.bytes)
-        return makeError(ErrorCode::kCorrupt, where, ": section ", name, ": overlaps section ", sectionName(static_cast<SectionId>(o.id)));
+        return makeError(ErrorCode::kCorrupt, where, ": section ", name, ": overlaps section ",
+                         sectionName(static_cast<SectionId>(o.id)));
     }
   }
   const SectionEntry* meta = file.findSection(SectionId::kMeta);
   for (SectionId id : kRequiredSections) {
     const SectionEntry* e = file.findSection(id);
-    if (!e) return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ": missing");
+    if (!e)
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ": missing");
     if (e->elementBytes != expectedElementBytes(h, id))
-      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ".elementBytes: ", e->elementBytes, " (expected ", expectedElementBytes(h, id), ")");
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id),
+                       ".elementBytes: ", e->elementBytes, " (expected ",
+                       expectedElementBytes(h, id), ")");
     if (id == SectionId::kMeta) continue;
     const uint64_t expected = expectedSectionBytes(h, id, meta->bytes);
     if (e->bytes != expected)
-      return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id), ".bytes: ", e->bytes, " but the header's counts need ", expected);
+      return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id),
+                       ".bytes: ", e->bytes, " but the header's counts need ", expected);
   }
   for (SectionId id : file.presentSceneSections()) {
     const SectionEntry* e = file.findSection(id);
     if (!e)
-      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ": missing (a version ", h.versionMajor, " file with ", h.sphereCount, " spheres has it)");
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id),
+                       ": missing (a version ", h.versionMajor, " file with ", h.sphereCount,
+                       " spheres has it)");
     if (e->elementBytes != expectedElementBytes(h, id))
-      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id), ".elementBytes: ", e->elementBytes, " (expected ", expectedElementBytes(h, id), ")");
+      return makeError(ErrorCode::kCorrupt, where, ": section ", sectionName(id),
+                       ".elementBytes: ", e->elementBytes, " (expected ",
+                       expectedElementBytes(h, id), ")");
     const uint64_t expected = expectedSectionBytes(h, id, 0);
     if (e->bytes != expected)
-      return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id), ".bytes: ", e->bytes, " but the header's counts need ", expected);
+      return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id),
+                       ".bytes: ", e->bytes, " but the header's counts need ", expected);
   }
   return file;
 }
@@ -261,12 +349,14 @@ std::span<const uint32_t> VoxLinkFile::brickVoxelBase() const {
 std::span<const uint16_t> VoxLinkFile::rowStarts() const {
   auto bytes = sectionBytes(SectionId::kRowStart);
   const uint64_t n = brickSize();
-  return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(occupiedBrickCount() * n * n)};
+  return {reinterpret_cast<const uint16_t*>(bytes.data()),
+          static_cast<size_t>(occupiedBrickCount() * n * n)};
 }
 
 std::span<const uint16_t> VoxLinkFile::gradientCodes() const {
   auto bytes = sectionBytes(SectionId::kGradients);
-  return {reinterpret_cast<const uint16_t*>(bytes.data()), static_cast<size_t>(sampleSlots(*header_))};
+  return {reinterpret_cast<const uint16_t*>(bytes.data()),
+          static_cast<size_t>(sampleSlots(*header_))};
 }
 
 std::vector<SectionId> sceneSectionsOf(const FileHeader& h) {
@@ -277,18 +367,20 @@ std::vector<SectionId> sceneSectionsOf(const FileHeader& h) {
   return ids;
 }
 
-std::vector<SectionId> VoxLinkFile::presentSceneSections() const { return sceneSectionsOf(*header_); }
+std::vector<SectionId> VoxLinkFile::presentSceneSections() const {
+  return sceneSectionsOf(*header_);
+}
 
 std::span<const MaterialRecord> VoxLinkFile::materials() const {
   auto bytes = sectionBytes(SectionId::kMaterials);
-  return {reinterpret_cast<const MaterialRecord*>(bytes.data()), bytes.size() / sizeof(MaterialRecord)};
+  return {reinterpret_cast<const MaterialRecord*>(bytes.data()),
+          bytes.size() / sizeof(MaterialRecord)};
 }
 
 std::span<const SphereRecord> VoxLinkFile::spheres() const {
   auto bytes = sectionBytes(SectionId::kSpheres);
   return {reinterpret_cast<const SphereRecord*>(bytes.data()), bytes.size() / sizeof(SphereRecord)};
 }
-
 
 std::string VoxLinkFile::metaJson() const {
   auto bytes = sectionBytes(SectionId::kMeta);
@@ -300,7 +392,8 @@ std::string VoxLinkFile::metaJson() const {
 double VoxLinkFile::storedValue(uint64_t voxel) const {
   const uint8_t* v = valueBytes();
   switch (valueType()) {
-    case StoredType::kU8: return v[voxel];
+    case StoredType::kU8:
+      return v[voxel];
     case StoredType::kU16: {
       uint16_t x;
       std::memcpy(&x, v + voxel * 2, 2);

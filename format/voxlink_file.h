@@ -42,7 +42,7 @@ class VoxLinkFile {
   std::span<const uint32_t> rankWords() const { return words32(SectionId::kBrickRank); }
   // K + 1 entries: voxel range of occupied brick k is [base[k], base[k+1]).
   std::span<const uint32_t> brickVoxelBase() const;
-  std::span<const uint16_t> rowStarts() const;    // K * n^2
+  std::span<const uint16_t> rowStarts() const;  // K * n^2
   std::span<const uint32_t> rowMaskWords() const { return words32(SectionId::kRowMask); }
   std::span<const uint16_t> gradientCodes() const;  // sampleSlots(header())
   const uint8_t* valueBytes() const { return sectionBytes(SectionId::kValues).data(); }
@@ -54,10 +54,14 @@ class VoxLinkFile {
   std::span<const MaterialRecord> materials() const;
   std::span<const uint32_t> volumeMaskWords() const { return words32(SectionId::kVolumeMask); }
   std::span<const uint32_t> surfaceMaskWords() const { return words32(SectionId::kSurfaceMask); }
-  std::span<const uint32_t> surfaceWords() const { return words32(SectionId::kSurface); }  // by slot
+  std::span<const uint32_t> surfaceWords() const {
+    return words32(SectionId::kSurface);
+  }  // by slot
   std::span<const SphereRecord> spheres() const;
   std::span<const uint32_t> sphereMaskWords() const { return words32(SectionId::kSphereMask); }
-  std::span<const uint32_t> sphereRefStarts() const { return words32(SectionId::kSphereRefStart); }  // by slot
+  std::span<const uint32_t> sphereRefStarts() const {
+    return words32(SectionId::kSphereRefStart);
+  }  // by slot
   std::span<const uint32_t> sphereRefs() const { return words32(SectionId::kSphereRefs); }
   // Per-voxel access through the masks: format/scene_index.h.
 

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "sources/volume_source.h"
 #include "format/error.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::fuzz {
 

@@ -61,7 +61,8 @@ inline bool sphereSurfaceInVoxel(const std::array<double, 3>& centre, double rad
   const int64_t lo[3] = {i, j, k};
   double far2 = 0.0;
   for (int a = 0; a < 3; ++a) {
-    const double d = std::max(std::abs(double(lo[a]) - centre[a]), std::abs(double(lo[a] + 1) - centre[a]));
+    const double d =
+        std::max(std::abs(double(lo[a]) - centre[a]), std::abs(double(lo[a] + 1) - centre[a]));
     far2 += d * d;
   }
   return far2 >= radius * radius;

@@ -10,14 +10,22 @@ using OIIO::TypeDesc;
 
 TypeDesc toOiio(ScalarType type) {
   switch (type) {
-    case ScalarType::kU8: return TypeDesc::UINT8;
-    case ScalarType::kI8: return TypeDesc::INT8;
-    case ScalarType::kU16: return TypeDesc::UINT16;
-    case ScalarType::kI16: return TypeDesc::INT16;
-    case ScalarType::kU32: return TypeDesc::UINT32;
-    case ScalarType::kI32: return TypeDesc::INT32;
-    case ScalarType::kF32: return TypeDesc::FLOAT;
-    case ScalarType::kF64: break;
+    case ScalarType::kU8:
+      return TypeDesc::UINT8;
+    case ScalarType::kI8:
+      return TypeDesc::INT8;
+    case ScalarType::kU16:
+      return TypeDesc::UINT16;
+    case ScalarType::kI16:
+      return TypeDesc::INT16;
+    case ScalarType::kU32:
+      return TypeDesc::UINT32;
+    case ScalarType::kI32:
+      return TypeDesc::INT32;
+    case ScalarType::kF32:
+      return TypeDesc::FLOAT;
+    case ScalarType::kF64:
+      break;
   }
   return TypeDesc::DOUBLE;
 }
@@ -30,23 +38,46 @@ ImageSpec fromOiio(const OIIO::ImageSpec& s) {
   spec.channels = s.nchannels;
   spec.formatName = s.format.c_str();
   switch (s.format.basetype) {
-    case TypeDesc::UINT8: spec.type = ScalarType::kU8; break;
-    case TypeDesc::INT8: spec.type = ScalarType::kI8; break;
-    case TypeDesc::UINT16: spec.type = ScalarType::kU16; break;
-    case TypeDesc::INT16: spec.type = ScalarType::kI16; break;
-    case TypeDesc::UINT32: spec.type = ScalarType::kU32; break;
-    case TypeDesc::INT32: spec.type = ScalarType::kI32; break;
-    case TypeDesc::HALF: spec.type = ScalarType::kF32; spec.halfFloat = true; break;
-    case TypeDesc::FLOAT: spec.type = ScalarType::kF32; break;
-    case TypeDesc::DOUBLE: spec.type = ScalarType::kF64; break;
-    default: spec.supportedType = false; break;
+    case TypeDesc::UINT8:
+      spec.type = ScalarType::kU8;
+      break;
+    case TypeDesc::INT8:
+      spec.type = ScalarType::kI8;
+      break;
+    case TypeDesc::UINT16:
+      spec.type = ScalarType::kU16;
+      break;
+    case TypeDesc::INT16:
+      spec.type = ScalarType::kI16;
+      break;
+    case TypeDesc::UINT32:
+      spec.type = ScalarType::kU32;
+      break;
+    case TypeDesc::INT32:
+      spec.type = ScalarType::kI32;
+      break;
+    case TypeDesc::HALF:
+      spec.type = ScalarType::kF32;
+      spec.halfFloat = true;
+      break;
+    case TypeDesc::FLOAT:
+      spec.type = ScalarType::kF32;
+      break;
+    case TypeDesc::DOUBLE:
+      spec.type = ScalarType::kF64;
+      break;
+    default:
+      spec.supportedType = false;
+      break;
   }
   return spec;
 }
 
 Result<std::unique_ptr<OIIO::ImageInput>> openInput(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
-  if (!in) return makeError(ErrorCode::kCorrupt, path, ": OpenImageIO cannot open it (", OIIO::geterror(), ")");
+  if (!in)
+    return makeError(ErrorCode::kCorrupt, path, ": OpenImageIO cannot open it (", OIIO::geterror(),
+                     ")");
   return std::unique_ptr<OIIO::ImageInput>(std::move(in));
 }
 
@@ -76,11 +107,14 @@ Status oiioWrite(const std::string& path, int width, int height, int channels, S
                  const void* pixels, bool halfFloat, const char* colorSpace) {
   auto out = OIIO::ImageOutput::create(path);
   if (!out)
-    return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (", OIIO::geterror(), ")");
+    return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (",
+                     OIIO::geterror(), ")");
   OIIO::ImageSpec spec(width, height, channels, halfFloat ? TypeDesc::HALF : TypeDesc::UINT8);
   if (colorSpace) spec.attribute("oiio:ColorSpace", colorSpace);
-  if (!out->open(path, spec)) return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
-  if (!out->write_image(toOiio(from), pixels)) return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
+  if (!out->open(path, spec))
+    return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
+  if (!out->write_image(toOiio(from), pixels))
+    return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
   if (!out->close()) return makeError(ErrorCode::kIo, path, ": close failed: ", out->geterror());
   return Status::ok();
 }

@@ -13,8 +13,9 @@ using plugins::VdbPluginApi;
 
 Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
                                                       const OpenOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(const DicomPluginApi* dicom,
-                           pluginApi<DicomPluginApi>(plugins::kDicomPlugin, plugins::kDicomPluginEntry));
+  VOXLINK_ASSIGN_OR_RETURN(
+      const DicomPluginApi* dicom,
+      pluginApi<DicomPluginApi>(plugins::kDicomPlugin, plugins::kDicomPluginEntry));
   return dicom->openSeries(dir, options);
 }
 

@@ -12,8 +12,8 @@ namespace voxlink::convert {
 
 Status VolumeSource::checkSliceRange(uint32_t z0, uint32_t count) const {
   if (uint64_t{z0} + count > info_.dims[2])
-    return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ", uint64_t{z0} + count,
-                     ") beyond z size ", info_.dims[2]);
+    return makeError(ErrorCode::kInvalidArgument, info_.path, ": slices [", z0, ", ",
+                     uint64_t{z0} + count, ") beyond z size ", info_.dims[2]);
   return Status::ok();
 }
 
@@ -66,13 +66,15 @@ Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
       if (r.name == options.format) return r.open(path, options);
     std::string known;
     for (const ReaderEntry& r : registry) known += (known.empty() ? "" : ", ") + r.name;
-    return makeError(ErrorCode::kInvalidArgument, path, ": --format ", options.format, " is not one of: ", known);
+    return makeError(ErrorCode::kInvalidArgument, path, ": --format ", options.format,
+                     " is not one of: ", known);
   }
   for (const ReaderEntry& r : registry)
     if (r.matches(path)) return r.open(path, options);
   // A file no reader claims is raw when dims and type were given.
   if (options.dims && options.type) return openRaw(path, options);
-  return makeError(ErrorCode::kUnsupported, path, ": unknown volume format; give --format, or --dims and --type for a raw file");
+  return makeError(ErrorCode::kUnsupported, path,
+                   ": unknown volume format; give --format, or --dims and --type for a raw file");
 }
 
 }  // namespace

@@ -19,7 +19,7 @@ struct VolumeInfo {
   ScalarType type = ScalarType::kU8;
   std::array<double, 3> spacing{1.0, 1.0, 1.0};
   std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of voxel (0,0,0)'s centre
-  std::string path;    // as the user gave it
+  std::string path;                             // as the user gave it
   std::string format;  // "raw", "nrrd", "metaimage", "nifti", "dicom", "image-stack", "vdb", ...
   // Things the reader did or ignored that a user should know ("z order reversed to increasing
   // slice position", "oblique space directions: only their lengths are used as spacing").
@@ -63,11 +63,11 @@ struct OpenOptions {
   std::optional<std::array<uint32_t, 3>> dims;
   std::optional<ScalarType> type;
   Endian endian = Endian::kLittle;
-  uint64_t headerBytes = 0;  // raw: bytes to skip before the data
+  uint64_t headerBytes = 0;                      // raw: bytes to skip before the data
   std::optional<std::array<double, 3>> spacing;  // overrides the file's spacing
-  std::string format;        // force a reader ("raw", "nrrd", ...) instead of guessing
-  std::string vdbGrid;       // .vdb: the grid to read (default: the first float grid)
-  std::string variable;      // multi-variable inputs (GSLIB/GEO-EAS): which column to read
+  std::string format;    // force a reader ("raw", "nrrd", ...) instead of guessing
+  std::string vdbGrid;   // .vdb: the grid to read (default: the first float grid)
+  std::string variable;  // multi-variable inputs (GSLIB/GEO-EAS): which column to read
 };
 
 // Opens `path` with the reader its name or content calls for.

@@ -1,7 +1,7 @@
 // DICOM series: the input's files form the folder (main file input.dcm); the in-plugin reader
 // is called directly, so GDCM still runs first in the forked child of its guard.
-#include "sources/readers/dicom_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/dicom_reader.h"
 
 namespace voxlink::fuzz {
 

@@ -1,6 +1,6 @@
 // GSLIB / GEO-EAS grids: plain text, or (zip magic "PK") the single member of a .zip.
-#include "sources/readers/gslib_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/gslib_reader.h"
 
 namespace voxlink::fuzz {
 

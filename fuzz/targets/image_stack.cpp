@@ -1,7 +1,7 @@
 // Image stacks through the OpenImageIO plugin: one file (a multi-page TIFF when it starts with
 // a TIFF byte-order mark, else PNG), or a folder when the input carries extra slice files.
-#include "sources/readers/image_stack_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/image_stack_reader.h"
 
 namespace voxlink::fuzz {
 

@@ -1,6 +1,6 @@
 // MetaImage headers with LOCAL data or data files given as extra files (one, numbered, LIST).
-#include "sources/readers/metaimage_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/metaimage_reader.h"
 
 namespace voxlink::fuzz {
 

@@ -1,6 +1,6 @@
 // NIfTI-1/2 single files; a gzip stream (magic 1f 8b) is named .nii.gz so it is decompressed.
-#include "sources/readers/nifti_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/nifti_reader.h"
 
 namespace voxlink::fuzz {
 

@@ -1,6 +1,6 @@
 // NumPy .npy: the in-memory header parser, then the file reader (mapped, C or Fortran order).
-#include "sources/readers/npy_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/npy_reader.h"
 
 namespace voxlink::fuzz {
 

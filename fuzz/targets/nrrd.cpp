@@ -1,7 +1,7 @@
 // NRRD, attached (.nrrd) or detached with data files given as extra files (one per slice, numbered
 // or LIST).
-#include "sources/readers/nrrd_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/nrrd_reader.h"
 
 namespace voxlink::fuzz {
 

@@ -1,7 +1,7 @@
 // Headerless raw volumes. The first 8 bytes stand for the command line (--dims as three
 // little-endian u16, --type, then byte order and --header-bytes); the rest is the file.
-#include "sources/readers/raw_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/raw_reader.h"
 
 namespace voxlink::fuzz {
 

@@ -6,9 +6,9 @@
 #include <memory>
 #include <string>
 
-#include "sources/volume_source.h"
 #include "fuzz/fuzz_input.h"
 #include "fuzz/fuzz_targets.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::fuzz {
 

@@ -1,6 +1,6 @@
 // VTK XML image data: inline or appended data, base64 or raw, zlib blocks.
-#include "sources/readers/vti_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/vti_reader.h"
 
 namespace voxlink::fuzz {
 

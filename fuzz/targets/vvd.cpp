@@ -1,6 +1,6 @@
 // Voreen .vvd XML headers; the raw file they name is an extra file.
-#include "sources/readers/vvd_reader.h"
 #include "fuzz/targets/volume_readers.h"
+#include "sources/readers/vvd_reader.h"
 
 namespace voxlink::fuzz {
 

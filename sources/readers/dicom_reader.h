@@ -10,7 +10,8 @@
 namespace voxlink::convert {
 
 // Through the DICOM plugin (libvoxlink_dicom.so, GDCM), loaded on first use.
-Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
+                                                      const OpenOptions& options);
 // The implementation inside the plugin.
 Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
                                                             const OpenOptions& options);

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "sources/readers/axes.h"
 #include "format/error.h"
 #include "format/scalar_type.h"
+#include "sources/readers/axes.h"
 
 namespace voxlink::convert {
 
@@ -31,7 +31,6 @@ struct DicomSeries {
   double sliceSpacing = 1;
   std::vector<std::string> notes;
 };
-
 
 // Reads the headers of the DICOM files in `dir` (not recursive) and orders them.
 // kSizeMismatch: files disagree on Rows/Columns/bits/PixelSpacing; kUnsupported: several series,

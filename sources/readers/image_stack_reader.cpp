@@ -5,10 +5,10 @@
 #include <filesystem>
 
 #include "format/regular_file.h"
+#include "imageio/image_io.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/reader_common.h"
 #include "sources/readers/reader_registry.h"
-#include "imageio/image_io.h"
 
 namespace voxlink::convert {
 namespace {
@@ -59,7 +59,8 @@ class ImageStackSource final : public VolumeSource {
     for (uint32_t z = z0; z < z0 + count; ++z) {
       const std::string& file = multiPage_ ? files_[0] : files_[z];
       const int subimage = multiPage_ ? static_cast<int>(z) : 0;
-      VOXLINK_RETURN_IF_ERROR(imageio::read(file, subimage, 1, info_.type, out + uint64_t{z - z0} * info_.sliceBytes()));
+      VOXLINK_RETURN_IF_ERROR(imageio::read(file, subimage, 1, info_.type,
+                                            out + uint64_t{z - z0} * info_.sliceBytes()));
     }
     return Status::ok();
   }

@@ -3,10 +3,10 @@
 #include <cstring>
 #include <fstream>
 
+#include "format/mapped_file.h"
 #include "sources/readers/byte_order.h"
 #include "sources/readers/raw_reader.h"
 #include "sources/readers/reader_common.h"
-#include "format/mapped_file.h"
 
 namespace voxlink::convert {
 namespace {

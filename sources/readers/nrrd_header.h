@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "sources/readers/axes.h"
-#include "sources/readers/data_pieces.h"
 #include "format/error.h"
 #include "format/scalar_type.h"
+#include "sources/readers/axes.h"
+#include "sources/readers/data_pieces.h"
 
 namespace voxlink::convert {
 

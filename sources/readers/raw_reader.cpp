@@ -2,9 +2,9 @@
 
 #include <cstring>
 
+#include "format/mapped_file.h"
 #include "sources/readers/byte_order.h"
 #include "sources/readers/reader_common.h"
-#include "format/mapped_file.h"
 
 namespace voxlink::convert {
 namespace {
@@ -37,7 +37,8 @@ class RawSource final : public VolumeSource {
   }
 
   void unmap(uint32_t z0, uint32_t count) override {
-    file_.release(offset_ + uint64_t{z0} * info_.sliceBytes(), uint64_t{count} * info_.sliceBytes());
+    file_.release(offset_ + uint64_t{z0} * info_.sliceBytes(),
+                  uint64_t{count} * info_.sliceBytes());
   }
 
  private:
@@ -55,18 +56,27 @@ Result<std::unique_ptr<VolumeSource>> openRawData(const std::string& dataPath, V
   VOXLINK_ASSIGN_OR_RETURN(format::MappedFile file, format::MappedFile::open(dataPath));
   const uint64_t needed = info.voxelCount() * scalarSize(info.type);  // bounded by checkVolumeShape
   const uint64_t available = file.size() > headerBytes ? file.size() - headerBytes : 0;
-  const std::string shape = cat(info.dims[0], "x", info.dims[1], "x", info.dims[2], " ", scalarName(info.type));
+  const std::string shape =
+      cat(info.dims[0], "x", info.dims[1], "x", info.dims[2], " ", scalarName(info.type));
   if (available < needed)
-    return makeError(ErrorCode::kTruncated, dataPath, ": data: ", shape, " needs ", needed, " bytes after ", headerBytes, " header bytes, the file has only ", available, " (truncated, or wrong dims/type)");
+    return makeError(ErrorCode::kTruncated, dataPath, ": data: ", shape, " needs ", needed,
+                     " bytes after ", headerBytes, " header bytes, the file has only ", available,
+                     " (truncated, or wrong dims/type)");
   if (exactSize && available != needed)
-    return makeError(ErrorCode::kSizeMismatch, dataPath, ": data: ", shape, " needs ", needed, " bytes but the file has ", available, " after ", headerBytes, " header bytes; check --dims, --type and --header-bytes");
-  const bool swap = scalarSize(info.type) > 1 && ((endian == Endian::kLittle) != kHostIsLittleEndian);
-  return std::unique_ptr<VolumeSource>(new RawSource(std::move(info), std::move(file), headerBytes, swap));
+    return makeError(ErrorCode::kSizeMismatch, dataPath, ": data: ", shape, " needs ", needed,
+                     " bytes but the file has ", available, " after ", headerBytes,
+                     " header bytes; check --dims, --type and --header-bytes");
+  const bool swap =
+      scalarSize(info.type) > 1 && ((endian == Endian::kLittle) != kHostIsLittleEndian);
+  return std::unique_ptr<VolumeSource>(
+      new RawSource(std::move(info), std::move(file), headerBytes, swap));
 }
 
 Result<std::unique_ptr<VolumeSource>> openRaw(const std::string& path, const OpenOptions& options) {
   if (!options.dims || !options.type)
-    return makeError(ErrorCode::kInvalidArgument, path, ": a raw file needs --dims X,Y,Z and --type (u8, i8, u16, i16, u32, i32, f32, f64)");
+    return makeError(
+        ErrorCode::kInvalidArgument, path,
+        ": a raw file needs --dims X,Y,Z and --type (u8, i8, u16, i16, u32, i32, f32, f64)");
   VolumeInfo info;
   info.dims = *options.dims;
   info.path = path;

@@ -6,12 +6,12 @@
 #include "sources/readers/dicom_probe.h"
 #include "sources/readers/dicom_reader.h"
 #include "sources/readers/dicom_series.h"
+#include "sources/readers/gslib_reader.h"
 #include "sources/readers/image_stack_reader.h"
 #include "sources/readers/metaimage_reader.h"
 #include "sources/readers/nifti_reader.h"
-#include "sources/readers/nrrd_reader.h"
-#include "sources/readers/gslib_reader.h"
 #include "sources/readers/npy_reader.h"
+#include "sources/readers/nrrd_reader.h"
 #include "sources/readers/raw_reader.h"
 #include "sources/readers/reader_common.h"
 #include "sources/readers/vdb_reader.h"
@@ -64,7 +64,11 @@ const std::vector<ReaderEntry>& readerRegistry() {
                  },
                  openImageStack});
     r.push_back({"raw", hasExt({".raw", ".bin", ".img8", ".u8", ".u16", ".f32", ".f64"}), openRaw});
-    r.push_back({"npy", [](const std::string& path) { return lowerExtension(path) == ".npy" || hasNpyMagic(path); }, openNpy});
+    r.push_back({"npy",
+                 [](const std::string& path) {
+                   return lowerExtension(path) == ".npy" || hasNpyMagic(path);
+                 },
+                 openNpy});
     r.push_back({"gslib", looksLikeGslib, openGslib});
     return r;
   }();

@@ -13,6 +13,7 @@ namespace voxlink::convert {
 // Through the OpenVDB plugin (libvoxlink_vdb.so), loaded on first use.
 Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const OpenOptions& options);
 // The implementation inside the plugin.
-Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path, const OpenOptions& options);
+Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path,
+                                                    const OpenOptions& options);
 
 }  // namespace voxlink::convert

@@ -13,8 +13,8 @@ TEST(CliRoundTrip, ConvertInfoValidateOnTheTooth) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   TempDir dir;
   const std::string out = dir.file("tooth.vxl");
-  auto r = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161", "--type", "u8",
-                       "--threshold", "90", "-o", out});
+  auto r = runVoxlink({"convert", dataPath("ct/tooth_103x94x161_uint8.raw"), "--dims", "103,94,161",
+                       "--type", "u8", "--threshold", "90", "-o", out});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("tooth.vxl: "), std::string::npos);
   EXPECT_NE(r.out.find("B/voxel"), std::string::npos);
@@ -25,7 +25,8 @@ TEST(CliRoundTrip, ConvertInfoValidateOnTheTooth) {
   r = runVoxlink({"info", "--json", out});
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"voxels", "occupancy", "bricks_nonempty_fraction", "bytes_total", "bytes_per_voxel", "sections"})
+  for (const char* key : {"voxels", "occupancy", "bricks_nonempty_fraction", "bytes_total",
+                          "bytes_per_voxel", "sections"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_GT(j["voxels"].get<uint64_t>(), 0u);
   EXPECT_EQ(j["bytes_total"].get<uint64_t>(), std::filesystem::file_size(out));

@@ -20,7 +20,8 @@ TEST(Classification, ThresholdSpecs) {
   EXPECT_FALSE(c->keeps(25));
   EXPECT_TRUE(c->keeps(30));
   EXPECT_EQ(thresholdClassification({"x"}).code(), ErrorCode::kInvalidArgument);
-  EXPECT_NE(thresholdClassification({"5,1"}).message().find("below lower bound"), std::string::npos);
+  EXPECT_NE(thresholdClassification({"5,1"}).message().find("below lower bound"),
+            std::string::npos);
 }
 
 TEST(Classification, KeepOutsideThePaperConfidenceInterval) {
@@ -33,14 +34,15 @@ TEST(Classification, KeepOutsideThePaperConfidenceInterval) {
   EXPECT_TRUE(c->keeps(1.97));
   auto standardized = keepOutsideClassification(-1.96, 1.96, 10.0, 2.0);
   ASSERT_TRUE(standardized);
-  EXPECT_TRUE(standardized->keeps(14.0));    // z = 2
-  EXPECT_FALSE(standardized->keeps(13.0));   // z = 1.5
+  EXPECT_TRUE(standardized->keeps(14.0));   // z = 2
+  EXPECT_FALSE(standardized->keeps(13.0));  // z = 1.5
   EXPECT_FALSE(keepOutsideClassification(1, -1, std::nullopt, std::nullopt));
   EXPECT_FALSE(keepOutsideClassification(-1, 1, 0.0, 0.0));
 }
 
 TEST(Classification, JsonRoundTripKeepsInfinities) {
-  for (const Classification& c : {*thresholdClassification({"60"}), *keepOutsideClassification(-1.96, 1.96, 0.5, 2.0)}) {
+  for (const Classification& c :
+       {*thresholdClassification({"60"}), *keepOutsideClassification(-1.96, 1.96, 0.5, 2.0)}) {
     auto back = classificationFromJson(classificationToJson(c));
     ASSERT_TRUE(back) << back.message();
     EXPECT_EQ(back->kind, c.kind);

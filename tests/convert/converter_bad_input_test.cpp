@@ -12,7 +12,8 @@ namespace voxlink::convert {
 namespace {
 
 TEST(ConverterBadInput, NaNAndInfinityNameTheVoxel) {
-  for (float bad : {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
+  for (float bad :
+       {std::numeric_limits<float>::quiet_NaN(), -std::numeric_limits<float>::infinity()}) {
     auto v = testing::makeVolume<float>({8, 9, 10}, [&](uint32_t x, uint32_t y, uint32_t z) {
       return (x == 3 && y == 4 && z == 7) ? bad : 1.0f;
     });
@@ -45,7 +46,9 @@ TEST(ConverterBadInput, FailureAfterTheFirstPassLeavesNoTemporaryFile) {
   class NoRewind final : public VolumeSource {
    public:
     explicit NoRewind(testing::MemorySource& inner) : inner_(inner) { info_ = inner.info(); }
-    Status read(uint32_t z0, uint32_t count, void* dst) override { return inner_.read(z0, count, dst); }
+    Status read(uint32_t z0, uint32_t count, void* dst) override {
+      return inner_.read(z0, count, dst);
+    }
     Status rewind() override {
       if (++rewinds_ > 1) return makeError(ErrorCode::kIo, "noreweind: cannot rewind");
       return inner_.rewind();
@@ -90,7 +93,9 @@ TEST(ConverterBadInput, CancelledConversionLeavesNothing) {
   o.classification = keepAllClassification();
   o.slabSlices = 8;
   o.cancel = &cancel;
-  o.progress = [&](double f, const char*) { if (f > 0.5) cancel = true; };
+  o.progress = [&](double f, const char*) {
+    if (f > 0.5) cancel = true;
+  };
   auto s = convertVolume(*ball, o, dir.file("out.vxl"));
   ASSERT_FALSE(s);
   EXPECT_EQ(s.code(), ErrorCode::kCancelled);

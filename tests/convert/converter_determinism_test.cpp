@@ -28,7 +28,8 @@ TEST(ConverterDeterminism, SlabSizeThreadsAndStreamingDoNotChangeABit) {
         ASSERT_TRUE(s) << s.message();
         auto bytes = testing::readBytes(path);
         if (reference.empty()) reference = bytes;
-        EXPECT_EQ(bytes, reference) << "slab " << slab << " threads " << threads << " sequential " << sequential;
+        EXPECT_EQ(bytes, reference)
+            << "slab " << slab << " threads " << threads << " sequential " << sequential;
       }
     }
   }

@@ -17,7 +17,8 @@ namespace {
 
 // World-space central difference of the dense source, one-sided at the border (the spec).
 template <class T>
-std::array<double, 3> referenceGradient(const testing::MemorySource& src, uint32_t x, uint32_t y, uint32_t z) {
+std::array<double, 3> referenceGradient(const testing::MemorySource& src, uint32_t x, uint32_t y,
+                                        uint32_t z) {
   const auto& info = src.info();
   const T* data = reinterpret_cast<const T*>(src.bytes().data());
   auto at = [&](uint32_t px, uint32_t py, uint32_t pz) {
@@ -30,7 +31,8 @@ std::array<double, 3> referenceGradient(const testing::MemorySource& src, uint32
     if (p[a] > 0) --lo[a];
     if (p[a] + 1 < info.dims[a]) ++hi[a];
     const uint32_t span = hi[a] - lo[a];
-    g[a] = span ? (at(hi[0], hi[1], hi[2]) - at(lo[0], lo[1], lo[2])) / (span * info.spacing[a]) : 0.0;
+    g[a] =
+        span ? (at(hi[0], hi[1], hi[2]) - at(lo[0], lo[1], lo[2])) / (span * info.spacing[a]) : 0.0;
   }
   return g;
 }
@@ -61,12 +63,15 @@ void checkConversion(const testing::MemorySource& src, const ConvertOptions& opt
   for (uint32_t z = 0; z < info.dims[2]; ++z)
     for (uint32_t y = 0; y < info.dims[1]; ++y)
       for (uint32_t x = 0; x < info.dims[0]; ++x) {
-        const double v = static_cast<double>(data[(uint64_t{z} * info.dims[1] + y) * info.dims[0] + x]);
+        const double v =
+            static_cast<double>(data[(uint64_t{z} * info.dims[1] + y) * info.dims[0] + x]);
         const int64_t index = locator.find(x, y, z);
-        ASSERT_EQ(index >= 0, options.classification.keeps(v)) << x << "," << y << "," << z << " v=" << v;
+        ASSERT_EQ(index >= 0, options.classification.keeps(v))
+            << x << "," << y << "," << z << " v=" << v;
         if (index < 0) continue;
         ++kept;
-        EXPECT_NEAR(file->value(static_cast<uint64_t>(index)), v, summary->valueMaxAbsError + 1e-12);
+        EXPECT_NEAR(file->value(static_cast<uint64_t>(index)), v,
+                    summary->valueMaxAbsError + 1e-12);
         const auto g = referenceGradient<T>(src, x, y, z);
         const uint16_t code = file->gradientCodes()[static_cast<size_t>(index)];
         if (g[0] == 0 && g[1] == 0 && g[2] == 0) {
@@ -98,7 +103,8 @@ TEST(ConverterRoundTrip, BallEveryAxisAndBrickSize) {
 
 TEST(ConverterRoundTrip, AnisotropicSpacingGivesWorldSpaceGradients) {
   auto vol = testing::makeVolume<int16_t>(
-      {20, 21, 22}, [](uint32_t x, uint32_t y, uint32_t z) { return int16_t(3 * x + 2 * y * y - 5 * z - 100); },
+      {20, 21, 22},
+      [](uint32_t x, uint32_t y, uint32_t z) { return int16_t(3 * x + 2 * y * y - 5 * z - 100); },
       false, {0.5, 2.0, 3.0});
   ConvertOptions o;
   o.classification = keepAllClassification();
@@ -110,7 +116,8 @@ TEST(ConverterRoundTrip, UnionOfIntervalsAndTransferFunction) {
   ConvertOptions o;
   o.classification = *thresholdClassification({"20,40", "150,200"});
   checkConversion<uint8_t>(*ball, o);
-  auto tf = format::parseTransferFunction(R"({"opacity":[[0,0],[60,0],[80,0.5],[160,0],[200,0],[230,1]]})", "tf");
+  auto tf = format::parseTransferFunction(
+      R"({"opacity":[[0,0],[60,0],[80,0.5],[160,0],[200,0],[230,1]]})", "tf");
   ASSERT_TRUE(tf);
   o.classification = tfClassification(*tf);
   checkConversion<uint8_t>(*ball, o);
@@ -140,8 +147,10 @@ TEST(ConverterRoundTrip, EmptyAndFullClassifications) {
 }
 
 TEST(ConverterRoundTrip, OneVoxelThickVolumes) {
-  for (std::array<uint32_t, 3> dims : {std::array<uint32_t, 3>{1, 9, 9}, {9, 1, 9}, {9, 9, 1}, {1, 1, 1}}) {
-    auto v = testing::makeVolume<uint8_t>(dims, [](uint32_t x, uint32_t y, uint32_t z) { return uint8_t(10 * x + 7 * y + 3 * z); });
+  for (std::array<uint32_t, 3> dims :
+       {std::array<uint32_t, 3>{1, 9, 9}, {9, 1, 9}, {9, 9, 1}, {1, 1, 1}}) {
+    auto v = testing::makeVolume<uint8_t>(
+        dims, [](uint32_t x, uint32_t y, uint32_t z) { return uint8_t(10 * x + 7 * y + 3 * z); });
     ConvertOptions o;
     o.classification = keepAllClassification();
     checkConversion<uint8_t>(*v, o);

@@ -37,7 +37,8 @@ TEST(Moments, ConstantVolumeHasZeroSigmaAndNaNIsRefused) {
   ASSERT_TRUE(m);
   EXPECT_EQ(m->sigma, 0.0);
   EXPECT_EQ(m->mean, 2.5);
-  auto bad = testing::makeVolume<float>({5, 5, 5}, [](uint32_t x, uint32_t, uint32_t z) { return x == 2 && z == 4 ? NAN : 1.0f; });
+  auto bad = testing::makeVolume<float>(
+      {5, 5, 5}, [](uint32_t x, uint32_t, uint32_t z) { return x == 2 && z == 4 ? NAN : 1.0f; });
   auto e = measureMoments(*bad);
   ASSERT_FALSE(e);
   EXPECT_EQ(e.code(), ErrorCode::kNonFinite);
@@ -53,7 +54,8 @@ namespace voxlink::convert {
 namespace {
 
 TEST(Histogram, CountsEveryVoxelAndGivesIntegersTheirOwnBins) {
-  auto v = testing::makeVolume<uint8_t>({10, 10, 10}, [](uint32_t x, uint32_t y, uint32_t) { return uint8_t(10 + (x + y) % 5); });
+  auto v = testing::makeVolume<uint8_t>(
+      {10, 10, 10}, [](uint32_t x, uint32_t y, uint32_t) { return uint8_t(10 + (x + y) % 5); });
   auto h = measureHistogram(*v, 64);
   ASSERT_TRUE(h) << h.message();
   ASSERT_EQ(h->counts.size(), 5u);  // values 10..14, one bin each
@@ -61,11 +63,13 @@ TEST(Histogram, CountsEveryVoxelAndGivesIntegersTheirOwnBins) {
   for (uint64_t c : h->counts) total += c;
   EXPECT_EQ(total, 1000u);
   EXPECT_EQ(h->counts[0], 200u);  // (x + y) % 5 == 0 for a fifth of the voxels
-  EXPECT_DOUBLE_EQ(h->quantile(0.5), 13.0);  // 60 % of voxels are <= 12, i.e. in bins up to [12, 13)
+  EXPECT_DOUBLE_EQ(h->quantile(0.5),
+                   13.0);  // 60 % of voxels are <= 12, i.e. in bins up to [12, 13)
 }
 
 TEST(Histogram, FloatRangeIsSplitEvenly) {
-  auto v = testing::makeVolume<float>({100, 1, 1}, [](uint32_t x, uint32_t, uint32_t) { return x * 0.01f; });
+  auto v = testing::makeVolume<float>({100, 1, 1},
+                                      [](uint32_t x, uint32_t, uint32_t) { return x * 0.01f; });
   auto h = measureHistogram(*v, 10);
   ASSERT_TRUE(h);
   ASSERT_EQ(h->counts.size(), 10u);

@@ -37,7 +37,8 @@ TEST(ValueMapping, ErrorBoundPicksTheSmallestTypeWithinIt) {
   EXPECT_EQ(m->type, StoredType::kF32);
   // Every quantized value really is within the bound.
   m = chooseValueMapping(ScalarType::kF64, -5, 5, std::nullopt, 1e-3);
-  for (double v = -5; v <= 5; v += 0.0137) EXPECT_LE(std::abs(m->decode(m->encode(v)) - v), m->errorBound + 1e-15);
+  for (double v = -5; v <= 5; v += 0.0137)
+    EXPECT_LE(std::abs(m->decode(m->encode(v)) - v), m->errorBound + 1e-15);
   EXPECT_FALSE(chooseValueMapping(ScalarType::kF64, -1e30, 1e30, std::nullopt, 1e-9));
 }
 
@@ -45,8 +46,10 @@ TEST(ValueMapping, RequestedType) {
   auto m = chooseValueMapping(ScalarType::kF32, -1, 1, StoredType::kF16, 0);
   ASSERT_TRUE(m);
   EXPECT_EQ(m->type, StoredType::kF16);
-  EXPECT_FALSE(chooseValueMapping(ScalarType::kF32, 0, 1e6, StoredType::kF16, 0));  // beyond half range
-  EXPECT_FALSE(chooseValueMapping(ScalarType::kF64, 0, 100, StoredType::kU8, 0.01));  // bound not met
+  EXPECT_FALSE(
+      chooseValueMapping(ScalarType::kF32, 0, 1e6, StoredType::kF16, 0));  // beyond half range
+  EXPECT_FALSE(
+      chooseValueMapping(ScalarType::kF64, 0, 100, StoredType::kU8, 0.01));  // bound not met
 }
 
 }  // namespace

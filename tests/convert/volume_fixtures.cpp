@@ -11,8 +11,10 @@ MemorySource::MemorySource(convert::VolumeInfo info, std::vector<uint8_t> bytes,
 
 Status MemorySource::read(uint32_t z0, uint32_t count, void* dst) {
   if (sequential_ && z0 < nextZ_)
-    return makeError(ErrorCode::kInvalidArgument, "memory: backward read of slice ", z0, " after ", nextZ_);
-  if (uint64_t{z0} + count > info_.dims[2]) return makeError(ErrorCode::kInvalidArgument, "memory: read past the end");
+    return makeError(ErrorCode::kInvalidArgument, "memory: backward read of slice ", z0, " after ",
+                     nextZ_);
+  if (uint64_t{z0} + count > info_.dims[2])
+    return makeError(ErrorCode::kInvalidArgument, "memory: read past the end");
   std::memcpy(dst, bytes_.data() + z0 * info_.sliceBytes(), count * info_.sliceBytes());
   nextZ_ = z0 + count;
   return Status::ok();

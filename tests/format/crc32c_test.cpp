@@ -23,7 +23,8 @@ TEST(Crc32c, HardwareAndPortableAgreeAndChain) {
   std::vector<uint8_t> data(100003);
   for (auto& b : data) b = static_cast<uint8_t>(rng());
   // Sizes around the three-stream blocks of the hardware path (3 x 4096 bytes).
-  for (size_t size : {0u, 1u, 7u, 8u, 9u, 63u, 1000u, 12287u, 12288u, 12289u, 24576u, 24583u, 100003u}) {
+  for (size_t size :
+       {0u, 1u, 7u, 8u, 9u, 63u, 1000u, 12287u, 12288u, 12289u, 24576u, 24583u, 100003u}) {
     EXPECT_EQ(crc32c(data.data(), size), crc32cPortable(data.data(), size)) << size;
   }
   const uint32_t whole = crc32c(data.data(), data.size());
@@ -31,7 +32,9 @@ TEST(Crc32c, HardwareAndPortableAgreeAndChain) {
   EXPECT_EQ(crc32c(data.data() + 5001, data.size() - 5001, first), whole);
   for (size_t offset : {1u, 3u, 4097u}) {  // unaligned starts, chained from a non-zero crc
     const uint32_t head = crc32cPortable(data.data(), offset);
-    EXPECT_EQ(crc32c(data.data() + offset, 50000, head), crc32cPortable(data.data() + offset, 50000, head)) << offset;
+    EXPECT_EQ(crc32c(data.data() + offset, 50000, head),
+              crc32cPortable(data.data() + offset, 50000, head))
+        << offset;
   }
 }
 

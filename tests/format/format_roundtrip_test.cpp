@@ -53,7 +53,8 @@ TEST_P(FormatRoundTrip, EverySectionAndVoxelSurvives) {
     } else if (c.type == StoredType::kF16) {
       b = floatToHalf(static_cast<float>(b % 2000) * 0.5f);  // finite halves only
     }
-    const uint16_t g = encodeGradient(float(rng() % 200) - 100.0f, float(rng() % 200) - 100.0f, 1.0f);
+    const uint16_t g =
+        encodeGradient(float(rng() % 200) - 100.0f, float(rng() % 200) - 100.0f, 1.0f);
     expected[k] = {b, g};
     builder.add(std::get<0>(k), std::get<1>(k), std::get<2>(k), b, g);
   }
@@ -135,7 +136,8 @@ TEST(FormatRoundTrip, FullyOccupiedVolume) {
   BrickedVolumeBuilder builder(d);
   for (uint32_t z = 0; z < 9; ++z)
     for (uint32_t y = 0; y < 8; ++y)
-      for (uint32_t x = 0; x < 17; ++x) builder.add(x, y, z, (x + y + z) & 255, encodeGradient(1.0, 0.0, 0.0));
+      for (uint32_t x = 0; x < 17; ++x)
+        builder.add(x, y, z, (x + y + z) & 255, encodeGradient(1.0, 0.0, 0.0));
   auto volume = builder.build();
   ASSERT_TRUE(volume);
   testing::TempDir dir;
@@ -160,7 +162,8 @@ TEST(FormatRoundTrip, ChecksumsDoNotDependOnWriteOrder) {
     for (uint32_t y = 0; y < 30; ++y)
       for (uint32_t x = 0; x < 40; ++x)
         if (rng() % 8 == 0)
-          builder.add(x, y, z, rng() & 255, encodeGradient(float(rng() % 9) - 4.0f, float(rng() % 9) - 4.0f, 1.0f));
+          builder.add(x, y, z, rng() & 255,
+                      encodeGradient(float(rng() % 9) - 4.0f, float(rng() % 9) - 4.0f, 1.0f));
   auto volume = builder.build(R"({"test":"order"})");
   ASSERT_TRUE(volume) << volume.message();
   testing::TempDir dir;
@@ -188,10 +191,14 @@ TEST(FormatRoundTrip, ChecksumsDoNotDependOnWriteOrder) {
   // Gradients: the first half only in order, the rest never written until a gap-filling write.
   const size_t half = v.gradients.size() / 2;
   ASSERT_TRUE(writer->write(SectionId::kGradients, 0, v.gradients.data(), half * 2).isOk());
-  ASSERT_TRUE(writer->write(SectionId::kGradients, half * 2, v.gradients.data() + half, (v.gradients.size() - half) * 2).isOk());
+  ASSERT_TRUE(writer
+                  ->write(SectionId::kGradients, half * 2, v.gradients.data() + half,
+                          (v.gradients.size() - half) * 2)
+                  .isOk());
   ASSERT_TRUE(writer->commit(v.metaJson).isOk());
 
-  EXPECT_EQ(testing::readBytes(dir.file("shuffled.vxl")), testing::readBytes(dir.file("in_order.vxl")));
+  EXPECT_EQ(testing::readBytes(dir.file("shuffled.vxl")),
+            testing::readBytes(dir.file("in_order.vxl")));
   auto file = VoxLinkFile::open(dir.file("shuffled.vxl"));
   ASSERT_TRUE(file) << file.message();
   auto report = validateFile(*file);

@@ -19,7 +19,8 @@ double angleDegrees(const std::array<double, 3>& a, const std::array<float, 3>& 
   return std::acos(c) * 180.0 / std::numbers::pi;
 }
 
-// The codec's target bound: over >= 1e6 random unit vectors, mean error <= 0.36 deg, max <= 0.8 deg.
+// The codec's target bound: over >= 1e6 random unit vectors, mean error <= 0.36 deg, max <= 0.8
+// deg.
 TEST(GradientCodec, ErrorOverAMillionRandomDirections) {
   std::mt19937_64 rng(20161122);
   std::normal_distribution<double> normal(0.0, 1.0);

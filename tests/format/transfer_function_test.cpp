@@ -57,7 +57,8 @@ TEST(TransferFunction, VisibleIntervalsAreExact) {
 }
 
 TEST(TransferFunction, VisibleIntervalsAgreeWithOpacityEverywhere) {
-  const TransferFunction tf = parse(R"({"opacity":[[0,0],[3,0],[3,0.2],[7,0],[9,0],[12,1],[12,0],[15,0]]})");
+  const TransferFunction tf =
+      parse(R"({"opacity":[[0,0],[3,0],[3,0.2],[7,0],[9,0],[12,1],[12,0],[15,0]]})");
   const auto v = tf.visibleIntervals();
   for (double x = -2; x <= 17; x += 0.125) EXPECT_EQ(anyContains(v, x), tf.opacityAt(x) > 0) << x;
 }
@@ -75,7 +76,8 @@ TEST(TransferFunction, BadFilesNameTheField) {
 }
 
 TEST(TransferFunction, JsonRoundTrip) {
-  const TransferFunction tf = parse(R"({"name":"bone","opacity":[[0,0],[100,0.5]],"color":[[0,1,0,0],[100,0,0,1]]})");
+  const TransferFunction tf =
+      parse(R"({"name":"bone","opacity":[[0,0],[100,0.5]],"color":[[0,1,0,0],[100,0,0,1]]})");
   const TransferFunction back = parse(transferFunctionJson(tf));
   EXPECT_EQ(back.name, "bone");
   ASSERT_EQ(back.opacity.size(), 2u);

@@ -67,11 +67,13 @@ TEST(SphereVoxelizer, ShellKeepsTheVoxelsTheSurfaceCrosses) {
         const double d = std::max(std::abs(lo - s.center[a]), std::abs(hi - s.center[a]));
         far2 += d * d;
       }
-      if (far2 >= double(s.radius) * s.radius * (1 + 1e-9)) expected.push_back({voxelKey(v[0], v[1], v[2]), solid->sphereIds[r0]});
+      if (far2 >= double(s.radius) * s.radius * (1 + 1e-9))
+        expected.push_back({voxelKey(v[0], v[1], v[2]), solid->sphereIds[r0]});
     }
   for (size_t n = 0; n < shell->voxels.size(); ++n)
     for (uint64_t r0 = shell->offsets[n]; r0 < shell->offsets[n + 1]; ++r0)
-      got.push_back({voxelKey(shell->voxels[n][0], shell->voxels[n][1], shell->voxels[n][2]), shell->sphereIds[r0]});
+      got.push_back({voxelKey(shell->voxels[n][0], shell->voxels[n][1], shell->voxels[n][2]),
+                     shell->sphereIds[r0]});
   EXPECT_LT(got.size(), solid->sphereIds.size());
   // Rounding at the far corner may keep a voxel the world-space check drops (grid vs world units).
   EXPECT_LE(expected.size(), got.size());

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "sources/volume_source.h"
 #include "geostat/grid_writer.h"
+#include "sources/volume_source.h"
 #include "tests/readers/npy_test_util.h"
 #include "tests/support/test_util.h"
 

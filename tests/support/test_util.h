@@ -32,8 +32,8 @@ std::string dataPath(const std::string& relative);
 }  // namespace voxlink::testing
 
 // Skips the current test when the real data set is not present.
-#define VOXLINK_REQUIRE_DATA(relative)                                          \
-  do {                                                                         \
-    if (!std::filesystem::exists(::voxlink::testing::dataPath(relative)))      \
+#define VOXLINK_REQUIRE_DATA(relative)                                                 \
+  do {                                                                                 \
+    if (!std::filesystem::exists(::voxlink::testing::dataPath(relative)))              \
       GTEST_SKIP() << "real data missing: " << ::voxlink::testing::dataPath(relative); \
   } while (0)

@@ -1,5 +1,7 @@
 // The per-brick boxes of stored voxels the ray tracer clips to, against brute force over every
 // cell, for every predominant axis and brick size.
+#include "viewer/core/brick_bounds.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include "format/voxel_locator.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/core/brick_bounds.h"
 
 namespace voxlink::viewer {
 namespace {
@@ -46,7 +47,8 @@ TEST(BrickBounds, EachBoxIsTheTightBoxOfItsBricksVoxels) {
         for (uint32_t y = 0; y < h.dims[1]; ++y)
           for (uint32_t x = 0; x < h.dims[0]; ++x) {
             if (locator.find(x, y, z) < 0) continue;
-            brickToK[(uint64_t{z / n} * h.brickGrid[1] + y / n) * h.brickGrid[0] + x / n] = 0;  // seen
+            brickToK[(uint64_t{z / n} * h.brickGrid[1] + y / n) * h.brickGrid[0] + x / n] =
+                0;  // seen
           }
       // Number occupied bricks in brick order, then grow their boxes.
       int64_t k = 0;
@@ -69,8 +71,10 @@ TEST(BrickBounds, EachBoxIsTheTightBoxOfItsBricksVoxels) {
       for (int64_t i = 0; i < k; ++i) {
         const BrickBox got = unpackBrickBox(words[i]);
         for (int a = 0; a < 3; ++a) {
-          EXPECT_EQ(got.lo[a], expected[i].lo[a]) << "n=" << n << " axis=" << int(axis) << " brick " << i;
-          EXPECT_EQ(got.hi[a], expected[i].hi[a]) << "n=" << n << " axis=" << int(axis) << " brick " << i;
+          EXPECT_EQ(got.lo[a], expected[i].lo[a])
+              << "n=" << n << " axis=" << int(axis) << " brick " << i;
+          EXPECT_EQ(got.hi[a], expected[i].hi[a])
+              << "n=" << n << " axis=" << int(axis) << " brick " << i;
         }
       }
     }

@@ -1,5 +1,7 @@
 // The brick tables the ray tracers read instead of the occupancy and rank sections, against
 // brute force over every voxel, for every brick size and predominant axis.
+#include "viewer/core/brick_lookup.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -9,7 +11,6 @@
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
 #include "viewer/core/brick_bounds.h"
-#include "viewer/core/brick_lookup.h"
 
 namespace voxlink::viewer {
 namespace {
@@ -43,7 +44,8 @@ TEST(BrickLookup, TablesMatchBruteForce) {
       for (uint32_t z = 0; z < h.dims[2]; ++z)
         for (uint32_t y = 0; y < h.dims[1]; ++y)
           for (uint32_t x = 0; x < h.dims[0]; ++x)
-            if (locator.find(x, y, z) >= 0) occupied[(uint64_t{z / n} * g[1] + y / n) * g[0] + x / n] = true;
+            if (locator.find(x, y, z) >= 0)
+              occupied[(uint64_t{z / n} * g[1] + y / n) * g[0] + x / n] = true;
 
       const std::vector<uint32_t> index = occupiedIndexByBrick(*file);
       ASSERT_EQ(index.size(), occupied.size());
@@ -55,7 +57,8 @@ TEST(BrickLookup, TablesMatchBruteForce) {
       // Dual brick D reads bricks D and D + 1 per axis. Its box, by definition: the union over
       // those bricks of the cells [lo - 1, hi] their voxels' box [lo, hi] reaches, clamped to the
       // dual brick's cells [D n, D n + n - 1].
-      std::vector<std::array<int64_t, 6>> voxelBox(occupied.size(), {1 << 30, 1 << 30, 1 << 30, -1, -1, -1});
+      std::vector<std::array<int64_t, 6>> voxelBox(occupied.size(),
+                                                   {1 << 30, 1 << 30, 1 << 30, -1, -1, -1});
       for (uint32_t z = 0; z < h.dims[2]; ++z)
         for (uint32_t y = 0; y < h.dims[1]; ++y)
           for (uint32_t x = 0; x < h.dims[0]; ++x) {
@@ -78,8 +81,10 @@ TEST(BrickLookup, TablesMatchBruteForce) {
             int64_t lo[3] = {n, n, n}, hi[3] = {-1, -1, -1};
             for (int m = 0; m < 8; ++m) {
               const int64_t b[3] = {dx + (m & 1), dy + ((m >> 1) & 1), dz + (m >> 2)};
-              if (b[0] < 0 || b[1] < 0 || b[2] < 0 || b[0] >= g[0] || b[1] >= g[1] || b[2] >= g[2]) continue;
-              const auto& box = voxelBox[(uint64_t(b[2]) * g[1] + uint64_t(b[1])) * g[0] + uint64_t(b[0])];
+              if (b[0] < 0 || b[1] < 0 || b[2] < 0 || b[0] >= g[0] || b[1] >= g[1] || b[2] >= g[2])
+                continue;
+              const auto& box =
+                  voxelBox[(uint64_t(b[2]) * g[1] + uint64_t(b[1])) * g[0] + uint64_t(b[0])];
               if (box[3] < 0) continue;
               int64_t rlo[3], rhi[3];
               bool any = true;
@@ -94,7 +99,8 @@ TEST(BrickLookup, TablesMatchBruteForce) {
                 hi[a] = std::max(hi[a], rhi[a]);
               }
             }
-            const uint64_t i = (uint64_t(dz + 1) * dual[1] + uint64_t(dy + 1)) * dual[0] + uint64_t(dx + 1);
+            const uint64_t i =
+                (uint64_t(dz + 1) * dual[1] + uint64_t(dy + 1)) * dual[0] + uint64_t(dx + 1);
             if (hi[0] < 0) {
               EXPECT_EQ(boxes[i], kEmptyDualBrick) << "dual brick " << dx << "," << dy << "," << dz;
               continue;
@@ -103,8 +109,10 @@ TEST(BrickLookup, TablesMatchBruteForce) {
             ASSERT_NE(boxes[i], kEmptyDualBrick) << "dual brick " << dx << "," << dy << "," << dz;
             const BrickBox got = unpackBrickBox(boxes[i]);
             for (int a = 0; a < 3; ++a) {
-              EXPECT_EQ(got.lo[a], uint32_t(lo[a])) << "dual brick " << dx << "," << dy << "," << dz;
-              EXPECT_EQ(got.hi[a], uint32_t(hi[a])) << "dual brick " << dx << "," << dy << "," << dz;
+              EXPECT_EQ(got.lo[a], uint32_t(lo[a]))
+                  << "dual brick " << dx << "," << dy << "," << dz;
+              EXPECT_EQ(got.hi[a], uint32_t(hi[a]))
+                  << "dual brick " << dx << "," << dy << "," << dz;
             }
           }
       EXPECT_GT(nonEmpty, 0u);
@@ -122,12 +130,15 @@ TEST(BrickLookup, TablesMatchBruteForce) {
             const int64_t c[3] = {x, y, z};
             int64_t Dc[3];
             for (int a = 0; a < 3; ++a) Dc[a] = (c[a] + n) / n - 1;  // floor(c / n), c >= -1
-            const uint64_t i = (uint64_t(Dc[2] + 1) * dual[1] + uint64_t(Dc[1] + 1)) * dual[0] + uint64_t(Dc[0] + 1);
+            const uint64_t i = (uint64_t(Dc[2] + 1) * dual[1] + uint64_t(Dc[1] + 1)) * dual[0] +
+                               uint64_t(Dc[0] + 1);
             ASSERT_NE(boxes[i], kEmptyDualBrick) << "cell " << x << "," << y << "," << z;
             const BrickBox box = unpackBrickBox(boxes[i]);
             for (int a = 0; a < 3; ++a) {
-              EXPECT_GE(c[a] - Dc[a] * n, int64_t(box.lo[a])) << "cell " << x << "," << y << "," << z;
-              EXPECT_LE(c[a] - Dc[a] * n, int64_t(box.hi[a])) << "cell " << x << "," << y << "," << z;
+              EXPECT_GE(c[a] - Dc[a] * n, int64_t(box.lo[a]))
+                  << "cell " << x << "," << y << "," << z;
+              EXPECT_LE(c[a] - Dc[a] * n, int64_t(box.hi[a]))
+                  << "cell " << x << "," << y << "," << z;
             }
           }
     }
@@ -135,7 +146,8 @@ TEST(BrickLookup, TablesMatchBruteForce) {
 }
 
 TEST(BrickLookup, EmptyFileHasNoOccupiedBrick) {
-  const DenseVolume dense = testing::makeVolume({9, 9, 9}, {1, 1, 1}, [](int, int, int) { return 0.0; });
+  const DenseVolume dense =
+      testing::makeVolume({9, 9, 9}, {1, 1, 1}, [](int, int, int) { return 0.0; });
   auto sparse = testing::sparsify(dense, [](double v) { return v > 100; }, {});
   ASSERT_TRUE(sparse) << sparse.message();
   voxlink::testing::TempDir dir;

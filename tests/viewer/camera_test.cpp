@@ -1,10 +1,11 @@
 // Camera framing, primary rays, orbit/pan/zoom and the controller that maps input onto them.
+#include "viewer/core/camera.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "viewer/app/camera_controller.h"
-#include "viewer/core/camera.h"
 
 namespace voxlink::viewer {
 namespace {
@@ -28,8 +29,9 @@ TEST(Camera, FramingSeesTheWholeBoundingSphere) {
 }
 
 TEST(Camera, UpAxes) {
-  for (auto [text, axis] : {std::pair{"z", glm::dvec3(0, 0, 1)}, std::pair{"-z", glm::dvec3(0, 0, -1)},
-                            std::pair{"y", glm::dvec3(0, 1, 0)}, std::pair{"-y", glm::dvec3(0, -1, 0)}}) {
+  for (auto [text, axis] :
+       {std::pair{"z", glm::dvec3(0, 0, 1)}, std::pair{"-z", glm::dvec3(0, 0, -1)},
+        std::pair{"y", glm::dvec3(0, 1, 0)}, std::pair{"-y", glm::dvec3(0, -1, 0)}}) {
     CameraSpec spec;
     spec.up = *parseUpAxis(text);
     const Camera c = Camera::framing(kBox, spec);
@@ -84,8 +86,8 @@ TEST(Camera, ParseSpec) {
   EXPECT_EQ(s->fovYDeg, 45);
   EXPECT_FALSE(parseCameraSpec("30"));
   EXPECT_FALSE(parseCameraSpec("30,abc"));
-  EXPECT_FALSE(parseCameraSpec("30,95"));      // past the pole
-  EXPECT_FALSE(parseCameraSpec("30,10,-1"));   // negative distance
+  EXPECT_FALSE(parseCameraSpec("30,95"));     // past the pole
+  EXPECT_FALSE(parseCameraSpec("30,10,-1"));  // negative distance
   EXPECT_FALSE(parseCameraSpec("30,10,1,180"));
   EXPECT_EQ(parseCameraSpec("1,2,3,4,5").code(), ErrorCode::kInvalidArgument);
 }

@@ -13,8 +13,8 @@ GlContext* glContext();
 
 }  // namespace voxlink::viewer::testing
 
-#define VOXLINK_REQUIRE_GL()                                                   \
-  do {                                                                         \
-    if (::voxlink::viewer::testing::glContext() == nullptr)                    \
-      FAIL() << "no headless OpenGL 4.5 context (EGL surfaceless)";            \
+#define VOXLINK_REQUIRE_GL()                                        \
+  do {                                                              \
+    if (::voxlink::viewer::testing::glContext() == nullptr)         \
+      FAIL() << "no headless OpenGL 4.5 context (EGL surfaceless)"; \
   } while (0)

@@ -42,9 +42,10 @@ std::vector<float> gradientTableForTest() {
 
 TEST(GlslLayout, GradientDecodeMatchesCppForEveryCode) {
   VOXLINK_REQUIRE_GL();
-  auto program = ComputeProgram::build("test_gradient_decode.comp.glsl",
-                                       {{"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)},
-                                        {"VXL_RESULTS_BINDING", std::to_string(kDecodeResultsBinding)}});
+  auto program =
+      ComputeProgram::build("test_gradient_decode.comp.glsl",
+                            {{"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)},
+                             {"VXL_RESULTS_BINDING", std::to_string(kDecodeResultsBinding)}});
   ASSERT_TRUE(program) << program.message();
   const auto table = gradientTableForTest();
   GlStorageBuffer tableBuffer = createStorageBuffer(table.data(), table.size() * sizeof(float));
@@ -62,8 +63,8 @@ TEST(GlslLayout, GradientDecodeMatchesCppForEveryCode) {
     const auto cpu = format::decodeGradient(uint16_t(code));
     if (std::memcmp(cpu.data(), &decoded[code * 4], 12) != 0 && ++mismatches <= 5)
       ADD_FAILURE() << "code 0x" << std::hex << code << ": GLSL (" << decoded[code * 4] << ", "
-                    << decoded[code * 4 + 1] << ", " << decoded[code * 4 + 2] << ") vs C++ (" << cpu[0]
-                    << ", " << cpu[1] << ", " << cpu[2] << ")";
+                    << decoded[code * 4 + 1] << ", " << decoded[code * 4 + 2] << ") vs C++ ("
+                    << cpu[0] << ", " << cpu[1] << ", " << cpu[2] << ")";
   }
   EXPECT_EQ(mismatches, 0);
 }
@@ -109,7 +110,8 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   o.brickSize = c.brick;
   o.axis = c.axis;
   o.type = c.type;
-  auto sparse = testing::sparsify(dense, [](double v) { return v > 0; }, o);
+  auto sparse = testing::sparsify(
+      dense, [](double v) { return v > 0; }, o);
   ASSERT_TRUE(sparse) << sparse.message();
   voxlink::testing::TempDir dir;
   auto file = testing::writeAndOpen(*sparse, dir.file("lookup.vxl"));
@@ -173,9 +175,9 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
         const bool ok = r[0] == expected && uint32_t(r[1]) == bits &&
                         (expected < 0 || uint32_t(r[2]) == codes[expected]) && r[3] == next;
         if (!ok && ++errors <= 5)
-          ADD_FAILURE() << "cell (" << x << ", " << y << ", " << z << "): GLSL voxel " << r[0] << " bits "
-                        << r[1] << " code " << r[2] << " next " << r[3] << "; C++ voxel " << expected
-                        << " bits " << bits << " next " << next;
+          ADD_FAILURE() << "cell (" << x << ", " << y << ", " << z << "): GLSL voxel " << r[0]
+                        << " bits " << r[1] << " code " << r[2] << " next " << r[3]
+                        << "; C++ voxel " << expected << " bits " << bits << " next " << next;
       }
   EXPECT_EQ(errors, 0);
 }

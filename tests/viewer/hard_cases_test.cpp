@@ -68,7 +68,8 @@ RenderSettings smallSettings(Sampling sampling) {
 void expectAgreement(Scene& scene, const Camera& camera, const std::string& what) {
   const ReferenceRenderer reference(scene.dense, scene.tf);
   for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
-    const auto pair = testing::renderBoth(*scene.renderer, reference, camera, smallSettings(sampling));
+    const auto pair =
+        testing::renderBoth(*scene.renderer, reference, camera, smallSettings(sampling));
     SCOPED_TRACE(what + ", " + std::string(samplingName(sampling)));
     EXPECT_EQ(pair.error.nonFinite, 0u);
     EXPECT_GE(pair.error.psnr, 45.0);
@@ -103,14 +104,16 @@ TEST(HardCases, CameraInsideTheVolume) {
   expectAgreement(*scene, Camera::framing(scene->dense.worldBox(), spec), "eye inside the shell");
   // Exactly at the centre of the box, looking along an axis.
   const glm::dvec3 c = scene->dense.worldBox().center();
-  expectAgreement(*scene, Camera::lookAt(c, c + glm::dvec3(0, 0, 1), {0, 1, 0}, 90), "eye at the centre");
+  expectAgreement(*scene, Camera::lookAt(c, c + glm::dvec3(0, 0, 1), {0, 1, 0}, 90),
+                  "eye at the centre");
 }
 
 TEST(HardCases, RaysAlongBrickFacesAndEdges) {
   VOXLINK_REQUIRE_GL();
   // A solid block whose faces lie on brick faces (n = 8): rays run inside those planes.
   auto block = [](int x, int y, int z) {
-    return (x >= 8 && x < 24 && y >= 8 && y < 16 && z >= 8 && z < 40) ? 160.0 + (x + y + z) % 40 : 0.0;
+    return (x >= 8 && x < 24 && y >= 8 && y < 16 && z >= 8 && z < 40) ? 160.0 + (x + y + z) % 40
+                                                                      : 0.0;
   };
   auto scene = makeScene(block, positive, 8, format::Axis::kX);
   ASSERT_TRUE(scene);
@@ -122,18 +125,21 @@ TEST(HardCases, RaysAlongBrickFacesAndEdges) {
   // face y = 16 (the block's far side), all parallel to z.
   for (auto [x, y] : {std::pair{8.0, 12.0}, std::pair{8.0, 8.0}, std::pair{16.0, 16.0}}) {
     const glm::dvec3 eye(plane(0, x), plane(1, y), zFar), target(plane(0, x), plane(1, y), zMid);
-    expectAgreement(*scene, Camera::lookAt(eye, target, {0, 1, 0}, 20.0), cat("along x=", x, " y=", y));
+    expectAgreement(*scene, Camera::lookAt(eye, target, {0, 1, 0}, 20.0),
+                    cat("along x=", x, " y=", y));
   }
   // Trilinear samples are grouped by dual bricks, whose faces lie half a voxel further, through
   // voxel centres: there a sample sits on the face between two of them.
   for (auto [x, y] : {std::pair{8.5, 12.0}, std::pair{8.5, 8.5}, std::pair{16.5, 16.5}}) {
     const glm::dvec3 eye(plane(0, x), plane(1, y), zFar), target(plane(0, x), plane(1, y), zMid);
-    expectAgreement(*scene, Camera::lookAt(eye, target, {0, 1, 0}, 20.0), cat("along x=", x, " y=", y));
+    expectAgreement(*scene, Camera::lookAt(eye, target, {0, 1, 0}, 20.0),
+                    cat("along x=", x, " y=", y));
   }
   // Diagonally through brick and dual-brick corners.
   for (double i : {0.0, 0.5}) {
     const glm::dvec3 corner(plane(0, 16 + i), plane(1, 8 + i), plane(2, 16 + i));
-    expectAgreement(*scene, Camera::lookAt(corner + glm::dvec3(60, 60, 60), corner, {0, 0, 1}, 30.0),
+    expectAgreement(*scene,
+                    Camera::lookAt(corner + glm::dvec3(60, 60, 60), corner, {0, 0, 1}, 30.0),
                     cat("through a brick corner + ", i));
   }
 }
@@ -156,7 +162,8 @@ TEST(HardCases, EveryBrickSizeAndAxis) {
 
 TEST(HardCases, EmptyFileRendersTheBackground) {
   VOXLINK_REQUIRE_GL();
-  auto scene = makeScene(shell, [](double) { return false; }, 8, format::Axis::kZ);
+  auto scene = makeScene(
+      shell, [](double) { return false; }, 8, format::Axis::kZ);
   ASSERT_TRUE(scene);
   EXPECT_EQ(scene->file->voxelCount(), 0u);
   RenderSettings s = smallSettings(Sampling::kTrilinear);
@@ -164,7 +171,8 @@ TEST(HardCases, EmptyFileRendersTheBackground) {
   for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
     s.sampling = sampling;
     RenderTarget target;
-    ASSERT_TRUE(scene->renderer->render(Camera::framing(scene->dense.worldBox(), {}), s, target).isOk());
+    ASSERT_TRUE(
+        scene->renderer->render(Camera::framing(scene->dense.worldBox(), {}), s, target).isOk());
     const Image image = target.read();
     for (size_t i = 0; i < image.rgba.size(); i += 4) {
       ASSERT_EQ(image.rgba[i], 0.2f);
@@ -177,8 +185,11 @@ TEST(HardCases, EmptyFileRendersTheBackground) {
 
 TEST(HardCases, FullyOccupiedVolume) {
   VOXLINK_REQUIRE_GL();
-  auto smooth = [](int x, int y, int z) { return 60.0 + 40.0 * std::sin(0.3 * x) + 0.8 * y + 2.0 * z; };
-  auto scene = makeScene(smooth, [](double) { return true; }, 16, format::Axis::kZ);
+  auto smooth = [](int x, int y, int z) {
+    return 60.0 + 40.0 * std::sin(0.3 * x) + 0.8 * y + 2.0 * z;
+  };
+  auto scene = makeScene(
+      smooth, [](double) { return true; }, 16, format::Axis::kZ);
   ASSERT_TRUE(scene);
   EXPECT_EQ(scene->file->voxelCount(), scene->dense.voxelCount());
   scene->tf = testing::rampTf(20, 200, 0.08, 20, 220);
@@ -193,7 +204,8 @@ TEST(HardCases, SplitSectionsRenderTheSameImage) {
   auto whole = makeScene(shell, positive, 4, format::Axis::kZ);
   auto chunked = makeScene(shell, positive, 4, format::Axis::kZ, split);
   ASSERT_TRUE(whole && chunked);
-  EXPECT_GT(chunked->renderer->sections().bindingCount(), whole->renderer->sections().bindingCount());
+  EXPECT_GT(chunked->renderer->sections().bindingCount(),
+            whole->renderer->sections().bindingCount());
   const Camera camera = Camera::framing(whole->dense.worldBox(), {});
   for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
     RenderTarget a, b;

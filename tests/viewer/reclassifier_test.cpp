@@ -1,6 +1,8 @@
 // Re-classification from the source a file records: a TF that asks for removed values is
 // noticed, the background job re-converts the tooth CT keeping what the TF shows, and the new
 // file holds what the TF asks for.
+#include "viewer/app/reclassifier.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -8,7 +10,6 @@
 
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/app/reclassifier.h"
 #include "viewer/app/classification_check.h"
 
 namespace voxlink::viewer {
@@ -17,8 +18,8 @@ namespace {
 TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   voxlink::testing::TempDir dir;
-  auto file = testing::convertWithThreshold(testing::toothPath(), testing::toothOpenOptions(), "150",
-                                            dir.file("tooth.vxl"));
+  auto file = testing::convertWithThreshold(testing::toothPath(), testing::toothOpenOptions(),
+                                            "150", dir.file("tooth.vxl"));
   ASSERT_TRUE(file) << file.message();
   const FileClassification before = fileClassification(*file);
   ASSERT_TRUE(before.recorded);
@@ -35,7 +36,8 @@ TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
   EXPECT_EQ(out, dir.file("tooth.reclassified.vxl"));
   EXPECT_EQ(Reclassifier::outputPathFor(out), out);
   ASSERT_TRUE(job.start(*file, tf, out).isOk());
-  for (int i = 0; i < 6000 && job.running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  for (int i = 0; i < 6000 && job.running(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   auto result = job.takeResult();
   ASSERT_TRUE(result.has_value());
   ASSERT_TRUE(*result) << result->message();
@@ -48,7 +50,8 @@ TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
 }
 
 TEST(Reclassifier, RefusesFilesWithoutARecordedSource) {
-  const DenseVolume dense = testing::makeVolume({8, 8, 8}, {1, 1, 1}, [](int x, int, int) { return x; });
+  const DenseVolume dense =
+      testing::makeVolume({8, 8, 8}, {1, 1, 1}, [](int x, int, int) { return x; });
   auto sparse = testing::sparsify(dense, [](double v) { return v > 3; }, {});
   ASSERT_TRUE(sparse);
   voxlink::testing::TempDir dir;

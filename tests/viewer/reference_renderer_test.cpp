@@ -1,10 +1,11 @@
 // The float64 reference against closed-form answers, and image metrics.
+#include "viewer/core/reference_renderer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/core/reference_renderer.h"
 #include "viewer/core/render_model.h"
 
 namespace voxlink::viewer {
@@ -19,7 +20,8 @@ format::TransferFunction constantTf(double alpha, std::array<double, 3> rgb) {
 
 TEST(ReferenceRenderer, UniformSlabMatchesBeerLambert) {
   // Every voxel 1 (opacity 0.2 per unit), unlit: a ray through L units has 1 - 0.8^L opacity.
-  const DenseVolume v = testing::makeVolume({10, 12, 14}, {1, 1, 1}, [](int, int, int) { return 1.0; });
+  const DenseVolume v =
+      testing::makeVolume({10, 12, 14}, {1, 1, 1}, [](int, int, int) { return 1.0; });
   const auto tf = constantTf(0.2, {0.5, 0.25, 1.0});
   const ReferenceRenderer ref(v, tf);
   RenderSettings s;
@@ -44,7 +46,8 @@ TEST(ReferenceRenderer, UniformSlabMatchesBeerLambert) {
 }
 
 TEST(ReferenceRenderer, MissingTheBoxGivesTheBackground) {
-  const DenseVolume v = testing::makeVolume({4, 4, 4}, {1, 1, 1}, [](int, int, int) { return 1.0; });
+  const DenseVolume v =
+      testing::makeVolume({4, 4, 4}, {1, 1, 1}, [](int, int, int) { return 1.0; });
   const auto tf = constantTf(1.0, {1, 1, 1});
   const ReferenceRenderer ref(v, tf);
   RenderSettings s;
@@ -68,7 +71,8 @@ TEST(RenderModel, BoxIntersectionWithZeroDirectionComponents) {
 
 TEST(RenderModel, VoxelWalkTilesTheChord) {
   const std::array<uint32_t, 3> dims{7, 5, 9};
-  for (const glm::dvec3 d : {glm::dvec3(1, 0, 0), glm::dvec3(0.3, -0.5, 0.81), glm::dvec3(0, 0, -1)}) {
+  for (const glm::dvec3 d :
+       {glm::dvec3(1, 0, 0), glm::dvec3(0.3, -0.5, 0.81), glm::dvec3(0, 0, -1)}) {
     const glm::dvec3 dir = glm::normalize(d);
     const glm::dvec3 o = glm::dvec3(3.5, 2.5, 4.5) - 20.0 * dir;
     auto [t0, t1] = intersectBox(o, dir, glm::dvec3(0), glm::dvec3(7, 5, 9));

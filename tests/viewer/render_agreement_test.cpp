@@ -47,17 +47,20 @@ void checkFile(const format::VoxLinkFile& file, uint32_t size, const CameraSpec&
     EXPECT_GE(full.error.psnr, kTargetPsnr) << samplingName(sampling);
     // Something must be visible, or the comparison says nothing.
     double coverage = 0;
-    for (size_t i = 3; i < sparse.reference.rgba.size(); i += 4) coverage += sparse.reference.rgba[i];
+    for (size_t i = 3; i < sparse.reference.rgba.size(); i += 4)
+      coverage += sparse.reference.rgba[i];
     EXPECT_GT(coverage / (size * size), 0.05);
   }
 }
 
 TEST(RenderAgreement, SphereShellMatchesReference) {
   VOXLINK_REQUIRE_GL();
-  const DenseVolume dense = testing::makeVolume({30, 27, 33}, {1.0, 1.2, 0.9}, [](int x, int y, int z) {
-    const double r = std::sqrt((x - 14.5) * (x - 14.5) + (y - 13.0) * (y - 13.0) + (z - 16.2) * (z - 16.2));
-    return std::round(std::clamp(200.0 - 12.0 * std::abs(r - 10.0), 0.0, 255.0));
-  });
+  const DenseVolume dense =
+      testing::makeVolume({30, 27, 33}, {1.0, 1.2, 0.9}, [](int x, int y, int z) {
+        const double r =
+            std::sqrt((x - 14.5) * (x - 14.5) + (y - 13.0) * (y - 13.0) + (z - 16.2) * (z - 16.2));
+        return std::round(std::clamp(200.0 - 12.0 * std::abs(r - 10.0), 0.0, 255.0));
+      });
   auto sparse = testing::sparsify(dense, [](double v) { return v > 100; }, {});
   ASSERT_TRUE(sparse) << sparse.message();
   voxlink::testing::TempDir dir;
@@ -74,7 +77,8 @@ TEST(RenderAgreement, SphereShellMatchesReference) {
     s.height = 80;
     s.sampling = sampling;
     s.shading.shadows = true;
-    const auto pair = testing::renderBoth(**renderer, reference, Camera::framing(dense.worldBox(), {}), s);
+    const auto pair =
+        testing::renderBoth(**renderer, reference, Camera::framing(dense.worldBox(), {}), s);
     EXPECT_EQ(pair.error.nonFinite, 0u);
     EXPECT_GE(pair.error.psnr, kTargetPsnr) << samplingName(sampling) << " with shadows";
   }
@@ -84,8 +88,8 @@ TEST(RenderAgreement, ToothCtConvertedByTheConverter) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   VOXLINK_REQUIRE_GL();
   voxlink::testing::TempDir dir;
-  auto file = testing::convertWithThreshold(testing::toothPath(), testing::toothOpenOptions(), "121",
-                                            dir.file("tooth.vxl"));
+  auto file = testing::convertWithThreshold(testing::toothPath(), testing::toothOpenOptions(),
+                                            "121", dir.file("tooth.vxl"));
   ASSERT_TRUE(file) << file.message();
   checkFile(*file, 64, {});
 }

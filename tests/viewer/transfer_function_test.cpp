@@ -87,14 +87,16 @@ TEST(ParaViewImport, ReadsRgbAndOpacityPointsAndRescales) {
   ASSERT_TRUE(first);
   EXPECT_EQ(first->name, "Other");
   EXPECT_EQ(first->opacity.size(), 2u);
-  EXPECT_EQ(parseParaViewPreset(json, "p.json", {"Missing", 0, 1}).code(), ErrorCode::kInvalidArgument);
+  EXPECT_EQ(parseParaViewPreset(json, "p.json", {"Missing", 0, 1}).code(),
+            ErrorCode::kInvalidArgument);
   EXPECT_FALSE(parseParaViewPreset(R"({"Name": "x", "RGBPoints": [0, 2, 0, 0]})", "p.json", {}));
   EXPECT_FALSE(parseParaViewPreset("{", "p.json", {}));
 }
 
 TEST(ClassificationCheck, IntervalArithmetic) {
   using I = format::ValueInterval;
-  const auto merged = mergeIntervals({{5, 10, false, true}, {10, 12, false, false}, {1, 2, false, false}});
+  const auto merged =
+      mergeIntervals({{5, 10, false, true}, {10, 12, false, false}, {1, 2, false, false}});
   ASSERT_EQ(merged.size(), 2u);
   EXPECT_EQ(merged[1].lo, 5);
   EXPECT_EQ(merged[1].hi, 12);

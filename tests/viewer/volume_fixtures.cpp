@@ -1,9 +1,9 @@
 #include "tests/viewer/volume_fixtures.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
-
-#include <gtest/gtest.h>
 
 #include "convert/converter.h"
 #include "format/gradient_codec.h"
@@ -12,7 +12,8 @@
 
 namespace voxlink::viewer::testing {
 
-Result<format::BrickedVolume> sparsify(const DenseVolume& v, const std::function<bool(double)>& keep,
+Result<format::BrickedVolume> sparsify(const DenseVolume& v,
+                                       const std::function<bool(double)>& keep,
                                        const SparseOptions& o) {
   format::VolumeDescription d;
   d.dims = v.dims;
@@ -37,8 +38,12 @@ Result<format::BrickedVolume> sparsify(const DenseVolume& v, const std::function
         uint32_t bits = 0;
         switch (o.type) {
           case StoredType::kU8:
-          case StoredType::kU16: bits = uint32_t(std::lround(stored)); break;
-          case StoredType::kF16: bits = format::floatToHalf(float(stored)); break;
+          case StoredType::kU16:
+            bits = uint32_t(std::lround(stored));
+            break;
+          case StoredType::kF16:
+            bits = format::floatToHalf(float(stored));
+            break;
           case StoredType::kF32: {
             const float f = float(stored);
             std::memcpy(&bits, &f, 4);
@@ -53,7 +58,8 @@ Result<format::BrickedVolume> sparsify(const DenseVolume& v, const std::function
   return sparse;
 }
 
-Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse, const std::string& path) {
+Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse,
+                                         const std::string& path) {
   VOXLINK_RETURN_IF_ERROR(format::writeBrickedVolume(path, sparse));
   return format::VoxLinkFile::open(path);
 }
@@ -64,7 +70,8 @@ Result<format::VoxLinkFile> thresholdedFile(const DenseVolume& volume, double th
   o.brickSize = n;
   o.axis = axis;
   VOXLINK_ASSIGN_OR_RETURN(format::BrickedVolume sparse,
-                           sparsify(volume, [threshold](double v) { return v > threshold; }, o));
+                           sparsify(
+                               volume, [threshold](double v) { return v > threshold; }, o));
   return writeAndOpen(sparse, path);
 }
 
@@ -81,7 +88,8 @@ DenseVolume makeVolume(std::array<uint32_t, 3> dims, std::array<double, 3> spaci
   return v;
 }
 
-format::TransferFunction rampTf(double threshold, double width, double alpha, double lo, double hi) {
+format::TransferFunction rampTf(double threshold, double width, double alpha, double lo,
+                                double hi) {
   format::TransferFunction tf;
   tf.opacity = {{threshold, 0.0}, {threshold + width, alpha}};
   tf.color = {{lo, {0.9, 0.35, 0.2}}, {0.5 * (lo + hi), {0.95, 0.85, 0.6}}, {hi, {1.0, 1.0, 1.0}}};
@@ -102,8 +110,9 @@ Result<DenseVolume> loadTooth() { return loadDenseVolume(toothPath(), toothOpenO
 
 Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
                                                  const convert::OpenOptions& open,
-                                                 const std::string& threshold, const std::string& output,
-                                                 uint32_t brickSize, format::Axis axis) {
+                                                 const std::string& threshold,
+                                                 const std::string& output, uint32_t brickSize,
+                                                 format::Axis axis) {
   VOXLINK_ASSIGN_OR_RETURN(auto volume, convert::openVolume(source, open));
   convert::ConvertOptions options;
   options.brickSize = brickSize;

@@ -31,7 +31,8 @@ Result<format::BrickedVolume> sparsify(const DenseVolume& volume,
                                        const std::function<bool(double)>& keep,
                                        const SparseOptions& options);
 // Writes the sparse file to `path` and opens it.
-Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse, const std::string& path);
+Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse,
+                                         const std::string& path);
 // Keeps the voxels above `threshold` with brick size n and predominant axis `axis`, writes the
 // file to `path` and opens it.
 Result<format::VoxLinkFile> thresholdedFile(const DenseVolume& volume, double threshold, uint32_t n,
@@ -53,8 +54,8 @@ std::string toothPath();
 // Runs the project's converter (convert::convertVolume) on a source, keeping values >= threshold.
 Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
                                                  const convert::OpenOptions& open,
-                                                 const std::string& threshold, const std::string& output,
-                                                 uint32_t brickSize = 8,
+                                                 const std::string& threshold,
+                                                 const std::string& output, uint32_t brickSize = 8,
                                                  format::Axis axis = format::Axis::kZ);
 
 // Renders with the GL VoxLink renderer and with the reference; fails the test on GL errors.

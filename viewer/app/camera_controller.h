@@ -10,7 +10,7 @@ namespace voxlink::viewer {
 struct InputFrame {
   double mouseX = 0, mouseY = 0;  // pixels, origin top left
   bool left = false, right = false, middle = false, shift = false;
-  double scroll = 0;              // wheel steps this frame (+ = away from the user)
+  double scroll = 0;  // wheel steps this frame (+ = away from the user)
   // Keys pressed (or repeating) this frame.
   bool arrowLeft = false, arrowRight = false, arrowUp = false, arrowDown = false;
   bool zoomIn = false, zoomOut = false, reset = false;
@@ -29,7 +29,7 @@ class CameraController {
 
   static constexpr double kOrbitDegPerPixel = 0.4;
   static constexpr double kKeyOrbitDeg = 5.0;
-  static constexpr double kKeyPan = 0.05;     // fraction of the view height
+  static constexpr double kKeyPan = 0.05;  // fraction of the view height
   static constexpr double kZoomPerStep = 1.1;
 
  private:

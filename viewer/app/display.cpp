@@ -19,7 +19,8 @@ void Display::show(const RenderTarget& target, int framebufferWidth, int framebu
   if (!target.texture() || target.width() == 0) return;
   if (!texture_ || width_ != target.width() || height_ != target.height()) {
     texture_ = createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture_.id(), 1, GL_RGBA8, GLsizei(target.width()), GLsizei(target.height()));
+    glTextureStorage2D(texture_.id(), 1, GL_RGBA8, GLsizei(target.width()),
+                       GLsizei(target.height()));
     glNamedFramebufferTexture(framebuffer_.id(), GL_COLOR_ATTACHMENT0, texture_.id(), 0);
     width_ = target.width();
     height_ = target.height();

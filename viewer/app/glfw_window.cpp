@@ -18,10 +18,12 @@ std::string lastGlfwError() {
 
 }  // namespace
 
-Result<std::unique_ptr<GlfwWindow>> GlfwWindow::create(int width, int height, const std::string& title) {
+Result<std::unique_ptr<GlfwWindow>> GlfwWindow::create(int width, int height,
+                                                       const std::string& title) {
   if (!glfwInit())
-    return makeError(ErrorCode::kUnsupported, "GLFW: cannot initialize (", lastGlfwError(),
-                     "); the interactive viewer needs a display (try xvfb-run -a), `voxlink render` does not");
+    return makeError(
+        ErrorCode::kUnsupported, "GLFW: cannot initialize (", lastGlfwError(),
+        "); the interactive viewer needs a display (try xvfb-run -a), `voxlink render` does not");
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

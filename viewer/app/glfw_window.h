@@ -13,7 +13,8 @@ namespace voxlink::viewer {
 
 class GlfwWindow : public GlContext {
  public:
-  static Result<std::unique_ptr<GlfwWindow>> create(int width, int height, const std::string& title);
+  static Result<std::unique_ptr<GlfwWindow>> create(int width, int height,
+                                                    const std::string& title);
   ~GlfwWindow() override;
   void makeCurrent() override;
   GLFWwindow* handle() const { return window_; }

@@ -22,7 +22,8 @@ std::string Reclassifier::outputPathFor(const std::string& path) {
   const fs::path p(path);
   std::string stem = p.stem().string();
   const std::string suffix = ".reclassified";
-  if (stem.size() < suffix.size() || stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) != 0)
+  if (stem.size() < suffix.size() ||
+      stem.compare(stem.size() - suffix.size(), suffix.size(), suffix) != 0)
     stem += suffix;
   return (p.parent_path() / (stem + ".vxl")).string();
 }

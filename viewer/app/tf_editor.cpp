@@ -33,7 +33,8 @@ bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context
   ImGui::PushID(this);
   float alphaMax = alphaMax_;
   ImGui::SetNextItemWidth(120);
-  if (ImGui::SliderFloat("opacity axis", &alphaMax, 0.02f, 1.0f, "%.2f", ImGuiSliderFlags_Logarithmic))
+  if (ImGui::SliderFloat("opacity axis", &alphaMax, 0.02f, 1.0f, "%.2f",
+                         ImGuiSliderFlags_Logarithmic))
     alphaMax_ = alphaMax;
   ImGui::SameLine();
   double lo = viewLo_, hi = viewHi_;
@@ -41,7 +42,8 @@ bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context
   if (ImGui::InputDouble("##lo", &lo, 0, 0, "%.4g")) viewLo_ = std::min(lo, viewHi_ - 1e-9);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(200);
-  if (ImGui::InputDouble("value range##hi", &hi, 0, 0, "%.4g")) viewHi_ = std::max(hi, viewLo_ + 1e-9);
+  if (ImGui::InputDouble("value range##hi", &hi, 0, 0, "%.4g"))
+    viewHi_ = std::max(hi, viewLo_ + 1e-9);
   changed |= drawOpacity(tf, context);
   changed |= drawColorBar(tf);
   changed |= drawSelection(tf);
@@ -53,13 +55,21 @@ bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context
 bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& context) {
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 100.0f), 150.0f);
-  ImGui::InvisibleButton("opacity", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+  ImGui::InvisibleButton("opacity", size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  auto xOf = [&](double v) { return origin.x + float((v - viewLo_) / (viewHi_ - viewLo_)) * size.x; };
-  auto valueOf = [&](float x) { return viewLo_ + double(x - origin.x) / size.x * (viewHi_ - viewLo_); };
+  auto xOf = [&](double v) {
+    return origin.x + float((v - viewLo_) / (viewHi_ - viewLo_)) * size.x;
+  };
+  auto valueOf = [&](float x) {
+    return viewLo_ + double(x - origin.x) / size.x * (viewHi_ - viewLo_);
+  };
   auto yOf = [&](double a) { return origin.y + size.y - float(a / alphaMax_) * size.y; };
-  auto alphaOf = [&](float y) { return std::clamp(double(origin.y + size.y - y) / size.y * alphaMax_, 0.0, 1.0); };
-  draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y), IM_COL32(30, 30, 34, 255));
+  auto alphaOf = [&](float y) {
+    return std::clamp(double(origin.y + size.y - y) / size.y * alphaMax_, 0.0, 1.0);
+  };
+  draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y),
+                      IM_COL32(30, 30, 34, 255));
 
   // Histogram of the stored values, log scale.
   if (const ValueHistogram* h = context.histogram; h && h->maxCount > 0) {
@@ -67,15 +77,19 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
     const double width = (h->hi - h->lo) / h->counts.size();
     for (size_t i = 0; i < h->counts.size(); ++i) {
       if (!h->counts[i]) continue;
-      const float x0 = xOf(h->lo + i * width), x1 = std::max(xOf(h->lo + (i + 1) * width), x0 + 1.0f);
+      const float x0 = xOf(h->lo + i * width),
+                  x1 = std::max(xOf(h->lo + (i + 1) * width), x0 + 1.0f);
       const float top = origin.y + size.y - float(std::log1p(double(h->counts[i])) / norm) * size.y;
-      draw->AddRectFilled(ImVec2(x0, top), ImVec2(x1, origin.y + size.y), IM_COL32(90, 90, 100, 255));
+      draw->AddRectFilled(ImVec2(x0, top), ImVec2(x1, origin.y + size.y),
+                          IM_COL32(90, 90, 100, 255));
     }
   }
   // Values the pre-classification removed: the file holds none of them.
   for (const auto& r : context.removed) {
     const float x0 = std::max(xOf(r.lo), origin.x), x1 = std::min(xOf(r.hi), origin.x + size.x);
-    if (x1 > x0) draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + size.y), IM_COL32(200, 50, 50, 55));
+    if (x1 > x0)
+      draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + size.y),
+                          IM_COL32(200, 50, 50, 55));
   }
   // The opacity polyline, constant beyond the end points.
   auto& pts = tf.opacity;
@@ -91,7 +105,9 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
     const ImVec2 c(xOf(pts[i].value), yOf(pts[i].alpha));
     const float dx = mouse.x - c.x, dy = mouse.y - c.y;
     if (dx * dx + dy * dy < 2.5f * kPointRadius * kPointRadius) hovered = i;
-    draw->AddCircleFilled(c, kPointRadius, i == selectedOpacity_ ? IM_COL32(255, 200, 40, 255) : IM_COL32(255, 255, 255, 255));
+    draw->AddCircleFilled(
+        c, kPointRadius,
+        i == selectedOpacity_ ? IM_COL32(255, 200, 40, 255) : IM_COL32(255, 255, 255, 255));
   }
   draw->PopClipRect();
 
@@ -102,7 +118,8 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   }
   if (draggingOpacity_ >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
     auto& p = pts[draggingOpacity_];
-    const format::OpacityPoint moved{clampBetween(pts, draggingOpacity_, valueOf(mouse.x)), alphaOf(mouse.y)};
+    const format::OpacityPoint moved{clampBetween(pts, draggingOpacity_, valueOf(mouse.x)),
+                                     alphaOf(mouse.y)};
     changed = moved.value != p.value || moved.alpha != p.alpha;
     p = moved;
   } else {
@@ -110,31 +127,40 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   }
   if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && hovered < 0) {
     const format::OpacityPoint p{valueOf(mouse.x), alphaOf(mouse.y)};
-    auto at = std::upper_bound(pts.begin(), pts.end(), p.value, [](double v, const auto& q) { return v < q.value; });
+    auto at = std::upper_bound(pts.begin(), pts.end(), p.value,
+                               [](double v, const auto& q) { return v < q.value; });
     selectedOpacity_ = int(pts.insert(at, p) - pts.begin());
     changed = true;
   }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 && pts.size() > 1) {
+  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 &&
+      pts.size() > 1) {
     pts.erase(pts.begin() + hovered);
     selectedOpacity_ = -1;
     changed = true;
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("value %.4g, opacity %.3f\ndrag a point, double-click to add, right-click to remove",
-                      valueOf(mouse.x), alphaOf(mouse.y));
+    ImGui::SetTooltip(
+        "value %.4g, opacity %.3f\ndrag a point, double-click to add, right-click to remove",
+        valueOf(mouse.x), alphaOf(mouse.y));
   return changed;
 }
 
 bool TfEditor::drawColorBar(format::TransferFunction& tf) {
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 100.0f), 22.0f);
-  ImGui::InvisibleButton("colors", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+  ImGui::InvisibleButton("colors", size,
+                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  auto xOf = [&](double v) { return origin.x + float((v - viewLo_) / (viewHi_ - viewLo_)) * size.x; };
-  auto valueOf = [&](float x) { return viewLo_ + double(x - origin.x) / size.x * (viewHi_ - viewLo_); };
+  auto xOf = [&](double v) {
+    return origin.x + float((v - viewLo_) / (viewHi_ - viewLo_)) * size.x;
+  };
+  auto valueOf = [&](float x) {
+    return viewLo_ + double(x - origin.x) / size.x * (viewHi_ - viewLo_);
+  };
   constexpr int kSegments = 128;
   for (int i = 0; i < kSegments; ++i) {
-    const float x0 = origin.x + size.x * i / kSegments, x1 = origin.x + size.x * (i + 1) / kSegments;
+    const float x0 = origin.x + size.x * i / kSegments,
+                x1 = origin.x + size.x * (i + 1) / kSegments;
     draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1 + 1, origin.y + size.y - 8),
                         toImColor(tf.colorAt(valueOf(0.5f * (x0 + x1)))));
   }
@@ -143,9 +169,11 @@ bool TfEditor::drawColorBar(format::TransferFunction& tf) {
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (int i = 0; i < int(pts.size()); ++i) {
     const float x = xOf(pts[i].value), y = origin.y + size.y - 8;
-    if (std::abs(mouse.x - x) < kPointRadius && mouse.y >= origin.y && mouse.y <= origin.y + size.y) hovered = i;
-    draw->AddTriangleFilled(ImVec2(x, y), ImVec2(x - 5, y + 8), ImVec2(x + 5, y + 8),
-                            i == selectedColor_ ? IM_COL32(255, 200, 40, 255) : IM_COL32(230, 230, 230, 255));
+    if (std::abs(mouse.x - x) < kPointRadius && mouse.y >= origin.y && mouse.y <= origin.y + size.y)
+      hovered = i;
+    draw->AddTriangleFilled(
+        ImVec2(x, y), ImVec2(x - 5, y + 8), ImVec2(x + 5, y + 8),
+        i == selectedColor_ ? IM_COL32(255, 200, 40, 255) : IM_COL32(230, 230, 230, 255));
   }
   bool changed = false;
   if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hovered >= 0) {
@@ -162,11 +190,13 @@ bool TfEditor::drawColorBar(format::TransferFunction& tf) {
   if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && hovered < 0) {
     const double v = valueOf(mouse.x);
     const format::ColorPoint p{v, tf.colorAt(v)};
-    auto at = std::upper_bound(pts.begin(), pts.end(), v, [](double x, const auto& q) { return x < q.value; });
+    auto at = std::upper_bound(pts.begin(), pts.end(), v,
+                               [](double x, const auto& q) { return x < q.value; });
     selectedColor_ = int(pts.insert(at, p) - pts.begin());
     changed = true;
   }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 && pts.size() > 1) {
+  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 &&
+      pts.size() > 1) {
     pts.erase(pts.begin() + hovered);
     selectedColor_ = -1;
     changed = true;
@@ -218,7 +248,9 @@ bool TfEditor::drawFiles(format::TransferFunction& tf, const TfEditorContext& co
   if (ImGui::BeginCombo("preset", tf.name.empty() ? "(custom)" : tf.name.c_str())) {
     for (const std::string& name : tfPresetNames())
       if (ImGui::Selectable(name.c_str())) {
-        auto preset = tfPreset(name, context.valueMin, context.valueMax > context.valueMin ? context.valueMax : context.valueMin + 1);
+        auto preset =
+            tfPreset(name, context.valueMin,
+                     context.valueMax > context.valueMin ? context.valueMax : context.valueMin + 1);
         if (preset) {
           tf = *preset;
           changed = true;
@@ -246,7 +278,8 @@ bool TfEditor::drawFiles(format::TransferFunction& tf, const TfEditorContext& co
   ImGui::InputTextWithHint("##pvname", "ParaView preset name", paraviewName_, sizeof paraviewName_);
   ImGui::SameLine();
   if (ImGui::Button("Import ParaView")) {
-    auto imported = importParaViewPreset(path_, {paraviewName_, context.valueMin, context.valueMax});
+    auto imported =
+        importParaViewPreset(path_, {paraviewName_, context.valueMin, context.valueMax});
     message_ = imported ? "imported '" + imported->name + "' from " + path_ : imported.message();
     if (imported) {
       tf = *imported;

@@ -3,9 +3,9 @@
 #include <epoxy/gl.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,7 +20,9 @@ namespace voxlink::viewer {
 namespace {
 
 double nowMs() {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 // Keys with edge detection: pressed this frame.
@@ -63,7 +65,8 @@ InputFrame collectInput(GLFWwindow* w, Keys& keys, bool mouseFree, bool keysFree
   return in;
 }
 
-Status writeScreenshot(ViewerState& s, const Camera& camera, uint32_t w, uint32_t h, const std::string& path) {
+Status writeScreenshot(ViewerState& s, const Camera& camera, uint32_t w, uint32_t h,
+                       const std::string& path) {
   RenderSettings full = s.settings;
   full.width = w;
   full.height = h;
@@ -85,22 +88,25 @@ Status captureWindow(int w, int h, const std::string& path) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int c = 0; c < 4; ++c)  // the framebuffer holds sRGB-encoded bytes
-        image.pixel(x, y)[c] = c == 3 ? 1.0f : float(srgbDecode(rgba[(size_t(h - 1 - y) * w + x) * 4 + c] / 255.0));
+        image.pixel(x, y)[c] =
+            c == 3 ? 1.0f : float(srgbDecode(rgba[(size_t(h - 1 - y) * w + x) * 4 + c] / 255.0));
   return writeImage(image, path);
 }
 
 }  // namespace
 
 Status runViewer(const ViewerOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(auto window, GlfwWindow::create(options.windowWidth, options.windowHeight,
-                                                           "VoxLink - " + options.path));
+  VOXLINK_ASSIGN_OR_RETURN(
+      auto window,
+      GlfwWindow::create(options.windowWidth, options.windowHeight, "VoxLink - " + options.path));
   const std::string glDescription = window->description();
   ViewerState state;
   state.settings = options.settings;
   if (options.tf) state.tf = *options.tf;
   VOXLINK_RETURN_IF_ERROR(state.load(options.path, options.tf.has_value()));
   VOXLINK_ASSIGN_OR_RETURN(Display display, Display::create());
-  CameraController controller(Camera::framing(state.renderer->geometry().worldBox(), options.camera));
+  CameraController controller(
+      Camera::framing(state.renderer->geometry().worldBox(), options.camera));
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -125,18 +131,20 @@ Status runViewer(const ViewerOptions& options) {
     if (size != lastSize) dirty = true;
     lastSize = size;
     const bool keysFree = !io.WantCaptureKeyboard;
-    const bool moved = controller.update(collectInput(window->handle(), keys, !io.WantCaptureMouse, keysFree),
-                                         std::max(size[1], 1));
+    const bool moved = controller.update(
+        collectInput(window->handle(), keys, !io.WantCaptureMouse, keysFree), std::max(size[1], 1));
     if (keysFree) {
       if (keys.pressed(GLFW_KEY_ESCAPE) || keys.pressed(GLFW_KEY_Q)) window->requestClose();
       if (keys.pressed(GLFW_KEY_H)) showUi = !showUi;
       if (keys.pressed(GLFW_KEY_V)) {
-        state.settings.sampling = state.settings.sampling == Sampling::kVoxel ? Sampling::kTrilinear : Sampling::kVoxel;
+        state.settings.sampling =
+            state.settings.sampling == Sampling::kVoxel ? Sampling::kTrilinear : Sampling::kVoxel;
         dirty = true;
       }
       if (keys.pressed(GLFW_KEY_P) || keys.pressed(GLFW_KEY_F12)) {
         const std::string path = cat("voxlink-screenshot-", ++screenshots, ".png");
-        if (Status s = writeScreenshot(state, controller.camera(), size[0], size[1], path); !s) state.message = s.message();
+        if (Status s = writeScreenshot(state, controller.camera(), size[0], size[1], path); !s)
+          state.message = s.message();
       }
     }
     bool tfDragging = false;
@@ -191,7 +199,8 @@ Status runViewer(const ViewerOptions& options) {
     window->swapBuffers();
     if (last) {
       if (!options.screenshotOnExit.empty() && result)
-        result = writeScreenshot(state, controller.camera(), size[0], size[1], options.screenshotOnExit);
+        result =
+            writeScreenshot(state, controller.camera(), size[0], size[1], options.screenshotOnExit);
       window->requestClose();
     }
   }

@@ -37,17 +37,22 @@ void ViewerState::transferFunctionChanged() {
   if (file) visibleButRemoved = viewer::visibleButRemoved(tf, classification);
 }
 
-bool drawStatsPanel(ViewerState& s, const std::string& glDescription, uint32_t width, uint32_t height) {
+bool drawStatsPanel(ViewerState& s, const std::string& glDescription, uint32_t width,
+                    uint32_t height) {
   const auto& h = s.file->header();
   ImGui::Text("%s", s.file->path().c_str());
-  ImGui::Text("%ux%ux%u, brick %u, %llu voxels in %llu of %llu bricks", h.dims[0], h.dims[1], h.dims[2],
-              h.brickSize, (unsigned long long)h.voxelCount, (unsigned long long)h.occupiedBrickCount,
+  ImGui::Text("%ux%ux%u, brick %u, %llu voxels in %llu of %llu bricks", h.dims[0], h.dims[1],
+              h.dims[2], h.brickSize, (unsigned long long)h.voxelCount,
+              (unsigned long long)h.occupiedBrickCount,
               (unsigned long long)s.file->gridBrickCount());
   ImGui::Text("frame %.1f ms at %ux%u%s", s.lastRenderMs, width, height,
               s.lastFrameReduced ? " (reduced while moving)" : "");
-  ImGui::Text("GPU buffers %.2f MiB (sections, TF, gradient table)", s.renderer->gpuBytes() / 1048576.0);
+  ImGui::Text("GPU buffers %.2f MiB (sections, TF, gradient table)",
+              s.renderer->gpuBytes() / 1048576.0);
   ImGui::TextDisabled("%s", glDescription.c_str());
-  ImGui::TextDisabled("drag: orbit | right/shift drag: pan | wheel, +/-: zoom | arrows | R reset | P screenshot | V sampling | H hide UI | Q quit");
+  ImGui::TextDisabled(
+      "drag: orbit | right/shift drag: pan | wheel, +/-: zoom | arrows | R reset | P screenshot | "
+      "V sampling | H hide UI | Q quit");
   if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
   return false;
 }
@@ -97,7 +102,8 @@ bool drawSettingsPanel(ViewerState& s) {
   }
   float scale = float(s.interactiveScale);
   ImGui::SetNextItemWidth(120);
-  if (ImGui::SliderFloat("resolution while moving", &scale, 0.1f, 1.0f, "%.2f")) s.interactiveScale = scale;
+  if (ImGui::SliderFloat("resolution while moving", &scale, 0.1f, 1.0f, "%.2f"))
+    s.interactiveScale = scale;
   return changed;
 }
 
@@ -110,13 +116,15 @@ bool drawTransferFunctionPanel(ViewerState& s) {
   ImGui::Text("pre-classification: %s", s.classification.description.c_str());
   if (!s.visibleButRemoved.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.55f, 0.3f, 1.0f));
-    ImGui::TextWrapped("The transfer function gives opacity to %s, which this file's pre-classification "
-                       "removed: those voxels cannot show.",
-                       format::describeIntervals(s.visibleButRemoved).c_str());
+    ImGui::TextWrapped(
+        "The transfer function gives opacity to %s, which this file's pre-classification "
+        "removed: those voxels cannot show.",
+        format::describeIntervals(s.visibleButRemoved).c_str());
     ImGui::PopStyleColor();
   }
   if (s.reclassifier.running()) {
-    ImGui::ProgressBar(float(s.reclassifier.progress()), ImVec2(240, 0), s.reclassifier.stage().c_str());
+    ImGui::ProgressBar(float(s.reclassifier.progress()), ImVec2(240, 0),
+                       s.reclassifier.stage().c_str());
     ImGui::SameLine();
     if (ImGui::Button("cancel")) s.reclassifier.cancel();
   } else if (!s.visibleButRemoved.empty()) {
@@ -126,8 +134,10 @@ bool drawTransferFunctionPanel(ViewerState& s) {
       s.message = started ? "re-classifying into " + out : started.message();
     }
     if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("converts the source recorded in the file again, keeping what this TF shows,\n"
-                        "writes %s and reloads it", out.c_str());
+      ImGui::SetTooltip(
+          "converts the source recorded in the file again, keeping what this TF shows,\n"
+          "writes %s and reloads it",
+          out.c_str());
   }
   return changed;
 }

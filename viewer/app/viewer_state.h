@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "format/voxlink_file.h"
+#include "viewer/app/classification_check.h"
 #include "viewer/app/reclassifier.h"
 #include "viewer/app/tf_editor.h"
-#include "viewer/app/classification_check.h"
 #include "viewer/core/value_histogram.h"
 #include "viewer/gl/voxlink_renderer.h"
 
@@ -29,7 +29,7 @@ struct ViewerState {
   double interactiveScale = 0.5;  // resolution factor while the user drags
   double lastRenderMs = 0;
   bool lastFrameReduced = false;
-  std::string message;            // last screenshot / reload / error line
+  std::string message;  // last screenshot / reload / error line
 
   // Opens `path` and builds its renderer (GL context current); keeps the TF when `keepTf`.
   Status load(const std::string& path, bool keepTf);
@@ -38,7 +38,8 @@ struct ViewerState {
 };
 
 // The ImGui panels; each returns true when the image must be rendered again.
-bool drawStatsPanel(ViewerState& state, const std::string& glDescription, uint32_t width, uint32_t height);
+bool drawStatsPanel(ViewerState& state, const std::string& glDescription, uint32_t width,
+                    uint32_t height);
 bool drawSettingsPanel(ViewerState& state);
 bool drawTransferFunctionPanel(ViewerState& state);
 

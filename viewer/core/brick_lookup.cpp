@@ -26,8 +26,7 @@ std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& h, std::span<cons
   struct Cells {
     int64_t lo[3], hi[3];
   };
-  std::vector<Cells> boxes(uint64_t{dual[0]} * dual[1] * dual[2],
-                           Cells{{n, n, n}, {-1, -1, -1}});
+  std::vector<Cells> boxes(uint64_t{dual[0]} * dual[1] * dual[2], Cells{{n, n, n}, {-1, -1, -1}});
   // An occupied brick b is read by the dual bricks b - 1 and b per axis (dual cells b, b + 1).
   for (uint64_t z = 0, b = 0; z < h.brickGrid[2]; ++z)
     for (uint64_t y = 0; y < h.brickGrid[1]; ++y)
@@ -37,7 +36,8 @@ std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& h, std::span<cons
         const uint64_t brick[3] = {x, y, z};
         for (uint64_t m = 0; m < 8; ++m) {
           const uint64_t c[3] = {x + (m & 1), y + ((m >> 1) & 1), z + (m >> 2)};  // dual cell
-          // Cells reached, global: [b n + lo - 1, b n + hi]; the dual brick's: [(c - 1) n, c n - 1].
+          // Cells reached, global: [b n + lo - 1, b n + hi]; the dual brick's: [(c - 1) n, c n -
+          // 1].
           Cells reached;
           bool any = true;
           for (int a = 0; a < 3; ++a) {

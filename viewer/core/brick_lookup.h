@@ -36,7 +36,8 @@ inline constexpr uint32_t kEmptyDualBrick = 0xFFFFFFFFu;
 // floor(q) + {0, 1} per axis, so a brick whose voxels fill [lo, hi] reaches cells [lo - 1, hi].
 // Takes the file's occupiedIndexByBrick() and brickBounds() (brick_bounds.h), which the caller
 // has at hand.
-std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& header, std::span<const uint32_t> brickIndex,
+std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& header,
+                                     std::span<const uint32_t> brickIndex,
                                      std::span<const uint32_t> brickBoxes);
 
 }  // namespace voxlink::viewer

@@ -41,7 +41,8 @@ Result<CameraSpec> parseCameraSpec(const std::string& text, CameraSpec spec) {
                      text, "'");
   for (double p : parts)
     if (!std::isfinite(p))
-      return makeError(ErrorCode::kInvalidArgument, "--camera: values must be finite, got '", text, "'");
+      return makeError(ErrorCode::kInvalidArgument, "--camera: values must be finite, got '", text,
+                       "'");
   spec.azimuthDeg = parts[0];
   spec.elevationDeg = parts[1];
   if (parts.size() > 2) spec.distanceScale = parts[2];
@@ -121,7 +122,8 @@ Ray Camera::primaryRay(uint32_t px, uint32_t py, uint32_t width, uint32_t height
 void Camera::orbit(double yawDeg, double pitchDeg) {
   orientation_ = rotation(worldUp_, yawDeg) * orientation_;
   // Keep the view from flipping over the pole.
-  const double elevation = std::asin(std::clamp(glm::dot(back(), worldUp_), -1.0, 1.0)) * 180 / std::numbers::pi;
+  const double elevation =
+      std::asin(std::clamp(glm::dot(back(), worldUp_), -1.0, 1.0)) * 180 / std::numbers::pi;
   const double limited = std::clamp(elevation + pitchDeg, -89.0, 89.0);
   orientation_ = rotation(right(), -(limited - elevation)) * orientation_;
   reorthonormalize();

@@ -4,13 +4,12 @@
 
 #include <array>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
-#include "sources/volume_source.h"
 #include "format/error.h"
+#include "sources/volume_source.h"
 #include "viewer/core/camera.h"
 
 namespace voxlink::viewer {
@@ -20,7 +19,7 @@ struct DenseVolume {
   std::array<double, 3> spacing{1, 1, 1};
   std::array<double, 3> origin{0, 0, 0};  // world position of voxel (0,0,0)'s centre
   ScalarType sourceType = ScalarType::kF64;
-  std::vector<double> values;             // x fastest, then y, then z
+  std::vector<double> values;  // x fastest, then y, then z
 
   uint64_t voxelCount() const { return uint64_t{dims[0]} * dims[1] * dims[2]; }
   uint64_t index(uint32_t x, uint32_t y, uint32_t z) const {

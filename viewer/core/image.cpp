@@ -1,19 +1,19 @@
 #include "viewer/core/image.h"
 
-#include "imageio/image_io.h"
-
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+
+#include "imageio/image_io.h"
 
 namespace voxlink::viewer {
 namespace {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -67,7 +67,8 @@ Status writeImage(const Image& image, const std::string& path) {
   const int w = int(image.width), h = int(image.height);
   // EXR keeps the coverage in alpha; 8-bit files are opaque (the background is composited).
   if (lowerExtension(path) == ".exr")
-    return imageio::write(path, w, h, 4, ScalarType::kF32, image.rgba.data(), /*halfFloat=*/true, "Linear");
+    return imageio::write(path, w, h, 4, ScalarType::kF32, image.rgba.data(), /*halfFloat=*/true,
+                          "Linear");
   std::vector<uint8_t> bytes(size_t{image.width} * image.height * 3);
   for (size_t i = 0; i < bytes.size(); ++i) {
     const double v = srgbEncode(image.rgba[i / 3 * 4 + i % 3]);

@@ -23,11 +23,11 @@ struct Image {
 };
 
 struct ImageError {
-  double psnr = 0;         // dB over RGB clamped to [0, 1]; +inf when identical
+  double psnr = 0;  // dB over RGB clamped to [0, 1]; +inf when identical
   double rmse = 0;
-  double maxError = 0;     // largest |a - b| over RGB channels
-  uint64_t nonFinite = 0;  // pixels of either image with a NaN or infinite channel
-  uint64_t pixelsOver = 0; // pixels whose max channel error exceeds the threshold given
+  double maxError = 0;      // largest |a - b| over RGB channels
+  uint64_t nonFinite = 0;   // pixels of either image with a NaN or infinite channel
+  uint64_t pixelsOver = 0;  // pixels whose max channel error exceeds the threshold given
 };
 
 // Fails when the sizes differ. `threshold` counts pixels with a larger channel error.

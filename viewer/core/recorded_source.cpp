@@ -19,16 +19,20 @@ Result<convert::OpenOptions> parseOptions(const nlohmann::json& j, const std::st
     if (j.contains("type") && j["type"].is_string()) {
       const auto type = parseScalarName(j["type"].get<std::string>());
       if (!type)
-        return makeError(ErrorCode::kCorrupt, where, ": META field 'source.open_options.type': unknown type '", j["type"].get<std::string>(), "'");
+        return makeError(ErrorCode::kCorrupt, where,
+                         ": META field 'source.open_options.type': unknown type '",
+                         j["type"].get<std::string>(), "'");
       o.type = *type;
     }
     if (j.contains("endian") && j["endian"].is_string())
-      o.endian = j["endian"].get<std::string>() == "big" ? convert::Endian::kBig : convert::Endian::kLittle;
+      o.endian = j["endian"].get<std::string>() == "big" ? convert::Endian::kBig
+                                                         : convert::Endian::kLittle;
     if (j.contains("header_bytes") && j["header_bytes"].is_number_unsigned())
       o.headerBytes = j["header_bytes"].get<uint64_t>();
     if (j.contains("spacing") && j["spacing"].is_array() && j["spacing"].size() == 3)
-      o.spacing = std::array<double, 3>{j["spacing"][0].get<double>(), j["spacing"][1].get<double>(),
-                                        j["spacing"][2].get<double>()};
+      o.spacing =
+          std::array<double, 3>{j["spacing"][0].get<double>(), j["spacing"][1].get<double>(),
+                                j["spacing"][2].get<double>()};
     if (j.contains("format") && j["format"].is_string()) o.format = j["format"].get<std::string>();
   } catch (const nlohmann::json::exception& e) {
     return makeError(ErrorCode::kCorrupt, where, ": META field 'source.open_options': ", e.what());
@@ -52,7 +56,8 @@ Result<RecordedSource> recordedSource(const format::VoxLinkFile& file) {
   const auto& source = meta["source"];
   RecordedSource r;
   r.path = source["path"].get<std::string>();
-  VOXLINK_ASSIGN_OR_RETURN(r.options, parseOptions(source.value("open_options", nlohmann::json::object()), file.path()));
+  VOXLINK_ASSIGN_OR_RETURN(
+      r.options, parseOptions(source.value("open_options", nlohmann::json::object()), file.path()));
   if (r.options.format.empty() && source.contains("format") && source["format"].is_string() &&
       source["format"].get<std::string>() == "raw")
     r.options.format = "raw";
@@ -69,7 +74,8 @@ Result<RecordedSource> recordedSource(const format::VoxLinkFile& file) {
   return r;
 }
 
-Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file, const std::string& overridePath,
+Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file,
+                                     const std::string& overridePath,
                                      const convert::OpenOptions& options) {
   std::string path = overridePath;
   convert::OpenOptions opts = options;
@@ -81,8 +87,9 @@ Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file, const std:
   VOXLINK_ASSIGN_OR_RETURN(DenseVolume v, loadDenseVolume(path, opts));
   const auto& h = file.header();
   if (v.dims[0] != h.dims[0] || v.dims[1] != h.dims[1] || v.dims[2] != h.dims[2])
-    return makeError(ErrorCode::kSizeMismatch, path, ": source dims ", v.dims[0], "x", v.dims[1], "x",
-                     v.dims[2], " differ from ", file.path(), "'s ", h.dims[0], "x", h.dims[1], "x", h.dims[2]);
+    return makeError(ErrorCode::kSizeMismatch, path, ": source dims ", v.dims[0], "x", v.dims[1],
+                     "x", v.dims[2], " differ from ", file.path(), "'s ", h.dims[0], "x", h.dims[1],
+                     "x", h.dims[2]);
   // The file's geometry is what the GL renderer uses; the reference must use the same.
   for (int a = 0; a < 3; ++a) {
     v.spacing[a] = h.spacing[a];

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "sources/volume_source.h"
 #include "format/voxlink_file.h"
+#include "sources/volume_source.h"
 #include "viewer/core/dense_volume.h"
 
 namespace voxlink::viewer {
@@ -21,7 +21,8 @@ Result<RecordedSource> recordedSource(const format::VoxLinkFile& file);
 
 // Opens `overridePath` (with `options`) when given, else the recorded source, and checks that its
 // dims match the file's.
-Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file, const std::string& overridePath,
+Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file,
+                                     const std::string& overridePath,
                                      const convert::OpenOptions& options);
 
 }  // namespace voxlink::viewer

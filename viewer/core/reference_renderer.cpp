@@ -48,7 +48,8 @@ Image ReferenceRenderer::render(const Camera& camera, const RenderSettings& sett
 std::array<double, 4> ReferenceRenderer::tracePixel(const Camera& camera,
                                                     const RenderSettings& settings, uint32_t px,
                                                     uint32_t py) const {
-  return trace(camera.primaryRay(px, py, settings.width, settings.height), makeFrame(camera, settings));
+  return trace(camera.primaryRay(px, py, settings.width, settings.height),
+               makeFrame(camera, settings));
 }
 
 std::array<double, 4> ReferenceRenderer::traceRay(const Ray& ray, const Camera& camera,
@@ -73,11 +74,11 @@ std::array<double, 4> ReferenceRenderer::trace(const Ray& ray, const Frame& f) c
           color.b + transmittance * bg[2], 1.0 - transmittance};
 }
 
-void ReferenceRenderer::traceVoxels(const glm::dvec3& o, const glm::dvec3& d, double t0,
-                                    double t1, const Frame& f, glm::dvec3& color,
+void ReferenceRenderer::traceVoxels(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
+                                    const Frame& f, glm::dvec3& color,
                                     double& transmittance) const {
-  const glm::dvec3 toEye = -(glm::dvec3(d.x * volume_.spacing[0], d.y * volume_.spacing[1],
-                                        d.z * volume_.spacing[2]));
+  const glm::dvec3 toEye =
+      -(glm::dvec3(d.x * volume_.spacing[0], d.y * volume_.spacing[1], d.z * volume_.spacing[2]));
   const double stopAt = 1.0 - f.settings.terminationAlpha;
   walkVoxels(o, d, t0, t1, volume_.dims, [&](const glm::ivec3& c, double ta, double tb) {
     const double v = volume_.at(c.x, c.y, c.z);
@@ -105,8 +106,8 @@ void ReferenceRenderer::traceVoxels(const glm::dvec3& o, const glm::dvec3& d, do
 void ReferenceRenderer::traceTrilinear(const glm::dvec3& o, const glm::dvec3& d, double t0,
                                        double t1, const Frame& f, glm::dvec3& color,
                                        double& transmittance) const {
-  const glm::dvec3 toEye = -(glm::dvec3(d.x * volume_.spacing[0], d.y * volume_.spacing[1],
-                                        d.z * volume_.spacing[2]));
+  const glm::dvec3 toEye =
+      -(glm::dvec3(d.x * volume_.spacing[0], d.y * volume_.spacing[1], d.z * volume_.spacing[2]));
   const double stopAt = 1.0 - f.settings.terminationAlpha;
   // Classified corners of the current cell (colour and gradient direction weighted by opacity),
   // reused while samples stay in it.
@@ -142,13 +143,15 @@ void ReferenceRenderer::traceTrilinear(const glm::dvec3& o, const glm::dvec3& d,
     double alpha = 0;
     glm::dvec3 premultiplied(0.0), gradient(0.0);
     for (int i = 0; i < 8; ++i) {
-      const double wi = ((i & 1) ? w.x : 1 - w.x) * ((i & 2) ? w.y : 1 - w.y) * ((i & 4) ? w.z : 1 - w.z);
+      const double wi =
+          ((i & 1) ? w.x : 1 - w.x) * ((i & 2) ? w.y : 1 - w.y) * ((i & 4) ? w.z : 1 - w.z);
       alpha += wi * corners[i].alpha;
       premultiplied += wi * corners[i].color;
       gradient += wi * corners[i].gradient;
     }
     if (!(alpha > 0)) continue;
-    const ShadedTerms s = shadeSample(premultiplied, alpha, gradient, f.toLight, toEye, f.settings.shading);
+    const ShadedTerms s =
+        shadeSample(premultiplied, alpha, gradient, f.toLight, toEye, f.settings.shading);
     const double a = correctedAlpha(alpha, f.step, f.unit);
     double shadow = 1.0;
     if (f.settings.shading.shadows && f.settings.shading.enabled) {
@@ -171,7 +174,8 @@ double ReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint, cons
   const double stopAt = f.settings.shadowTerminationTransmittance;
   walkVoxels(toIndex(start), dirToIndex(f.toLight), t0, t1, volume_.dims,
              [&](const glm::ivec3& c, double ta, double tb) {
-               transmittance *= 1.0 - correctedAlpha(tf_.opacityAt(volume_.at(c.x, c.y, c.z)), tb - ta, f.unit);
+               transmittance *=
+                   1.0 - correctedAlpha(tf_.opacityAt(volume_.at(c.x, c.y, c.z)), tb - ta, f.unit);
                return transmittance >= stopAt;
              });
   return transmittance;

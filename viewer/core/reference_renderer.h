@@ -30,8 +30,8 @@ class ReferenceRenderer {
   struct Frame;
   Frame makeFrame(const Camera& camera, const RenderSettings& settings) const;
   std::array<double, 4> trace(const Ray& ray, const Frame& f) const;
-  void traceVoxels(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
-                   const Frame& f, glm::dvec3& color, double& transmittance) const;
+  void traceVoxels(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1, const Frame& f,
+                   glm::dvec3& color, double& transmittance) const;
   void traceTrilinear(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
                       const Frame& f, glm::dvec3& color, double& transmittance) const;
   // Transmittance from world point p towards the light (voxel sampling, opacity only).

@@ -6,9 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <utility>
-
 #include <glm/glm.hpp>
+#include <utility>
 
 #include "viewer/core/render_settings.h"
 

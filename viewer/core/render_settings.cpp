@@ -5,9 +5,7 @@
 
 namespace voxlink::viewer {
 
-std::string_view samplingName(Sampling s) {
-  return s == Sampling::kVoxel ? "voxel" : "trilinear";
-}
+std::string_view samplingName(Sampling s) { return s == Sampling::kVoxel ? "voxel" : "trilinear"; }
 
 std::optional<Sampling> parseSampling(std::string_view name) {
   if (name == "voxel" || name == "nearest") return Sampling::kVoxel;
@@ -24,17 +22,19 @@ Status checkSettings(const RenderSettings& s, const std::string& where) {
     return makeError(ErrorCode::kInvalidArgument, where, ": step ", s.stepVoxels,
                      " voxels must lie in [1/64, 8]");
   if (!(s.terminationAlpha > 0 && s.terminationAlpha <= 1))
-    return makeError(ErrorCode::kInvalidArgument, where, ": termination alpha ",
-                     s.terminationAlpha, " must lie in (0, 1]");
+    return makeError(ErrorCode::kInvalidArgument, where, ": termination alpha ", s.terminationAlpha,
+                     " must lie in (0, 1]");
   if (!(s.shadowTerminationTransmittance >= 0 && s.shadowTerminationTransmittance < 1))
     return makeError(ErrorCode::kInvalidArgument, where, ": shadow termination ",
                      s.shadowTerminationTransmittance, " must lie in [0, 1)");
   const auto& l = s.shading.lightDirection;
   if (!std::isfinite(l[0] + l[1] + l[2]) || l[0] * l[0] + l[1] * l[1] + l[2] * l[2] == 0)
-    return makeError(ErrorCode::kInvalidArgument, where, ": light direction must be finite and non-zero");
+    return makeError(ErrorCode::kInvalidArgument, where,
+                     ": light direction must be finite and non-zero");
   for (double c : s.background)
     if (!(c >= 0 && c <= 1))
-      return makeError(ErrorCode::kInvalidArgument, where, ": background components must lie in [0, 1]");
+      return makeError(ErrorCode::kInvalidArgument, where,
+                       ": background components must lie in [0, 1]");
   return Status::ok();
 }
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "format/limits.h"
@@ -24,19 +24,26 @@ const std::vector<Preset>& presets() {
   static const std::vector<Preset> all = {
       {"ct-bone",
        {{0.0, 0.0}, {0.15, 0.05}, {0.45, 0.5}, {1.0, 0.9}},
-       {{0.0, {0.55, 0.25, 0.15}}, {0.3, {0.88, 0.64, 0.45}}, {0.6, {0.98, 0.9, 0.75}}, {1.0, {1.0, 1.0, 0.96}}}},
+       {{0.0, {0.55, 0.25, 0.15}},
+        {0.3, {0.88, 0.64, 0.45}},
+        {0.6, {0.98, 0.9, 0.75}},
+        {1.0, {1.0, 1.0, 0.96}}}},
       {"ct-soft-tissue",
        {{0.0, 0.0}, {0.1, 0.02}, {0.35, 0.08}, {0.6, 0.4}, {1.0, 0.85}},
-       {{0.0, {0.62, 0.2, 0.14}}, {0.35, {0.9, 0.5, 0.38}}, {0.6, {0.95, 0.85, 0.7}}, {1.0, {1.0, 1.0, 1.0}}}},
-      {"grayscale",
-       {{0.0, 0.0}, {1.0, 0.6}},
-       {{0.0, {0.15, 0.15, 0.15}}, {1.0, {1.0, 1.0, 1.0}}}},
+       {{0.0, {0.62, 0.2, 0.14}},
+        {0.35, {0.9, 0.5, 0.38}},
+        {0.6, {0.95, 0.85, 0.7}},
+        {1.0, {1.0, 1.0, 1.0}}}},
+      {"grayscale", {{0.0, 0.0}, {1.0, 0.6}}, {{0.0, {0.15, 0.15, 0.15}}, {1.0, {1.0, 1.0, 1.0}}}},
       {"cool-warm",
        {{0.0, 0.5}, {0.5, 0.05}, {1.0, 0.5}},
        {{0.0, {0.23, 0.3, 0.75}}, {0.5, {0.87, 0.87, 0.87}}, {1.0, {0.71, 0.016, 0.15}}}},
       {"emission-fire",
        {{0.0, 0.0}, {0.3, 0.05}, {1.0, 0.7}},
-       {{0.0, {0.3, 0.0, 0.0}}, {0.4, {0.9, 0.3, 0.0}}, {0.75, {1.0, 0.8, 0.2}}, {1.0, {1.0, 1.0, 0.9}}}},
+       {{0.0, {0.3, 0.0, 0.0}},
+        {0.4, {0.9, 0.3, 0.0}},
+        {0.75, {1.0, 0.8, 0.2}},
+        {1.0, {1.0, 1.0, 0.9}}}},
   };
   return all;
 }
@@ -108,7 +115,8 @@ std::pair<double, double> displayRange(double lo, double hi) {
   return {lo - width, lo};
 }
 
-Result<format::TransferFunction> parseParaViewPreset(const std::string& text, const std::string& where,
+Result<format::TransferFunction> parseParaViewPreset(const std::string& text,
+                                                     const std::string& where,
                                                      const ParaViewImport& options) {
   nlohmann::json j;
   try {
@@ -131,40 +139,56 @@ Result<format::TransferFunction> parseParaViewPreset(const std::string& text, co
                      options.name.empty() ? "" : " named '" + options.name + "'");
   const std::optional<std::string> maybeName = presetName(*preset);
   if (!maybeName)
-    return makeError(ErrorCode::kInvalidArgument, where, ": field 'Name': ",
-                     preset->at("Name").type_name(), " is not a string");
+    return makeError(ErrorCode::kInvalidArgument, where,
+                     ": field 'Name': ", preset->at("Name").type_name(), " is not a string");
   const std::string& name = *maybeName;
   if (!preset->contains("RGBPoints") || !(*preset)["RGBPoints"].is_array())
-    return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': field 'RGBPoints' missing (indexed or annotation presets are not supported)");
+    return makeError(
+        ErrorCode::kInvalidArgument, where, ": preset '", name,
+        "': field 'RGBPoints' missing (indexed or annotation presets are not supported)");
   const auto& rgb = (*preset)["RGBPoints"];
   if (rgb.size() < 4 || rgb.size() % 4 != 0)
-    return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': field 'RGBPoints' must hold groups of 4 numbers (x, r, g, b), got ", rgb.size());
+    return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name,
+                     "': field 'RGBPoints' must hold groups of 4 numbers (x, r, g, b), got ",
+                     rgb.size());
   format::TransferFunction tf;
   tf.name = name;
   for (size_t i = 0; i < rgb.size(); i += 4) {
-    format::ColorPoint c{parseNumber(rgb[i]), {parseNumber(rgb[i + 1]), parseNumber(rgb[i + 2]), parseNumber(rgb[i + 3])}};
-    if (!std::isfinite(c.value) || std::any_of(c.rgb.begin(), c.rgb.end(), [](double x) { return !(x >= 0 && x <= 1); }))
-      return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': RGBPoints[", i, "..", i + 3, "] must be finite with r, g, b in [0, 1]");
+    format::ColorPoint c{
+        parseNumber(rgb[i]),
+        {parseNumber(rgb[i + 1]), parseNumber(rgb[i + 2]), parseNumber(rgb[i + 3])}};
+    if (!std::isfinite(c.value) ||
+        std::any_of(c.rgb.begin(), c.rgb.end(), [](double x) { return !(x >= 0 && x <= 1); }))
+      return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': RGBPoints[", i,
+                       "..", i + 3, "] must be finite with r, g, b in [0, 1]");
     tf.color.push_back(c);
   }
-  std::stable_sort(tf.color.begin(), tf.color.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+  std::stable_sort(tf.color.begin(), tf.color.end(),
+                   [](const auto& a, const auto& b) { return a.value < b.value; });
   const double x0 = tf.color.front().value, x1 = tf.color.back().value;
-  if (preset->contains("Points") && (*preset)["Points"].is_array() && !(*preset)["Points"].empty()) {
+  if (preset->contains("Points") && (*preset)["Points"].is_array() &&
+      !(*preset)["Points"].empty()) {
     const auto& pts = (*preset)["Points"];
     if (pts.size() % 4 != 0)
-      return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': field 'Points' must hold groups of 4 numbers (x, alpha, midpoint, sharpness)");
+      return makeError(
+          ErrorCode::kInvalidArgument, where, ": preset '", name,
+          "': field 'Points' must hold groups of 4 numbers (x, alpha, midpoint, sharpness)");
     for (size_t i = 0; i < pts.size(); i += 4) {
       const double x = parseNumber(pts[i]), a = parseNumber(pts[i + 1]);
       if (!std::isfinite(x) || !(a >= 0 && a <= 1))
-        return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': Points[", i, "] must be finite with alpha in [0, 1]");
+        return makeError(ErrorCode::kInvalidArgument, where, ": preset '", name, "': Points[", i,
+                         "] must be finite with alpha in [0, 1]");
       tf.opacity.push_back({x, a});
     }
-    std::stable_sort(tf.opacity.begin(), tf.opacity.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+    std::stable_sort(tf.opacity.begin(), tf.opacity.end(),
+                     [](const auto& a, const auto& b) { return a.value < b.value; });
   } else {
     tf.opacity = {{x0, 0.0}, {x1, 0.6}};
   }
   if (options.lo < options.hi && x0 < x1) {
-    auto map = [&](double x) { return options.lo + (x - x0) / (x1 - x0) * (options.hi - options.lo); };
+    auto map = [&](double x) {
+      return options.lo + (x - x0) / (x1 - x0) * (options.hi - options.lo);
+    };
     for (auto& c : tf.color) c.value = map(c.value);
     for (auto& o : tf.opacity) o.value = map(o.value);
   }

@@ -59,7 +59,8 @@ TfTable buildTfTable(const format::TransferFunction& tf, StoredType type, double
   t.entries = type == StoredType::kU8 ? 256u : 65536u;
   t.texels.reserve(size_t{t.entries} * 4);
   for (uint32_t i = 0; i < t.entries; ++i) {
-    const double stored = type == StoredType::kF16 ? double(format::halfToFloat(uint16_t(i))) : double(i);
+    const double stored =
+        type == StoredType::kF16 ? double(format::halfToFloat(uint16_t(i))) : double(i);
     const double v = stored * scale + offset;
     push(t.texels, std::isfinite(v) ? rgbaAt(tf, v) : std::array<double, 4>{0, 0, 0, 0});
   }
@@ -78,7 +79,10 @@ std::array<double, 4> evaluateBreakpoints(const TfTable& table, double value) {
   uint32_t lo = 0, hi = n - 1;
   while (lo < hi) {
     const uint32_t mid = (lo + hi + 1) / 2;
-    if (texel(3 * mid)[0] <= value) lo = mid; else hi = mid - 1;
+    if (texel(3 * mid)[0] <= value)
+      lo = mid;
+    else
+      hi = mid - 1;
   }
   if (lo == n - 1) return texel(3 * lo + 2);
   const double u0 = texel(3 * lo)[0], u1 = texel(3 * (lo + 1))[0];

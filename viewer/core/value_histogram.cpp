@@ -5,7 +5,8 @@
 
 namespace voxlink::viewer {
 
-ValueHistogram valueHistogram(const format::VoxLinkFile& file, double lo, double hi, uint32_t bins) {
+ValueHistogram valueHistogram(const format::VoxLinkFile& file, double lo, double hi,
+                              uint32_t bins) {
   ValueHistogram h;
   if (!(lo < hi) || bins == 0) {
     hi = lo + 1;

@@ -10,8 +10,8 @@
 namespace voxlink::viewer {
 
 struct ValueHistogram {
-  double lo = 0, hi = 1;          // value range the bins cover
-  std::vector<uint64_t> counts;   // bins of width (hi - lo) / counts.size()
+  double lo = 0, hi = 1;         // value range the bins cover
+  std::vector<uint64_t> counts;  // bins of width (hi - lo) / counts.size()
   uint64_t maxCount = 0;
 };
 

@@ -17,10 +17,14 @@ constexpr GLint kGradientsUnit = 3;
 uint32_t storedBitsOf(double value, const VolumeGeometry& m) {
   const double stored = (value - m.valueOffset) / m.valueScale;
   switch (m.valueType) {
-    case StoredType::kU8: return uint32_t(std::clamp(std::lround(stored), 0L, 255L));
-    case StoredType::kU16: return uint32_t(std::clamp(std::lround(stored), 0L, 65535L));
-    case StoredType::kF16: return format::floatToHalf(float(stored));
-    case StoredType::kF32: break;
+    case StoredType::kU8:
+      return uint32_t(std::clamp(std::lround(stored), 0L, 255L));
+    case StoredType::kU16:
+      return uint32_t(std::clamp(std::lround(stored), 0L, 65535L));
+    case StoredType::kF16:
+      return format::floatToHalf(float(stored));
+    case StoredType::kF32:
+      break;
   }
   const float f = float(stored);
   uint32_t bits;
@@ -34,7 +38,8 @@ GlTexture upload3d(GLenum internalFormat, GLenum format, GLenum type, const std:
   GlTexture t = createTexture(GL_TEXTURE_3D);
   glTextureParameteri(t.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // integer textures: no filtering
   glTextureParameteri(t.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTextureStorage3D(t.id(), 1, internalFormat, GLsizei(dims[0]), GLsizei(dims[1]), GLsizei(dims[2]));
+  glTextureStorage3D(t.id(), 1, internalFormat, GLsizei(dims[0]), GLsizei(dims[1]),
+                     GLsizei(dims[2]));
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTextureSubImage3D(t.id(), 0, 0, 0, 0, GLsizei(dims[0]), GLsizei(dims[1]), GLsizei(dims[2]),
                       format, type, data.data());
@@ -50,7 +55,8 @@ Result<std::unique_ptr<DenseRenderer>> DenseRenderer::create(const DenseVolume& 
   for (uint32_t d : volume.dims)
     if (d == 0 || d > uint32_t(maxSide))
       return makeError(ErrorCode::kTooLarge, "dense renderer: dims ", volume.dims[0], "x",
-                       volume.dims[1], "x", volume.dims[2], " exceed the 3D texture limit ", maxSide);
+                       volume.dims[1], "x", volume.dims[2], " exceed the 3D texture limit ",
+                       maxSide);
   VolumeGeometry g = mapping;
   g.dims = volume.dims;
   g.spacing = volume.spacing;

@@ -16,7 +16,9 @@ class EglContext : public GlContext {
     eglDestroyContext(display_, context_);
     eglTerminate(display_);
   }
-  void makeCurrent() override { eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_); }
+  void makeCurrent() override {
+    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_);
+  }
 
  private:
   EGLDisplay display_;
@@ -32,7 +34,8 @@ bool hasClientExtension(const char* name) {
 std::vector<EGLDisplay> candidateDisplays() {
   std::vector<EGLDisplay> out;
   if (hasClientExtension("EGL_MESA_platform_surfaceless")) {
-    EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay d =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (d != EGL_NO_DISPLAY) out.push_back(d);
   }
   if (hasClientExtension("EGL_EXT_platform_device")) {
@@ -70,9 +73,13 @@ Result<std::unique_ptr<GlContext>> createHeadlessContext() {
       eglTerminate(display);
       continue;
     }
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                 4,
+                                 EGL_CONTEXT_MINOR_VERSION,
+                                 5,
                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_NONE};
     EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
     if (context == EGL_NO_CONTEXT) {
       tried += cat(" no GL 4.5 core context (0x", std::hex, eglGetError(), ");");

@@ -35,7 +35,8 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
                                                      const ReferenceRenderer* reference,
                                                      const Box& box, const BenchmarkOptions& o) {
   if (o.framesPerTurn == 0)
-    return makeError(ErrorCode::kInvalidArgument, "bench-render: --frames-per-turn must be positive");
+    return makeError(ErrorCode::kInvalidArgument,
+                     "bench-render: --frames-per-turn must be positive");
   auto log = [&](const std::string& line) {
     if (o.log) o.log(line);
   };
@@ -48,7 +49,8 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
       s.width = size[0];
       s.height = size[1];
       s.sampling = sampling;
-      const std::string label = sizeName(s.width, s.height) + " " + std::string(samplingName(sampling));
+      const std::string label =
+          sizeName(s.width, s.height) + " " + std::string(samplingName(sampling));
       std::vector<RenderTarget> targets(renderers.size());
       std::vector<std::vector<double>> times(renderers.size());
       // Warm-up: compiles the program and lets llvmpipe JIT it; not timed.
@@ -66,7 +68,8 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
           times[r].push_back(seconds() - t0);
           if (f == 0) firstFrames[r] = targets[r].read();
         }
-        if ((f + 1) % std::max(1u, frames / 8) == 0) log(cat(label, ": frame ", f + 1, "/", frames));
+        if ((f + 1) % std::max(1u, frames / 8) == 0)
+          log(cat(label, ": frame ", f + 1, "/", frames));
       }
       Image truth;
       if (reference) {
@@ -74,8 +77,9 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
         truth = reference->render(start, s);
       }
       for (size_t r = 0; r < renderers.size(); ++r) {
-        BenchmarkRow row{renderers[r]->name(), sampling, s.width, s.height, frames, 0, 0, 0, 0, NAN, NAN,
-                         renderers[r]->gpuBytes()};
+        BenchmarkRow row{
+            renderers[r]->name(),    sampling, s.width, s.height, frames, 0, 0, 0, 0, NAN, NAN,
+            renderers[r]->gpuBytes()};
         double total = 0;
         for (double t : times[r]) total += t;
         row.meanMs = 1e3 * total / frames;
@@ -88,15 +92,17 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
           row.maxError = e.maxError;
         }
         if (!o.pictureDir.empty()) {
-          const std::string base = o.pictureDir + "/" + row.renderer + "_" + std::string(samplingName(sampling)) +
-                                   "_" + sizeName(s.width, s.height);
+          const std::string base = o.pictureDir + "/" + row.renderer + "_" +
+                                   std::string(samplingName(sampling)) + "_" +
+                                   sizeName(s.width, s.height);
           VOXLINK_RETURN_IF_ERROR(writeImage(firstFrames[r], base + ".png"));
         }
         rows.push_back(row);
       }
       if (reference && !o.pictureDir.empty())
-        VOXLINK_RETURN_IF_ERROR(writeImage(truth, o.pictureDir + "/reference_" + std::string(samplingName(sampling)) +
-                                                      "_" + sizeName(s.width, s.height) + ".png"));
+        VOXLINK_RETURN_IF_ERROR(writeImage(truth, o.pictureDir + "/reference_" +
+                                                      std::string(samplingName(sampling)) + "_" +
+                                                      sizeName(s.width, s.height) + ".png"));
     }
   }
   return rows;
@@ -104,7 +110,8 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
 
 std::string benchmarkTable(const std::vector<BenchmarkRow>& rows) {
   std::string out =
-      "| renderer | sampling | size | frames | mean ms | min ms | max ms | FPS | PSNR dB | max error | GPU MiB | speed-up |\n"
+      "| renderer | sampling | size | frames | mean ms | min ms | max ms | FPS | PSNR dB | max "
+      "error | GPU MiB | speed-up |\n"
       "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   // Speed-up of each row against the other renderers' rows of the same size and sampling.
   std::map<std::tuple<uint32_t, uint32_t, int>, double> slowest;
@@ -115,13 +122,16 @@ std::string benchmarkTable(const std::vector<BenchmarkRow>& rows) {
   char line[512];
   for (const auto& r : rows) {
     const double ref = slowest[{r.width, r.height, int(r.sampling)}];
-    std::snprintf(line, sizeof line,
-                  "| %s | %s | %ux%u | %u | %.1f | %.1f | %.1f | %.2f | %s | %s | %.1f | %.2fx |\n",
-                  r.renderer.c_str(), std::string(samplingName(r.sampling)).c_str(), r.width, r.height,
-                  r.frames, r.meanMs, r.minMs, r.maxMs, r.fps,
-                  std::isnan(r.psnr) ? "-" : (std::isinf(r.psnr) ? "inf" : cat(std::fixed, std::setprecision(2), r.psnr).c_str()),
-                  std::isnan(r.maxError) ? "-" : cat(std::fixed, std::setprecision(4), r.maxError).c_str(),
-                  r.gpuBytes / 1048576.0, ref / r.meanMs);
+    std::snprintf(
+        line, sizeof line,
+        "| %s | %s | %ux%u | %u | %.1f | %.1f | %.1f | %.2f | %s | %s | %.1f | %.2fx |\n",
+        r.renderer.c_str(), std::string(samplingName(r.sampling)).c_str(), r.width, r.height,
+        r.frames, r.meanMs, r.minMs, r.maxMs, r.fps,
+        std::isnan(r.psnr)
+            ? "-"
+            : (std::isinf(r.psnr) ? "inf" : cat(std::fixed, std::setprecision(2), r.psnr).c_str()),
+        std::isnan(r.maxError) ? "-" : cat(std::fixed, std::setprecision(4), r.maxError).c_str(),
+        r.gpuBytes / 1048576.0, ref / r.meanMs);
     out += line;
   }
   return out;

@@ -31,10 +31,10 @@ struct BenchmarkRow {
   Sampling sampling;
   uint32_t width, height;
   uint32_t frames;
-  double meanMs;       // mean frame time over the protocol
+  double meanMs;  // mean frame time over the protocol
   double minMs, maxMs;
-  double fps;          // frames / total time
-  double psnr;         // first view, against the reference
+  double fps;   // frames / total time
+  double psnr;  // first view, against the reference
   double maxError;
   uint64_t gpuBytes;
 };
@@ -42,7 +42,8 @@ struct BenchmarkRow {
 // `reference` may be null (no PSNR column). Renderers must share the TF already set on them.
 Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRenderer*>& renderers,
                                                      const ReferenceRenderer* reference,
-                                                     const Box& box, const BenchmarkOptions& options);
+                                                     const Box& box,
+                                                     const BenchmarkOptions& options);
 
 // Markdown table with the speed-up of the first renderer over each other one.
 std::string benchmarkTable(const std::vector<BenchmarkRow>& rows);

@@ -12,9 +12,9 @@ namespace {
 
 // An array to upload: a section of the file, or a table derived from it.
 struct GpuArray {
-  std::string name;         // for errors
-  const char* accessor;     // GLSL function returning element i
-  const char* block;        // prefix of the block and array names
+  std::string name;          // for errors
+  const char* accessor;      // GLSL function returning element i
+  const char* block;         // prefix of the block and array names
   uint32_t wordsPerElement;  // 1: uint, 2: uvec2
   std::span<const uint8_t> bytes;
 };
@@ -29,7 +29,8 @@ GpuArray section(const format::VoxLinkFile& file, format::SectionId id, const ch
 }
 
 // Per occupied brick: (box of its stored voxels, its first voxel).
-std::vector<uint32_t> brickEntries(const format::VoxLinkFile& file, const std::vector<uint32_t>& boxes) {
+std::vector<uint32_t> brickEntries(const format::VoxLinkFile& file,
+                                   const std::vector<uint32_t>& boxes) {
   const auto firstVoxels = file.brickVoxelBase();
   std::vector<uint32_t> entries(2 * boxes.size());
   for (size_t k = 0; k < boxes.size(); ++k) {
@@ -71,14 +72,17 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   if (file.isScene()) {
     arrays.push_back(section(file, format::SectionId::kMaterials, "matlWord", "VxlMatl"));
     arrays.push_back(section(file, format::SectionId::kVolumeMask, "vmskWord", "VxlVmsk"));
-    arrays.push_back({"volume mask ranks", "vmskRank", "VxlVmskRank", 1, bytesOf(index.volume().table())});
+    arrays.push_back(
+        {"volume mask ranks", "vmskRank", "VxlVmskRank", 1, bytesOf(index.volume().table())});
     arrays.push_back(section(file, format::SectionId::kSurfaceMask, "smskWord", "VxlSmsk"));
-    arrays.push_back({"surface mask ranks", "smskRank", "VxlSmskRank", 1, bytesOf(index.surface().table())});
+    arrays.push_back(
+        {"surface mask ranks", "smskRank", "VxlSmskRank", 1, bytesOf(index.surface().table())});
     arrays.push_back(section(file, format::SectionId::kSurface, "surfWord", "VxlSurf"));
     if (file.header().sphereCount > 0) {
       arrays.push_back(section(file, format::SectionId::kSpheres, "sphrWord", "VxlSphr"));
       arrays.push_back(section(file, format::SectionId::kSphereMask, "pmskWord", "VxlPmsk"));
-      arrays.push_back({"sphere mask ranks", "pmskRank", "VxlPmskRank", 1, bytesOf(index.spheres().table())});
+      arrays.push_back(
+          {"sphere mask ranks", "pmskRank", "VxlPmskRank", 1, bytesOf(index.spheres().table())});
       arrays.push_back(section(file, format::SectionId::kSphereRefStart, "srofWord", "VxlSrof"));
       arrays.push_back(section(file, format::SectionId::kSphereRefs, "sridWord", "VxlSrid"));
     }
@@ -94,18 +98,22 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
     const int shift = std::countr_zero(chunkElements);
     const auto bytes = s.bytes;
     // Empty arrays (a file without voxels) still get one zero element: a buffer cannot be empty.
-    const uint64_t elements = std::max<uint64_t>((bytes.size() + elementBytes - 1) / elementBytes, 1);
+    const uint64_t elements =
+        std::max<uint64_t>((bytes.size() + elementBytes - 1) / elementBytes, 1);
     const uint64_t chunks = (elements + chunkElements - 1) / chunkElements;
     std::string accessor = cat(pair ? "uvec2 " : "uint ", s.accessor, "(uint i) {\n");
-    if (chunks > 1) accessor += cat("  uint c = i >> ", shift, "u;\n  uint j = i & ", chunkElements - 1, "u;\n");
+    if (chunks > 1)
+      accessor += cat("  uint c = i >> ", shift, "u;\n  uint j = i & ", chunkElements - 1, "u;\n");
     for (uint64_t c = 0; c < chunks; ++c) {
       if (int(unit) >= maxUnits)
-        return makeError(ErrorCode::kTooLarge, file.path(), ": the file needs more than the ", maxUnits,
-                         " texture units a compute shader has here (chunks of ", limit, " bytes)");
+        return makeError(ErrorCode::kTooLarge, file.path(), ": the file needs more than the ",
+                         maxUnits, " texture units a compute shader has here (chunks of ", limit,
+                         " bytes)");
       const uint64_t first = c * chunkElements * elementBytes;
       const uint64_t count = std::min(chunkElements, elements - c * chunkElements) * elementBytes;
       std::vector<uint8_t> staging;
-      const uint64_t have = bytes.size() > first ? std::min<uint64_t>(bytes.size() - first, count) : 0;
+      const uint64_t have =
+          bytes.size() > first ? std::min<uint64_t>(bytes.size() - first, count) : 0;
       const void* data = bytes.data() + first;
       if (have < count) {  // padding the last element or an empty array
         staging.assign(count, 0u);
@@ -116,13 +124,15 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       glNamedBufferStorage(chunk.buffer.id(), GLsizeiptr(count), data, 0);
       glTextureBuffer(chunk.texture.id(), pair ? GL_RG32UI : GL_R32UI, chunk.buffer.id());
       if (glGetError() != GL_NO_ERROR)
-        return makeError(ErrorCode::kTooLarge, file.path(), ": ", s.name, ": the GL refused a buffer of ",
-                         count, " bytes");
+        return makeError(ErrorCode::kTooLarge, file.path(), ": ", s.name,
+                         ": the GL refused a buffer of ", count, " bytes");
       out.gpuBytes_ += count;
       const std::string name = cat(s.block, c);
       out.glsl_ += cat("layout(binding = ", unit, ") uniform usamplerBuffer ", name, ";\n");
-      const std::string fetch = cat("texelFetch(", name, ", int(", chunks > 1 ? "j" : "i", "))", pair ? ".rg" : ".r");
-      accessor += chunks > 1 ? cat("  if (c == ", c, "u) return ", fetch, ";\n") : cat("  return ", fetch, ";\n");
+      const std::string fetch =
+          cat("texelFetch(", name, ", int(", chunks > 1 ? "j" : "i", "))", pair ? ".rg" : ".r");
+      accessor += chunks > 1 ? cat("  if (c == ", c, "u) return ", fetch, ";\n")
+                             : cat("  return ", fetch, ";\n");
       out.chunks_.push_back(std::move(chunk));
       ++unit;
     }

@@ -22,7 +22,8 @@ struct Preprocessor {
 
   Status expand(const std::string& name, int depth, const std::vector<ShaderDefine>* defines) {
     if (depth > kMaxIncludeDepth)
-      return makeError(ErrorCode::kInvalidArgument, name, ": includes nest deeper than ", kMaxIncludeDepth);
+      return makeError(ErrorCode::kInvalidArgument, name, ": includes nest deeper than ",
+                       kMaxIncludeDepth);
     auto text = shaderFile(name, generated);
     if (!text) return makeError(ErrorCode::kIo, name, ": shader file not found");
     included.insert(name);
@@ -40,7 +41,8 @@ struct Preprocessor {
       if (!versionSeen && line.rfind("#version", 0) == 0) {
         // #version must come first: restart the text with it, the defines, then the rest.
         out.text = line + "\n";
-        for (const ShaderDefine& d : *defines) out.text += cat("#define ", d.name, " ", d.value, "\n");
+        for (const ShaderDefine& d : *defines)
+          out.text += cat("#define ", d.name, " ", d.value, "\n");
         out.text += cat("#line ", lineNo + 1, " ", id, "\n");
         versionSeen = true;
       } else if (std::regex_match(line, m, includeRe)) {
@@ -56,8 +58,7 @@ struct Preprocessor {
         out.text += line + "\n";
       }
     }
-    if (!versionSeen)
-      return makeError(ErrorCode::kInvalidArgument, name, ": no #version line");
+    if (!versionSeen) return makeError(ErrorCode::kInvalidArgument, name, ": no #version line");
     return Status::ok();
   }
 };
@@ -115,7 +116,8 @@ std::string mapShaderLog(const std::string& log, const std::vector<std::string>&
 Result<ComputeProgram> ComputeProgram::build(const std::string& mainFile,
                                              const std::vector<ShaderDefine>& defines,
                                              const std::map<std::string, std::string>& generated) {
-  VOXLINK_ASSIGN_OR_RETURN(PreprocessedShader source, preprocessShader(mainFile, defines, generated));
+  VOXLINK_ASSIGN_OR_RETURN(PreprocessedShader source,
+                           preprocessShader(mainFile, defines, generated));
   const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
   const char* text = source.text.c_str();
   glShaderSource(shader, 1, &text, nullptr);

@@ -5,12 +5,12 @@
 // #line directives so compiler messages point back to file:line.
 #pragma once
 
+#include <epoxy/gl.h>
+
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <epoxy/gl.h>
 
 #include "format/error.h"
 

@@ -8,7 +8,6 @@
 namespace voxlink::viewer {
 namespace {
 
-
 // sin/cos tables taken from format::decodeGradient, so the shader decodes bit-identically:
 // entries [0, 255) are (sin theta, cos theta), [255, 511) are (cos phi, sin phi).
 std::vector<float> gradientTable() {
@@ -81,7 +80,8 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s) {
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
   defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
-  VOXLINK_ASSIGN_OR_RETURN(ComputeProgram p, ComputeProgram::build(mainShader(), defines, generatedFiles()));
+  VOXLINK_ASSIGN_OR_RETURN(ComputeProgram p,
+                           ComputeProgram::build(mainShader(), defines, generatedFiles()));
   return &programs_.emplace(key, std::move(p)).first->second;
 }
 
@@ -138,7 +138,8 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   if (const GLenum e = glGetError(); e != GL_NO_ERROR)
-    return makeError(ErrorCode::kUnsupported, name(), ": GL error 0x", std::hex, e, " while rendering");
+    return makeError(ErrorCode::kUnsupported, name(), ": GL error 0x", std::hex, e,
+                     " while rendering");
   return Status::ok();
 }
 

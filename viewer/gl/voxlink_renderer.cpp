@@ -12,8 +12,8 @@ std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
           {"VXL_SPHERES", h.sphereCount > 0 ? "1" : "0"}};
 }
 
-Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(const format::VoxLinkFile& file,
-                                                                 const SectionBufferOptions& options) {
+Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(
+    const format::VoxLinkFile& file, const SectionBufferOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(SectionBuffers sections, SectionBuffers::upload(file, options));
   return std::unique_ptr<VoxLinkRenderer>(new VoxLinkRenderer(file, std::move(sections)));
 }
@@ -25,7 +25,8 @@ VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers
 
 Status VoxLinkRenderer::checkSupported(const RenderSettings& settings) const {
   if (header_.versionMajor == format::kVersionMajorScene && settings.sampling != Sampling::kVoxel)
-    return makeError(ErrorCode::kUnsupported, name(), ": scenes (files with geometry) render with voxel sampling; ",
+    return makeError(ErrorCode::kUnsupported, name(),
+                     ": scenes (files with geometry) render with voxel sampling; ",
                      samplingName(settings.sampling), " sampling is for volume files");
   return Status::ok();
 }
