@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs packages, builds and runs every test (GoogleTest via ctest), from a fresh Debian 12
-# machine as root. GL tests render headless on Mesa's llvmpipe through EGL; no GPU or display.
+# machine as root. It first checks clang-format and builds with -Werror. GL tests render headless
+# on Mesa's llvmpipe through EGL; no GPU or display.
 # The fuzz regression inputs replay in this suite (fuzz_regression_tests). With
 # VOXLINK_SANITIZE_AND_FUZZ=1 it then runs the same suite under ASan + UBSan + LeakSanitizer
 # (build-asan) and a short run of every fuzz target (build-fuzz, docs/fuzzing.md);
@@ -8,7 +9,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh
+# Style and warnings are part of the test: unformatted code or a compiler warning fails the run.
+bash scripts/check-format.sh
+bash scripts/build.sh -DVOXLINK_WERROR=ON
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 if [ "${VOXLINK_SANITIZE_AND_FUZZ:-0}" = 1 ]; then
   bash scripts/sanitize-tests.sh
