@@ -35,6 +35,18 @@ Status checkSettings(const RenderSettings& s, const std::string& where) {
     if (!(c >= 0 && c <= 1))
       return makeError(ErrorCode::kInvalidArgument, where,
                        ": background components must lie in [0, 1]");
+  if (!(s.effects.maxBounces >= 0 && s.effects.maxBounces <= kMaxBouncesLimit))
+    return makeError(ErrorCode::kInvalidArgument, where, ": max bounces ", s.effects.maxBounces,
+                     " must lie in [0, ", kMaxBouncesLimit, "]");
+  if (s.lights.size() > kMaxLights)
+    return makeError(ErrorCode::kInvalidArgument, where, ": ", s.lights.size(), " lights; at most ",
+                     kMaxLights);
+  for (const Light& light : s.lights)
+    for (int a = 0; a < 3; ++a)
+      if (!std::isfinite(light.position[a]) || !(light.radiance[a] >= 0) ||
+          !std::isfinite(light.radiance[a]))
+        return makeError(ErrorCode::kInvalidArgument, where,
+                         ": light positions must be finite and radiances finite and >= 0");
   return Status::ok();
 }
 

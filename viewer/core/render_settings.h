@@ -8,8 +8,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "format/error.h"
+#include "viewer/core/effects.h"
 
 namespace voxlink::viewer {
 
@@ -49,6 +51,10 @@ struct RenderSettings {
   double shadowTerminationTransmittance = 0.01;
   std::array<double, 3> background{0.0, 0.0, 0.0};
   Shading shading;
+  // The ray-traced scene mode (docs/effects.md): reflection, refraction and shadow rays.
+  Effects effects;
+  // Lights of that mode; empty: the frame's directional light (shading.lightDirection).
+  std::vector<Light> lights;
 };
 
 // Opacity 1 is held just below 1 so the per-unit extinction -ln(1 - alpha) stays finite; both

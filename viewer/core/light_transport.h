@@ -1,0 +1,60 @@
+// The float64 optics of the ray-traced scene mode (paper, section 5.2.1, "opacity transport"):
+// how a hit's share of a ray divides into local shading, a reflected ray, a refracted ray and the
+// part that passes straight on, and the reflection and refraction directions.
+// shaders/voxlink_effects.glsl implements the same formulas in float; docs/effects.md states them.
+#pragma once
+
+#include <cmath>
+#include <glm/glm.hpp>
+#include <optional>
+
+#include "format/layout.h"
+#include "viewer/core/effects.h"
+
+namespace voxlink::viewer {
+
+// Shares of the weight w of a ray arriving at a surface with opacity a, reflectivity r and
+// transmission t (r + t <= 1): local shading w a (1 - r - t), reflected ray w a r, refracted ray
+// w a t, straight on w (1 - a). They sum to w. An effect that is off gives its share to local
+// shading, so with every effect off this is the plain compositing of the scene renderer.
+struct HitShares {
+  double local = 0;
+  double reflect = 0;
+  double refract = 0;
+  double through = 0;
+};
+
+inline HitShares splitHit(const format::MaterialRecord& m, const Effects& e) {
+  const double a = m.opacity;
+  const double r = e.reflect ? m.reflectivity : 0.0;
+  const double t = e.refract ? m.transmission : 0.0;
+  return {a * (1.0 - r - t), a * r, a * t, 1.0 - a};
+}
+
+// Transmittance of a surface for shadow rays: what passes straight plus what the refracted share
+// carries through (glass casts no full shadow when refraction is on).
+inline double shadowTransmittanceOf(const format::MaterialRecord& m, const Effects& e) {
+  const double t = e.refract ? m.transmission : 0.0;
+  return 1.0 - m.opacity * (1.0 - t);
+}
+
+// Mirror direction of unit d about unit normal n (either orientation).
+inline glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& n) {
+  return d - 2.0 * glm::dot(d, n) * n;
+}
+
+// Snell refraction of unit d at a surface whose stored (outward) unit normal is n and whose
+// material has refractive index ior: entering when d points against n (index 1 -> ior),
+// leaving otherwise. Empty on total internal reflection.
+inline std::optional<glm::dvec3> refractDirection(const glm::dvec3& d, const glm::dvec3& n,
+                                                  double ior) {
+  const bool entering = glm::dot(d, n) < 0;
+  const glm::dvec3 nf = entering ? n : -n;  // faces the incoming ray
+  const double eta = entering ? 1.0 / ior : ior;
+  const double cosI = -glm::dot(d, nf);
+  const double k = 1.0 - eta * eta * (1.0 - cosI * cosI);
+  if (k < 0) return std::nullopt;
+  return glm::normalize(eta * d + (eta * cosI - std::sqrt(k)) * nf);
+}
+
+}  // namespace voxlink::viewer
