@@ -60,6 +60,7 @@ void main() {
   gRayPixel = pixel.y * uImageSize.x + pixel.x;
   gRayWeight = 1.0;
   gRayDepth = 0;
+  gRayMedium = kMediumUnknown;
   vec3 color;
   float transmittance;
   traceEffectsRay(uEyeWorld, primaryDirection(pixel), color, transmittance);
@@ -72,7 +73,8 @@ void main() {
   uint r = gl_GlobalInvocationID.x;
   if (r >= uRayCount) return;
   GpuRay ray = raysIn[r];
-  gRayPixel = ray.pixelDepth & 0x0FFFFFFFu;
+  gRayPixel = ray.pixelDepth & 0x03FFFFFFu;
+  gRayMedium = (ray.pixelDepth >> 26u) & 3u;
   gRayDepth = int(ray.pixelDepth >> 28u);
   gRayWeight = ray.originWeight.w;
   vec3 color;

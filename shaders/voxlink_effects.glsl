@@ -16,8 +16,12 @@ uniform vec3 uLightRadiance[VXL_MAX_LIGHTS];
 struct GpuRay {
   vec4 originWeight;  // world origin, weight (share of the pixel)
   vec3 direction;     // world, unit
-  uint pixelDepth;    // pixel index (y * width + x) | generation << 28
+  uint pixelDepth;    // pixel index (y * width + x) | medium << 26 | generation << 28
 };
+
+// Where a ray is with respect to refracting objects (light_transport.h, Medium): unknown until
+// its first refraction, when the surface normal decides.
+const uint kMediumUnknown = 0u, kMediumOutside = 1u, kMediumInside = 2u;
 layout(std430, binding = VXL_RAYS_OUT_BINDING) writeonly buffer RaysOut { GpuRay raysOut[]; };
 layout(binding = 0, offset = 0) uniform atomic_uint uSpawned;  // rays written to raysOut
 layout(binding = 0, offset = 4) uniform atomic_uint uDropped;  // rays the buffer had no room for
@@ -27,8 +31,9 @@ uniform uint uRayCapacity;
 float gRayWeight;
 uint gRayPixel;
 int gRayDepth;
+uint gRayMedium;
 
-void spawnRay(vec3 origin, vec3 direction, float share) {
+void spawnRay(vec3 origin, vec3 direction, float share, uint medium) {
   float w = gRayWeight * share;
   if (gRayDepth >= uMaxBounces || !(w > uMinWeight)) return;
   uint i = atomicCounterIncrement(uSpawned);
@@ -36,7 +41,8 @@ void spawnRay(vec3 origin, vec3 direction, float share) {
     atomicCounterIncrement(uDropped);
     return;
   }
-  raysOut[i] = GpuRay(vec4(origin, w), direction, gRayPixel | (uint(gRayDepth + 1) << 28u));
+  raysOut[i] =
+      GpuRay(vec4(origin, w), direction, gRayPixel | (medium << 26u) | (uint(gRayDepth + 1) << 28u));
 }
 
 // Unit direction and distance from world point p to light i.
@@ -110,8 +116,8 @@ void effectsSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color,
   float local = m.opacity * (1.0 - r - t);
   float reflectShare = m.opacity * r, refractShare = m.opacity * t;
   vec3 refracted = vec3(0.0);
+  bool entering = gRayMedium == kMediumUnknown ? dot(d, n) < 0.0 : gRayMedium == kMediumOutside;
   if (refractShare > 0.0) {
-    bool entering = dot(d, n) < 0.0;
     float eta = entering ? 1.0 / m.ior : m.ior;
     float cosI = dot(toEye, nf);
     float k = 1.0 - eta * eta * (1.0 - cosI * cosI);
@@ -127,9 +133,11 @@ void effectsSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color,
   if (local > 0.0) c += local * effectsSurfaceShade(m, nf, world, toEye);
   color += transmittance * c;
   if (reflectShare > 0.0)
-    spawnRay(world + nf * uSurfaceOffset, d - 2.0 * dot(d, nf) * nf, transmittance * reflectShare);
+    spawnRay(world + nf * uSurfaceOffset, d - 2.0 * dot(d, nf) * nf, transmittance * reflectShare,
+             gRayMedium);
   if (refractShare > 0.0)
-    spawnRay(world - nf * uSurfaceOffset, refracted, transmittance * refractShare);
+    spawnRay(world - nf * uSurfaceOffset, refracted, transmittance * refractShare,
+             entering ? kMediumInside : kMediumOutside);
   transmittance *= 1.0 - m.opacity;
 }
 #endif  // VXL_SCENE

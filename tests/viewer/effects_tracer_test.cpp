@@ -97,8 +97,8 @@ TEST(EffectsTracer, TotalInternalReflectionMirrorsTheRefractedShare) {
   ASSERT_EQ(scene.walked.size(), 2u);
   EXPECT_NEAR(scene.walked[1].direction.z, -std::cos(theta), 1e-12);
   EXPECT_NEAR(c[0], 0.6, 1e-7);
-  EXPECT_FALSE(refractDirection({std::sin(theta), 0, std::cos(theta)}, {0, 0, 1}, 1.5));
-  EXPECT_TRUE(refractDirection({std::sin(0.7), 0, std::cos(0.7)}, {0, 0, 1}, 1.5));
+  EXPECT_FALSE(refractDirection({std::sin(theta), 0, std::cos(theta)}, {0, 0, 1}, 1.5, false));
+  EXPECT_TRUE(refractDirection({std::sin(0.7), 0, std::cos(0.7)}, {0, 0, 1}, 1.5, false));
 }
 
 TEST(EffectsTracer, SplitRaysAddUpToOneUnsplitRay) {

@@ -37,8 +37,11 @@ Result<Effects> parseEffects(std::string_view text, int maxBounces) {
 std::string effectsName(const Effects& e) {
   std::string s;
   for (auto [on, name] : {std::pair{e.reflect, "reflect"}, std::pair{e.refract, "refract"},
-                          std::pair{e.shadows, "shadows"}})
-    if (on) s += (s.empty() ? "" : ",") + std::string(name);
+                          std::pair{e.shadows, "shadows"}}) {
+    if (!on) continue;
+    if (!s.empty()) s.push_back(',');
+    s.append(name);
+  }
   return s.empty() ? "none" : s;
 }
 

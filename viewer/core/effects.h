@@ -18,7 +18,7 @@ struct Effects {
   bool refract = false;  // Snell refraction at transmissive surfaces (transmission, ior)
   bool shadows = false;  // a shadow ray towards every light at every hit
   // Secondary-ray generations after the primary ray; a ray past it is not spawned (its share is
-  // lost, as in any bounded ray tracer).
+  // lost, as in any bounded ray tracer). At most kMaxBouncesLimit.
   int maxBounces = 4;
 
   bool any() const { return reflect || refract || shadows; }
@@ -39,7 +39,7 @@ struct Light {
 
 // At most this many lights reach the GL ray tracer (one uniform array); more are refused.
 inline constexpr size_t kMaxLights = 8;
-inline constexpr int kMaxBouncesLimit = 16;
+inline constexpr int kMaxBouncesLimit = 15;  // a 4-bit field of the GPU's ray record
 
 // Lights from a VoxLink file's META JSON (scene.lights: position, color, intensity); empty when
 // it has none. Malformed entries are an error naming the field.

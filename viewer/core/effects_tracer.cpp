@@ -24,6 +24,7 @@ struct PendingRay {
   Ray ray;
   double weight;
   int depth;
+  Medium medium;
 };
 
 }  // namespace
@@ -142,16 +143,16 @@ std::array<double, 4> EffectsTracer::trace(const Ray& primary, const Frame& f) c
   };
 
   // Rays of the pixel still to trace, newest first; the order does not change the sum.
-  std::vector<PendingRay> pending{{primary, 1.0, 0}};
+  std::vector<PendingRay> pending{{primary, 1.0, 0, Medium::kUnknown}};
   while (!pending.empty()) {
     const PendingRay r = pending.back();
     pending.pop_back();
     const glm::dvec3 d = r.ray.direction, toEye = -d;
     double transmittance = 1.0;
-    auto spawn = [&](const glm::dvec3& origin, const glm::dvec3& dir, double share) {
+    auto spawn = [&](const glm::dvec3& origin, const glm::dvec3& dir, double share, Medium medium) {
       const double w = r.weight * transmittance * share;
       if (r.depth < effects.maxBounces && w > f.minWeight)
-        pending.push_back({Ray{origin, dir}, w, r.depth + 1});
+        pending.push_back({Ray{origin, dir}, w, r.depth + 1, medium});
     };
     auto [t0, t1] = intersectBox(r.ray.origin, d, box.lo, box.hi);
     t0 = std::max(t0, 0.0);
@@ -163,8 +164,9 @@ std::array<double, 4> EffectsTracer::trace(const Ray& primary, const Frame& f) c
           const glm::dvec3 nf = glm::dot(e.normal, toEye) < 0 ? -e.normal : e.normal;
           HitShares shares = splitHit(m, effects);
           std::optional<glm::dvec3> refracted;
+          const bool entering = entersSurface(r.medium, d, e.normal);
           if (shares.refract > 0) {
-            refracted = refractDirection(d, e.normal, m.refractiveIndex);
+            refracted = refractDirection(d, e.normal, m.refractiveIndex, entering);
             if (!refracted) {  // total internal reflection: the refracted share is mirrored
               shares.reflect += shares.refract;
               shares.refract = 0;
@@ -174,8 +176,11 @@ std::array<double, 4> EffectsTracer::trace(const Ray& primary, const Frame& f) c
           glm::dvec3 local = emission * double(m.opacity);
           if (shares.local > 0) local += shares.local * shadeSurfaceAt(m, nf, p, toEye);
           color += r.weight * transmittance * local;
-          if (shares.reflect > 0) spawn(p + nf * offset, reflectDirection(d, nf), shares.reflect);
-          if (shares.refract > 0) spawn(p - nf * offset, *refracted, shares.refract);
+          if (shares.reflect > 0)
+            spawn(p + nf * offset, reflectDirection(d, nf), shares.reflect, r.medium);
+          if (shares.refract > 0)
+            spawn(p - nf * offset, *refracted, shares.refract,
+                  entering ? Medium::kInside : Medium::kOutside);
           transmittance *= shares.through;
         } else {
           const double a = correctedAlpha(tf_.opacityAt(e.value), e.tEnd - e.t, unit);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <optional>
 
@@ -43,13 +44,25 @@ inline glm::dvec3 reflectDirection(const glm::dvec3& d, const glm::dvec3& n) {
   return d - 2.0 * glm::dot(d, n) * n;
 }
 
-// Snell refraction of unit d at a surface whose stored (outward) unit normal is n and whose
-// material has refractive index ior: entering when d points against n (index 1 -> ior),
-// leaving otherwise. Empty on total internal reflection.
+// Where a ray is with respect to refracting objects. A ray that has not been refracted yet does
+// not know (the camera may sit inside glass) and asks the surface normal; after a refraction it
+// knows, which keeps voxelized surfaces whose normals are unreliable (thin parts, where both
+// sides share a voxel) from being entered twice.
+enum class Medium : uint8_t { kUnknown = 0, kOutside = 1, kInside = 2 };
+
+// Whether a ray in `medium` with unit direction d enters the object at a surface with stored
+// (outward) unit normal n.
+inline bool entersSurface(Medium medium, const glm::dvec3& d, const glm::dvec3& n) {
+  if (medium == Medium::kUnknown) return glm::dot(d, n) < 0;
+  return medium == Medium::kOutside;
+}
+
+// Snell refraction of unit d at a surface with unit normal n (either orientation) of a material
+// with refractive index ior: index 1 -> ior when entering, ior -> 1 when leaving. Empty on total
+// internal reflection.
 inline std::optional<glm::dvec3> refractDirection(const glm::dvec3& d, const glm::dvec3& n,
-                                                  double ior) {
-  const bool entering = glm::dot(d, n) < 0;
-  const glm::dvec3 nf = entering ? n : -n;  // faces the incoming ray
+                                                  double ior, bool entering) {
+  const glm::dvec3 nf = glm::dot(d, n) < 0 ? n : -n;  // faces the incoming ray
   const double eta = entering ? 1.0 / ior : ior;
   const double cosI = -glm::dot(d, nf);
   const double k = 1.0 - eta * eta * (1.0 - cosI * cosI);

@@ -14,7 +14,7 @@ struct GpuRay {
   float origin[3];
   float weight;
   float direction[3];
-  uint32_t pixelDepth;  // pixel index | generation << 28
+  uint32_t pixelDepth;  // pixel index | medium << 26 | generation << 28
 };
 static_assert(sizeof(GpuRay) == 32);
 
@@ -26,6 +26,8 @@ inline constexpr GLuint kAccumBinding = 58;
 inline constexpr double kAccumScale = 1048576.0;
 // One storage-buffer binding holds at most 128 MiB on llvmpipe.
 inline constexpr uint64_t kMaxRayBufferBytes = 128ull << 20;
+// A ray names its pixel in 26 bits: the ray-traced mode renders at most this many pixels.
+inline constexpr uint64_t kMaxEffectsPixels = 1ull << 26;
 
 class EffectsBuffers {
  public:

@@ -52,6 +52,9 @@ Status VolumeRenderer::renderEffects(const Camera& camera, const RenderSettings&
                            program(settings, Pass::kEffectsSecondary));
   VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* resolve, program(settings, Pass::kEffectsResolve));
   const uint32_t w = settings.width, h = settings.height;
+  if (uint64_t(w) * h > kMaxEffectsPixels)
+    return makeError(ErrorCode::kInvalidArgument, name(), ": the ray-traced mode renders at most ",
+                     kMaxEffectsPixels, " pixels (8192x8192); ", w, "x", h, " is larger");
   target.resize(w, h);
   effects_.resize(w, h);
   effectsStats_ = {};
