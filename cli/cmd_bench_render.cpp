@@ -10,6 +10,8 @@
 #include "cli/render_options.h"
 #include "format/validator.h"
 #include "viewer/core/recorded_source.h"
+#include "viewer/core/reference_renderer.h"
+#include "viewer/core/scene_reference_renderer.h"
 #include "viewer/gl/dense_renderer.h"
 #include "viewer/gl/gl_context.h"
 #include "viewer/gl/render_benchmark.h"
@@ -58,6 +60,8 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     }
     o.samplings.clear();
     for (const auto& s : args->samplings) o.samplings.push_back(*viewer::parseSampling(s));
+    // Scenes render with voxel sampling only (the ray tracer refuses trilinear for them).
+    if (file->isScene()) o.samplings = {viewer::Sampling::kVoxel};
     auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
     o.base = *settings;
@@ -70,8 +74,11 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     auto tf = args->render.transferFunction(*file);
     if (!tf) return reportError(tf.error());
 
+    // A scene has no dense source: its reference is the float64 tracer over the same voxel
+    // scene, and there is no dense peer.
+    if (file->isScene()) args->noDense = true;
     std::optional<viewer::DenseVolume> dense;
-    if (!args->noDense || !args->noReference) {
+    if (!file->isScene() && (!args->noDense || !args->noReference)) {
       auto sourceOptions = args->source.openOptions();
       if (!sourceOptions) return reportError(sourceOptions.error());
       auto loaded = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
@@ -92,8 +99,20 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
       denseRenderer->setTransferFunction(*tf);
       renderers.push_back(denseRenderer.get());
     }
-    std::optional<viewer::ReferenceRenderer> reference;
-    if (!args->noReference) reference.emplace(*dense, *tf);
+    std::optional<viewer::ReferenceRenderer> volumeReference;
+    std::optional<viewer::SceneReferenceRenderer> sceneReference;
+    viewer::ReferenceRender reference;
+    if (!args->noReference && file->isScene()) {
+      sceneReference.emplace(*file, *tf);
+      reference = [&](const viewer::Camera& c, const viewer::RenderSettings& s) {
+        return sceneReference->render(c, s);
+      };
+    } else if (!args->noReference) {
+      volumeReference.emplace(*dense, *tf);
+      reference = [&](const viewer::Camera& c, const viewer::RenderSettings& s) {
+        return volumeReference->render(c, s);
+      };
+    }
 
     const auto& h = file->header();
     std::printf(
@@ -109,11 +128,12 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
                 threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
     std::printf(
         "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; "
-        "shadows %s\n\n",
+        "shadows %s; effects %s (max %d bounces, %zu scene lights)\n\n",
         o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
-        o.base.shading.shadows ? "on" : "off");
-    auto rows = viewer::runRenderBenchmark(renderers, reference ? &*reference : nullptr,
-                                           (*voxlink)->geometry().worldBox(), o);
+        o.base.shading.shadows ? "on" : "off", viewer::effectsName(o.base.effects).c_str(),
+        o.base.effects.maxBounces, o.base.lights.size());
+    auto rows =
+        viewer::runRenderBenchmark(renderers, reference, (*voxlink)->geometry().worldBox(), o);
     if (!rows) return reportError(rows.error());
     std::fputs(viewer::benchmarkTable(*rows).c_str(), stdout);
     return 0;

@@ -32,7 +32,7 @@ std::string sizeName(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + 
 }  // namespace
 
 Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRenderer*>& renderers,
-                                                     const ReferenceRenderer* reference,
+                                                     const ReferenceRender& reference,
                                                      const Box& box, const BenchmarkOptions& o) {
   if (o.framesPerTurn == 0)
     return makeError(ErrorCode::kInvalidArgument,
@@ -74,7 +74,7 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
       Image truth;
       if (reference) {
         log(cat(label, ": float64 reference"));
-        truth = reference->render(start, s);
+        truth = reference(start, s);
       }
       for (size_t r = 0; r < renderers.size(); ++r) {
         BenchmarkRow row{

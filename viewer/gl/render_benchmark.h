@@ -39,9 +39,13 @@ struct BenchmarkRow {
   uint64_t gpuBytes;
 };
 
-// `reference` may be null (no PSNR column). Renderers must share the TF already set on them.
+// The float64 image a frame is compared with: a volume's ReferenceRenderer, or for a scene the
+// tracer over the same voxel scene. Empty: no PSNR column.
+using ReferenceRender = std::function<Image(const Camera&, const RenderSettings&)>;
+
+// Renderers must share the TF already set on them.
 Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRenderer*>& renderers,
-                                                     const ReferenceRenderer* reference,
+                                                     const ReferenceRender& reference,
                                                      const Box& box,
                                                      const BenchmarkOptions& options);
 
