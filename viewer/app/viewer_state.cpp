@@ -15,8 +15,11 @@ Status ViewerState::load(const std::string& path, bool keepTf) {
   VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, format::openValidatedFile(path));
   auto next = std::make_unique<format::VoxLinkFile>(std::move(opened));
   VOXLINK_ASSIGN_OR_RETURN(auto r, VoxLinkRenderer::create(*next));
+  VOXLINK_ASSIGN_OR_RETURN(std::vector<Light> lights, viewer::sceneLights(next->metaJson()));
   file = std::move(next);
   renderer = std::move(r);
+  sceneLights = std::move(lights);
+  settings.lights = settings.effects.any() ? sceneLights : std::vector<Light>{};
   if (!keepTf) tf = defaultTransferFunction(*file);
   classification = fileClassification(*file);
   removed = removedValues(classification);
@@ -77,6 +80,23 @@ bool drawSettingsPanel(ViewerState& s) {
   changed |= ImGui::Checkbox("shading", &r.shading.enabled);
   ImGui::SameLine();
   changed |= ImGui::Checkbox("shadows", &r.shading.shadows);
+  // The ray-traced mode (docs/effects.md): secondary rays, lit by the scene's lights.
+  bool effects = false;
+  effects |= ImGui::Checkbox("reflect", &r.effects.reflect);
+  ImGui::SameLine();
+  effects |= ImGui::Checkbox("refract", &r.effects.refract);
+  ImGui::SameLine();
+  effects |= ImGui::Checkbox("shadow rays", &r.effects.shadows);
+  if (r.effects.any()) {
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(90);
+    effects |= ImGui::SliderInt("bounces", &r.effects.maxBounces, 0, kMaxBouncesLimit);
+  }
+  if (effects) {
+    r.lights = r.effects.any() ? s.sceneLights : std::vector<Light>{};
+    if (r.effects.any() && r.sampling != Sampling::kVoxel) r.sampling = Sampling::kVoxel;
+    changed = true;
+  }
   float phong[4] = {float(r.shading.ambient), float(r.shading.diffuse), float(r.shading.specular),
                     float(r.shading.shininess)};
   ImGui::SetNextItemWidth(260);

@@ -26,7 +26,8 @@ struct ViewerState {
   TfEditor editor;
   Reclassifier reclassifier;
   RenderSettings settings;
-  double interactiveScale = 0.5;  // resolution factor while the user drags
+  std::vector<Light> sceneLights;  // the file's lights (META), used when effects are on
+  double interactiveScale = 0.5;   // resolution factor while the user drags
   double lastRenderMs = 0;
   bool lastFrameReduced = false;
   std::string message;  // last screenshot / reload / error line
