@@ -136,6 +136,37 @@ TEST(CliScene, GeometryInsideACtVolume) {
   EXPECT_EQ(checked, tooth->voxelCount());
 }
 
+// Jensen's sphere box ray traced (mirror and glass spheres from the MTL, the scene's point light,
+// shadow rays): the GL ray tracer against the float64 tracer, and bad effect options.
+TEST(CliScene, SphereCornellBoxRayTraced) {
+  VOXLINK_REQUIRE_DATA("mesh/mcguire_CornellBox-Sphere.obj");
+  TempDir dir;
+  const std::string scene = dir.file("spheres.scene.json");
+  writeText(scene, R"({"grid": {"resolution": 96}, "objects": [{"type": "mesh", "file": ")" +
+                       dataPath("mesh/mcguire_CornellBox-Sphere.obj") +
+                       R"("}], "lights": [{"position": [0, 1.5, 0]}],
+                       "camera": {"azimuth": 0, "elevation": 0, "fov": 40, "up": "y"}})");
+  auto r = runVoxlink({"scene", "build", scene, "-o", dir.file("spheres.vxl")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"render", dir.file("spheres.vxl"), "-o", dir.file("fx.png"), "--size", "64x64",
+                  "--effects", "all", "--reference"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const size_t at = r.out.find("PSNR ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_GE(std::stod(r.out.substr(at + 5)), 45.0) << r.out;
+  for (const char* bad : {"mirror", "reflect,,x"}) {
+    r = runVoxlink(
+        {"render", dir.file("spheres.vxl"), "-o", dir.file("bad.png"), "--effects", bad});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("--effects"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  r = runVoxlink({"render", dir.file("spheres.vxl"), "-o", dir.file("bad.png"), "--effects", "all",
+                  "--max-bounces", "99"});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.png")));
+}
+
 TEST(CliScene, BadInputIsOneLine) {
   TempDir dir;
   writeText(dir.file("bad.scene.json"),
