@@ -188,7 +188,8 @@ uint32_t storedBits(const format::VoxLinkFile& f, uint64_t i) {
 
 }  // namespace
 
-Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress) {
+Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress,
+                                    const SurfaceVoxelizer& surfaceVoxelizer) {
   auto stage = [&](const char* name, double fraction) {
     if (progress) progress(name, fraction);
   };
@@ -276,7 +277,8 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
     geometry::VoxelGrid indexGrid;
     indexGrid.dims = d.dims;
     VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface,
-                             geometry::voxelizeSurface(mesh, indexGrid));
+                             surfaceVoxelizer ? surfaceVoxelizer(mesh, indexGrid)
+                                              : geometry::voxelizeSurface(mesh, indexGrid));
     for (const geometry::SurfaceVoxel& v : surface.voxels) {
       const double n[3] = {v.normal[0] / d.spacing[0], v.normal[1] / d.spacing[1],
                            v.normal[2] / d.spacing[2]};
