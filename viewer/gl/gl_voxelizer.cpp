@@ -103,9 +103,9 @@ GlSurfaceVoxelizer::~GlSurfaceVoxelizer() {
   if (framebuffer_) glDeleteFramebuffers(1, &framebuffer_);
 }
 
-Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(
-    const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
-    const geometry::SurfaceVoxelizeOptions& options) {
+Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(const geometry::TriangleMesh& mesh,
+                                                           const geometry::VoxelGrid& grid,
+                                                           const GlVoxelizeOptions& options) {
   VOXLINK_RETURN_IF_ERROR(geometry::validateGrid(grid));
   const size_t vertexCount = mesh.vertexCount();
   for (size_t i = 0; i < mesh.triangles.size(); ++i)
@@ -147,6 +147,13 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(
     if (std::abs(n[2]) > std::abs(n[w])) w = 2;
     byAxis[size_t(w)].push_back(uint32_t(t));
     projectedArea += 0.5 * std::abs(n[w]);
+    if (options.coverage == GlCoverage::kConservative)  // pixels along the edges, and corners
+      for (int k = 0; k < 3; ++k) {
+        const auto& a = c[k];
+        const auto& b = c[(k + 1) % 3];
+        projectedArea += std::abs(a[size_t(w + 1) % 3] - b[size_t(w + 1) % 3]) +
+                         std::abs(a[size_t(w + 2) % 3] - b[size_t(w + 2) % 3]) + 1.0;
+      }
   }
   out.surface.zeroAreaTriangles = out.stats.zeroAreaTriangles;
   std::vector<uint32_t> order;
@@ -209,6 +216,8 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(
   glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, counter.id());
   glUniform1f(glGetUniformLocation(program_, "uViewportEdge"), float(edge));
   glUniform1ui(glGetUniformLocation(program_, "uColumns"), edge);
+  glUniform1i(glGetUniformLocation(program_, "uConservative"),
+              options.coverage == GlCoverage::kConservative);
   GLuint count = 0;
   for (;;) {
     fragments = createBuffer();
@@ -278,15 +287,17 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(
         std::sort(column.begin(), column.end());
         for (const auto& [depth, s] : column) {
           std::array<uint32_t, 3> index{};
-          index[w] = list[s][0];
           index[u] = cu;
           index[v] = cv;
-          pairs.push_back({geometry::voxelKey(index[0], index[1], index[2]), list[s][1]});
+          for (uint32_t k = list[s][0] & 0xffff; k <= list[s][0] >> 16; ++k) {
+            index[w] = k;
+            pairs.push_back({geometry::voxelKey(index[0], index[1], index[2]), list[s][1]});
+          }
         }
       }
   }
-  VOXLINK_ASSIGN_OR_RETURN(out.surface,
-                           geometry::resolveVoxelTriangles(mesh, grid, std::move(pairs), options));
+  VOXLINK_ASSIGN_OR_RETURN(
+      out.surface, geometry::resolveVoxelTriangles(mesh, grid, std::move(pairs), options.resolve));
   out.surface.zeroAreaTriangles = out.stats.zeroAreaTriangles;
   out.stats.resolveSeconds = secondsSince(resolveStart);
   return out;

@@ -6,10 +6,13 @@
 // back, sorts each by depth, and resolves the (voxel, triangle) pairs with the exact path's rules
 // (geometry/fragment_resolve.h), so both paths store the same kind of fragment.
 //
-// One fragment per covered pixel centre, no conservative rasterization: a voxel is found when a
-// triangle covers its column's centre at a depth inside it, so the voxels are (up to float
-// rounding at voxel faces) a subset of the exact path's; slivers that cover no pixel centre are
-// missed. geometry/voxel_set_compare.h measures both.
+// Two coverages (GlCoverage). kCenter is the paper's: one voxel per covered pixel centre, at the
+// depth there, so the voxels are (up to float rounding at voxel faces) a subset of the exact
+// path's, and a thin one: slivers that cover no pixel centre and the second voxel where a tilted
+// surface crosses a voxel layer inside a column are missed. kConservative emulates conservative
+// rasterization (llvmpipe has none) and marks every voxel of the column that the triangle's part
+// over the pixel reaches: the exact path's voxels up to float rounding.
+// geometry/voxel_set_compare.h measures both.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -22,6 +25,13 @@
 #include "geometry/voxel_grid.h"
 
 namespace voxlink::viewer {
+
+enum class GlCoverage { kCenter, kConservative };
+
+struct GlVoxelizeOptions {
+  GlCoverage coverage = GlCoverage::kConservative;
+  geometry::SurfaceVoxelizeOptions resolve;  // normal rule and statistics, as the exact path
+};
 
 struct GlVoxelizeStats {
   uint64_t fragments = 0;          // appended by the fragment stage
@@ -51,7 +61,7 @@ class GlSurfaceVoxelizer {
   // framebuffer; heads or fragments beyond the largest storage buffer.
   Result<GlSurfaceVoxelization> voxelize(const geometry::TriangleMesh& mesh,
                                          const geometry::VoxelGrid& grid,
-                                         const geometry::SurfaceVoxelizeOptions& options = {});
+                                         const GlVoxelizeOptions& options = {});
 
  private:
   GlSurfaceVoxelizer() = default;
