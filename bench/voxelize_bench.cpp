@@ -204,15 +204,17 @@ int main(int argc, char** argv) {
            {voxlink::viewer::GlCoverage::kCenter, voxlink::viewer::GlCoverage::kConservative}) {
         const char* coverageName =
             coverage == voxlink::viewer::GlCoverage::kCenter ? "centre" : "cons.";
-        std::vector<double> glWall, glRaster;
+        std::vector<double> glWall, glRaster, glCpu;
         voxlink::viewer::GlSurfaceVoxelization gl;
         voxlink::viewer::GlVoxelizeOptions glOptions;
         glOptions.resolve = timed;
         glOptions.coverage = coverage;
         for (int r = 0; r < runs; ++r) {
+          const double c0 = cpuSeconds();
           const auto t0 = Clock::now();
           auto result = glVoxelizer->voxelize(mesh, grid, glOptions);
           glWall.push_back(seconds(t0, Clock::now()));
+          glCpu.push_back(cpuSeconds() - c0);
           if (!result) {
             std::fprintf(stderr, "%s\n", result.message().c_str());
             return 1;
@@ -224,11 +226,11 @@ int main(int argc, char** argv) {
         char normal[64];
         std::snprintf(normal, sizeof normal, "%.2f/%.2f/%.1f", cmp.normalMeanDegrees,
                       cmp.normalP95Degrees, cmp.normalMaxDegrees);
-        char line[320];
         std::snprintf(line, sizeof line,
-                      "%-9s %-6s %5u %8.3f %8.3f %7.1f %9.3f %10zu %10zu %9llu %7.3f %7llu %16s",
+                      "%-9s %-6s %5u %8.3f %8.3f %7.1f %9.3f %8.3f %10zu %10zu %9llu %7.3f %7llu "
+                      "%16s",
                       input.name, coverageName, resolution, median(wall), median(glWall),
-                      1.0 / median(glWall), median(glRaster), full.voxels.size(),
+                      1.0 / median(glWall), median(glRaster), median(glCpu), full.voxels.size(),
                       gl.surface.voxels.size(), (unsigned long long)cmp.missing,
                       100.0 * double(cmp.missing) / double(std::max<uint64_t>(1, cmp.reference)),
                       (unsigned long long)cmp.extra, normal);
@@ -272,12 +274,13 @@ int main(int argc, char** argv) {
   std::printf("%-9s %9d %5d %8s %8.3f\n", "bunny ref", 69451, 1024, "-", 1.048);
   std::printf(
       "\nGL path (%s) against the exact path: times are medians of the whole call; fps = 1 / "
-      "gl s; raster = upload + draws + finish; normal = angle between the two paths' normals on "
+      "gl s; raster = upload + draws + finish; gl cpu = CPU seconds of the process in the call "
+      "(llvmpipe's threads included); normal = angle between the two paths' normals on "
       "common voxels, mean/p95/max degrees\n",
       (*context)->description().c_str());
-  std::printf("%-9s %-6s %5s %8s %8s %7s %9s %10s %10s %9s %7s %7s %16s\n", "mesh", "cover", "res",
-              "exact s", "gl s", "gl fps", "raster s", "exact vx", "gl vx", "missed", "miss %",
-              "added", "normal");
+  std::printf("%-9s %-6s %5s %8s %8s %7s %9s %8s %10s %10s %9s %7s %7s %16s\n", "mesh", "cover",
+              "res", "exact s", "gl s", "gl fps", "raster s", "gl cpu", "exact vx", "gl vx",
+              "missed", "miss %", "added", "normal");
   for (const std::string& row : glRows) std::printf("%s\n", row.c_str());
   std::printf(
       "\nfootprint of the written version 2 file (voxlink scene build, exact path; the paper's "

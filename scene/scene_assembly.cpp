@@ -15,6 +15,7 @@
 #include "geometry/particle_loader.h"
 #include "geometry/sphere_voxelizer.h"
 #include "geometry/voxel_grid.h"
+#include "scene/scene_volume.h"
 
 namespace voxlink::scene {
 namespace {
@@ -211,7 +212,7 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
         VOXLINK_RETURN_IF_ERROR(placeSpheres(o, table, placed, report));
         break;
       case ObjectKind::kVolume: {
-        VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, format::VoxLinkFile::open(o.path));
+        VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, openSceneVolume(o, scene.grid));
         if (f.isScene())
           return makeError(
               ErrorCode::kUnsupported, o.path,
