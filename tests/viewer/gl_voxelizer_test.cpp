@@ -131,6 +131,32 @@ TEST(GlVoxelizer, EmptyMeshAndClippedTriangle) {
   for (const SurfaceVoxel& v : gl.surface.voxels) EXPECT_EQ(v.z, 2u);
 }
 
+TEST(GlVoxelizer, CornellWallsOnVoxelFacesAsTheExactPath) {
+  VOXLINK_REQUIRE_DATA("mesh/mcguire_CornellBox-Original.obj");
+  VOXLINK_REQUIRE_GL();
+  auto mesh =
+      geometry::loadMesh(::voxlink::testing::dataPath("mesh/mcguire_CornellBox-Original.obj"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  VoxelGrid grid;  // the floor y = 0 on the face between layers 0 and 1 (exact in binary)
+  grid.spacing = 1.0 / 64.0;
+  grid.origin = {-1.25, -1.0 / 128.0, -1.25};
+  grid.dims = {162, 132, 162};
+  auto exact = geometry::voxelizeSurface(*mesh, grid);
+  ASSERT_TRUE(exact);
+  const GlSurfaceVoxelization conservative = glVoxelize(*mesh, grid, GlCoverage::kConservative);
+  EXPECT_EQ(voxelSet(conservative.surface.voxels), voxelSet(exact->voxels));
+  size_t floorVoxels = 0;
+  for (const SurfaceVoxel& v : conservative.surface.voxels) {
+    if (mesh->materials[v.material].name != "floor") continue;
+    ++floorVoxels;
+    EXPECT_EQ(v.y, 1u);
+  }
+  EXPECT_GT(floorVoxels, 100u * 100u);
+  const auto centre = geometry::compareSurfaceVoxels(
+      exact->voxels, glVoxelize(*mesh, grid, GlCoverage::kCenter).surface.voxels);
+  EXPECT_EQ(centre.extra, 0u);
+}
+
 class GlVoxelizerRealMesh : public ::testing::TestWithParam<std::tuple<const char*, uint32_t>> {};
 
 TEST_P(GlVoxelizerRealMesh, SubsetOfTheExactVoxels) {
@@ -175,11 +201,12 @@ TEST_P(GlVoxelizerRealMesh, ConservativeMatchesTheExactVoxels) {
   EXPECT_LE(cmp.missing + cmp.extra, cmp.reference / 1000);
 }
 
-INSTANTIATE_TEST_SUITE_P(Meshes, GlVoxelizerRealMesh,
-                         ::testing::Combine(::testing::Values("mesh/vtk_bunny.ply",
-                                                              "mesh/vtk_horse.ply",
-                                                              "mesh/stanford_dragon_decimated.ply"),
-                                            ::testing::Values(64u, 128u)));
+INSTANTIATE_TEST_SUITE_P(
+    Meshes, GlVoxelizerRealMesh,
+    ::testing::Combine(::testing::Values("mesh/vtk_bunny.ply", "mesh/vtk_horse.ply",
+                                         "mesh/stanford_dragon_decimated.ply",
+                                         "mesh/mcguire_CornellBox-Original.obj"),
+                       ::testing::Values(64u, 128u)));
 
 }  // namespace
 }  // namespace voxlink::viewer
