@@ -67,8 +67,10 @@ CommandRunner addSceneCommand(CLI::App& app) {
       auto program = viewer::GlSurfaceVoxelizer::create();
       if (!program) return reportError(program.error());
       gl.emplace(std::move(*program));
-      voxelizer = [&gl](const geometry::TriangleMesh& mesh,
-                        const geometry::VoxelGrid& grid) -> Result<geometry::SurfaceVoxelization> {
+      // GL draws in one go: its progress is the stage's start and end only.
+      voxelizer = [&gl](
+                      const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
+                      const std::function<void(double)>&) -> Result<geometry::SurfaceVoxelization> {
         VOXLINK_ASSIGN_OR_RETURN(viewer::GlSurfaceVoxelization r, gl->voxelize(mesh, grid));
         return std::move(r.surface);
       };

@@ -277,9 +277,12 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
         mesh.positions[3 * v + a] = float((mesh.positions[3 * v + a] - d.origin[a]) / d.spacing[a]);
     geometry::VoxelGrid indexGrid;
     indexGrid.dims = d.dims;
+    const auto meshProgress = [&](double f) { stage("voxelize", 0.5 * f); };
+    geometry::SurfaceVoxelizeOptions exact;
+    exact.progress = meshProgress;
     VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface,
-                             surfaceVoxelizer ? surfaceVoxelizer(mesh, indexGrid)
-                                              : geometry::voxelizeSurface(mesh, indexGrid));
+                             surfaceVoxelizer ? surfaceVoxelizer(mesh, indexGrid, meshProgress)
+                                              : geometry::voxelizeSurface(mesh, indexGrid, exact));
     for (const geometry::SurfaceVoxel& v : surface.voxels) {
       const double n[3] = {v.normal[0] / d.spacing[0], v.normal[1] / d.spacing[1],
                            v.normal[2] / d.spacing[2]};

@@ -41,8 +41,10 @@ using SceneProgress = std::function<void(const char* stage, double fraction)>;
 // Voxelizes the scene's meshes (one mesh, in index space: unit voxels, centres on integers).
 // The default is the exact CPU path (geometry::voxelizeSurface); the CLI passes the GL path
 // (viewer/gl/gl_voxelizer.h) for `--voxelizer gl`, which keeps scene/ free of GL.
+// `progress(fraction)` reports the voxelizer's own progress (may be ignored).
 using SurfaceVoxelizer = std::function<Result<geometry::SurfaceVoxelization>(
-    const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid)>;
+    const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
+    const std::function<void(double fraction)>& progress)>;
 
 Result<SceneBuildOutput> buildScene(const SceneDescription& scene,
                                     const SceneProgress& progress = {},
