@@ -157,6 +157,29 @@ TEST(GlVoxelizer, CornellWallsOnVoxelFacesAsTheExactPath) {
   EXPECT_EQ(centre.extra, 0u);
 }
 
+TEST(GlVoxelizer, BatchesGiveTheSameVoxels) {
+  VOXLINK_REQUIRE_DATA("mesh/vtk_bunny.ply");
+  VOXLINK_REQUIRE_GL();
+  auto mesh = geometry::loadMesh(::voxlink::testing::dataPath("mesh/vtk_bunny.ply"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  auto grid = geometry::fitGrid(geometry::meshBounds(*mesh), 64);
+  ASSERT_TRUE(grid);
+  auto voxelizer = GlSurfaceVoxelizer::create();
+  ASSERT_TRUE(voxelizer) << voxelizer.message();
+  auto whole = voxelizer->voxelize(*mesh, *grid);
+  ASSERT_TRUE(whole) << whole.message();
+  GlVoxelizeOptions small;
+  small.batchFragments = 5000;
+  auto batched = voxelizer->voxelize(*mesh, *grid, small);
+  ASSERT_TRUE(batched) << batched.message();
+  EXPECT_EQ(whole->stats.draws, 1);
+  EXPECT_GT(batched->stats.draws, 10);
+  EXPECT_EQ(voxelSet(batched->surface.voxels), voxelSet(whole->surface.voxels));
+  const auto cmp = geometry::compareSurfaceVoxels(whole->surface.voxels, batched->surface.voxels);
+  EXPECT_EQ(cmp.materialMismatches, 0u);
+  EXPECT_LT(cmp.normalMaxDegrees, 0.05);
+}
+
 class GlVoxelizerRealMesh : public ::testing::TestWithParam<std::tuple<const char*, uint32_t>> {};
 
 TEST_P(GlVoxelizerRealMesh, SubsetOfTheExactVoxels) {

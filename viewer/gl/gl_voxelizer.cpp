@@ -127,7 +127,7 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(const geometry::Trian
     for (int a = 0; a < 3; ++a) positions[3 * v + size_t(a)] = float(g[size_t(a)]);
   }
   std::array<std::vector<uint32_t>, 3> byAxis;
-  double projectedArea = 0.0;  // pixels: the expected fragment count
+  std::vector<float> estimate(mesh.triangleCount(), 0.0f);  // expected fragments per triangle
   for (size_t t = 0; t < mesh.triangleCount(); ++t) {
     std::array<double, 3> c[3];
     for (int k = 0; k < 3; ++k) {
@@ -146,14 +146,15 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(const geometry::Trian
     if (std::abs(n[1]) > std::abs(n[w])) w = 1;
     if (std::abs(n[2]) > std::abs(n[w])) w = 2;
     byAxis[size_t(w)].push_back(uint32_t(t));
-    projectedArea += 0.5 * std::abs(n[w]);
+    double pixels = 0.5 * std::abs(n[w]) + 1.0;         // projected area
     if (options.coverage == GlCoverage::kConservative)  // pixels along the edges, and corners
       for (int k = 0; k < 3; ++k) {
         const auto& a = c[k];
         const auto& b = c[(k + 1) % 3];
-        projectedArea += std::abs(a[size_t(w + 1) % 3] - b[size_t(w + 1) % 3]) +
-                         std::abs(a[size_t(w + 2) % 3] - b[size_t(w + 2) % 3]) + 1.0;
+        pixels += std::abs(a[size_t(w + 1) % 3] - b[size_t(w + 1) % 3]) +
+                  std::abs(a[size_t(w + 2) % 3] - b[size_t(w + 2) % 3]) + 1.0;
       }
+    estimate[t] = float(pixels);
   }
   out.surface.zeroAreaTriangles = out.stats.zeroAreaTriangles;
   std::vector<uint32_t> order;
@@ -185,8 +186,27 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(const geometry::Trian
                      " MiB of column heads at grid edge ", edge,
                      " exceed the largest storage buffer (", maxBlock >> 20, " MiB)");
   const uint64_t maxFragments = maxBlock / kFragmentBytes;
-  uint64_t capacity =
-      std::min<uint64_t>(maxFragments, uint64_t(projectedArea * 1.1) + order.size() + 1024);
+  // Batches of triangles whose expected fragments fill at most half the largest buffer (and 64
+  // MiB), so that a mesh of any size voxelizes in bounded GPU memory; each batch is drawn,
+  // read back and its lists walked before the next.
+  const double batchBudget =
+      double(options.batchFragments > 0
+                 ? std::min(options.batchFragments, maxFragments / 2)
+                 : std::min<uint64_t>(maxFragments / 2, (64ull << 20) / kFragmentBytes));
+  std::vector<std::pair<uint32_t, uint32_t>> batches;  // ranges of `order`
+  {
+    double sum = 0.0;
+    uint32_t begin = 0;
+    for (uint32_t i = 0; i < order.size(); ++i) {
+      if (i > begin && sum + estimate[order[i]] > batchBudget) {
+        batches.push_back({begin, i});
+        begin = i;
+        sum = 0.0;
+      }
+      sum += estimate[order[i]];
+    }
+    batches.push_back({begin, uint32_t(order.size())});
+  }
 
   GlStorageBuffer positionBuffer =
       createStorageBuffer(positions.data(), positions.size() * sizeof(float));
@@ -198,7 +218,6 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(const geometry::Trian
                        GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
   GlBuffer counter = createBuffer();
   glNamedBufferStorage(counter.id(), sizeof(GLuint), nullptr, GL_DYNAMIC_STORAGE_BIT);
-  GlBuffer fragments;
 
   glUseProgram(program_);
   glNamedFramebufferParameteri(framebuffer_, GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(edge));
@@ -218,88 +237,100 @@ Result<GlSurfaceVoxelization> GlSurfaceVoxelizer::voxelize(const geometry::Trian
   glUniform1ui(glGetUniformLocation(program_, "uColumns"), edge);
   glUniform1i(glGetUniformLocation(program_, "uConservative"),
               options.coverage == GlCoverage::kConservative);
-  GLuint count = 0;
-  for (;;) {
-    fragments = createBuffer();
-    glNamedBufferStorage(fragments.id(), GLsizeiptr(capacity * kFragmentBytes), nullptr, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, fragments.id());
-    const GLuint empty = kEmpty, zero = 0;
-    glClearNamedBufferData(heads.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-    glClearNamedBufferData(counter.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
-    glUniform1ui(glGetUniformLocation(program_, "uCapacity"), GLuint(capacity));
-    for (int w = 0; w < 3; ++w) {
-      const GLsizei triangles = GLsizei(first[size_t(w) + 1] - first[size_t(w)]);
-      if (triangles == 0) continue;
-      glUniform1i(glGetUniformLocation(program_, "uAxis"), w);
-      glUniform1ui(glGetUniformLocation(program_, "uFirst"), first[size_t(w)]);
-      glUniform3ui(glGetUniformLocation(program_, "uDims"), grid.dims[size_t(w + 1) % 3],
-                   grid.dims[size_t(w + 2) % 3], grid.dims[size_t(w)]);
-      glDrawArrays(GL_TRIANGLES, 0, 3 * triangles);
-    }
-    ++out.stats.draws;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
-    glGetNamedBufferSubData(counter.id(), 0, sizeof(GLuint), &count);
-    if (count <= capacity) break;
-    if (count > maxFragments || out.stats.draws > 1)
-      return makeError(ErrorCode::kTooLarge, "GL voxelizer: ", count, " fragments exceed ",
-                       maxFragments, " (the largest storage buffer) at grid ", grid.dims[0], "x",
-                       grid.dims[1], "x", grid.dims[2]);
-    capacity = count;  // the exact need: the second pass fits
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glFinish();
-  if (GLenum e = glGetError(); e != GL_NO_ERROR)
-    return makeError(ErrorCode::kUnsupported, "GL voxelizer: GL error 0x", std::hex, e);
-  out.stats.fragments = count;
   out.stats.rasterSeconds = secondsSince(rasterStart);
 
-  const auto readStart = Clock::now();
-  std::vector<GLuint> headList(columns);
-  glGetNamedBufferSubData(heads.id(), 0, GLsizeiptr(columns * 4), headList.data());
-  std::vector<std::array<GLuint, 4>> list(count);
-  if (count > 0)
-    glGetNamedBufferSubData(fragments.id(), 0, GLsizeiptr(uint64_t(count) * kFragmentBytes),
-                            list.data());
-  out.stats.readbackSeconds = secondsSince(readStart);
-
-  // Each column's list sorted by depth (the paper's order along the predominant axis), then
-  // unswizzled into (voxel, triangle) pairs.
-  const auto resolveStart = Clock::now();
   std::vector<geometry::VoxelTriangle> pairs;
-  pairs.reserve(count);
+  std::vector<GLuint> headList(columns);
+  std::vector<std::array<GLuint, 4>> list;
   std::vector<std::pair<float, uint32_t>> column;  // depth, fragment slot
-  for (uint32_t w = 0; w < 3; ++w) {
-    const uint32_t u = (w + 1) % 3, v = (w + 2) % 3;
-    for (uint32_t cv = 0; cv < grid.dims[v]; ++cv)
-      for (uint32_t cu = 0; cu < grid.dims[u]; ++cu) {
-        GLuint slot = headList[(uint64_t(w) * edge + cv) * edge + cu];
-        column.clear();
-        while (slot != kEmpty) {
-          if (slot >= count || column.size() > count)
-            return makeError(ErrorCode::kCorrupt, "GL voxelizer: broken fragment list");
-          const auto& f = list[slot];
-          float depth;
-          std::memcpy(&depth, &f[3], sizeof depth);
-          column.push_back({depth, slot});
-          slot = f[2];
-        }
-        std::sort(column.begin(), column.end());
-        for (const auto& [depth, s] : column) {
-          std::array<uint32_t, 3> index{};
-          index[u] = cu;
-          index[v] = cv;
-          for (uint32_t k = list[s][0] & 0xffff; k <= list[s][0] >> 16; ++k) {
-            index[w] = k;
-            pairs.push_back({geometry::voxelKey(index[0], index[1], index[2]), list[s][1]});
+  for (const auto& [batchBegin, batchEnd] : batches) {
+    const auto batchStart = Clock::now();
+    double expected = 0.0;
+    for (uint32_t i = batchBegin; i < batchEnd; ++i) expected += estimate[order[i]];
+    uint64_t capacity = std::min<uint64_t>(maxFragments, uint64_t(expected * 1.1) + 1024);
+    GlBuffer fragments;
+    GLuint count = 0;
+    for (int attempt = 0;; ++attempt) {
+      fragments = createBuffer();
+      glNamedBufferStorage(fragments.id(), GLsizeiptr(capacity * kFragmentBytes), nullptr, 0);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, fragments.id());
+      const GLuint empty = kEmpty, zero = 0;
+      glClearNamedBufferData(heads.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
+      glClearNamedBufferData(counter.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+      glUniform1ui(glGetUniformLocation(program_, "uCapacity"), GLuint(capacity));
+      for (uint32_t w = 0; w < 3; ++w) {
+        const uint32_t from = std::max(batchBegin, first[w]);
+        const uint32_t to = std::min(batchEnd, first[w + 1]);
+        if (from >= to) continue;
+        glUniform1i(glGetUniformLocation(program_, "uAxis"), GLint(w));
+        glUniform1ui(glGetUniformLocation(program_, "uFirst"), from);
+        glUniform3ui(glGetUniformLocation(program_, "uDims"), grid.dims[(w + 1) % 3],
+                     grid.dims[(w + 2) % 3], grid.dims[w]);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * (to - from)));
+      }
+      ++out.stats.draws;
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+      glGetNamedBufferSubData(counter.id(), 0, sizeof(GLuint), &count);
+      if (count <= capacity) break;
+      if (count > maxFragments || attempt > 0)
+        return makeError(ErrorCode::kTooLarge, "GL voxelizer: ", count, " fragments exceed ",
+                         maxFragments, " (the largest storage buffer) at grid ", grid.dims[0], "x",
+                         grid.dims[1], "x", grid.dims[2]);
+      capacity = count;  // the exact need: the second pass fits
+    }
+    glFinish();
+    if (GLenum e = glGetError(); e != GL_NO_ERROR)
+      return makeError(ErrorCode::kUnsupported, "GL voxelizer: GL error 0x", std::hex, e);
+    out.stats.fragments += count;
+    out.stats.rasterSeconds += secondsSince(batchStart);
+
+    const auto readStart = Clock::now();
+    glGetNamedBufferSubData(heads.id(), 0, GLsizeiptr(columns * 4), headList.data());
+    list.resize(count);
+    if (count > 0)
+      glGetNamedBufferSubData(fragments.id(), 0, GLsizeiptr(uint64_t(count) * kFragmentBytes),
+                              list.data());
+    out.stats.readbackSeconds += secondsSince(readStart);
+
+    // Each column's list sorted by depth (the paper's order along the predominant axis), then
+    // unswizzled into (voxel, triangle) pairs.
+    const auto walkStart = Clock::now();
+    for (uint32_t w = 0; w < 3; ++w) {
+      const uint32_t u = (w + 1) % 3, v = (w + 2) % 3;
+      for (uint32_t cv = 0; cv < grid.dims[v]; ++cv)
+        for (uint32_t cu = 0; cu < grid.dims[u]; ++cu) {
+          GLuint slot = headList[(uint64_t(w) * edge + cv) * edge + cu];
+          column.clear();
+          while (slot != kEmpty) {
+            if (slot >= count || column.size() > count)
+              return makeError(ErrorCode::kCorrupt, "GL voxelizer: broken fragment list");
+            const auto& f = list[slot];
+            float depth;
+            std::memcpy(&depth, &f[3], sizeof depth);
+            column.push_back({depth, slot});
+            slot = f[2];
+          }
+          std::sort(column.begin(), column.end());
+          for (const auto& [depth, s] : column) {
+            std::array<uint32_t, 3> index{};
+            index[u] = cu;
+            index[v] = cv;
+            for (uint32_t k = list[s][0] & 0xffff; k <= list[s][0] >> 16; ++k) {
+              index[w] = k;
+              pairs.push_back({geometry::voxelKey(index[0], index[1], index[2]), list[s][1]});
+            }
           }
         }
-      }
+    }
+    out.stats.resolveSeconds += secondsSince(walkStart);
   }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const auto resolveStart = Clock::now();
   VOXLINK_ASSIGN_OR_RETURN(
       out.surface, geometry::resolveVoxelTriangles(mesh, grid, std::move(pairs), options.resolve));
   out.surface.zeroAreaTriangles = out.stats.zeroAreaTriangles;
-  out.stats.resolveSeconds = secondsSince(resolveStart);
+  out.stats.resolveSeconds += secondsSince(resolveStart);
   return out;
 }
 

@@ -31,6 +31,9 @@ enum class GlCoverage { kCenter, kConservative };
 struct GlVoxelizeOptions {
   GlCoverage coverage = GlCoverage::kConservative;
   geometry::SurfaceVoxelizeOptions resolve;  // normal rule and statistics, as the exact path
+  // Expected fragments per batch of triangles (0: half the largest storage buffer, at most 64
+  // MiB of fragments); smaller batches bound GPU memory for any mesh size.
+  uint64_t batchFragments = 0;
 };
 
 struct GlVoxelizeStats {
