@@ -1,6 +1,8 @@
 // voxlink scene build SCENE.json -o OUT.vxl: meshes, spheres and a volume voxelized into one
 // VoxLink buffer (docs/scene.md).
 #include <cstdio>
+#include <memory>
+#include <optional>
 
 #include "cli/command.h"
 #include "cli/progress_bar.h"
@@ -8,6 +10,10 @@
 #include "format/output_file.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
+#ifdef VOXLINK_WITH_VIEWER
+#include "viewer/gl/gl_context.h"
+#include "viewer/gl/gl_voxelizer.h"
+#endif
 
 namespace voxlink::cli {
 
@@ -21,6 +27,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
     std::string input, output;
     uint32_t resolution = 0, brick = 0;
     bool progress = false;
+    std::string voxelizer = "exact";
   };
   auto o = std::make_shared<Options>();
   build->add_option("scene", o->input, "scene file (JSON)")->required();
@@ -32,6 +39,11 @@ CommandRunner addSceneCommand(CLI::App& app) {
       ->check(CLI::Range(2u, 65536u));
   build->add_option("--brick", o->brick, "brick edge 4, 8, 16 or 32 (overrides grid.brick)")
       ->check(CLI::IsMember({4u, 8u, 16u, 32u}));
+  build
+      ->add_option("--voxelizer", o->voxelizer,
+                   "mesh voxelizer: exact (CPU, every overlapped voxel) or gl (the paper's "
+                   "rasterization, headless; may miss sliver voxels, docs/geometry.md)")
+      ->check(CLI::IsMember({"exact", "gl"}));
   build->add_flag("--progress", o->progress,
                   "draw the progress bar even when stderr is not a terminal");
   return [o, build] {
@@ -44,9 +56,33 @@ CommandRunner addSceneCommand(CLI::App& app) {
     if (Status s = format::checkOutputTarget(o->output, inputs); !s) return reportError(s);
     if (o->resolution) description->grid.resolution = o->resolution;
     if (o->brick) description->grid.brickSize = o->brick;
+    scene::SurfaceVoxelizer voxelizer;  // empty: the exact CPU path
+#ifdef VOXLINK_WITH_VIEWER
+    std::unique_ptr<viewer::GlContext> context;
+    std::optional<viewer::GlSurfaceVoxelizer> gl;
+    if (o->voxelizer == "gl") {
+      auto created = viewer::createHeadlessContext();
+      if (!created) return reportError(created.error());
+      context = std::move(*created);
+      auto program = viewer::GlSurfaceVoxelizer::create();
+      if (!program) return reportError(program.error());
+      gl.emplace(std::move(*program));
+      // GL draws in one go: its progress is the stage's start and end only.
+      voxelizer = [&gl](
+                      const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
+                      const std::function<void(double)>&) -> Result<geometry::SurfaceVoxelization> {
+        VOXLINK_ASSIGN_OR_RETURN(viewer::GlSurfaceVoxelization r, gl->voxelize(mesh, grid));
+        return std::move(r.surface);
+      };
+    }
+#else
+    if (o->voxelizer == "gl")
+      return reportError(makeError(ErrorCode::kUnsupported,
+                                   "--voxelizer gl: this voxlink was built without the viewer"));
+#endif
     ProgressBar bar(o->progress || stderrIsTerminal());
-    auto built =
-        scene::buildScene(*description, [&](const char* stage, double f) { bar.update(f, stage); });
+    auto built = scene::buildScene(
+        *description, [&](const char* stage, double f) { bar.update(f, stage); }, voxelizer);
     if (!built) return reportError(built.error());
     bar.update(1.0, "write");
     Status written = format::writeBrickedVolume(o->output, built->volume);
@@ -57,13 +93,14 @@ CommandRunner addSceneCommand(CLI::App& app) {
         "%s: %ux%ux%u [%u], %llu voxels (%llu surface from %llu triangles, %llu sphere from %llu "
         "spheres, "
         "%llu volume), %llu materials; normal error mean %.2f / p95 %.2f / max %.2f deg; "
-        "load %.2f s, voxelize %.2f s, merge %.2f s\n",
+        "load %.2f s, voxelize %.2f s (%s), merge %.2f s\n",
         o->output.c_str(), r.dims[0], r.dims[1], r.dims[2], built->volume.description.brickSize,
         (unsigned long long)built->volume.voxelCount(), (unsigned long long)r.surfaceVoxels,
         (unsigned long long)r.triangles, (unsigned long long)r.sphereVoxels,
         (unsigned long long)r.spheres, (unsigned long long)r.volumeVoxels,
         (unsigned long long)r.materials, r.normalError.meanDegrees, r.normalError.p95Degrees,
-        r.normalError.maxDegrees, r.loadSeconds, r.voxelizeSeconds, r.mergeSeconds);
+        r.normalError.maxDegrees, r.loadSeconds, r.voxelizeSeconds, o->voxelizer.c_str(),
+        r.mergeSeconds);
     return std::fflush(stdout) == 0 && !std::ferror(stdout)
                ? 0
                : reportError(makeError(ErrorCode::kIo, "stdout: write failed"));

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <mutex>
 
 #include "geometry/triangle_box_overlap.h"
 
@@ -110,6 +111,19 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   std::vector<uint64_t> perSlice(blockCount * depth, 0);  // [block][z] overlap counts
   std::atomic<uint64_t> total{0}, zeroArea{0};
   std::atomic<bool> tooMany{false};
+  // Progress: pass 1 (the overlap tests) is 80 % of the work, the sorting passes the rest.
+  std::mutex progressMutex;
+  size_t blocksDone = 0;
+  auto report = [&](double fraction) {
+    if (!options.progress) return;
+    std::lock_guard<std::mutex> lock(progressMutex);
+    options.progress(fraction);
+  };
+  auto blockDone = [&] {
+    if (!options.progress) return;
+    std::lock_guard<std::mutex> lock(progressMutex);
+    options.progress(0.8 * double(++blocksDone) / double(blockCount));
+  };
   tbb::parallel_for(size_t(0), blockCount, [&](size_t block) {
     std::vector<Overlap>& out = blocks[block];
     uint64_t zero = 0;
@@ -138,6 +152,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     uint64_t* counts = &perSlice[block * depth];
     for (const Overlap& o : out) ++counts[o.key >> 32];
     zeroArea += zero;
+    blockDone();
   });
   if (tooMany) {
     return makeError(ErrorCode::kTooLarge, "surface voxelizer: more than ", options.maxOverlaps,
@@ -200,6 +215,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     }
   });
 
+  report(0.9);
   // Pass 3: runs of equal keys -> voxels. Chunks start at run boundaries.
   const size_t chunkCount = std::max<size_t>(1, std::min<size_t>(overlapCount / 65536, 1024));
   std::vector<size_t> starts(chunkCount + 1, overlapCount);
@@ -263,6 +279,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     }
   });
 
+  report(1.0);
   if (options.computeNormalError) {
     NormalErrorStats& stats = result.normalError;
     std::vector<uint64_t> histogram(kHistogramBins, 0);

@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "format/error.h"
@@ -63,6 +64,8 @@ struct SurfaceVoxelizeOptions {
   NormalRule normalRule = NormalRule::kAreaWeighted;
   bool computeNormalError = true;
   uint64_t maxOverlaps = kDefaultMaxOverlaps;  // more (voxel, triangle) overlaps: kTooLarge
+  // Called with the fraction done (0..1), one call at a time, from any thread; may be empty.
+  std::function<void(double fraction)> progress;
 };
 
 struct SurfaceVoxelization {

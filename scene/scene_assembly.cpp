@@ -15,6 +15,7 @@
 #include "geometry/particle_loader.h"
 #include "geometry/sphere_voxelizer.h"
 #include "geometry/voxel_grid.h"
+#include "scene/scene_volume.h"
 
 namespace voxlink::scene {
 namespace {
@@ -188,7 +189,8 @@ uint32_t storedBits(const format::VoxLinkFile& f, uint64_t i) {
 
 }  // namespace
 
-Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress) {
+Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress,
+                                    const SurfaceVoxelizer& surfaceVoxelizer) {
   auto stage = [&](const char* name, double fraction) {
     if (progress) progress(name, fraction);
   };
@@ -210,7 +212,7 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
         VOXLINK_RETURN_IF_ERROR(placeSpheres(o, table, placed, report));
         break;
       case ObjectKind::kVolume: {
-        VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, format::VoxLinkFile::open(o.path));
+        VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, openSceneVolume(o, scene.grid));
         if (f.isScene())
           return makeError(
               ErrorCode::kUnsupported, o.path,
@@ -275,8 +277,12 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
         mesh.positions[3 * v + a] = float((mesh.positions[3 * v + a] - d.origin[a]) / d.spacing[a]);
     geometry::VoxelGrid indexGrid;
     indexGrid.dims = d.dims;
+    const auto meshProgress = [&](double f) { stage("voxelize", 0.5 * f); };
+    geometry::SurfaceVoxelizeOptions exact;
+    exact.progress = meshProgress;
     VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface,
-                             geometry::voxelizeSurface(mesh, indexGrid));
+                             surfaceVoxelizer ? surfaceVoxelizer(mesh, indexGrid, meshProgress)
+                                              : geometry::voxelizeSurface(mesh, indexGrid, exact));
     for (const geometry::SurfaceVoxel& v : surface.voxels) {
       const double n[3] = {v.normal[0] / d.spacing[0], v.normal[1] / d.spacing[1],
                            v.normal[2] / d.spacing[2]};

@@ -38,7 +38,16 @@ struct SceneBuildOutput {
 // `progress(stage, fraction)` is called between stages ("load", "voxelize", "merge").
 using SceneProgress = std::function<void(const char* stage, double fraction)>;
 
+// Voxelizes the scene's meshes (one mesh, in index space: unit voxels, centres on integers).
+// The default is the exact CPU path (geometry::voxelizeSurface); the CLI passes the GL path
+// (viewer/gl/gl_voxelizer.h) for `--voxelizer gl`, which keeps scene/ free of GL.
+// `progress(fraction)` reports the voxelizer's own progress (may be ignored).
+using SurfaceVoxelizer = std::function<Result<geometry::SurfaceVoxelization>(
+    const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
+    const std::function<void(double fraction)>& progress)>;
+
 Result<SceneBuildOutput> buildScene(const SceneDescription& scene,
-                                    const SceneProgress& progress = {});
+                                    const SceneProgress& progress = {},
+                                    const SurfaceVoxelizer& surfaceVoxelizer = {});
 
 }  // namespace voxlink::scene

@@ -1,6 +1,7 @@
 #include "scene/scene_description.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -159,6 +160,38 @@ SceneMaterial readMaterial(const json& j, const std::string& where, Fields& f) {
   return out;
 }
 
+// "threshold": 60, [60, 200], or a list of those (a union): convert's --threshold specs.
+std::vector<std::string> thresholdSpecs(Fields& f, const json& j, const std::string& where) {
+  const std::string at = where + ".threshold";
+  auto spec = [&](const json& one, const std::string& path) -> std::string {
+    char text[64];
+    if (one.is_number()) {
+      std::snprintf(text, sizeof text, "%.17g", f.number(one, path, -1e300, 1e300));
+      return text;
+    }
+    if (!one.is_array() || one.empty() || one.size() > 2 || !one[0].is_number()) {
+      f.fail(path, "a threshold is LO or [LO, HI]");
+      return {};
+    }
+    const double lo = f.number(one[0], path + "[0]", -1e300, 1e300);
+    if (one.size() == 1) {
+      std::snprintf(text, sizeof text, "%.17g", lo);
+    } else {
+      const double hi = f.number(one[1], path + "[1]", -1e300, 1e300);
+      if (f.ok() && hi < lo) f.fail(path, "HI is below LO");
+      std::snprintf(text, sizeof text, "%.17g,%.17g", lo, hi);
+    }
+    return text;
+  };
+  std::vector<std::string> out;
+  if (j.is_array() && !j.empty() && j[0].is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) out.push_back(spec(j[i], cat(at, "[", i, "]")));
+  } else {
+    out.push_back(spec(j, at));
+  }
+  return out;
+}
+
 SceneObject readObject(const json& j, const std::string& where, const std::filesystem::path& base,
                        const SceneDescription& scene, Fields& f) {
   SceneObject o;
@@ -185,7 +218,14 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
     o.radius = f.number(j["radius"], where + ".radius", 1e-12, 1e12);
   } else if (type == "volume") {
     o.kind = ObjectKind::kVolume;
-    f.onlyKeys(j, where, {"type", "file"});
+    f.onlyKeys(j, where, {"type", "file", "threshold", "tf"});
+    if (j.contains("threshold") && j.contains("tf"))
+      f.fail(where, "give \"threshold\" or \"tf\", not both");
+    if (j.contains("threshold")) o.thresholds = thresholdSpecs(f, j["threshold"], where);
+    if (j.contains("tf")) {
+      const std::filesystem::path tf = f.string(j["tf"], where + ".tf");
+      o.tfPath = (tf.is_absolute() ? tf : base / tf).lexically_normal().string();
+    }
   } else {
     f.fail(where + ".type", "\"" + type + "\" is not mesh, particles, sphere or volume");
   }

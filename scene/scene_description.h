@@ -39,6 +39,11 @@ struct SceneObject {
   std::array<double, 3> center{0, 0, 0};  // kSphere
   double radius = 0;                      // kSphere
   double radiusScale = 1;                 // kParticles: multiplies every radius
+  // kVolume from a dense source (any file `voxlink convert` reads) rather than a .vxl: what to
+  // keep, as convert's options. thresholds: "LO" or "LO,HI" each, a union (--threshold);
+  // tfPath: a transfer function JSON (--tf). Both empty: `path` is a .vxl.
+  std::vector<std::string> thresholds;
+  std::string tfPath;
 };
 
 struct SceneGrid {

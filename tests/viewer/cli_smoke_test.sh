@@ -29,6 +29,22 @@ if "$voxlink" render tooth.vxl -o bad.png --size 0x10 2>err.txt; then exit 1; fi
 grep -q "| voxlink | voxel | 32x32 |" bench.txt
 grep -q "| dense | voxel | 32x32 |" bench.txt
 
+# Scene build with the GL voxelizer (headless) gives the exact path's voxels on the Cornell box.
+cornell="$data/mesh/mcguire_CornellBox-Original.obj"
+if [[ -f $cornell ]]; then
+  echo "{\"grid\": {\"resolution\": 96}, \"objects\": [{\"type\": \"mesh\", \"file\": \"$cornell\"}]}" \
+      >cornell.scene.json
+  exact=$("$voxlink" scene build cornell.scene.json -o exact.vxl)
+  gl=$("$voxlink" scene build cornell.scene.json -o gl.vxl --voxelizer gl)
+  echo "$gl"
+  grep -q "(gl)" <<<"$gl"
+  count() { sed 's/.*\], \([0-9]*\) voxels.*/\1/' <<<"$1"; }
+  awk -v a="$(count "$exact")" -v b="$(count "$gl")" \
+      'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 10000 && d <= a / 1000) }' ||
+      { echo "GL voxels $(count "$gl") vs exact $(count "$exact")"; exit 1; }
+  "$voxlink" validate gl.vxl
+fi
+
 if command -v xvfb-run >/dev/null; then
   xvfb-run -a -s "-screen 0 800x600x24" "$voxlink" view tooth.vxl --window 320x240 --frames 3 \
       --screenshot-on-exit view.png --capture-window-on-exit window.png
