@@ -167,79 +167,78 @@ TEST(CliScene, SphereCornellBoxRayTraced) {
                   "--max-bounces", "99"});
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad.png")));
+}
 
-  // "N voxels (S surface from T triangles, P sphere from ..." -> {N, S, P}
-  std::array<uint64_t, 3> summaryCounts(const std::string& out) {
-    std::array<uint64_t, 3> c{};
-    const size_t at = out.find("], ");
-    if (at == std::string::npos) return c;
-    unsigned long long n = 0, surface = 0, tris = 0, sphere = 0;
-    std::sscanf(out.c_str() + at + 3, "%llu voxels (%llu surface from %llu triangles, %llu sphere",
-                &n, &surface, &tris, &sphere);
-    return {n, surface, sphere};
-  }
+// "N voxels (S surface from T triangles, P sphere from ..." -> {N, S, P}
+std::array<uint64_t, 3> summaryCounts(const std::string& out) {
+  std::array<uint64_t, 3> c{};
+  const size_t at = out.find("], ");
+  if (at == std::string::npos) return c;
+  unsigned long long n = 0, surface = 0, tris = 0, sphere = 0;
+  std::sscanf(out.c_str() + at + 3, "%llu voxels (%llu surface from %llu triangles, %llu sphere",
+              &n, &surface, &tris, &sphere);
+  return {n, surface, sphere};
+}
 
-  TEST(CliScene, OverlappingObjectsShareVoxels) {
-    TempDir dir;
-    writeText(dir.file("quad.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
-    // Two small spheres fix the bounds, so that both scenes get the same grid.
-    const std::string grid = R"("grid": {"resolution": 64}, "objects": [
+TEST(CliScene, OverlappingObjectsShareVoxels) {
+  TempDir dir;
+  writeText(dir.file("quad.obj"), "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+  // Two small spheres fix the bounds, so that both scenes get the same grid.
+  const std::string grid = R"("grid": {"resolution": 64}, "objects": [
       {"type": "sphere", "center": [-0.2, -0.2, -0.3], "radius": 0.01},
       {"type": "sphere", "center": [1.6, 1.6, 0.3], "radius": 0.01}, )";
-    writeText(dir.file("one.scene.json"), "{" + grid + R"({"type": "mesh", "file": "quad.obj"},
+  writeText(dir.file("one.scene.json"), "{" + grid + R"({"type": "mesh", "file": "quad.obj"},
               {"type": "sphere", "center": [0.5, 0.5, 0], "radius": 0.1}]})");
-    // The same quad twice, the second shifted by a sixth of a voxel, and a sphere crossing both.
-    writeText(dir.file("two.scene.json"), "{" + grid + R"({"type": "mesh", "file": "quad.obj"},
+  // The same quad twice, the second shifted by a sixth of a voxel, and a sphere crossing both.
+  writeText(dir.file("two.scene.json"), "{" + grid + R"({"type": "mesh", "file": "quad.obj"},
               {"type": "mesh", "file": "quad.obj", "transform": {"translate": [0.005, 0, 0]}},
               {"type": "sphere", "center": [0.5, 0.5, 0], "radius": 0.1}]})");
-    auto one =
-        runVoxlink({"scene", "build", dir.file("one.scene.json"), "-o", dir.file("one.vxl")});
-    ASSERT_EQ(one.status, 0) << one.err;
-    auto two =
-        runVoxlink({"scene", "build", dir.file("two.scene.json"), "-o", dir.file("two.vxl")});
-    ASSERT_EQ(two.status, 0) << two.err;
-    const auto c1 = summaryCounts(one.out), c2 = summaryCounts(two.out);
-    EXPECT_GT(c1[1], 30u * 30u) << one.out;
-    EXPECT_GT(c1[2], 0u) << one.out;
-    // Voxels hold a surface fragment and sphere references together: fewer voxels than both.
-    EXPECT_LT(c1[0], c1[1] + c1[2]) << one.out;
-    // The overlapping quads merge per voxel: at most a column more, never twice the voxels.
-    EXPECT_GE(c2[1], c1[1]) << two.out;
-    EXPECT_LE(c2[1], c1[1] + 2 * 40u) << two.out;
-    EXPECT_LT(c2[0], c2[1] + c2[2]) << two.out;
-    auto f = format::VoxLinkFile::open(dir.file("two.vxl"));
-    ASSERT_TRUE(f) << f.message();
-    EXPECT_TRUE(format::validateFile(*f));
-  }
+  auto one = runVoxlink({"scene", "build", dir.file("one.scene.json"), "-o", dir.file("one.vxl")});
+  ASSERT_EQ(one.status, 0) << one.err;
+  auto two = runVoxlink({"scene", "build", dir.file("two.scene.json"), "-o", dir.file("two.vxl")});
+  ASSERT_EQ(two.status, 0) << two.err;
+  const auto c1 = summaryCounts(one.out), c2 = summaryCounts(two.out);
+  EXPECT_GT(c1[1], 30u * 30u) << one.out;
+  EXPECT_GT(c1[2], 0u) << one.out;
+  // Voxels hold a surface fragment and sphere references together: fewer voxels than both.
+  EXPECT_LT(c1[0], c1[1] + c1[2]) << one.out;
+  // The overlapping quads merge per voxel: at most a column more, never twice the voxels.
+  EXPECT_GE(c2[1], c1[1]) << two.out;
+  EXPECT_LE(c2[1], c1[1] + 2 * 40u) << two.out;
+  EXPECT_LT(c2[0], c2[1] + c2[2]) << two.out;
+  auto f = format::VoxLinkFile::open(dir.file("two.vxl"));
+  ASSERT_TRUE(f) << f.message();
+  EXPECT_TRUE(format::validateFile(*f));
+}
 
-  TEST(CliScene, BadInputIsOneLine) {
-    TempDir dir;
-    writeText(dir.file("bad.scene.json"),
-              R"({"objects": [{"type": "mesh", "file": "missing.obj"}]})");
-    auto r = runVoxlink({"scene", "build", dir.file("bad.scene.json"), "-o", dir.file("out.vxl")});
-    EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
-    writeText(dir.file("nan.obj"), "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
-    writeText(dir.file("nan.scene.json"), R"({"objects": [{"type": "mesh", "file": "nan.obj"}]})");
-    r = runVoxlink({"scene", "build", dir.file("nan.scene.json"), "-o", dir.file("out.vxl")});
-    EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.err.find("nan.obj"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
-    // The output may not be one of the scene's inputs.
-    writeText(dir.file("self.scene.json"),
-              R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
-    r = runVoxlink(
-        {"scene", "build", dir.file("self.scene.json"), "-o", dir.file("self.scene.json")});
-    EXPECT_EQ(r.status, 2) << r.err;
-    EXPECT_NE(r.err.find("self.scene.json"), std::string::npos) << r.err;
-    writeText(dir.file("empty.scene.json"), R"({"objects": []})");
-    r = runVoxlink({"scene", "build", dir.file("empty.scene.json"), "-o", dir.file("out.vxl")});
-    EXPECT_NE(r.status, 0);
-    EXPECT_NE(r.err.find("no geometry and no volume"), std::string::npos) << r.err;
-  }
+TEST(CliScene, BadInputIsOneLine) {
+  TempDir dir;
+  writeText(dir.file("bad.scene.json"),
+            R"({"objects": [{"type": "mesh", "file": "missing.obj"}]})");
+  auto r = runVoxlink({"scene", "build", dir.file("bad.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
+  writeText(dir.file("nan.obj"), "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  writeText(dir.file("nan.scene.json"), R"({"objects": [{"type": "mesh", "file": "nan.obj"}]})");
+  r = runVoxlink({"scene", "build", dir.file("nan.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("nan.obj"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("line 3"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
+  // The output may not be one of the scene's inputs.
+  writeText(dir.file("self.scene.json"),
+            R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
+  r = runVoxlink(
+      {"scene", "build", dir.file("self.scene.json"), "-o", dir.file("self.scene.json")});
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("self.scene.json"), std::string::npos) << r.err;
+  writeText(dir.file("empty.scene.json"), R"({"objects": []})");
+  r = runVoxlink({"scene", "build", dir.file("empty.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("no geometry and no volume"), std::string::npos) << r.err;
+}
 
 }  // namespace
 }  // namespace voxlink::testing
