@@ -1,7 +1,7 @@
 // DICOM multi-frame files and folders as scanners and planning systems write them: the shared
 // RT Dose grid against its own pixel bytes; Enhanced CT rewrites of the CT head series (built
-// here with GDCM; uncompressed, RLE, JPEG-LS) against the series itself; several series in
-// nested folders; images without positions; damaged functional groups.
+// here with GDCM; uncompressed, RLE, JPEG-LS, JPEG 2000) against the series itself; several series
+// in nested folders; images without positions; damaged functional groups.
 #include <gdcmAttribute.h>
 #include <gdcmImageChangeTransferSyntax.h>
 #include <gdcmImageReader.h>
@@ -178,7 +178,8 @@ TEST(DicomMultiFrame, EnhancedCtRewriteOfTheSeriesGivesTheSameVoxels) {
   writeEnhancedHeadsq(plain, reversedSlices());
   recompress(plain, dir.file("rle.dcm"), gdcm::TransferSyntax::RLELossless);
   recompress(plain, dir.file("jpegls.dcm"), gdcm::TransferSyntax::JPEGLSLossless);
-  for (const char* name : {"enhanced.dcm", "rle.dcm", "jpegls.dcm"}) {
+  recompress(plain, dir.file("j2k.dcm"), gdcm::TransferSyntax::JPEG2000Lossless);
+  for (const char* name : {"enhanced.dcm", "rle.dcm", "jpegls.dcm", "j2k.dcm"}) {
     SCOPED_TRACE(name);
     auto source = openOrDie(dir.file(name));
     ASSERT_TRUE(source);
