@@ -47,6 +47,7 @@ CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addSceneCommand(CLI::App& app);
 CommandRunner addStatsCommand(CLI::App& app);
+CommandRunner addDicomCommand(CLI::App& app);
 CommandRunner addKrigeCommand(CLI::App& app);
 CommandRunner addGrfCommand(CLI::App& app);
 CommandRunner addRenderCommand(CLI::App& app);

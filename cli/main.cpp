@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "voxlink 0.1.0");
   const CommandFactory factories[] = {
       addConvertCommand, addInfoCommand,        addValidateCommand, addSceneCommand,
-      addStatsCommand,   addKrigeCommand,       addGrfCommand,
+      addStatsCommand,   addDicomCommand,       addKrigeCommand,    addGrfCommand,
 #ifdef VOXLINK_WITH_VIEWER
       addRenderCommand,  addBenchRenderCommand, addViewCommand,
 #endif

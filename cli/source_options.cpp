@@ -16,6 +16,9 @@ void addSourceOptions(CLI::App& cmd, SourceArgs& args) {
                  ".vdb input: the grid to read (default: the first float grid)");
   cmd.add_option("--variable", args.variable,
                  "GSLIB/GEO-EAS input: the column to read (default: the first)");
+  cmd.add_option("--series", args.dicomSeries,
+                 "DICOM folder with several series: SeriesInstanceUID or index from "
+                 "`voxlink dicom list`");
   cmd.add_option(
       "--format", args.format, "Force a reader: " + [] {
         std::string names;
@@ -48,6 +51,7 @@ Result<convert::OpenOptions> toOpenOptions(const SourceArgs& args) {
   o.format = args.format;
   o.vdbGrid = args.vdbGrid;
   o.variable = args.variable;
+  o.dicomSeries = args.dicomSeries;
   return o;
 }
 

@@ -20,6 +20,7 @@ struct SourceArgs {
   std::string format;
   std::string vdbGrid;
   std::string variable;
+  std::string dicomSeries;
 };
 
 void addSourceOptions(CLI::App& cmd, SourceArgs& args);

@@ -228,6 +228,11 @@ nlohmann::ordered_json sourceJson(const VolumeInfo& info, const OpenOptions& ope
   j["spacing"] = info.spacing;
   j["origin"] = info.origin;
   j["notes"] = info.notes;
+  if (const auto& r = info.rescale)  // only rescaling readers: other files' META is unchanged
+    j["rescale"] = {{"field", r->field},
+                    {"stored_type", r->storedType},
+                    {"slope", {r->minSlope, r->maxSlope}},
+                    {"intercept", {r->minIntercept, r->maxIntercept}}};
   nlohmann::ordered_json o;
   if (!open.format.empty()) o["format"] = open.format;
   if (open.dims) o["dims"] = *open.dims;

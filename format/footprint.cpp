@@ -43,6 +43,26 @@ SceneFootprint computeSceneFootprint(const VoxLinkFile& f) {
   return s;
 }
 
+// META's source.rescale, when the converter recorded one; a value of the wrong shape is left
+// out (validate checks META's checksum, not its contents).
+std::optional<ReaderRescale> readerRescale(const VoxLinkFile& f) {
+  const auto meta = nlohmann::json::parse(f.metaJson(), nullptr, false);
+  if (!meta.is_object() || !meta.contains("source") || !meta["source"].is_object()) return {};
+  const auto& source = meta["source"];
+  if (!source.contains("rescale") || !source["rescale"].is_object()) return {};
+  const auto& j = source["rescale"];
+  const auto pair = [&](const char* key) {
+    return j.contains(key) && j[key].is_array() && j[key].size() == 2 && j[key][0].is_number() &&
+           j[key][1].is_number();
+  };
+  if (!j.contains("field") || !j["field"].is_string() || !j.contains("stored_type") ||
+      !j["stored_type"].is_string() || !pair("slope") || !pair("intercept"))
+    return {};
+  return ReaderRescale{j["field"].get<std::string>(),   j["stored_type"].get<std::string>(),
+                       j["slope"][0].get<double>(),     j["slope"][1].get<double>(),
+                       j["intercept"][0].get<double>(), j["intercept"][1].get<double>()};
+}
+
 }  // namespace
 
 FootprintReport computeFootprint(const VoxLinkFile& f) {
@@ -78,6 +98,7 @@ FootprintReport computeFootprint(const VoxLinkFile& f) {
   r.valueMaxAbsError = h.valueMaxAbsError;
   r.valueMaxRelError = h.valueMaxRelError;
   if (f.isScene()) r.scene = computeSceneFootprint(f);
+  r.readerRescale = readerRescale(f);
   return r;
 }
 
@@ -104,6 +125,17 @@ std::string footprintTable(const FootprintReport& r) {
         r.valueType.c_str(), r.sourceType.c_str(), r.valueScale, r.valueOffset, r.valueErrorBound,
         r.valueMaxAbsError <= r.valueErrorBound ? "met" : "NOT met", r.valueMaxAbsError,
         r.valueMaxRelError);
+  }
+  if (r.readerRescale) {
+    const ReaderRescale& x = *r.readerRescale;
+    if (x.minSlope == x.maxSlope && x.minIntercept == x.maxIntercept)
+      add("  source values rescaled by the reader (%s): source = file %s * %g + %g\n",
+          x.field.c_str(), x.storedType.c_str(), x.minSlope, x.minIntercept);
+    else
+      add("  source values rescaled by the reader (%s, per slice): source = file %s * slope + "
+          "intercept, slopes %g..%g, intercepts %g..%g\n",
+          x.field.c_str(), x.storedType.c_str(), x.minSlope, x.maxSlope, x.minIntercept,
+          x.maxIntercept);
   }
   add("  %-22s %14s %10s\n", "section", "bytes", "B/voxel");
   for (const SectionFootprint& s : r.sections)
@@ -153,6 +185,13 @@ std::string footprintJson(const FootprintReport& r) {
                       {"bound_met", r.valueMaxAbsError <= r.valueErrorBound},
                       {"max_abs", r.valueMaxAbsError},
                       {"max_rel", r.valueMaxRelError}};
+  if (r.readerRescale) {
+    const ReaderRescale& x = *r.readerRescale;
+    j["reader_rescale"] = {{"field", x.field},
+                           {"stored_type", x.storedType},
+                           {"slope", {x.minSlope, x.maxSlope}},
+                           {"intercept", {x.minIntercept, x.maxIntercept}}};
+  }
   nlohmann::ordered_json sections = nlohmann::ordered_json::object();
   for (const SectionFootprint& s : r.sections) sections[s.name] = s.bytes;
   j["sections"] = sections;

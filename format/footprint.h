@@ -39,6 +39,15 @@ struct SceneFootprint {
   uint64_t sphereBytes = 0;     // SPHR, PMSK, SROF, SRID
 };
 
+// What the source's reader did to the numbers in the input file before conversion (DICOM
+// RescaleSlope/RescaleIntercept or DoseGridScaling), from META's source.rescale: the values
+// stored here are in the rescaled units. Slopes and intercepts may vary per slice in the ranges.
+struct ReaderRescale {
+  std::string field;       // "RescaleSlope/RescaleIntercept", "DoseGridScaling"
+  std::string storedType;  // the input file's own type
+  double minSlope = 1, maxSlope = 1, minIntercept = 0, maxIntercept = 0;
+};
+
 struct FootprintReport {
   std::string path;
   uint32_t dims[3] = {0, 0, 0};
@@ -59,6 +68,7 @@ struct FootprintReport {
   double valueErrorBound = 0;   // what the stored type guarantees (0: lossless)
   double valueMaxAbsError = 0;  // measured when the file was written
   double valueMaxRelError = 0;
+  std::optional<ReaderRescale> readerRescale;  // absent for inputs the reader did not rescale
   std::optional<PeerFootprint> peer;
   std::optional<SceneFootprint> scene;  // version 2 files
 };

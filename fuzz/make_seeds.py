@@ -180,6 +180,54 @@ def dicom_seeds(s, d):
     s.add("dicom", "ct_head_two", bundle(read(d, "ct/slicer_CTHeadAxialDicom/CTHead1.dcm"),
                                          ("CTHead2.dcm", read(d, "ct/slicer_CTHeadAxialDicom/CTHead2.dcm"))))
     s.add("dicom", "rtdose_multiframe", read(d, "dicom_multiframe/pydicom_rtdose.dcm"))
+    s.add("dicom", "enhanced_ct_multiframe", enhanced_ct(d))
+
+
+def dicom_element(group, element, vr, value):
+    """One explicit VR little endian element; SQ values are lists of item byte strings."""
+    if vr == b"SQ":
+        body = b"".join(struct.pack("<HHI", 0xFFFE, 0xE000, 0xFFFFFFFF) + item +
+                        struct.pack("<HHI", 0xFFFE, 0xE00D, 0) for item in value)
+        return (struct.pack("<HH", group, element) + vr + b"\0\0" + struct.pack("<I", 0xFFFFFFFF) +
+                body + struct.pack("<HHI", 0xFFFE, 0xE0DD, 0))
+    if isinstance(value, str):
+        value = value.encode()
+        value += b"\0" if vr == b"UI" and len(value) % 2 else b" " * (len(value) % 2)
+    if vr in (b"OB", b"OW", b"UN"):
+        return struct.pack("<HH", group, element) + vr + b"\0\0" + struct.pack("<I", len(value)) + value
+    return struct.pack("<HH", group, element) + vr + struct.pack("<H", len(value)) + value
+
+
+def enhanced_ct(d):
+    """A 3-frame Enhanced CT file (8x4 pixels of the CT head's slices 40..42, frames in reverse
+    position order) with shared and per-frame functional groups, written by hand."""
+    e = dicom_element
+    frames, pixels = [], b""
+    for k, n in enumerate((42, 41, 40)):
+        data = read(d, "ct/slicer_CTHeadAxialDicom/CTHead%d.dcm" % n)
+        pixels += data[-8192 + 64 * 2 * 30: -8192 + 64 * 2 * 30 + 8 * 4 * 2]
+        frames.append(e(0x0020, 0x9113, b"SQ", [e(0x0020, 0x0032, b"DS", "0\\0\\%g" % (1.5 * (n - 1)))]) +
+                      e(0x0028, 0x9145, b"SQ", [e(0x0028, 0x1052, b"DS", str(-k)) +
+                                               e(0x0028, 0x1053, b"DS", "1")]))
+    shared = (e(0x0020, 0x9116, b"SQ", [e(0x0020, 0x0037, b"DS", "1\\0\\0\\0\\1\\0")]) +
+              e(0x0028, 0x9110, b"SQ", [e(0x0028, 0x0030, b"DS", "3.2\\3.2") +
+                                       e(0x0018, 0x0050, b"DS", "1.5")]))
+    ts = "1.2.840.10008.1.2.1"
+    meta_body = e(0x0002, 0x0001, b"OB", b"\0\1") + e(0x0002, 0x0010, b"UI", ts)
+    meta = e(0x0002, 0x0000, b"UL", struct.pack("<I", len(meta_body))) + meta_body
+    body = (e(0x0008, 0x0016, b"UI", "1.2.840.10008.5.1.4.1.1.2.1") +
+            e(0x0008, 0x0060, b"CS", "CT") + e(0x0020, 0x000E, b"UI", "1.2.3.4.5.6") +
+            e(0x0028, 0x0002, b"US", struct.pack("<H", 1)) +
+            e(0x0028, 0x0004, b"CS", "MONOCHROME2") + e(0x0028, 0x0008, b"IS", "3") +
+            e(0x0028, 0x0010, b"US", struct.pack("<H", 4)) +
+            e(0x0028, 0x0011, b"US", struct.pack("<H", 8)) +
+            e(0x0028, 0x0100, b"US", struct.pack("<H", 16)) +
+            e(0x0028, 0x0101, b"US", struct.pack("<H", 16)) +
+            e(0x0028, 0x0102, b"US", struct.pack("<H", 15)) +
+            e(0x0028, 0x0103, b"US", struct.pack("<H", 1)) +
+            e(0x5200, 0x9229, b"SQ", [shared]) + e(0x5200, 0x9230, b"SQ", frames) +
+            e(0x7FE0, 0x0010, b"OW", pixels))
+    return bytes(128) + b"DICM" + meta + body
 
 
 def image_seeds(s, out):

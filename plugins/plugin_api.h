@@ -10,6 +10,7 @@
 
 #include "format/footprint.h"
 #include "format/voxlink_file.h"
+#include "sources/readers/dicom_series.h"
 #include "sources/volume_source.h"
 
 namespace voxlink::plugins {
@@ -18,6 +19,7 @@ namespace voxlink::plugins {
 struct DicomPluginApi {
   Result<std::unique_ptr<convert::VolumeSource>> (*openSeries)(const std::string& dir,
                                                                const convert::OpenOptions& options);
+  Result<convert::DicomFolderListing> (*listSeries)(const std::string& path);
 };
 inline constexpr const char* kDicomPlugin = "libvoxlink_dicom.so";
 inline constexpr const char* kDicomPluginEntry = "voxlink_dicom_plugin";

@@ -9,6 +9,7 @@ packages=(
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libblosc-dev
   libopenimageio-dev openimageio-tools
   libgdcm-dev
+  libgdcm-tools
   libnifti2-dev
   libglfw3-dev libglm-dev libepoxy-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0
   libimgui-dev xvfb xauth

@@ -19,6 +19,13 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
   return dicom->openSeries(dir, options);
 }
 
+Result<DicomFolderListing> listDicomFolder(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(
+      const DicomPluginApi* dicom,
+      pluginApi<DicomPluginApi>(plugins::kDicomPlugin, plugins::kDicomPluginEntry));
+  return dicom->listSeries(path);
+}
+
 Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(const VdbPluginApi* vdb,
                            pluginApi<VdbPluginApi>(plugins::kVdbPlugin, plugins::kVdbPluginEntry));

@@ -14,6 +14,15 @@
 
 namespace voxlink::convert {
 
+// How a reader mapped stored numbers to the values it serves (DICOM RescaleSlope/Intercept,
+// DoseGridScaling): value = stored * slope + intercept, slope and intercept per slice within
+// the ranges. The converter records it in the file's META; `voxlink info` reports it.
+struct SourceRescale {
+  std::string field;       // "RescaleSlope/RescaleIntercept", "DoseGridScaling"
+  std::string storedType;  // the file's own type, e.g. "u32"
+  double minSlope = 1, maxSlope = 1, minIntercept = 0, maxIntercept = 0;
+};
+
 struct VolumeInfo {
   std::array<uint32_t, 3> dims{0, 0, 0};
   ScalarType type = ScalarType::kU8;
@@ -24,6 +33,7 @@ struct VolumeInfo {
   // Things the reader did or ignored that a user should know ("z order reversed to increasing
   // slice position", "oblique space directions: only their lengths are used as spacing").
   std::vector<std::string> notes;
+  std::optional<SourceRescale> rescale;  // set by readers that rescale and record it
 
   uint64_t sliceVoxels() const { return uint64_t{dims[0]} * dims[1]; }
   uint64_t voxelCount() const { return sliceVoxels() * dims[2]; }
@@ -65,9 +75,10 @@ struct OpenOptions {
   Endian endian = Endian::kLittle;
   uint64_t headerBytes = 0;                      // raw: bytes to skip before the data
   std::optional<std::array<double, 3>> spacing;  // overrides the file's spacing
-  std::string format;    // force a reader ("raw", "nrrd", ...) instead of guessing
-  std::string vdbGrid;   // .vdb: the grid to read (default: the first float grid)
-  std::string variable;  // multi-variable inputs (GSLIB/GEO-EAS): which column to read
+  std::string format;       // force a reader ("raw", "nrrd", ...) instead of guessing
+  std::string vdbGrid;      // .vdb: the grid to read (default: the first float grid)
+  std::string variable;     // multi-variable inputs (GSLIB/GEO-EAS): which column to read
+  std::string dicomSeries;  // DICOM folders: SeriesInstanceUID or 1-based index to read
 };
 
 // Opens `path` with the reader its name or content calls for.

@@ -21,13 +21,21 @@ bool looksLikeDicom(const fs::path& p) {
 bool folderHoldsDicom(const std::string& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return false;
+  if (fs::is_regular_file(fs::path(dir) / "DICOMDIR", ec)) return true;  // a CD/PACS export
+  // Exports nest their images in folders: look below, but at 64 files at most.
   int looked = 0;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (!entry.is_regular_file(ec)) continue;
-    if (looksLikeDicom(entry.path())) return true;
+  fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec);
+  for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    if (looksLikeDicom(it->path())) return true;
     if (++looked >= 64) break;  // a folder of other files: stop early
   }
   return false;
+}
+
+bool fileIsDicom(const std::string& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec) && looksLikeDicom(path);
 }
 
 }  // namespace voxlink::convert

@@ -9,7 +9,10 @@ namespace voxlink::convert {
 
 // A .dcm file, or a file with "DICM" at byte 128 (DICOMDIR, an index, is not an image).
 bool looksLikeDicom(const std::filesystem::path& p);
-// True when the folder holds DICOM files (looks at up to 64 files).
+// True when the folder holds a DICOMDIR or DICOM files, in it or below it (looks at up to 64
+// files).
 bool folderHoldsDicom(const std::string& dir);
+// True for one DICOM file (a multi-frame file is a volume by itself).
+bool fileIsDicom(const std::string& path);
 
 }  // namespace voxlink::convert

@@ -1,10 +1,13 @@
 #include "sources/readers/dicom_reader.h"
 
+#include <gdcmBoxRegion.h>
 #include <gdcmImageReader.h>
+#include <gdcmImageRegionReader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "sources/readers/dicom_series.h"
@@ -32,8 +35,9 @@ class DicomSource final : public VolumeSource {
       const DicomSlice& slice = series_.slices[z];
       uint8_t* target = out + uint64_t{z - z0} * info_.sliceBytes();
       if (rescale_) scratch_.resize(storedBytes);
-      VOXLINK_RETURN_IF_ERROR(
-          readPixels(slice.path, rescale_ ? scratch_.data() : target, storedBytes));
+      uint8_t* pixels = rescale_ ? scratch_.data() : target;
+      VOXLINK_RETURN_IF_ERROR(slice.fileFrames > 1 ? readFrame(slice, pixels, storedBytes)
+                                                   : readPixels(slice.path, pixels, storedBytes));
       if (rescale_)
         convertRescaled(scratch_.data(), series_.storedType, target, info_.type,
                         info_.sliceVoxels(), slice.slope, slice.intercept);
@@ -42,6 +46,35 @@ class DicomSource final : public VolumeSource {
   }
 
  private:
+  // One frame of a multi-frame file, decoded alone (GDCM's region reader decodes only the
+  // fragments of that frame), so memory stays at the slices asked for. The file's header is
+  // parsed once while consecutive frames come from the same file.
+  Status readFrame(const DicomSlice& slice, uint8_t* dst, uint64_t bytes) {
+    GdcmMessages messages;
+    if (!frameReader_ || framePath_ != slice.path) {
+      frameReader_ = std::make_unique<gdcm::ImageRegionReader>();
+      framePath_.clear();
+      frameReader_->SetFileName(slice.path.c_str());
+      if (!frameReader_->ReadInformation())
+        return makeError(ErrorCode::kCorrupt, slice.path, ": GDCM cannot read the image",
+                         messages.reason());
+      framePath_ = slice.path;
+    }
+    gdcm::BoxRegion box;
+    box.SetDomain(0, info_.dims[0] - 1, 0, info_.dims[1] - 1, slice.frame, slice.frame);
+    frameReader_->SetRegion(box);
+    if (frameReader_->ComputeBufferLength() != bytes)
+      return makeError(ErrorCode::kSizeMismatch, slice.path, ": tag PixelData (7FE0,0010): frame ",
+                       slice.frame + 1, " is ", frameReader_->ComputeBufferLength(),
+                       " bytes, expected ", bytes);
+    if (!frameReader_->ReadIntoBuffer(reinterpret_cast<char*>(dst), bytes)) {
+      framePath_.clear();
+      return makeError(ErrorCode::kCorrupt, slice.path, ": tag PixelData (7FE0,0010): GDCM ",
+                       "cannot decode frame ", slice.frame + 1, messages.reason());
+    }
+    return Status::ok();
+  }
+
   Status readPixels(const std::string& file, uint8_t* dst, uint64_t bytes) {
     gdcm::ImageReader reader;
     reader.SetFileName(file.c_str());
@@ -66,6 +99,8 @@ class DicomSource final : public VolumeSource {
   DicomSeries series_;
   bool rescale_;
   std::vector<uint8_t> scratch_;
+  std::unique_ptr<gdcm::ImageRegionReader> frameReader_;
+  std::string framePath_;  // the file frameReader_ has read the header of
 };
 
 bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
@@ -74,7 +109,7 @@ bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }
 
 Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
                                                             const OpenOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir));
+  VOXLINK_ASSIGN_OR_RETURN(DicomSeries series, scanDicomSeries(dir, options.dicomSeries));
   const std::array<uint64_t, 3> dims{series.columns, series.rows, series.slices.size()};
   VOXLINK_RETURN_IF_ERROR(checkDims(dims, dir, "Columns Rows slices"));
 
@@ -83,7 +118,7 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& d
   info.format = "dicom";
   for (int a = 0; a < 3; ++a) info.dims[a] = static_cast<uint32_t>(dims[a]);
   info.spacing = {series.columnSpacing, series.rowSpacing, series.sliceSpacing};
-  info.origin = series.slices.front().position;
+  info.origin = series.origin;
   info.notes = series.notes;
   const AxesSummary axes = summarizeAxes(
       {series.rowDirection, series.columnDirection, series.normal}, "ImageOrientationPatient axes");
@@ -112,12 +147,16 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& d
       identity ? series.storedType : typeForValueRange(series.storedType, lo, hi, allIntegral);
   if (!identity) {
     const bool uniform = minSlope == maxSlope && minIntercept == maxIntercept;
-    info.notes.push_back(uniform ? cat("RescaleSlope/RescaleIntercept applied: value = stored ",
-                                       scalarName(series.storedType), " * ", minSlope, " + ",
-                                       minIntercept, ", served as ", scalarName(info.type))
-                                 : cat("RescaleSlope/RescaleIntercept applied per slice (slopes ",
-                                       minSlope, "..", maxSlope, ", intercepts ", minIntercept,
-                                       "..", maxIntercept, "), served as ", scalarName(info.type)));
+    const std::string& field = series.rescaleField;
+    info.notes.push_back(
+        uniform
+            ? cat(field, " applied: value = stored ", scalarName(series.storedType), " * ",
+                  minSlope, " + ", minIntercept, ", served as ", scalarName(info.type))
+            : cat(field, " applied per slice (slopes ", minSlope, "..", maxSlope, ", intercepts ",
+                  minIntercept, "..", maxIntercept, "), served as ", scalarName(info.type)));
+    info.rescale = SourceRescale{field,        std::string(scalarName(series.storedType)),
+                                 minSlope,     maxSlope,
+                                 minIntercept, maxIntercept};
   }
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
   return std::unique_ptr<VolumeSource>(

@@ -1,145 +1,91 @@
 #include "sources/readers/dicom_series.h"
 
-#include <gdcmAttribute.h>
-#include <gdcmReader.h>
-
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <optional>
 
+#include "format/limits.h"
 #include "sources/readers/dicom_probe.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/gdcm_guard.h"
-#include "sources/readers/gdcm_messages.h"
-#include "sources/readers/reader_common.h"
-#include "sources/readers/text_header.h"
 
 namespace voxlink::convert {
 namespace {
 
 namespace fs = std::filesystem;
 
-// The text of a string-valued element (DS, IS, UI, CS), or empty when absent.
-std::string stringValue(const gdcm::DataSet& ds, uint16_t group, uint16_t element) {
-  const gdcm::Tag tag(group, element);
-  if (!ds.FindDataElement(tag)) return {};
-  const gdcm::ByteValue* bv = ds.GetDataElement(tag).GetByteValue();
-  if (!bv) return {};
-  std::string s(bv->GetPointer(), bv->GetLength());
-  while (!s.empty() && (s.back() == '\0' || s.back() == ' ')) s.pop_back();
-  return std::string(trim(s));
-}
+std::string fileName(const std::string& path) { return fs::path(path).filename().string(); }
 
-// Backslash-separated decimal values ("0.5\0.5").
-Result<std::vector<double>> decimals(const gdcm::DataSet& ds, uint16_t group, uint16_t element,
-                                     const std::string& file, const char* name, size_t count) {
-  std::string text = stringValue(ds, group, element);
-  if (text.empty()) return makeError(ErrorCode::kUnsupported, file, ": tag ", name, " missing");
-  std::replace(text.begin(), text.end(), '\\', ' ');
-  return parseDoubles(text, file, name, count);
-}
-
-template <uint16_t G, uint16_t E>
-std::optional<uint16_t> ushortValue(const gdcm::DataSet& ds) {
-  gdcm::Attribute<G, E> at;
-  if (!ds.FindDataElement(at.GetTag()) || ds.GetDataElement(at.GetTag()).IsEmpty())
-    return std::nullopt;
-  at.SetFromDataSet(ds);
-  return static_cast<uint16_t>(at.GetValue());
-}
-
-struct SliceHeader {
-  DicomSlice slice;
-  std::string series;
-  uint32_t rows = 0, columns = 0;
-  int bitsAllocated = 0, bitsStored = 0, pixelRepresentation = 0;
-  std::string photometric;
-  std::array<double, 6> orientation{};
-  std::array<double, 2> pixelSpacing{};
+struct FoundFiles {
+  std::vector<std::string> dicom;  // natural sort
+  uint64_t other = 0;
 };
 
-Result<SliceHeader> readSliceHeader(const std::string& file) {
-  gdcm::Reader reader;
-  reader.SetFileName(file.c_str());
-  const gdcm::Tag pixelData(0x7fe0, 0x0010);
-  GdcmMessages messages;
-  if (!reader.ReadUpToTag(pixelData, {pixelData}))
-    return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot parse this DICOM file",
-                     messages.reason());
-  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
-  const size_t pixelDataAt = reader.GetStreamCurrentPosition();
-  const gdcm::TransferSyntax& syntax = reader.GetFile().GetHeader().GetDataSetTransferSyntax();
-  SliceHeader h;
-  h.slice.path = file;
-  h.series = stringValue(ds, 0x0020, 0x000e);
-  const auto rows = ushortValue<0x0028, 0x0010>(ds);
-  const auto columns = ushortValue<0x0028, 0x0011>(ds);
-  const auto bitsAllocated = ushortValue<0x0028, 0x0100>(ds);
-  if (!rows || !columns || !bitsAllocated || *rows == 0 || *columns == 0)
-    return makeError(
-        ErrorCode::kUnsupported, file,
-        ": tag Rows/Columns/BitsAllocated (0028,0010/0011/0100) missing; not an image");
-  h.rows = *rows;
-  h.columns = *columns;
-  h.bitsAllocated = *bitsAllocated;
-  h.bitsStored = ushortValue<0x0028, 0x0101>(ds).value_or(*bitsAllocated);
-  h.pixelRepresentation = ushortValue<0x0028, 0x0103>(ds).value_or(0);
-  const int samples = ushortValue<0x0028, 0x0002>(ds).value_or(1);
-  if (samples != 1)
-    return makeError(ErrorCode::kUnsupported, file, ": tag SamplesPerPixel (0028,0002): ", samples,
-                     " (only single-channel images)");
-  const std::string frames = stringValue(ds, 0x0028, 0x0008);
-  if (!frames.empty() && frames != "1")
-    return makeError(ErrorCode::kUnsupported, file, ": tag NumberOfFrames (0028,0008): ", frames,
-                     " (multi-frame files are not supported)");
-  // Uncompressed pixel data must all be there: GDCM reads a file cut inside it without a word.
-  if (!syntax.IsEncapsulated() && *bitsAllocated % 8 == 0) {
-    const uint64_t need = uint64_t{*rows} * *columns * (*bitsAllocated / 8);
-    const uint64_t start = pixelDataAt;  // ReadUpToTag stops after the element's tag and length
-    std::error_code ec;
-    const uint64_t size = fs::file_size(file, ec);
-    if (!ec && size < start + need)
-      return makeError(ErrorCode::kTruncated, file, ": tag PixelData (7FE0,0010): the file holds ",
-                       size > start ? size - start : 0,
-                       " bytes of pixel data, Rows x Columns x BitsAllocated need ", need);
+// `path` itself when it is a file; else every DICOM file below it (DICOMDIR, an index of the
+// same files, is counted with the other files: the walk finds what it references).
+Result<FoundFiles> findFiles(const std::string& path) {
+  FoundFiles found;
+  std::error_code ec;
+  if (fs::is_regular_file(path, ec)) {
+    found.dicom.push_back(path);
+    return found;
   }
-  h.photometric = stringValue(ds, 0x0028, 0x0004);
-  VOXLINK_ASSIGN_OR_RETURN(
-      std::vector<double> ipp,
-      decimals(ds, 0x0020, 0x0032, file, "ImagePositionPatient (0020,0032)", 3));
-  VOXLINK_ASSIGN_OR_RETURN(
-      std::vector<double> iop,
-      decimals(ds, 0x0020, 0x0037, file, "ImageOrientationPatient (0020,0037)", 6));
-  VOXLINK_ASSIGN_OR_RETURN(std::vector<double> ps,
-                           decimals(ds, 0x0028, 0x0030, file, "PixelSpacing (0028,0030)", 2));
-  h.slice.position = {ipp[0], ipp[1], ipp[2]};
-  std::copy(iop.begin(), iop.end(), h.orientation.begin());
-  h.pixelSpacing = {ps[0], ps[1]};
-  if (!stringValue(ds, 0x0028, 0x1053).empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(std::vector<double> s,
-                             decimals(ds, 0x0028, 0x1053, file, "RescaleSlope (0028,1053)", 1));
-    h.slice.slope = s[0];
+  fs::recursive_directory_iterator it(path, fs::directory_options::skip_permission_denied, ec);
+  for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    if (looksLikeDicom(it->path()))
+      found.dicom.push_back(it->path().string());
+    else
+      ++found.other;
+    if (found.dicom.size() > limits::kMaxListedFiles)
+      return makeError(ErrorCode::kTooLarge, path, ": more than ", limits::kMaxListedFiles,
+                       " DICOM files below the folder");
   }
-  if (!stringValue(ds, 0x0028, 0x1052).empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(std::vector<double> i,
-                             decimals(ds, 0x0028, 0x1052, file, "RescaleIntercept (0028,1052)", 1));
-    h.slice.intercept = i[0];
-  }
-  if (!std::isfinite(h.slice.slope) || h.slice.slope == 0)
-    return makeError(ErrorCode::kCorrupt, file, ": tag RescaleSlope (0028,1053): ", h.slice.slope);
-  const std::string instance = stringValue(ds, 0x0020, 0x0013);
-  if (!instance.empty()) {
-    auto n = parseInteger(instance, file, "InstanceNumber (0020,0013)");
-    if (n) h.slice.instance = *n;
-  }
-  return h;
+  if (ec) return makeError(ErrorCode::kIo, path, ": cannot list the folder (", ec.message(), ")");
+  if (found.dicom.empty())
+    return makeError(ErrorCode::kCorrupt, path,
+                     ": no DICOM files (.dcm or DICM magic) in the folder or below it");
+  std::sort(found.dicom.begin(), found.dicom.end(),
+            [](const std::string& a, const std::string& b) { return naturalLess(a, b); });
+  return found;
 }
 
-Result<ScalarType> storedType(const SliceHeader& h) {
+struct Group {
+  std::string uid;
+  std::vector<DicomFileHeader> files;
+};
+
+struct Scan {
+  std::vector<Group> groups;
+  uint64_t otherFiles = 0, nonImages = 0;
+};
+
+// Reads every header (after the child process survived them all) and groups the images by
+// SeriesInstanceUID in the order of their first file.
+Result<Scan> scanHeaders(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(FoundFiles found, findFiles(path));
+  VOXLINK_RETURN_IF_ERROR(checkGdcmSurvives(found.dicom));
+  Scan scan;
+  scan.otherFiles = found.other;
+  std::map<std::string, size_t> index;
+  for (const std::string& f : found.dicom) {
+    VOXLINK_ASSIGN_OR_RETURN(DicomFileHeader h, readDicomFileHeader(f));
+    if (!h.image) {
+      ++scan.nonImages;
+      continue;
+    }
+    auto [at, added] = index.emplace(h.series, scan.groups.size());
+    if (added) scan.groups.push_back({h.series, {}});
+    scan.groups[at->second].files.push_back(std::move(h));
+  }
+  if (scan.groups.empty())
+    return makeError(ErrorCode::kUnsupported, path, ": none of the ", found.dicom.size(),
+                     " DICOM files is an image (no PixelData, Rows, Columns)");
+  return scan;
+}
+
+Result<ScalarType> storedType(const DicomFileHeader& h) {
   const bool s = h.pixelRepresentation == 1;
   switch (h.bitsAllocated) {
     case 8:
@@ -149,42 +95,56 @@ Result<ScalarType> storedType(const SliceHeader& h) {
     case 32:
       return s ? ScalarType::kI32 : ScalarType::kU32;
     default:
-      return makeError(ErrorCode::kUnsupported, h.slice.path,
+      return makeError(ErrorCode::kUnsupported, h.path,
                        ": tag BitsAllocated (0028,0100): ", h.bitsAllocated,
                        " (8, 16 or 32 are supported)");
   }
 }
 
-Status checkSameGeometry(const SliceHeader& first, const SliceHeader& h) {
-  const std::string other = fs::path(first.slice.path).filename().string();
+Status checkSameGeometry(const DicomFileHeader& first, const DicomFileHeader& h) {
+  const std::string other = fileName(first.path);
   if (h.rows != first.rows || h.columns != first.columns)
-    return makeError(ErrorCode::kSizeMismatch, h.slice.path,
+    return makeError(ErrorCode::kSizeMismatch, h.path,
                      ": tag Rows x Columns (0028,0010/0011): ", h.columns, "x", h.rows,
                      " differs from ", first.columns, "x", first.rows, " in ", other);
   if (h.bitsAllocated != first.bitsAllocated || h.pixelRepresentation != first.pixelRepresentation)
-    return makeError(ErrorCode::kSizeMismatch, h.slice.path,
+    return makeError(ErrorCode::kSizeMismatch, h.path,
                      ": tag BitsAllocated/PixelRepresentation (0028,0100/0103): ", h.bitsAllocated,
                      "/", h.pixelRepresentation, " differs from ", first.bitsAllocated, "/",
                      first.pixelRepresentation, " in ", other);
   for (int i = 0; i < 6; ++i)
     if (std::fabs(h.orientation[i] - first.orientation[i]) > 1e-4)
-      return makeError(ErrorCode::kUnsupported, h.slice.path,
-                       ": tag ImageOrientationPatient (0020,0037) differs from ", other);
+      return makeError(ErrorCode::kUnsupported, h.path,
+                       ": tag ImageOrientationPatient (0020,0037) differs from ", other,
+                       " (mixed orientations)");
   for (int i = 0; i < 2; ++i)
     if (std::fabs(h.pixelSpacing[i] - first.pixelSpacing[i]) > 1e-4 * first.pixelSpacing[i])
-      return makeError(ErrorCode::kSizeMismatch, h.slice.path,
+      return makeError(ErrorCode::kSizeMismatch, h.path,
                        ": tag PixelSpacing (0028,0030): ", h.pixelSpacing[0], "\\",
                        h.pixelSpacing[1], " differs from ", first.pixelSpacing[0], "\\",
                        first.pixelSpacing[1], " in ", other);
+  if (h.hasPosition != first.hasPosition)
+    return makeError(ErrorCode::kCorrupt, (h.hasPosition ? first : h).path,
+                     ": tag ImagePositionPatient (0020,0032) missing, but ",
+                     fileName((h.hasPosition ? h : first).path), " of the same series has it");
   return Status::ok();
 }
 
-// Spacing from the sorted slice positions; errors or notes when the gaps are not uniform.
-Status sliceSpacing(DicomSeries& s, const std::string& dir) {
+// The z spacing a series without positions gets, and where it came from.
+std::pair<double, std::string> nominalSpacing(const DicomFileHeader& h) {
+  if (h.spacingBetweenSlices > 0) return {h.spacingBetweenSlices, "SpacingBetweenSlices"};
+  if (h.sliceThickness > 0) return {h.sliceThickness, "SliceThickness"};
+  return {1.0, "neither SpacingBetweenSlices nor SliceThickness given"};
+}
+
+// Spacing from the sorted slice positions; errors or notes when the gaps are not uniform or
+// the slices are not stacked straight along the normal (gantry tilt).
+Status sliceSpacing(DicomSeries& s, const DicomFileHeader& first, const std::string& dir) {
   const size_t n = s.slices.size();
   if (n == 1) {
-    s.notes.push_back("a single slice: z spacing 1");
-    s.sliceSpacing = 1;
+    const auto [spacing, from] = nominalSpacing(first);
+    s.notes.push_back(cat("a single slice: z spacing ", spacing, " (", from, ")"));
+    s.sliceSpacing = spacing;
     return Status::ok();
   }
   const double mean = (s.slices.back().along - s.slices.front().along) / static_cast<double>(n - 1);
@@ -193,10 +153,9 @@ Status sliceSpacing(DicomSeries& s, const std::string& dir) {
   for (size_t i = 0; i + 1 < n; ++i) {
     const double gap = s.slices[i + 1].along - s.slices[i].along;
     if (gap <= 1e-6 * std::max(1.0, std::fabs(mean)))
-      return makeError(ErrorCode::kCorrupt, dir, ": tag ImagePositionPatient (0020,0032): ",
-                       fs::path(s.slices[i].path).filename().string(), " and ",
-                       fs::path(s.slices[i + 1].path).filename().string(),
-                       " lie at the same slice position");
+      return makeError(ErrorCode::kCorrupt, dir,
+                       ": tag ImagePositionPatient (0020,0032): ", sliceName(s.slices[i]), " and ",
+                       sliceName(s.slices[i + 1]), " lie at the same slice position");
     if (std::fabs(gap - mean) > worst) {
       worst = std::fabs(gap - mean);
       worstAt = i;
@@ -205,15 +164,31 @@ Status sliceSpacing(DicomSeries& s, const std::string& dir) {
   const double relative = worst / mean;
   if (relative > 1e-2) {
     const double gap = s.slices[worstAt + 1].along - s.slices[worstAt].along;
-    return makeError(
-        ErrorCode::kUnsupported, dir, ": tag ImagePositionPatient (0020,0032): slice gaps ",
-        "are not uniform: ", gap, " mm between ",
-        fs::path(s.slices[worstAt].path).filename().string(), " and ",
-        fs::path(s.slices[worstAt + 1].path).filename().string(), ", mean ", mean, " mm");
+    return makeError(ErrorCode::kUnsupported, dir,
+                     ": tag ImagePositionPatient (0020,0032): slice gaps are not uniform: ", gap,
+                     " mm between ", sliceName(s.slices[worstAt]), " and ",
+                     sliceName(s.slices[worstAt + 1]), ", mean ", mean, " mm");
   }
   if (relative > 1e-3)
     s.notes.push_back(cat("slice gaps vary by up to ", worst, " mm around the mean ", mean,
                           " mm used as z spacing"));
+  // Slices must stack along the normal: a shift across the plane is a tilted (sheared) grid.
+  const Vec3 p0 = s.slices.front().position;
+  const double pixel = std::min(s.rowSpacing, s.columnSpacing);
+  for (const DicomSlice& slice : s.slices) {
+    const double d = slice.along - s.slices.front().along;
+    Vec3 shift;
+    for (int a = 0; a < 3; ++a) shift[a] = slice.position[a] - p0[a] - d * s.normal[a];
+    const double off = length(shift);
+    if (off > 5e-2 * pixel) {  // DS text rounding stays far below this
+      const double degrees = std::atan2(off, d) * 180.0 / M_PI;
+      return makeError(ErrorCode::kUnsupported, dir,
+                       ": tag ImagePositionPatient (0020,0032): ", sliceName(slice), " lies ", off,
+                       " mm across the slice plane from ", sliceName(s.slices.front()), " at ", d,
+                       " mm along the normal (gantry tilt of ", degrees,
+                       " degrees; the grid is sheared, resample it first)");
+    }
+  }
   s.sliceSpacing = mean;
   return Status::ok();
 }
@@ -224,49 +199,20 @@ std::string orderNote(const std::vector<DicomSlice>& slices) {
     if (slices[i + 1].instance <= slices[i].instance) ascending = false;
     if (slices[i + 1].instance >= slices[i].instance) descending = false;
   }
+  const bool frames = slices.front().fileFrames > 1;
+  const char* order = frames ? "frame order" : "InstanceNumber order";
   std::string note = "slices sorted by position along the slice normal (increasing)";
   if (slices.size() < 2) return note;
-  if (descending) return note + "; z order is the reverse of InstanceNumber order";
-  if (!ascending) return note + "; z order differs from InstanceNumber order";
-  return note + "; same as InstanceNumber order";
+  if (descending) return cat(note, "; z order is the reverse of ", order);
+  if (!ascending) return cat(note, "; z order differs from ", order);
+  return cat(note, "; same as ", order);
 }
 
-}  // namespace
-
-Result<DicomSeries> scanDicomSeries(const std::string& dir) {
-  std::vector<std::string> files;
-  size_t skipped = 0;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (!entry.is_regular_file(ec)) continue;
-    if (looksLikeDicom(entry.path()))
-      files.push_back(entry.path().string());
-    else
-      ++skipped;
-  }
-  if (ec) return makeError(ErrorCode::kIo, dir, ": cannot list the folder (", ec.message(), ")");
-  if (files.empty())
-    return makeError(ErrorCode::kCorrupt, dir,
-                     ": no DICOM files (.dcm or DICM magic) in the folder");
-  std::sort(files.begin(), files.end(),
-            [](const std::string& a, const std::string& b) { return naturalLess(a, b); });
-
-  VOXLINK_RETURN_IF_ERROR(checkGdcmSurvives(files));
-  std::vector<SliceHeader> headers;
-  std::map<std::string, size_t> seriesCount;
-  for (const std::string& f : files) {
-    VOXLINK_ASSIGN_OR_RETURN(SliceHeader h, readSliceHeader(f));
-    ++seriesCount[h.series];
-    headers.push_back(std::move(h));
-  }
-  if (seriesCount.size() > 1)
-    return makeError(ErrorCode::kUnsupported, dir,
-                     ": tag SeriesInstanceUID (0020,000E): the folder holds ", seriesCount.size(),
-                     " series; point at a folder holding one");
-
+// The volume of one series: geometry checked, slices ordered, spacing and origin found.
+Result<DicomSeries> buildSeries(const std::vector<DicomFileHeader>& files, const std::string& dir) {
   DicomSeries s;
-  const SliceHeader& first = headers.front();
-  for (const SliceHeader& h : headers) VOXLINK_RETURN_IF_ERROR(checkSameGeometry(first, h));
+  const DicomFileHeader& first = files.front();
+  for (const DicomFileHeader& h : files) VOXLINK_RETURN_IF_ERROR(checkSameGeometry(first, h));
   VOXLINK_ASSIGN_OR_RETURN(s.storedType, storedType(first));
   s.rows = first.rows;
   s.columns = first.columns;
@@ -277,28 +223,128 @@ Result<DicomSeries> scanDicomSeries(const std::string& dir) {
   const double normalLength = length(s.normal);
   if (normalLength < 0.5)
     return makeError(
-        ErrorCode::kCorrupt, first.slice.path,
+        ErrorCode::kCorrupt, first.path,
         ": tag ImageOrientationPatient (0020,0037): row and column directions are parallel");
   for (double& c : s.normal) c /= normalLength;
   s.rowSpacing = first.pixelSpacing[0];
   s.columnSpacing = first.pixelSpacing[1];
-  if (!(s.rowSpacing > 0) || !(s.columnSpacing > 0))
-    return makeError(ErrorCode::kCorrupt, first.slice.path,
+  if (!(s.rowSpacing > 0) || !(s.columnSpacing > 0) || !std::isfinite(s.rowSpacing) ||
+      !std::isfinite(s.columnSpacing))
+    return makeError(ErrorCode::kCorrupt, first.path,
                      ": tag PixelSpacing (0028,0030): ", s.rowSpacing, "\\", s.columnSpacing,
                      ", expected positive numbers");
+  if (!first.hasPixelSpacing) s.notes.push_back("PixelSpacing (0028,0030) missing: x, y spacing 1");
+  if (!first.hasOrientation)
+    s.notes.push_back("ImageOrientationPatient (0020,0037) missing: rows along +x, columns +y");
   if (first.photometric == "MONOCHROME1")
     s.notes.push_back(
         "PhotometricInterpretation MONOCHROME1: values kept as stored (high = dark on display)");
-  if (skipped > 0) s.notes.push_back(cat(skipped, " non-DICOM files in the folder skipped"));
-
-  for (SliceHeader& h : headers) {
-    h.slice.along = dot(h.slice.position, s.normal);
-    s.slices.push_back(h.slice);
+  for (const DicomFileHeader& h : files) {
+    if (!h.rescaleField.empty()) s.rescaleField = h.rescaleField;
+    for (DicomSlice slice : h.frames) {
+      slice.along = dot(slice.position, s.normal);
+      s.slices.push_back(slice);
+    }
   }
-  std::stable_sort(s.slices.begin(), s.slices.end(),
-                   [](const DicomSlice& a, const DicomSlice& b) { return a.along < b.along; });
-  VOXLINK_RETURN_IF_ERROR(sliceSpacing(s, dir));
-  s.notes.push_back(orderNote(s.slices));
+  if (s.slices.size() > limits::kMaxAxis)
+    return makeError(ErrorCode::kTooLarge, dir, ": ", s.slices.size(), " slices, more than ",
+                     limits::kMaxAxis);
+  if (first.hasPosition) {
+    std::stable_sort(s.slices.begin(), s.slices.end(),
+                     [](const DicomSlice& a, const DicomSlice& b) { return a.along < b.along; });
+    VOXLINK_RETURN_IF_ERROR(sliceSpacing(s, first, dir));
+    s.origin = s.slices.front().position;
+    s.notes.push_back(orderNote(s.slices));
+    if (first.frames.size() > 1)
+      s.notes.push_back(cat("frame positions from ", first.positionField));
+    return s;
+  }
+  // No positions: the order the files give, the nominal spacing, origin 0, said out loud.
+  std::stable_sort(s.slices.begin(), s.slices.end(), [](const DicomSlice& a, const DicomSlice& b) {
+    return a.instance < b.instance;
+  });
+  const auto [spacing, from] = nominalSpacing(first);
+  s.sliceSpacing = spacing;
+  s.notes.push_back(cat(s.slices.size() == 1 ? "a single image" : "images",
+                        " without ImagePositionPatient (0020,0032): origin 0, ",
+                        s.slices.size() == 1 ? "" : "slices in InstanceNumber/frame order, ",
+                        "z spacing ", spacing, " (", from, ")"));
+  return s;
+}
+
+std::string seriesLine(size_t index, const Group& g) {
+  const DicomFileHeader& h = g.files.front();
+  uint64_t frames = 0;
+  for (const DicomFileHeader& f : g.files) frames += f.frames.size();
+  return cat(index + 1, " ", g.uid.empty() ? "(no UID)" : g.uid, " (", h.modality,
+             h.description.empty() ? "" : " '" + h.description + "'", ", ", g.files.size(),
+             " files, ", frames, " images)");
+}
+
+Result<size_t> chooseSeries(const Scan& scan, const std::string& path, const std::string& choice) {
+  std::string all;
+  for (size_t i = 0; i < scan.groups.size(); ++i)
+    all += (i ? "; " : "") + seriesLine(i, scan.groups[i]);
+  if (choice.empty()) {
+    if (scan.groups.size() == 1) return size_t{0};
+    return makeError(ErrorCode::kUnsupported, path,
+                     ": tag SeriesInstanceUID (0020,000E): the folder holds ", scan.groups.size(),
+                     " series; pick one with --series UID or INDEX: ", all);
+  }
+  for (size_t i = 0; i < scan.groups.size(); ++i)
+    if (scan.groups[i].uid == choice) return i;
+  if (!choice.empty() && choice.size() < 8 &&
+      std::all_of(choice.begin(), choice.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    const size_t n = std::stoul(choice);
+    if (n >= 1 && n <= scan.groups.size()) return n - 1;
+  }
+  return makeError(ErrorCode::kInvalidArgument, path, ": --series ", choice,
+                   ": no such series UID or index; the folder holds: ", all);
+}
+
+}  // namespace
+
+Result<DicomFolderListing> listDicomSeries(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(Scan scan, scanHeaders(path));
+  DicomFolderListing listing;
+  listing.otherFiles = scan.otherFiles;
+  listing.nonImages = scan.nonImages;
+  for (const Group& g : scan.groups) {
+    DicomSeriesSummary s;
+    s.uid = g.uid;
+    s.modality = g.files.front().modality;
+    s.description = g.files.front().description;
+    s.files = g.files.size();
+    for (const DicomFileHeader& h : g.files) {
+      s.frames += h.frames.size();
+      std::error_code ec;
+      const uint64_t size = fs::file_size(h.path, ec);
+      if (!ec) s.bytes += size;
+    }
+    auto series = buildSeries(g.files, path);
+    if (series) {
+      s.dims = {series->columns, series->rows, static_cast<uint32_t>(series->slices.size())};
+      s.spacing = {series->columnSpacing, series->rowSpacing, series->sliceSpacing};
+    } else {
+      s.problem = series.message();
+    }
+    listing.series.push_back(std::move(s));
+  }
+  return listing;
+}
+
+Result<DicomSeries> scanDicomSeries(const std::string& path, const std::string& choice) {
+  VOXLINK_ASSIGN_OR_RETURN(Scan scan, scanHeaders(path));
+  VOXLINK_ASSIGN_OR_RETURN(size_t chosen, chooseSeries(scan, path, choice));
+  VOXLINK_ASSIGN_OR_RETURN(DicomSeries s, buildSeries(scan.groups[chosen].files, path));
+  if (scan.groups.size() > 1)
+    s.notes.push_back(cat("series ", chosen + 1, " of ", scan.groups.size(),
+                          " in the folder: ", scan.groups[chosen].uid));
+  if (scan.otherFiles > 0)
+    s.notes.push_back(cat(scan.otherFiles, " non-DICOM files in the folder skipped"));
+  if (scan.nonImages > 0)
+    s.notes.push_back(
+        cat(scan.nonImages, " DICOM files without an image (reports, RT structures, ...) skipped"));
   return s;
 }
 

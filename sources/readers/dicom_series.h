@@ -1,25 +1,18 @@
-// Finding and ordering the slices of one DICOM series in a folder (headers only, read with
-// GDCM): slices sorted by position along the slice normal, geometry checked for consistency.
+// Finding the DICOM series under a folder (recursive; headers only, read with GDCM), listing
+// them, and ordering the slices of one: single-frame files and the frames of multi-frame files
+// sorted by position along the slice normal, geometry checked for consistency.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "format/error.h"
 #include "format/scalar_type.h"
-#include "sources/readers/axes.h"
+#include "sources/readers/dicom_header.h"
 
 namespace voxlink::convert {
-
-struct DicomSlice {
-  std::string path;
-  Vec3 position{0, 0, 0};  // ImagePositionPatient
-  double along = 0;        // position . slice normal
-  int64_t instance = 0;    // InstanceNumber (0 when absent)
-  double slope = 1;        // RescaleSlope
-  double intercept = 0;    // RescaleIntercept
-};
 
 struct DicomSeries {
   std::vector<DicomSlice> slices;  // increasing `along`
@@ -29,13 +22,35 @@ struct DicomSeries {
   Vec3 rowDirection{1, 0, 0}, columnDirection{0, 1, 0}, normal{0, 0, 1};
   double rowSpacing = 1, columnSpacing = 1;  // PixelSpacing: between rows (y), between columns (x)
   double sliceSpacing = 1;
+  Vec3 origin{0, 0, 0};
+  std::string rescaleField;  // "RescaleSlope/RescaleIntercept", "DoseGridScaling" or empty
   std::vector<std::string> notes;
 };
 
-// Reads the headers of the DICOM files in `dir` (not recursive) and orders them.
-// kSizeMismatch: files disagree on Rows/Columns/bits/PixelSpacing; kUnsupported: several series,
-// color, multi-frame, oblique-varying orientation or non-uniform slice gaps; kCorrupt: a file
-// GDCM cannot parse or two slices at one position. Messages name the file and the tag.
-Result<DicomSeries> scanDicomSeries(const std::string& dir);
+// One series found under a folder, for `voxlink dicom list`.
+struct DicomSeriesSummary {
+  std::string uid, modality, description;
+  uint64_t files = 0, frames = 0, bytes = 0;  // bytes: the files' sizes
+  std::array<uint32_t, 3> dims{0, 0, 0};      // valid when `problem` is empty
+  std::array<double, 3> spacing{0, 0, 0};
+  std::string problem;  // why the series cannot be read as a volume, else empty
+};
+
+struct DicomFolderListing {
+  std::vector<DicomSeriesSummary> series;  // in the order of their first file (natural sort)
+  uint64_t otherFiles = 0;                 // files that are not DICOM (and DICOMDIR)
+  uint64_t nonImages = 0;                  // DICOM files without pixel data (reports, RT plans)
+};
+
+// Every series under `path` (a folder, searched recursively, or one file).
+Result<DicomFolderListing> listDicomSeries(const std::string& path);
+
+// The slices of one series under `path` (a folder, searched recursively, or one file).
+// `choice` picks a series by SeriesInstanceUID or by its 1-based index in listDicomSeries()'s
+// order; empty: the only series (kUnsupported listing them when there are several).
+// kSizeMismatch: files disagree on Rows/Columns/bits/PixelSpacing; kUnsupported: color, mixed
+// orientations, non-uniform slice gaps, gantry tilt; kCorrupt: a file GDCM cannot parse or two
+// slices at one position. Messages name the file (and frame) and the tag.
+Result<DicomSeries> scanDicomSeries(const std::string& path, const std::string& choice = {});
 
 }  // namespace voxlink::convert

@@ -1,6 +1,9 @@
 #include "sources/readers/gdcm_guard.h"
 
+#include <gdcmAttribute.h>
+#include <gdcmBoxRegion.h>
 #include <gdcmImageReader.h>
+#include <gdcmImageRegionReader.h>
 #include <gdcmReader.h>
 #include <gdcmTrace.h>
 
@@ -10,6 +13,36 @@
 #include "sources/readers/child_probe.h"
 
 namespace voxlink::convert {
+namespace {
+
+bool multiFrame(const gdcm::DataSet& ds) {
+  gdcm::Attribute<0x0028, 0x0008> frames;
+  if (!ds.FindDataElement(frames.GetTag()) || ds.GetDataElement(frames.GetTag()).IsEmpty())
+    return false;
+  frames.SetFromDataSet(ds);
+  return frames.GetValue() > 1;
+}
+
+// A multi-frame file as the reader decodes it: one frame at a time (memory of one frame, not
+// of the whole volume).
+void readFrameByFrame(const std::string& file) {
+  gdcm::ImageRegionReader reader;
+  reader.SetFileName(file.c_str());
+  if (!reader.ReadInformation()) return;
+  const unsigned int* dims = reader.GetImage().GetDimensions();
+  if (!dims || dims[0] == 0 || dims[1] == 0) return;
+  for (unsigned int z = 0; z < dims[2]; ++z) {
+    gdcm::BoxRegion box;
+    box.SetDomain(0, dims[0] - 1, 0, dims[1] - 1, z, z);
+    reader.SetRegion(box);
+    const size_t bytes = reader.ComputeBufferLength();
+    if (bytes == 0 || bytes > (size_t{1} << 31)) return;
+    std::vector<char> buffer(bytes);
+    if (!reader.ReadIntoBuffer(buffer.data(), bytes)) return;
+  }
+}
+
+}  // namespace
 
 Status checkGdcmSurvives(const std::vector<std::string>& files) {
   // The child reads each file as the reader will: the header up to the pixel data, then the
@@ -24,6 +57,10 @@ Status checkGdcmSurvives(const std::vector<std::string>& files) {
       header.SetFileName(files[i].c_str());
       const gdcm::Tag pixelData(0x7fe0, 0x0010);
       if (!header.ReadUpToTag(pixelData, {pixelData})) continue;
+      if (multiFrame(header.GetFile().GetDataSet())) {
+        readFrameByFrame(files[i]);
+        continue;
+      }
       gdcm::ImageReader reader;
       reader.SetFileName(files[i].c_str());
       if (!reader.Read()) continue;

@@ -55,9 +55,12 @@ const std::vector<ReaderEntry>& readerRegistry() {
     r.push_back({"vvd", hasExt({".vvd"}), openVvd});
     r.push_back({"vdb", hasExt({".vdb"}), openVdb});
     r.push_back({"vti", hasExt({".vti"}), openVti});
-    // Folders: DICOM when they hold DICOM files, else a stack of slice images.
-    r.push_back({"dicom", [isDir](const std::string& p) { return isDir(p) && folderHoldsDicom(p); },
-                 openDicomSeries});
+    // Folders: DICOM when they hold DICOM files, else a stack of slice images. One DICOM file
+    // (multi-frame, or a single image) is a volume too.
+    r.push_back(
+        {"dicom",
+         [isDir](const std::string& p) { return isDir(p) ? folderHoldsDicom(p) : fileIsDicom(p); },
+         openDicomSeries});
     r.push_back({"image-stack",
                  [isDir, hasExt](const std::string& p) {
                    return isDir(p) || hasExt({".tif", ".tiff"})(p);
