@@ -66,6 +66,12 @@ CommandRunner addRenderCommand(CLI::App& app) {
                 args->output.c_str(), settings->width, settings->height,
                 std::string(viewer::samplingName(settings->sampling)).c_str(), seconds,
                 (*context)->description().c_str());
+    if (settings->effects.any()) {
+      const auto& stats = (*renderer)->lastEffectsStats();
+      std::printf("ray traced (%s): %d passes, %llu secondary rays, %llu dropped\n",
+                  viewer::effectsName(settings->effects).c_str(), stats.passes,
+                  (unsigned long long)stats.secondaryRays, (unsigned long long)stats.droppedRays);
+    }
     if (!args->reference && args->referenceOut.empty()) return 0;
     viewer::Image truth;
     if (file->isScene()) {

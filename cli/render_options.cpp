@@ -35,6 +35,11 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
   cmd->add_option("--max-bounces", maxBounces,
                   "Secondary-ray generations in the ray-traced mode (0-15)")
       ->capture_default_str();
+  cmd->add_option("--steps-per-pass", stepsPerPass,
+                  "Ray-traced mode on the GPU: occupied bricks a ray crosses per pass before it "
+                  "waits for the next (does not change the image)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
   cmd->add_option("--background", background, "Background colour R,G,B in [0, 1] (linear)")
       ->capture_default_str();
 }
@@ -42,6 +47,7 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
 Result<viewer::RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) const {
   viewer::RenderSettings s;
   VOXLINK_ASSIGN_OR_RETURN(s.effects, viewer::parseEffects(effects, maxBounces));
+  s.effects.stepsPerPass = stepsPerPass;
   if (s.effects.any()) {
     auto lights = viewer::sceneLights(file.metaJson());
     if (!lights) return makeError(lights.error().code, file.path(), ": ", lights.message());

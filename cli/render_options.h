@@ -26,6 +26,7 @@ struct RenderOptions {
   bool noShading = false;
   std::string effects = "none";
   int maxBounces = 4;
+  int stepsPerPass = 256;
   std::string background = "0,0,0";
 
   // Registers the options on `cmd`; `withSize` is false for commands with their own size flag.

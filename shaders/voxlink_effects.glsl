@@ -33,16 +33,32 @@ uint gRayPixel;
 int gRayDepth;
 uint gRayMedium;
 
-void spawnRay(vec3 origin, vec3 direction, float share, uint medium) {
-  float w = gRayWeight * share;
-  if (gRayDepth >= uMaxBounces || !(w > uMinWeight)) return;
+uniform int uStepsPerPass;  // occupied bricks a ray crosses in one pass (paper: n steps)
+
+void storeRay(vec3 origin, vec3 direction, float w, int depth, uint medium) {
   uint i = atomicCounterIncrement(uSpawned);
   if (i >= uRayCapacity) {
     atomicCounterIncrement(uDropped);
     return;
   }
-  raysOut[i] =
-      GpuRay(vec4(origin, w), direction, gRayPixel | (medium << 26u) | (uint(gRayDepth + 1) << 28u));
+  raysOut[i] = GpuRay(vec4(origin, w), direction, gRayPixel | (medium << 26u) | (uint(depth) << 28u));
+}
+
+// A reflected or refracted ray carrying `share` of the current ray.
+void spawnRay(vec3 origin, vec3 direction, float share, uint medium) {
+  float w = gRayWeight * share;
+  if (gRayDepth >= uMaxBounces || !(w > uMinWeight)) return;
+  storeRay(origin, direction, w, gRayDepth + 1, medium);
+}
+
+// After uStepsPerPass occupied bricks the ray stops for this pass and is stored to go on from
+// index-space point p in the next one, with the weight it has left (paper, 5.2.2: a ray is
+// iterated a fixed number of steps per pass, so that lanes do not wait for the longest ray).
+// Returns true when it was stored; the caller then ends the ray with no background share.
+bool continueNextPass(int step, vec3 p, vec3 toEye, float transmittance) {
+  if (step < uStepsPerPass) return false;
+  storeRay(indexToWorld(p), -toEye, gRayWeight * transmittance, gRayDepth, gRayMedium);
+  return true;
 }
 
 // Unit direction and distance from world point p to light i.

@@ -9,6 +9,14 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
   float t = t0;
   int limit = uBrickGrid.x + uBrickGrid.y + uBrickGrid.z + 3;
   for (int i = 0; i < limit && t < t1; ++i) {
+#if VXL_EFFECTS
+    // t is a brick's (and so a voxel's) entry: the next pass starts a thousandth of a voxel
+    // further, inside that voxel, so the voxel before is not met twice.
+    if (continueNextPass(i, o + (t + 1e-3 * uUnit) * d, toEye, transmittance)) {
+      transmittance = 0.0;
+      return;
+    }
+#endif
     int axis = minAxis(bricks.tMax);
     // Runs of empty bricks are crossed here, one occupancy bit each: llvmpipe executes the
     // whole body of this loop for all 8 lanes of a SIMD vector whenever one of them needs it,

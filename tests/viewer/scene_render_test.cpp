@@ -215,6 +215,15 @@ TEST(SceneRender, EffectsGlMatchesReferenceOnEveryAxis) {
     EXPECT_GT(stats.passes, 2);
     EXPECT_GT(stats.secondaryRays, 1000u);
     EXPECT_EQ(stats.droppedRays, 0u);
+    // The paper's bounded passes: rays that stop after one occupied brick and go on in the next
+    // pass give the same image.
+    s.effects.stepsPerPass = 1;
+    const Rendered stepped = renderScene(*file, spec, s, &gl);
+    EXPECT_GT(gl->lastEffectsStats().passes, 10);
+    EXPECT_EQ(gl->lastEffectsStats().droppedRays, 0u);
+    auto same = compareImages(stepped.gl, r.gl);
+    ASSERT_TRUE(same);
+    EXPECT_GE(same->psnr, 60.0);
     // The effects change the picture: the mirror floor shows more than its diffuse colour.
     s.effects = Effects{};
     s.lights.clear();

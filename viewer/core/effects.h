@@ -20,6 +20,10 @@ struct Effects {
   // Secondary-ray generations after the primary ray; a ray past it is not spawned (its share is
   // lost, as in any bounded ray tracer). At most kMaxBouncesLimit.
   int maxBounces = 4;
+  // GPU only (the image does not depend on it): a ray crosses at most this many occupied bricks
+  // in one pass and then waits for the next, so that the lanes of a pass do not wait for the
+  // longest ray (paper, 5.2.2).
+  int stepsPerPass = 256;
 
   bool any() const { return reflect || refract || shadows; }
 };

@@ -15,6 +15,7 @@ void VolumeRenderer::setEffectsUniforms(const ComputeProgram& p, const Camera& c
   glUniform1i(p.uniform("uReflect"), s.effects.reflect ? 1 : 0);
   glUniform1i(p.uniform("uRefract"), s.effects.refract ? 1 : 0);
   glUniform1i(p.uniform("uMaxBounces"), s.effects.maxBounces);
+  glUniform1i(p.uniform("uStepsPerPass"), std::max(1, s.effects.stepsPerPass));
   glUniform1f(p.uniform("uMinWeight"), float(1.0 - s.terminationAlpha));
   glUniform1f(p.uniform("uSurfaceOffset"), float(kSurfaceShadowBias * geometry_.minSpacing()));
   glUniform1ui(p.uniform("uRayCapacity"), effects_.rayCapacity());
@@ -75,12 +76,23 @@ Status VolumeRenderer::renderEffects(const Camera& camera, const RenderSettings&
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRaysOutBinding, effects_.rays(0).buffer.id());
   glDispatchCompute((w + 7) / 8, (h + 7) / 8, 1);
   effectsStats_.passes = 1;
-  for (int pass = 1; pass <= settings.effects.maxBounces; ++pass) {
+  // A ray generation crosses fewer occupied bricks than the grid has along its three axes, so
+  // each of the maxBounces + 1 generations needs at most that / stepsPerPass + 1 passes; rays left
+  // after that many (none, unless something is wrong) are counted as dropped.
+  const auto& dims = geometry_.dims;
+  const int steps = std::max(1, settings.effects.stepsPerPass);
+  const int64_t maxPasses = int64_t(settings.effects.maxBounces + 1) *
+                            (int64_t(dims[0]) + dims[1] + dims[2] + 3 + steps) / steps;
+  for (int pass = 1;; ++pass) {
     glMemoryBarrier(barrier);
     const auto [spawned, dropped] = effects_.readCounters();
     effectsStats_.droppedRays += dropped;
     const uint32_t count = std::min(spawned, effects_.rayCapacity());
     if (count == 0) break;
+    if (pass >= maxPasses) {
+      effectsStats_.droppedRays += count;
+      break;
+    }
     start(*secondary);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kRaysInBinding,
                      effects_.rays((pass + 1) % 2).buffer.id());
