@@ -2,8 +2,10 @@
 // exactly (Embree 3) by the float64 effects tracer. With --compare FILE.vxl it also traces the
 // voxelized scene with the same tracer, camera, lights and effects, and prints what
 // voxelization costs: PSNR, and the silhouette/edge error (exact/edge_error.h).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <vector>
 
 #include "cli/command.h"
 #include "exact/edge_error.h"
@@ -25,17 +27,19 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The smallest of `repeat` renders' times (the VM's speed drifts; the minimum is the least
-// disturbed), and the last image.
+// The median of `repeat` renders' times (the VM's speed drifts within minutes), and the last
+// image.
 template <class Render>
 double timeRenders(int repeat, viewer::Image& image, const Render& render) {
-  double best = HUGE_VAL;
+  std::vector<double> seconds;
   for (int i = 0; i < repeat; ++i) {
     const auto start = Clock::now();
     image = render();
-    best = std::min(best, secondsSince(start));
+    seconds.push_back(secondsSince(start));
   }
-  return best;
+  std::sort(seconds.begin(), seconds.end());
+  const size_t n = seconds.size();
+  return n % 2 ? seconds[n / 2] : 0.5 * (seconds[n / 2 - 1] + seconds[n / 2]);
 }
 
 }  // namespace
@@ -73,7 +77,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
                   "and the silhouette/edge error against the exact image")
       ->check(CLI::ExistingFile);
   cmd->add_option("--voxel-output", args->voxelOutput, "Write the voxel scene's image here");
-  cmd->add_option("--repeat", args->repeat, "Renders per tracer; the fastest time is printed")
+  cmd->add_option("--repeat", args->repeat, "Renders per tracer; the median time is printed")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   return [args] {
