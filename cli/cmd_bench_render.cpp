@@ -58,7 +58,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     }
     o.samplings.clear();
     for (const auto& s : args->samplings) o.samplings.push_back(*viewer::parseSampling(s));
-    auto settings = args->render.settings();
+    auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
     o.base = *settings;
     auto spec = args->render.cameraSpec(*file);

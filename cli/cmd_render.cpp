@@ -42,7 +42,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
         return reportError(s);
     auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
-    auto settings = args->render.settings();
+    auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
     auto spec = args->render.cameraSpec(*file);
     if (!spec) return reportError(spec.error());

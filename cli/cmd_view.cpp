@@ -36,7 +36,7 @@ CommandRunner addViewCommand(CLI::App& app) {
     if (!size) return reportError(size.error());
     o.windowWidth = int((*size)[0]);
     o.windowHeight = int((*size)[1]);
-    auto settings = args->render.settings();
+    auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
     o.settings = *settings;
     auto spec = args->render.cameraSpec(*file);

@@ -27,12 +27,26 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
       ->capture_default_str();
   cmd->add_flag("--shadows", shadows, "Shadow rays towards the light");
   cmd->add_flag("--no-shading", noShading, "Unlit colours (no Phong shading)");
+  cmd->add_option(
+         "--effects", effects,
+         "Ray-traced scene mode: reflect, refract, shadows (comma-separated), all or none; "
+         "lit by the scene file's lights (docs/effects.md)")
+      ->capture_default_str();
+  cmd->add_option("--max-bounces", maxBounces,
+                  "Secondary-ray generations in the ray-traced mode (0-15)")
+      ->capture_default_str();
   cmd->add_option("--background", background, "Background colour R,G,B in [0, 1] (linear)")
       ->capture_default_str();
 }
 
-Result<viewer::RenderSettings> RenderOptions::settings() const {
+Result<viewer::RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) const {
   viewer::RenderSettings s;
+  VOXLINK_ASSIGN_OR_RETURN(s.effects, viewer::parseEffects(effects, maxBounces));
+  if (s.effects.any()) {
+    auto lights = viewer::sceneLights(file.metaJson());
+    if (!lights) return makeError(lights.error().code, file.path(), ": ", lights.message());
+    s.lights = std::move(*lights);
+  }
   VOXLINK_ASSIGN_OR_RETURN(auto wh, viewer::parseImageSize(size));
   s.width = wh[0];
   s.height = wh[1];

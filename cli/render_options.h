@@ -24,11 +24,15 @@ struct RenderOptions {
   double step = 0.5;
   bool shadows = false;
   bool noShading = false;
+  std::string effects = "none";
+  int maxBounces = 4;
   std::string background = "0,0,0";
 
   // Registers the options on `cmd`; `withSize` is false for commands with their own size flag.
   void add(CLI::App* cmd, bool withSize = true);
-  Result<viewer::RenderSettings> settings() const;
+  // The settings for `file`: with --effects, a scene file's lights (META scene.lights) replace the
+  // frame's directional light.
+  Result<viewer::RenderSettings> settings(const format::VoxLinkFile& file) const;
   // --camera and --up over the file's own view (a scene's camera), over the defaults.
   Result<viewer::CameraSpec> cameraSpec(const format::VoxLinkFile& file) const;
   // --tf file, else --tf-preset over the file's value range, else the file's default.

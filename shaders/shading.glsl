@@ -18,7 +18,8 @@ float correctedAlpha(float alpha, float len) {
 // shadow * lit. `gradient` is the opacity-weighted sum of unit gradient directions; the normal
 // is -gradient, and shading is weighted by m = |gradient| / alpha, so a sample whose blended
 // normals cancel fades to unlit colour. Mirrors shadeSample() in viewer/core/render_model.h.
-void shadeSample(vec3 c, float alpha, vec3 gradient, vec3 toEye, out vec3 ambient, out vec3 lit) {
+void shadeSampleToward(vec3 c, float alpha, vec3 gradient, vec3 toEye, vec3 toLight,
+                       out vec3 ambient, out vec3 lit) {
   float len = length(gradient);
   if (!uShadingEnabled || !(len > 0.0) || !(alpha > 0.0)) {
     ambient = c;
@@ -27,15 +28,20 @@ void shadeSample(vec3 c, float alpha, vec3 gradient, vec3 toEye, out vec3 ambien
   }
   float m = min(len / alpha, 1.0);
   vec3 n = -gradient / len;
-  float ndl = dot(n, uToLight);
+  float ndl = dot(n, toLight);
   float diffuse = 0.0, specular = 0.0;
   if (ndl > 0.0) {
     diffuse = ndl;
-    vec3 r = 2.0 * ndl * n - uToLight;
+    vec3 r = 2.0 * ndl * n - toLight;
     specular = pow(max(dot(r, toEye), 0.0), uPhong.w);
   }
   ambient = c * (1.0 - m + m * uPhong.x);
   lit = m * (c * (uPhong.y * diffuse) + vec3(alpha * uPhong.z * specular));
+}
+
+// The same towards the frame's directional light.
+void shadeSample(vec3 c, float alpha, vec3 gradient, vec3 toEye, out vec3 ambient, out vec3 lit) {
+  shadeSampleToward(c, alpha, gradient, toEye, uToLight, ambient, lit);
 }
 
 // A trilinear corner: colour and gradient direction weighted by the voxel's opacity.

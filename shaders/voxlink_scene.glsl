@@ -3,7 +3,7 @@
 // exactly, and a bit saying whether the voxel also carries a volume sample. Included when
 // VXL_SCENE is 1; the sections come through voxlink_sections.glsl (surfWord, vmskWord,
 // matlWord and, with VXL_SPHERES, sphrWord, srofWord, sridWord).
-// Mirrors viewer/core/scene_reference_renderer.cpp; docs/scene.md states the model. Shading of
+// Mirrors viewer/core/voxel_scene_walker.cpp; docs/scene.md states the model. Shading of
 // hits, which needs shadowTransmittance(), is in voxlink_scene_shading.glsl.
 #if VXL_SCENE
 
@@ -13,6 +13,9 @@ struct Material {
   vec3 color;
   float opacity;
   vec3 emission;
+  float reflectivity;
+  float transmission;
+  float ior;
   float specular;
   float shininess;
 };
@@ -26,6 +29,9 @@ Material fetchMaterial(uint m) {
   r.color = vec3(matlFloat(b), matlFloat(b + 1u), matlFloat(b + 2u));
   r.opacity = matlFloat(b + 3u);
   r.emission = vec3(matlFloat(b + 4u), matlFloat(b + 5u), matlFloat(b + 6u));
+  r.reflectivity = matlFloat(b + 7u);
+  r.transmission = matlFloat(b + 8u);
+  r.ior = matlFloat(b + 9u);
   r.specular = matlFloat(b + 10u);
   r.shininess = matlFloat(b + 11u);
   return r;
@@ -93,17 +99,28 @@ bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tH
 }
 #endif
 
+// Transmittance of a surface for shadow rays: 1 - opacity, and in the ray-traced mode with
+// refraction on, the refracted share passes too (light_transport.h, shadowTransmittanceOf).
+#if VXL_EFFECTS
+uniform bool uRefract;
+float surfaceTransmittance(Material m) {
+  return 1.0 - m.opacity * (1.0 - (uRefract ? m.transmission : 0.0));
+}
+#else
+float surfaceTransmittance(Material m) { return 1.0 - m.opacity; }
+#endif
+
 // Transmittance of the geometry in one voxel a shadow ray crosses over [ta, tz).
 float geometryTransmittance(uint voxel, vec3 o, vec3 d, float ta, float tz) {
   float transmittance = 1.0;
   uint surface = surfaceOf(voxel);
-  if (surface != kNoSurface) transmittance *= 1.0 - fetchMaterial(surface >> 16u).opacity;
+  if (surface != kNoSurface) transmittance *= surfaceTransmittance(fetchMaterial(surface >> 16u));
 #if VXL_SPHERES
   float tHit;
   uint sphere;
   vec3 centre;
   if (firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre))
-    transmittance *= 1.0 - fetchMaterial(sphereMaterial(sphere)).opacity;
+    transmittance *= surfaceTransmittance(fetchMaterial(sphereMaterial(sphere)));
 #endif
   return transmittance;
 }

@@ -1,5 +1,6 @@
 // Shading and compositing of the geometry hits of voxlink_scene.glsl; included after
-// voxlink_shadow.glsl. Mirrors viewer/core/scene_reference_renderer.cpp.
+// voxlink_shadow.glsl. Mirrors viewer/core/effects_tracer.cpp (with every effect off) over
+// viewer/core/voxel_scene_walker.cpp.
 #if VXL_SCENE
 
 // Surface hits cast their shadow rays from this many voxels off the surface along the normal:
@@ -10,28 +11,39 @@ const float kSurfaceShadowBias = 2.0;
 // Phong terms of a surface hit with unit normal n facing the eye; mirrors shadeSurface() in
 // viewer/core/render_model.h. Ambient and diffuse weights are the frame's, the highlight the
 // material's.
-void shadeSurface(Material m, vec3 n, vec3 toEye, out vec3 ambient, out vec3 lit) {
+void shadeSurfaceToward(Material m, vec3 n, vec3 toEye, vec3 toLight, out vec3 ambient,
+                        out vec3 lit) {
   if (!uShadingEnabled) {
     ambient = m.color;
     lit = vec3(0.0);
     return;
   }
-  float ndl = dot(n, uToLight);
+  float ndl = dot(n, toLight);
   float diffuse = max(ndl, 0.0);
   float specular = 0.0;
   if (ndl > 0.0 && m.specular > 0.0) {
-    vec3 r = 2.0 * ndl * n - uToLight;
+    vec3 r = 2.0 * ndl * n - toLight;
     specular = m.specular * pow(max(dot(r, toEye), 0.0), max(m.shininess, 1.0));
   }
   ambient = m.color * uPhong.x;
   lit = m.color * (uPhong.y * diffuse) + vec3(specular);
 }
 
+#if VXL_EFFECTS
+// Ray-traced mode: shading over the scene's lights, shadow rays and spawned rays; defined in
+// voxlink_effects.glsl, included after this file.
+void effectsSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color,
+                    inout float transmittance);
+void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color,
+                      inout float transmittance) {
+  effectsSurface(m, n, p, toEye, color, transmittance);
+}
+#else
 // Composites one surface hit at index-space point p with world normal n.
 void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color, inout float transmittance) {
   n = dot(n, toEye) < 0.0 ? -n : n;  // fragments are two-sided
   vec3 ambient, lit;
-  shadeSurface(m, n, toEye, ambient, lit);
+  shadeSurfaceToward(m, n, toEye, uToLight, ambient, lit);
   float shadow = 1.0;
 #if VXL_SHADOWS
   if (uShadingEnabled && dot(n, uToLight) > 0.0)
@@ -40,6 +52,7 @@ void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color, 
   color += transmittance * m.opacity * (ambient + shadow * lit + m.emission);
   transmittance *= 1.0 - m.opacity;
 }
+#endif
 
 // Surface fragment, then the nearest sphere hit, of one voxel the primary ray crosses over
 // [ta, tz). The caller composites the voxel's volume sample afterwards, if it has one.

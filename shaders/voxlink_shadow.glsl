@@ -1,11 +1,13 @@
 // Shadow rays through a VoxLink file: transmittance towards the light with voxel (nearest)
 // sampling, skipping empty bricks and walking rows. Mirrors ReferenceRenderer::shadowTransmittance.
 
-float shadowTransmittance(vec3 worldPoint) {
-  vec3 o = worldToIndex(worldPoint + uToLight * uUnit);
-  vec3 d = directionToIndex(uToLight);
+// Transmittance from worldPoint towards unit direction toLight, over at most `distance` (world;
+// kBig for a directional light). The ray starts one voxel (uUnit) along its way.
+float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
+  vec3 o = worldToIndex(worldPoint + toLight * uUnit);
+  vec3 d = directionToIndex(toLight);
   vec2 range = intersectBox(o, d, vec3(uDims));
-  float t0 = max(range.x, 0.0), t1 = range.y;
+  float t0 = max(range.x, 0.0), t1 = min(range.y, distance - uUnit);
   float transmittance = 1.0;
   if (!(t0 < t1)) return transmittance;
   Dda bricks = ddaInit(o / float(VXL_N), d / float(VXL_N), t0, ivec3(0), uBrickGrid - 1);
@@ -39,3 +41,6 @@ float shadowTransmittance(vec3 worldPoint) {
   }
   return transmittance;
 }
+
+// Towards the frame's directional light.
+float shadowTransmittance(vec3 worldPoint) { return shadowAlong(worldPoint, uToLight, kBig); }

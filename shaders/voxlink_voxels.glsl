@@ -46,6 +46,11 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
         vec4 c = classify(storedBits(voxel));
         float a = correctedAlpha(c.a, tz - ta);
         if (a > 0.0) {
+#if VXL_EFFECTS
+          color += transmittance * a *
+                   effectsVolumeShade(c.rgb, decodeGradient(gradientCode(voxel)),
+                                      indexToWorld(o + 0.5 * (ta + tz) * d), toEye);
+#else
           vec3 ambient, lit;
           shadeSample(c.rgb, 1.0, decodeGradient(gradientCode(voxel)), toEye, ambient, lit);
           float shadow = 1.0;
@@ -53,6 +58,7 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
           shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));
 #endif
           color += transmittance * a * (ambient + shadow * lit);
+#endif
           transmittance *= 1.0 - a;
           if (transmittance <= uStopTransmittance) return;
         }

@@ -2,8 +2,9 @@
 // surface fragments on an axis-aligned floor and an oblique semi-transparent wall, exact
 // spheres (one emissive, one overlapping the wall), and a volume blob, in one file. Every
 // predominant axis, two brick sizes, shadows on and off. Target: PSNR >= 45 dB, as for volumes.
-// Also: the reference's spheres against the analytic ray/sphere test, and a lit floor against
-// the shading formula by hand.
+// Also: the reference's spheres against the analytic ray/sphere test, a lit floor against the
+// shading formula by hand, and the ray-traced mode (reflection, refraction, shadow rays towards
+// point lights) of the same scene with mirror and glass materials against the float64 tracer.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -55,15 +56,34 @@ bool sphereOverlaps(const TestSphere& s, uint32_t i, uint32_t j, uint32_t k) {
 const TestSphere kSpheres[] = {{20, 18, 16, 6, 2}, {11, 10, 9, 3.5, 3}};
 
 // Floor (y = 2, normal +y), oblique wall (x + z = 44, semi-transparent), two spheres, a blob.
+std::vector<format::MaterialRecord> plainMaterials() {
+  return {material(0.7f, 0.7f, 0.6f), material(0.9f, 0.2f, 0.2f, 0.6f),
+          material(0.2f, 0.3f, 0.9f, 1, 0.5f), material(1.0f, 0.9f, 0.5f, 1, 0, 0.8f)};
+}
+
+// The same objects for the ray-traced mode: a half-mirror floor, a semi-transparent glass wall,
+// a mirror sphere and an emissive glass sphere.
+std::vector<format::MaterialRecord> effectsMaterials() {
+  std::vector<format::MaterialRecord> m = plainMaterials();
+  m[0].reflectivity = 0.5f;
+  m[1].transmission = 0.8f;
+  m[1].refractiveIndex = 1.4f;
+  m[2].reflectivity = 0.8f;
+  m[3].transmission = 0.7f;
+  m[3].refractiveIndex = 1.5f;
+  m[3].emission[0] = m[3].emission[1] = m[3].emission[2] = 0.3f;
+  return m;
+}
+
 Result<format::BrickedVolume> makeScene(format::Axis axis, uint32_t brick, bool withSpheres = true,
-                                        bool withWall = true, bool withBlob = true) {
+                                        bool withWall = true, bool withBlob = true,
+                                        std::vector<format::MaterialRecord> materials = {}) {
   format::VolumeDescription d;
   d.dims = {kDims[0], kDims[1], kDims[2]};
   d.brickSize = brick;
   d.predominantAxis = axis;
   format::SceneBuilder b(d);
-  b.setMaterials({material(0.7f, 0.7f, 0.6f), material(0.9f, 0.2f, 0.2f, 0.6f),
-                  material(0.2f, 0.3f, 0.9f, 1, 0.5f), material(1.0f, 0.9f, 0.5f, 1, 0, 0.8f)});
+  b.setMaterials(materials.empty() ? plainMaterials() : materials);
   std::vector<format::SphereRecord> spheres;
   for (const TestSphere& s : kSpheres) {
     format::SphereRecord r{};
@@ -100,8 +120,16 @@ struct Rendered {
   ImageError error;
 };
 
-Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec, bool shadows,
-                     uint32_t w = 96, uint32_t h = 80) {
+RenderSettings sceneSettings(bool shadows, uint32_t w = 96, uint32_t h = 80) {
+  RenderSettings s;
+  s.width = w;
+  s.height = h;
+  s.shading.shadows = shadows;
+  return s;
+}
+
+Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec,
+                     const RenderSettings& s, const VolumeRenderer** used = nullptr) {
   Rendered out;
   auto renderer = VoxLinkRenderer::create(file);
   EXPECT_TRUE(renderer) << renderer.message();
@@ -109,10 +137,6 @@ Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec, bo
   const format::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
   (*renderer)->setTransferFunction(tf);
   const SceneReferenceRenderer reference(file, tf);
-  RenderSettings s;
-  s.width = w;
-  s.height = h;
-  s.shading.shadows = shadows;
   const Camera camera = Camera::framing((*renderer)->geometry().worldBox(), spec);
   RenderTarget target;
   const Status st = (*renderer)->render(camera, s, target);
@@ -122,6 +146,11 @@ Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec, bo
   auto e = compareImages(out.gl, out.reference);
   EXPECT_TRUE(e.isOk());
   if (e) out.error = *e;
+  if (used) {
+    static std::unique_ptr<VoxLinkRenderer> keep;  // the caller reads its statistics
+    keep = std::move(*renderer);
+    *used = keep.get();
+  }
   return out;
 }
 
@@ -145,7 +174,7 @@ TEST(SceneRender, GlMatchesReferenceOnEveryAxisAndBrickSize) {
         spec.up = UpAxis::kY;
         spec.azimuthDeg = shadows ? 35 : -50;
         spec.elevationDeg = shadows ? 25 : 40;
-        const Rendered r = renderScene(*file, spec, shadows);
+        const Rendered r = renderScene(*file, spec, sceneSettings(shadows));
         std::printf("axis %d brick %u shadows %d: PSNR %.2f dB, max %.4f\n", int(axis), brick,
                     int(shadows), r.error.psnr, r.error.maxError);
         EXPECT_EQ(r.error.nonFinite, 0u);
@@ -154,6 +183,45 @@ TEST(SceneRender, GlMatchesReferenceOnEveryAxisAndBrickSize) {
         EXPECT_GT(coverage(r.reference), 0.15);
       }
     }
+  }
+}
+
+TEST(SceneRender, EffectsGlMatchesReferenceOnEveryAxis) {
+  VOXLINK_REQUIRE_GL();
+  for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ}) {
+    auto built = makeScene(axis, 8, true, true, true, effectsMaterials());
+    ASSERT_TRUE(built) << built.message();
+    voxlink::testing::TempDir dir;
+    auto file = testing::writeAndOpen(*built, dir.file("effects.vxl"));
+    ASSERT_TRUE(file) << file.message();
+    RenderSettings s = sceneSettings(false);
+    s.effects.reflect = s.effects.refract = s.effects.shadows = true;
+    s.lights = {Light{{20, 30, 16}, {0.8, 0.8, 0.7}, false},
+                Light{{-30, 60, 50}, {0.4, 0.4, 0.5}, false}};
+    s.background = {0.1, 0.15, 0.2};
+    CameraSpec spec;
+    spec.up = UpAxis::kY;
+    spec.azimuthDeg = 35;
+    spec.elevationDeg = 25;
+    const VolumeRenderer* gl = nullptr;
+    const Rendered r = renderScene(*file, spec, s, &gl);
+    ASSERT_NE(gl, nullptr);
+    const auto stats = gl->lastEffectsStats();
+    std::printf("effects, axis %d: PSNR %.2f dB, max %.4f, %d passes, %llu secondary rays\n",
+                int(axis), r.error.psnr, r.error.maxError, stats.passes,
+                (unsigned long long)stats.secondaryRays);
+    EXPECT_EQ(r.error.nonFinite, 0u);
+    EXPECT_GE(r.error.psnr, kTargetPsnr) << "axis " << int(axis);
+    EXPECT_GT(stats.passes, 2);
+    EXPECT_GT(stats.secondaryRays, 1000u);
+    EXPECT_EQ(stats.droppedRays, 0u);
+    // The effects change the picture: the mirror floor shows more than its diffuse colour.
+    s.effects = Effects{};
+    s.lights.clear();
+    const Rendered plain = renderScene(*file, spec, s);
+    auto differ = compareImages(plain.reference, r.reference);
+    ASSERT_TRUE(differ);
+    EXPECT_LT(differ->psnr, 30.0);
   }
 }
 
@@ -217,7 +285,7 @@ TEST(SceneRender, LitFloorFollowsTheShadingFormula) {
   CameraSpec spec;
   spec.up = UpAxis::kY;
   spec.elevationDeg = 60;
-  const Rendered r = renderScene(*file, spec, false, 64, 64);
+  const Rendered r = renderScene(*file, spec, sceneSettings(false, 64, 64));
   // The centre pixel sees the floor: colour = (ambient + diffuse * n.l) * Kd with n = +y.
   auto renderer = VoxLinkRenderer::create(*file);
   ASSERT_TRUE(renderer);

@@ -3,8 +3,8 @@
 // reflected and refracted rays spawned with their share of the ray's weight (opacity transport,
 // light_transport.h), shadow rays towards every light. It runs over a SceneWalker, so the same
 // tracer measures the GL implementation (over the voxel scene) and what voxelization costs (over
-// the exact geometry). With every effect off and no scene lights it draws exactly what
-// SceneReferenceRenderer draws (tested).
+// the exact geometry). With every effect off and no scene lights it is the plain scene model the
+// GL ray tracer draws (tests/viewer/scene_render_test.cpp holds the two together).
 #pragma once
 
 #include <array>

@@ -70,24 +70,50 @@ void VolumeRenderer::setTransferFunction(const format::TransferFunction& tf) {
   tfBytes_ = texels.size() * sizeof(float);
 }
 
-Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s) {
-  const bool shadows = s.shading.enabled && s.shading.shadows;
-  const auto key = std::make_tuple(int(s.sampling), shadows);
+Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
+  const bool effects = pass != Pass::kPlain;
+  const bool shadows = s.shading.enabled && (s.shading.shadows || (effects && s.effects.shadows));
+  const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()));
   if (auto it = programs_.find(key); it != programs_.end()) return &it->second;
+  if (pass == Pass::kEffectsResolve) {
+    VOXLINK_ASSIGN_OR_RETURN(
+        ComputeProgram p,
+        ComputeProgram::build("effects_resolve.comp.glsl",
+                              {{"VXL_ACCUM_BINDING", std::to_string(kAccumBinding)}}, {}));
+    return &programs_.emplace(key, std::move(p)).first->second;
+  }
   std::vector<ShaderDefine> defines = dataDefines();
+  defines.push_back({"VXL_EFFECTS", effects ? "1" : "0"});
+  if (effects) {
+    defines.push_back({"VXL_EFFECTS_PRIMARY", pass == Pass::kEffectsPrimary ? "1" : "0"});
+    defines.push_back({"VXL_MAX_LIGHTS", std::to_string(kMaxLights)});
+    defines.push_back({"VXL_RAYS_IN_BINDING", std::to_string(kRaysInBinding)});
+    defines.push_back({"VXL_RAYS_OUT_BINDING", std::to_string(kRaysOutBinding)});
+    defines.push_back({"VXL_ACCUM_BINDING", std::to_string(kAccumBinding)});
+  }
   defines.push_back({"VXL_TRILINEAR", s.sampling == Sampling::kTrilinear ? "1" : "0"});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
   defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
-  VOXLINK_ASSIGN_OR_RETURN(ComputeProgram p,
-                           ComputeProgram::build(mainShader(), defines, generatedFiles()));
+  VOXLINK_ASSIGN_OR_RETURN(
+      ComputeProgram p,
+      ComputeProgram::build(effects ? effectsShader() : mainShader(), defines, generatedFiles()));
   return &programs_.emplace(key, std::move(p)).first->second;
 }
 
 Status VolumeRenderer::prepare(const RenderSettings& settings) {
   VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
-  return program(settings).status();
+  if (!settings.effects.any()) return program(settings).status();
+  for (Pass pass : {Pass::kEffectsPrimary, Pass::kEffectsSecondary, Pass::kEffectsResolve})
+    VOXLINK_RETURN_IF_ERROR(program(settings, pass).status());
+  return Status::ok();
+}
+
+void VolumeRenderer::bindTables(const ComputeProgram& p) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTfBinding, tfBuffer_.buffer.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGradientTableBinding, gradientTable_.buffer.id());
+  bindData(p);
 }
 
 void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& camera,
@@ -126,13 +152,12 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
                               RenderTarget& target) {
   VOXLINK_RETURN_IF_ERROR(checkSettings(settings, name()));
   VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
+  if (settings.effects.any()) return renderEffects(camera, settings, target);
   VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* p, program(settings));
   target.resize(settings.width, settings.height);
   p->use();
   setFrameUniforms(*p, camera, settings, settings.width, settings.height);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTfBinding, tfBuffer_.buffer.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGradientTableBinding, gradientTable_.buffer.id());
-  bindData(*p);
+  bindTables(*p);
   glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

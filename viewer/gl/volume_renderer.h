@@ -14,6 +14,7 @@
 #include "viewer/core/camera.h"
 #include "viewer/core/render_settings.h"
 #include "viewer/core/tf_table.h"
+#include "viewer/gl/effects_buffers.h"
 #include "viewer/gl/gl_objects.h"
 #include "viewer/gl/render_target.h"
 #include "viewer/gl/shader_program.h"
@@ -54,9 +55,22 @@ class VolumeRenderer {
   const VolumeGeometry& geometry() const { return geometry_; }
   virtual std::string name() const = 0;
 
+  // What the last frame of the ray-traced mode (settings.effects) did: passes run (the primary
+  // pass included), rays traced after the primary ones, rays the buffer had no room for.
+  struct EffectsStats {
+    int passes = 0;
+    uint64_t secondaryRays = 0;
+    uint64_t droppedRays = 0;
+  };
+  const EffectsStats& lastEffectsStats() const { return effectsStats_; }
+  // GPU memory of the ray-traced mode's buffers (ray buffers, accumulator) for the last size.
+  uint64_t effectsBytes() const { return effects_.bytes(); }
+
  protected:
   explicit VolumeRenderer(const VolumeGeometry& geometry);
   virtual std::string mainShader() const = 0;
+  // The ray-traced mode's pass shader; empty where the data has no such mode.
+  virtual std::string effectsShader() const { return {}; }
   // Refuses settings the data cannot be rendered with (called before every frame).
   virtual Status checkSupported(const RenderSettings&) const { return Status::ok(); }
   virtual std::vector<ShaderDefine> dataDefines() const = 0;
@@ -65,7 +79,14 @@ class VolumeRenderer {
   virtual uint64_t dataBytes() const = 0;
 
  private:
-  Result<const ComputeProgram*> program(const RenderSettings& settings);
+  // Program variants: the plain frame, and the ray-traced mode's primary pass, secondary pass and
+  // resolve (volume_renderer_effects.cpp).
+  enum class Pass { kPlain, kEffectsPrimary, kEffectsSecondary, kEffectsResolve };
+  Result<const ComputeProgram*> program(const RenderSettings& settings, Pass pass = Pass::kPlain);
+  Status renderEffects(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
+  void setEffectsUniforms(const ComputeProgram& p, const Camera& camera,
+                          const RenderSettings& s) const;
+  void bindTables(const ComputeProgram& p) const;
   void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
                         uint32_t width, uint32_t height) const;
 
@@ -75,7 +96,9 @@ class VolumeRenderer {
   GlStorageBuffer tfBuffer_;
   uint64_t tfBytes_ = 0;
   GlStorageBuffer gradientTable_;
-  std::map<std::tuple<int, bool>, ComputeProgram> programs_;
+  std::map<std::tuple<int, bool, int, int>, ComputeProgram> programs_;
+  EffectsBuffers effects_;
+  EffectsStats effectsStats_;
 };
 
 }  // namespace voxlink::viewer

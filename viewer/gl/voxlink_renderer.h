@@ -20,6 +20,7 @@ class VoxLinkRenderer : public VolumeRenderer {
 
  protected:
   std::string mainShader() const override { return "render_voxlink.comp.glsl"; }
+  std::string effectsShader() const override { return "render_effects.comp.glsl"; }
   Status checkSupported(const RenderSettings& settings) const override;
   std::vector<ShaderDefine> dataDefines() const override;
   std::map<std::string, std::string> generatedFiles() const override;
