@@ -20,6 +20,7 @@ import sys
 import time
 
 voxlink, scenes_dir, data = sys.argv[1:4]
+data = os.path.abspath(data)  # the scene files are written elsewhere
 quick = "--quick" in sys.argv
 work = os.environ.get("VOXLINK_BENCH_DIR", "/tmp/voxlink-bench") + "/voxelization-cost"
 os.makedirs(work, exist_ok=True)
