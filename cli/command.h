@@ -53,5 +53,6 @@ CommandRunner addGrfCommand(CLI::App& app);
 CommandRunner addRenderCommand(CLI::App& app);
 CommandRunner addBenchRenderCommand(CLI::App& app);
 CommandRunner addViewCommand(CLI::App& app);
+CommandRunner addRenderExactCommand(CLI::App& app);
 
 }  // namespace voxlink::cli

@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
       addConvertCommand, addInfoCommand,        addValidateCommand, addSceneCommand,
       addStatsCommand,   addDicomCommand,       addKrigeCommand,    addGrfCommand,
 #ifdef VOXLINK_WITH_VIEWER
-      addRenderCommand,  addBenchRenderCommand, addViewCommand,
+      addRenderCommand,  addBenchRenderCommand, addViewCommand,     addRenderExactCommand,
 #endif
   };
   std::vector<std::pair<CLI::App*, CommandRunner>> commands;

@@ -11,10 +11,9 @@
 #include "format/validator.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
-#include "geometry/mesh_loader.h"
-#include "geometry/particle_loader.h"
 #include "geometry/sphere_voxelizer.h"
 #include "geometry/voxel_grid.h"
+#include "scene/scene_geometry.h"
 #include "scene/scene_volume.h"
 
 namespace voxlink::scene {
@@ -23,160 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-float clamp01(float v) { return std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f; }
-
-// The file's material record: every value brought into the range the validator accepts.
-format::MaterialRecord toRecord(const geometry::Material& m, float specular, float shininess) {
-  format::MaterialRecord r{};
-  for (int c = 0; c < 3; ++c) {
-    r.color[c] = clamp01(m.color[c]);
-    r.emission[c] = std::isfinite(m.emission[c]) ? std::max(0.0f, m.emission[c]) : 0.0f;
-  }
-  r.opacity = clamp01(m.opacity);
-  r.reflectivity = clamp01(m.reflectivity);
-  r.transmission = clamp01(m.transmission);
-  const float sum = r.reflectivity + r.transmission;
-  if (sum > 1.0f) {
-    r.reflectivity /= sum;
-    r.transmission = 1.0f - r.reflectivity;
-  }
-  r.refractiveIndex =
-      std::isfinite(m.refractiveIndex) ? std::clamp(m.refractiveIndex, 1.0f, 10.0f) : 1.0f;
-  r.specular = clamp01(specular);
-  r.shininess = std::isfinite(shininess) ? std::clamp(shininess, 0.0f, 1e6f) : 0.0f;
-  return r;
-}
-
-// CPK colours of the common elements of biomolecules (Corey-Pauling-Koltun, as molecular
-// viewers use them); anything else is pink.
-std::array<float, 3> cpkColor(const std::string& element) {
-  if (element == "C") return {0.56f, 0.56f, 0.56f};
-  if (element == "O") return {0.94f, 0.16f, 0.16f};
-  if (element == "N") return {0.19f, 0.31f, 0.97f};
-  if (element == "S") return {1.0f, 0.78f, 0.2f};
-  if (element == "H") return {0.95f, 0.95f, 0.95f};
-  if (element == "P") return {1.0f, 0.5f, 0.0f};
-  return {1.0f, 0.55f, 0.75f};
-}
-
-// The scene's one material table: scene materials by name first, then what files bring.
-class MaterialTable {
- public:
-  explicit MaterialTable(const SceneDescription& scene) : scene_(scene) {
-    for (const auto& [name, m] : scene.materials)
-      add(name, toRecord(m.material, m.specular, m.shininess));
-  }
-  uint16_t named(const std::string& name) const {
-    for (size_t i = 0; i < names_.size(); ++i)
-      if (names_[i] == name) return static_cast<uint16_t>(i);
-    return 0;
-  }
-  bool has(const std::string& name) const { return scene_.findMaterial(name) != nullptr; }
-  uint16_t add(const std::string& name, const format::MaterialRecord& record) {
-    names_.push_back(name);
-    records_.push_back(record);
-    return static_cast<uint16_t>(records_.size() - 1);
-  }
-  size_t size() const { return records_.size(); }
-  std::vector<format::MaterialRecord> records() const { return records_; }
-  const std::vector<std::string>& names() const { return names_; }
-
- private:
-  const SceneDescription& scene_;
-  std::vector<std::string> names_;
-  std::vector<format::MaterialRecord> records_;
-};
-
-struct PlacedGeometry {
-  geometry::TriangleMesh mesh;            // world coordinates, materials of the scene table
-  std::vector<geometry::Sphere> spheres;  // world coordinates, materials of the scene table
-  geometry::Bounds3 bounds;
-};
-
-void grow(geometry::Bounds3& b, double x, double y, double z, double r = 0) {
-  const double p[3] = {x, y, z};
-  for (int a = 0; a < 3; ++a) {
-    b.min[a] = std::min(b.min[a], float(p[a] - r));
-    b.max[a] = std::max(b.max[a], float(p[a] + r));
-  }
-}
-
-Status placeMesh(const SceneObject& o, MaterialTable& table, PlacedGeometry& out,
-                 SceneBuildReport& report) {
-  VOXLINK_ASSIGN_OR_RETURN(geometry::TriangleMesh mesh, geometry::loadMesh(o.path));
-  std::vector<uint16_t> materialOf(mesh.materials.size());
-  for (size_t m = 0; m < mesh.materials.size(); ++m)
-    materialOf[m] = o.material
-                        ? table.named(*o.material)
-                        : table.add(mesh.materials[m].name, toRecord(mesh.materials[m], 0, 0));
-  if (table.size() > format::kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ",
-                     format::kMaxMaterials, " materials");
-  const uint32_t base = static_cast<uint32_t>(out.mesh.vertexCount());
-  for (size_t v = 0; v < mesh.vertexCount(); ++v) {
-    const auto p = o.transform.apply(
-        {mesh.positions[3 * v], mesh.positions[3 * v + 1], mesh.positions[3 * v + 2]});
-    for (double c : p) out.mesh.positions.push_back(static_cast<float>(c));
-  }
-  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t v = mesh.triangles[3 * t + c];
-      out.mesh.triangles.push_back(base + v);
-      const float* p = &out.mesh.positions[3 * (base + v)];
-      grow(out.bounds, p[0], p[1], p[2]);
-    }
-    const uint16_t m = mesh.triangleMaterials.empty() ? 0 : mesh.triangleMaterials[t];
-    out.mesh.triangleMaterials.push_back(materialOf.empty() ? table.named(o.material.value_or(""))
-                                                            : materialOf[m]);
-  }
-  report.triangles += mesh.triangleCount();
-  return Status::ok();
-}
-
-Status placeSpheres(const SceneObject& o, MaterialTable& table, PlacedGeometry& out,
-                    SceneBuildReport& report) {
-  const double scale = o.transform.uniformScale();
-  std::vector<geometry::Sphere> spheres;
-  std::vector<uint16_t> materialOf;
-  if (o.kind == ObjectKind::kSphere) {
-    geometry::Sphere s;
-    for (int a = 0; a < 3; ++a) s.center[a] = float(o.center[a]);
-    s.radius = float(o.radius);
-    spheres.push_back(s);
-    materialOf.push_back(o.material ? table.named(*o.material)
-                                    : table.add("sphere", toRecord({}, 0, 0)));
-  } else {
-    VOXLINK_ASSIGN_OR_RETURN(geometry::ParticleSet set, geometry::loadParticles(o.path));
-    spheres = std::move(set.spheres);
-    for (const std::string& name : set.materials) {
-      if (o.material) {
-        materialOf.push_back(table.named(*o.material));
-      } else if (table.has(name)) {
-        materialOf.push_back(table.named(name));
-      } else {
-        geometry::Material m;
-        m.name = name;
-        m.color = cpkColor(name);
-        materialOf.push_back(table.add(name, toRecord(m, 0.3f, 32.0f)));
-      }
-    }
-    if (materialOf.empty()) materialOf.push_back(table.add("particle", toRecord({}, 0, 0)));
-  }
-  if (table.size() > format::kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ",
-                     format::kMaxMaterials, " materials");
-  for (geometry::Sphere s : spheres) {
-    const auto c = o.transform.apply({s.center[0], s.center[1], s.center[2]});
-    for (int a = 0; a < 3; ++a) s.center[a] = float(c[a]);
-    s.radius = float(s.radius * scale * o.radiusScale);
-    s.material = materialOf[std::min<size_t>(s.material, materialOf.size() - 1)];
-    grow(out.bounds, c[0], c[1], c[2], s.radius);
-    out.spheres.push_back(s);
-  }
-  report.spheres += spheres.size();
-  return Status::ok();
 }
 
 // The volume's stored bits of voxel i, as SceneBuilder takes them.
@@ -197,33 +42,20 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   SceneBuildOutput out;
   SceneBuildReport& report = out.report;
   const auto loadStart = Clock::now();
-  MaterialTable table(scene);
-  PlacedGeometry placed;
+  stage("load", 0);
+  VOXLINK_ASSIGN_OR_RETURN(PlacedScene placed, placeSceneGeometry(scene));
+  report.triangles = placed.mesh.triangleCount();
+  report.spheres = placed.spheres.size();
   std::optional<format::VoxLinkFile> volume;
-  for (size_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& o = scene.objects[i];
-    stage("load", double(i) / scene.objects.size());
-    switch (o.kind) {
-      case ObjectKind::kMesh:
-        VOXLINK_RETURN_IF_ERROR(placeMesh(o, table, placed, report));
-        break;
-      case ObjectKind::kParticles:
-      case ObjectKind::kSphere:
-        VOXLINK_RETURN_IF_ERROR(placeSpheres(o, table, placed, report));
-        break;
-      case ObjectKind::kVolume: {
-        VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, openSceneVolume(o, scene.grid));
-        if (f.isScene())
-          return makeError(
-              ErrorCode::kUnsupported, o.path,
-              ": a scene (version 2) cannot be a scene's volume; give the volume's own .vxl");
-        VOXLINK_RETURN_IF_ERROR(format::validateFile(f).status());
-        volume.emplace(std::move(f));
-        break;
-      }
-    }
+  for (const SceneObject* o : placed.volumes) {
+    VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, openSceneVolume(*o, scene.grid));
+    if (f.isScene())
+      return makeError(
+          ErrorCode::kUnsupported, o->path,
+          ": a scene (version 2) cannot be a scene's volume; give the volume's own .vxl");
+    VOXLINK_RETURN_IF_ERROR(format::validateFile(f).status());
+    volume.emplace(std::move(f));
   }
-  if (table.size() == 0) table.add("default", toRecord({}, 0, 0));
   report.loadSeconds = secondsSince(loadStart);
 
   // The grid, and the description the file's header is made from.
@@ -271,7 +103,7 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   // come back to world space through the inverse transpose of that scaling.
   if (placed.mesh.triangleCount() > 0) {
     geometry::TriangleMesh& mesh = placed.mesh;
-    mesh.materials.resize(table.size());
+    mesh.materials.resize(placed.materials.size());
     for (size_t v = 0; v < mesh.vertexCount(); ++v)
       for (int a = 0; a < 3; ++a)
         mesh.positions[3 * v + a] = float((mesh.positions[3 * v + a] - d.origin[a]) / d.spacing[a]);
@@ -328,7 +160,7 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   stage("merge", 0);
   nlohmann::ordered_json meta;
   meta["scene"]["file"] = scene.path;
-  meta["scene"]["materials"] = table.names();
+  meta["scene"]["materials"] = placed.materialNames;
   nlohmann::ordered_json objects = nlohmann::ordered_json::array();
   for (const SceneObject& o : scene.objects) {
     static const char* kinds[] = {"mesh", "particles", "sphere", "volume"};
@@ -354,9 +186,9 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
     const auto volumeMeta = nlohmann::ordered_json::parse(volume->metaJson(), nullptr, false);
     if (!volumeMeta.is_discarded()) meta["volume"] = volumeMeta;
   }
-  builder.setMaterials(table.records());
+  builder.setMaterials(placed.materials);
   builder.setSpheres(std::move(sphereRecords));
-  report.materials = table.size();
+  report.materials = placed.materials.size();
   VOXLINK_ASSIGN_OR_RETURN(out.volume, builder.build(meta.dump()));
   report.mergeSeconds = secondsSince(mergeStart);
   stage("merge", 1);

@@ -16,7 +16,7 @@ packages=(
   python3 time
   clang-14 libclang-rt-14-dev clang-format-14
   libfftw3-dev libzip-dev
-  libassimp-dev
+  libassimp-dev libembree-dev
   r-cran-gstat
 )
 apt-get update

@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""What voxelization costs: for each scene and voxel resolution, `voxlink scene build` (file size,
+build time), then `voxlink render-exact --compare` renders the voxel scene and the original
+meshes and spheres (Embree 3, the exact tracer a user would pick instead) with the same float64
+effects tracer, camera and lights, plain and with every effect, and prints PSNR, the share of
+pixels whose first hit differs, PSNR on the edge mask, and both tracers' times.
+
+usage: voxelization_cost.py VOXLINK SCENES_DIR DATA_DIR [--quick]
+
+Prints a Markdown table (docs/exact-tracer.md) and the commands that made each row. Times are
+medians of 3 renders (--repeat) and of 3 build runs (the VM's speed drifts).
+Work files go to $VOXLINK_BENCH_DIR (default /tmp/voxlink-bench/voxelization-cost).
+"""
+import json
+import os
+import re
+import statistics
+import subprocess
+import sys
+import time
+
+voxlink, scenes_dir, data = sys.argv[1:4]
+data = os.path.abspath(data)  # the scene files are written elsewhere
+quick = "--quick" in sys.argv
+work = os.environ.get("VOXLINK_BENCH_DIR", "/tmp/voxlink-bench") + "/voxelization-cost"
+os.makedirs(work, exist_ok=True)
+RESOLUTIONS = [256, 512] if quick else [256, 512, 1024]
+BUILD_REPEATS = 1 if quick else 3
+RENDER_REPEATS = "1" if quick else "3"
+SIZE = "256x256"
+
+
+def run(cmd):
+    start = time.monotonic()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    seconds = time.monotonic() - start
+    if p.returncode != 0:
+        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
+    return p.stdout, seconds
+
+
+def absolute_paths(scene, folder):
+    for o in scene.get("objects", []):
+        if "file" in o and not os.path.isabs(o["file"]):
+            o["file"] = os.path.normpath(os.path.join(folder, o["file"]))
+    return scene
+
+
+def scenes():
+    """(name, scene dict with absolute paths): the samples, and the bunny and the dragon alone."""
+    for name in ["cornell-spheres", "bunny-molecule"]:
+        path = os.path.join(scenes_dir, name + ".scene.json")
+        with open(path) as f:
+            yield name, absolute_paths(json.load(f), os.path.dirname(os.path.abspath(path)))
+    for name, mesh in [("bunny", "mesh/c3dtm_stanford-bunny.obj"),
+                       ("dragon", "mesh/stanford_dragon_decimated.ply")]:
+        yield name, {"objects": [{"type": "mesh", "file": os.path.join(data, mesh)}],
+                     "camera": {"azimuth": 30, "elevation": 20, "up": "y"}}
+
+
+def compare(scene_path, vxl, effects):
+    cmd = [voxlink, "render-exact", scene_path, "-o", f"{work}/exact.png", "--compare", vxl,
+           "--size", SIZE, "--effects", effects, "--repeat", RENDER_REPEATS]
+    out, _ = run(cmd)
+    exact = float(re.search(r"\): ([\d.]+) s\n", out).group(1))
+    voxel = float(re.search(r"float64 tracer ([\d.]+) s", out).group(1))
+    m = re.search(r"PSNR ([\d.inf]+) dB; first hit differs ([\d.]+) %.*?PSNR ([\d.inf-]+) dB there",
+                  out)
+    return {"exact": exact, "voxel": voxel, "psnr": m.group(1), "mismatch": m.group(2),
+            "edge_psnr": m.group(3), "cmd": " ".join(cmd)}
+
+
+rows, commands = [], []
+for name, scene in scenes():
+    for res in RESOLUTIONS:
+        scene.setdefault("grid", {})["resolution"] = res
+        scene_path = f"{work}/{name}-{res}.scene.json"
+        with open(scene_path, "w") as f:
+            json.dump(scene, f)
+        vxl = f"{work}/{name}-{res}.vxl"
+        build = [voxlink, "scene", "build", scene_path, "-o", vxl]
+        times = [run(build)[1] for _ in range(BUILD_REPEATS)]
+        commands.append(" ".join(build))
+        size_mb = os.path.getsize(vxl) / 1e6
+        plain = compare(scene_path, vxl, "none")
+        effects = compare(scene_path, vxl, "all")
+        commands += [plain["cmd"], effects["cmd"]]
+        rows.append((name, res, size_mb, statistics.median(times), plain, effects))
+        print(f"{name} {res}: done", file=sys.stderr, flush=True)
+
+print(f"| scene | voxels | file MB | build s | plain: PSNR dB / first hit differs % / edge PSNR dB"
+      f" | plain: voxel s / exact s | all effects: PSNR dB / first hit differs % / edge PSNR dB"
+      f" | all effects: voxel s / exact s | exact faster, plain / all |")
+print("|---|---|---|---|---|---|---|---|---|")
+for name, res, size, build, p, e in rows:
+    print(f"| {name} | {res} | {size:.1f} | {build:.2f} | {p['psnr']} / {p['mismatch']} / "
+          f"{p['edge_psnr']} | {p['voxel']:.2f} / {p['exact']:.2f} | {e['psnr']} / "
+          f"{e['mismatch']} / {e['edge_psnr']} | {e['voxel']:.2f} / {e['exact']:.2f} | "
+          f"{p['voxel'] / p['exact']:.1f}x / {e['voxel'] / e['exact']:.1f}x |")
+print("\nCommands:")
+for c in commands:
+    print("    " + c)
