@@ -44,19 +44,14 @@ def absolute_paths(scene, folder):
 
 
 def scenes():
-    """(name, effects, scene): the dragon plain and ray traced, the Cornell box with a mirror and
-    a glass sphere, and the house with glass windows (samples/scenes/meshes/house.obj)."""
-    dragon = {"objects": [{"type": "mesh", "file": os.path.join(
-        data, "mesh/stanford_dragon_decimated.ply")}],
-              "camera": {"azimuth": 30, "up": "y"}}
-    yield "dragon", "none", dragon
-    yield "dragon", "all", dragon
-    path = os.path.join(scenes_dir, "cornell-spheres.scene.json")
-    with open(path) as f:
-        yield "cornell-spheres", "all", absolute_paths(json.load(f), scenes_dir)
-    house = {"objects": [{"type": "mesh", "file": os.path.join(scenes_dir, "meshes/house.obj")}],
-             "lights": [{"position": [3, 6, 4]}], "camera": {"azimuth": 30, "elevation": 20, "up": "y"}}
-    yield "house", "all", house
+    """(name, effects, scene) from samples/scenes: the dragon plain and ray traced, the paper's
+    bunny scene (a glass bunny beside a mirror sphere on a mirror floor), the house with glass
+    windows, and the Cornell box with a mirror and a glass sphere."""
+    for name, effects in [("dragon", "none"), ("dragon", "all"), ("bunny-glass", "all"),
+                          ("house", "all"), ("cornell-spheres", "all")]:
+        path = os.path.join(scenes_dir, name + ".scene.json")
+        with open(path) as f:
+            yield name, effects, absolute_paths(json.load(f), scenes_dir)
 
 
 rows, commands = [], []
