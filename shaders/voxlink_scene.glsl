@@ -66,12 +66,16 @@ float sphereHit(uint s, vec3 o, vec3 d, float tMin, out vec3 centre) {
   uint b = s * 8u;
   centre = worldToIndex(vec3(sphrFloat(b), sphrFloat(b + 1u), sphrFloat(b + 2u)));
   float radius = sphrFloat(b + 3u) / uVolumeSpacing.x;
+  // The discriminant from the ray's closest approach to the centre, r^2 - |perp|^2, instead of
+  // b^2 - a c: that difference of two large numbers loses the silhouette in float for rays that
+  // start far from the sphere (a tangent ray's hit flipped between float and double).
   vec3 oc = o - centre;
-  float a = dot(d, d), half_b = dot(oc, d), c = dot(oc, oc) - radius * radius;
-  float disc = half_b * half_b - a * c;
+  float a = dot(d, d), along = dot(oc, d) / a;
+  vec3 perp = oc - along * d;
+  float disc = radius * radius - dot(perp, perp);
   if (disc < 0.0) return kBig;
-  float root = sqrt(disc);
-  float tNear = (-half_b - root) / a, tFar = (-half_b + root) / a;
+  float root = sqrt(disc / a);
+  float tNear = -along - root, tFar = -along + root;
   return tNear >= tMin ? tNear : (tFar >= tMin ? tFar : kBig);
 }
 

@@ -72,13 +72,14 @@ void VoxelSceneWalker::walk(const Ray& ray, double tMin, double tMax,
         const glm::dvec3 centre =
             (glm::dvec3(s.center[0], s.center[1], s.center[2]) - origin_) / spacing_ + 0.5;
         const double radius = s.radius / spacing_.x;
+        // Closest-approach form of the discriminant, as the GL ray tracer computes it.
         const glm::dvec3 oc = o - centre;
-        const double a = glm::dot(d, d), halfB = glm::dot(oc, d),
-                     cc = glm::dot(oc, oc) - radius * radius;
-        const double disc = halfB * halfB - a * cc;
+        const double a = glm::dot(d, d), b = glm::dot(oc, d) / a;
+        const glm::dvec3 perp = oc - b * d;
+        const double disc = radius * radius - glm::dot(perp, perp);
         if (disc < 0) continue;
-        const double root = std::sqrt(disc), tLow = std::max(ta, 0.0);
-        const double tNear = (-halfB - root) / a, tFar = (-halfB + root) / a;
+        const double root = std::sqrt(disc / a), tLow = std::max(ta, 0.0);
+        const double tNear = -b - root, tFar = -b + root;
         const double t = tNear >= tLow ? tNear : (tFar >= tLow ? tFar : HUGE_VAL);
         if (t >= ta && t < tb && t < hit.t) {
           hit.t = t;
