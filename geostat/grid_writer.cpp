@@ -127,9 +127,9 @@ Status GridWriter::finish() {
     return makeError(ErrorCode::kIo, path_, ": write failed: ", std::strerror(errno));
   }
   // Both files are complete: the data, then the header that names it, are moved into place.
-  if (Status s = format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_); !s) {
+  if (Status data = format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_); !data) {
     format::discardTemp(header.path);
-    return s;
+    return data;
   }
   return format::commitTemp(header.path, path_);
 }
