@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer (LeakSanitizer comes with
 # ASan) in ./build-asan and runs the whole test suite there. Any sanitizer report fails the
-# test it happens in. Leaks inside libraries that are not ours are suppressed by library in
-# scripts/sanitizers/lsan.supp; the GL tests (viewer_tests) run without leak checking (below).
+# test it happens in. Benchmarks are not built (no test runs them). Leaks inside libraries that
+# are not ours are suppressed by library in scripts/sanitizers/lsan.supp; the GL tests
+# (viewer_tests) run without leak checking (below).
 # Extra arguments go to cmake.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,7 +15,7 @@ fi
 # -O1 keeps the instrumented build and its tests quick; line tables name the source in reports.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DVOXLINK_SANITIZE=address,undefined "${launcher[@]}" "$@"
+  -DVOXLINK_SANITIZE=address,undefined -DVOXLINK_BUILD_BENCH=OFF "${launcher[@]}" "$@"
 cmake --build "$build" -j "$(nproc)"
 supp=$(realpath scripts/sanitizers/lsan.supp)
 # allocator_may_return_null: a huge request throws std::bad_alloc as without ASan (OpenVDB relies
