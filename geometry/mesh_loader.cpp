@@ -239,7 +239,8 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
   if (extension == ".ply" || startsWithPly(path)) VOXLINK_RETURN_IF_ERROR(checkPlyHeader(path));
   assimpAssertion.clear();
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate);
   if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) ||
       scene->mRootNode == nullptr) {
     return makeError(
