@@ -117,10 +117,12 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
   w.header_ = header;
   w.layout_ = planSections(header, 0);
   w.crcs_.resize(w.layout_.entries.size());
-  // The temporary file sits beside the destination so the final rename stays on one file system.
-  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path));
+  // The temporary file sits beside the destination so the final rename stays on one file system;
+  // unnamed where possible, so that not even kill -9 leaves a partial file behind.
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createUnnamedTempBeside(path));
   w.fd_ = temp.fd;
   w.tempPath_ = temp.path;
+  w.unnamedTemp_ = temp.unnamed;
   const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
   if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
     return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd,
@@ -132,6 +134,7 @@ FileWriter::FileWriter(FileWriter&& other) noexcept
     : path_(std::move(other.path_)),
       tempPath_(std::move(other.tempPath_)),
       fd_(std::exchange(other.fd_, -1)),
+      unnamedTemp_(other.unnamedTemp_),
       header_(other.header_),
       layout_(std::move(other.layout_)),
       crcs_(std::move(other.crcs_)),
@@ -144,7 +147,7 @@ FileWriter::~FileWriter() { discard(); }
 void FileWriter::discard() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  if (!tempPath_.empty()) discardTemp(tempPath_);
+  if (!tempPath_.empty() && !unnamedTemp_) discardTemp(tempPath_);
   tempPath_.clear();
 }
 
@@ -214,10 +217,9 @@ Status FileWriter::commit(const std::string& metaJson) {
   VOXLINK_RETURN_IF_ERROR(writeRaw(0, &header_, sizeof(header_)));
   // Local file systems report a full disk at write; network ones may only at close (checked).
   // No fsync: it would cost the conversion seconds on large outputs.
-  if (::close(std::exchange(fd_, -1)) != 0)
-    return makeError(ErrorCode::kIo, path_, ": closing the output failed: ", std::strerror(errno));
-  VOXLINK_RETURN_IF_ERROR(commitTemp(std::exchange(tempPath_, std::string()), path_));
-  return Status::ok();
+  const TempFile temp{std::exchange(fd_, -1), std::exchange(tempPath_, std::string()),
+                      unnamedTemp_};
+  return commitTempFile(temp, path_);
 }
 
 std::vector<uint32_t> rankFromOccupancy(const std::vector<uint32_t>& occupancy) {

@@ -81,6 +81,7 @@ class FileWriter {
   std::string path_;
   std::string tempPath_;
   int fd_ = -1;
+  bool unnamedTemp_ = false;  // O_TMPFILE: closing it is all a discard needs
   FileHeader header_{};
   SectionLayout layout_;
   // The checksum of a section's prefix [0, covered), while writes arrive in order.

@@ -8,11 +8,14 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <climits>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <string>
 
 namespace voxlink::format {
 namespace {
@@ -67,6 +70,66 @@ Result<TempFile> createTempBeside(const std::string& target, std::string_view su
   fchmod(fd, 0644);  // mkstemp makes 0600; outputs are ordinary readable files
   registerTempForCleanup(pattern);
   return TempFile{fd, pattern};
+}
+
+Result<TempFile> createUnnamedTempBeside(const std::string& target) {
+  VOXLINK_RETURN_IF_ERROR(checkOutputTarget(target));
+  std::filesystem::path dir = std::filesystem::path(target).parent_path();
+  if (dir.empty()) dir = ".";
+  // linkat needs the fd's /proc link (AT_EMPTY_PATH would need CAP_DAC_READ_SEARCH).
+  if (::access("/proc/self/fd", X_OK) == 0) {
+    const int fd = ::open(dir.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0644);
+    if (fd >= 0) return TempFile{fd, "/proc/self/fd/" + std::to_string(fd), true};
+    // Unsupported here (EOPNOTSUPP, EISDIR on old kernels): a named temporary instead; other
+    // errors (permissions, a full disk) are reported by that attempt in the same words.
+  }
+  return createTempBeside(target);
+}
+
+Status commitTempFile(const TempFile& temp, const std::string& target) {
+  if (!temp.unnamed) {
+    if (::close(temp.fd) != 0) {
+      const int e = errno;
+      discardTemp(temp.path);
+      return makeError(ErrorCode::kIo, target, ": closing the output failed: ", std::strerror(e));
+    }
+    return commitTemp(temp.path, target);
+  }
+  std::filesystem::path dir = std::filesystem::path(target).parent_path();
+  if (dir.empty()) dir = ".";
+  // A fresh name for the link: mkstemp's names, taken by creating and removing a file would
+  // race, so try random names until linkat does not find one taken.
+  static constexpr char kChars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+  uint64_t state =
+      static_cast<uint64_t>(::getpid()) * 0x9E3779B97F4A7C15ull ^
+      static_cast<uint64_t>(reinterpret_cast<uintptr_t>(&temp)) ^
+      static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  std::string linked;
+  int linkErrno = EEXIST;
+  for (int attempt = 0; attempt < 100 && linkErrno == EEXIST; ++attempt) {
+    std::string name = ".vl-XXXXXX";
+    for (size_t i = 4; i < name.size(); ++i) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      name[i] = kChars[(state >> 33) % (sizeof(kChars) - 1)];
+    }
+    linked = (dir / name).string();
+    linkErrno =
+        ::linkat(AT_FDCWD, temp.path.c_str(), AT_FDCWD, linked.c_str(), AT_SYMLINK_FOLLOW) == 0
+            ? 0
+            : errno;
+  }
+  if (linkErrno != 0) {
+    ::close(temp.fd);
+    return makeError(ErrorCode::kIo, target, ": cannot link the finished file into ", dir.string(),
+                     ": ", std::strerror(linkErrno));
+  }
+  registerTempForCleanup(linked);
+  if (::close(temp.fd) != 0) {
+    const int e = errno;
+    discardTemp(linked);
+    return makeError(ErrorCode::kIo, target, ": closing the output failed: ", std::strerror(e));
+  }
+  return commitTemp(linked, target);
 }
 
 Status commitTemp(const std::string& tempPath, const std::string& target) {

@@ -22,9 +22,20 @@ Status checkOutputTarget(const std::string& target, const std::vector<std::strin
 // 0644, registered for removal on signals. The caller owns fd and path.
 struct TempFile {
   int fd = -1;
-  std::string path;
+  std::string path;      // for an unnamed file, /proc/self/fd/N (opens the same file)
+  bool unnamed = false;  // O_TMPFILE: no name in the directory until committed
 };
 Result<TempFile> createTempBeside(const std::string& target, std::string_view suffix = "");
+
+// Like createTempBeside, but where the file system supports O_TMPFILE (and /proc is mounted)
+// the file has no name until commitTempFile links it: even kill -9 leaves nothing behind.
+// Elsewhere it is a named temporary as above.
+Result<TempFile> createUnnamedTempBeside(const std::string& target);
+
+// Closes a finished temporary of either kind (the close is checked) and puts it in place of
+// `target`: an unnamed one is linked under a fresh .vl-XXXXXX name, then renamed (linkat cannot
+// replace an existing file). On failure nothing is left of it.
+Status commitTempFile(const TempFile& temp, const std::string& target);
 
 // Renames a finished temporary over `target` and forgets it for signal cleanup; on failure the
 // temporary is removed.

@@ -20,6 +20,9 @@ constexpr std::array kTargets{
     FuzzTarget{"transfer_function", fuzzTransferFunction},
     FuzzTarget{"paraview_preset", fuzzParaViewPreset},
     FuzzTarget{"kriging_points", fuzzKrigingPoints},
+    FuzzTarget{"scene", fuzzScene},
+    FuzzTarget{"mesh", fuzzMesh},
+    FuzzTarget{"particles", fuzzParticles},
 };
 
 }  // namespace

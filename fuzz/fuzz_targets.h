@@ -28,6 +28,9 @@ Status fuzzImageStack(Input input);        // 2-D slice images / multi-page TIFF
 Status fuzzTransferFunction(Input input);  // TF JSON
 Status fuzzParaViewPreset(Input input);    // ParaView colour-map JSON (viewer core)
 Status fuzzKrigingPoints(Input input);     // kriging sample tables (CSV, GEO-EAS points)
+Status fuzzScene(Input input);             // scene JSON (scene/)
+Status fuzzMesh(Input input);              // OBJ (+ MTL), PLY, STL through assimp (geometry/)
+Status fuzzParticles(Input input);         // PDB and `x y z r [material]` text (geometry/)
 
 struct FuzzTarget {
   std::string_view name;  // fuzz executable fuzz_<name>, regression folder name

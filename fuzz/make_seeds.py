@@ -289,6 +289,75 @@ def kriging_seeds(s, d):
     s.add("kriging_points", "geoeas", geoeas.replace(b"U-random-samplingtrans", b"V"))
 
 
+def small_mesh(d, keep=200):
+    """The first `keep` vertices of the npm bunny and the faces that use only them."""
+    verts, faces = [], []
+    for line in read(d, "mesh/bunny_npm.obj").decode().splitlines():
+        f = line.split()
+        if f and f[0] == "v" and len(verts) < keep:
+            verts.append(tuple(float(x) for x in f[1:4]))
+        elif f and f[0] == "f":
+            idx = [int(x.split("/")[0]) - 1 for x in f[1:]]
+            if all(0 <= i < keep for i in idx):
+                faces.append(idx)
+    return verts, faces
+
+
+def mesh_seeds(s, d):
+    verts, faces = small_mesh(d)
+    obj = "".join("v %g %g %g\n" % v for v in verts) + "".join(
+        "f %s\n" % " ".join(str(i + 1) for i in f) for f in faces)
+    s.add("mesh", "bunny_part.obj", obj.encode())
+    cornell = read(d, "mesh/mcguire_CornellBox-Original.obj")
+    s.add("mesh", "cornell_with_mtl",
+          bundle(cornell, ("CornellBox-Original.mtl", read(d, "mesh/mcguire_CornellBox-Original.mtl"))))
+    s.add("mesh", "cornell_no_mtl", cornell)
+    # PLY: ASCII from the real bunny's header, binary of both byte orders.
+    head = ("ply\nformat %s 1.0\nelement vertex %d\nproperty float x\nproperty float y\n"
+            "property float z\nelement face %d\nproperty list uchar int vertex_indices\nend_header\n")
+    s.add("mesh", "bunny_part_ascii.ply",
+          (head % ("ascii", len(verts), len(faces))).encode()
+          + "".join("%g %g %g\n" % v for v in verts).encode()
+          + "".join("%d %s\n" % (len(f), " ".join(map(str, f))) for f in faces).encode())
+    for name, fmt, order in (("le", "binary_little_endian", "<"), ("be", "binary_big_endian", ">")):
+        body = b"".join(struct.pack(order + "3f", *v) for v in verts)
+        body += b"".join(struct.pack(order + "B%di" % len(f), len(f), *f) for f in faces)
+        s.add("mesh", "bunny_part_%s.ply" % name,
+              (head % (fmt, len(verts), len(faces))).encode() + body)
+    tris = [f for f in faces if len(f) == 3][:100]
+    ascii_stl = "solid part\n" + "".join(
+        "facet normal 0 0 0\nouter loop\n" + "".join("vertex %g %g %g\n" % verts[i] for i in t)
+        + "endloop\nendfacet\n" for t in tris) + "endsolid part\n"
+    s.add("mesh", "bunny_part_ascii.stl", ascii_stl.encode())
+    binary = b"\0" * 80 + struct.pack("<I", len(tris)) + b"".join(
+        struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *verts[i]) for i in t)
+        + b"\0\0" for t in tris)
+    s.add("mesh", "bunny_part_binary.stl", binary)
+
+
+def particle_seeds(s, d):
+    for rel in ("particles/biopython_2XHE.pdb", "particles/biopython_7DDO.pdb"):
+        lines = read(d, rel).splitlines(keepends=True)
+        atoms = [l for l in lines if l.startswith((b"ATOM", b"HETATM"))]
+        hetatm = [l for l in atoms if l.startswith(b"HETATM")][:20]
+        s.add("particles", os.path.basename(rel), b"".join(lines[:10] + atoms[:150] + hetatm))
+    atoms = [l for l in read(d, "particles/biopython_7DDO.pdb").splitlines()
+             if l.startswith(b"ATOM")][:100]
+    text = b"# x y z r material\n" + b"".join(
+        b"%s %s %s 1.5 %s\n" % (a[30:38].strip(), a[38:46].strip(), a[46:54].strip(),
+                                a[76:78].strip() or b"C") for a in atoms)
+    s.add("particles", "atoms.txt", text)
+    s.add("particles", "spheres.csv", b"x,y,z,r\n0,0,0,1\n2.5,0,0,0.5\n0,3,1e3,2\n")
+
+
+def scene_seeds(s, root):
+    folder = os.path.join(root, "samples", "scenes")
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".scene.json"):
+            with open(os.path.join(folder, name), "rb") as f:
+                s.add("scene", name, f.read())
+
+
 def vxl_seeds(s, d, out, voxlink):
     if not voxlink:
         return
@@ -329,6 +398,9 @@ def main():
     paraview_seeds(s)
     kriging_seeds(s, data_dir)
     vxl_seeds(s, data_dir, out, voxlink)
+    mesh_seeds(s, data_dir)
+    particle_seeds(s, data_dir)
+    scene_seeds(s, root)
 
 
 if __name__ == "__main__":

@@ -14,6 +14,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "format/limits.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -46,10 +51,13 @@ class MtlFallbackIo : public Assimp::DefaultIOSystem {
   std::string fallback_;
 };
 
+// assimp's messages may span lines and quote whole lines of a damaged file (kilobytes).
 std::string oneLine(std::string s) {
+  constexpr size_t kMaxChars = 240;
   std::replace(s.begin(), s.end(), '\n', ' ');
   std::replace(s.begin(), s.end(), '\r', ' ');
   while (!s.empty() && s.back() == ' ') s.pop_back();
+  if (s.size() > kMaxChars) s = s.substr(0, kMaxChars) + "...";
   return s;
 }
 
@@ -164,6 +172,56 @@ struct Collector {
 
 }  // namespace
 
+// Debian's assimp 5.2 is built with its internal assertions on (ASSIMP_BUILD_DEBUG), and a
+// violated one aborts the process: a damaged PLY whose faces disagree with their count ended
+// `voxlink scene build` in TriangulateProcess. Those assertions call Assimp::aiAssertViolation
+// through the dynamic linker, so the definition below replaces assimp's: it records what failed
+// and throws; Importer::ReadFile catches any exception and returns no scene ("Unknown
+// exception"), and loadMesh reports the recorded check instead.
+thread_local std::string assimpAssertion;
+
+namespace {
+
+// assimp 5.2's PLY reader loops forever on a header without its `end_header` line (found by the
+// mesh fuzz target), so a PLY file's header is checked here first.
+Status checkPlyHeader(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(limits::kMaxTextHeaderBytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  for (size_t at = head.find("\nend_header"); at != std::string::npos;
+       at = head.find("\nend_header", at + 1)) {
+    const size_t after = at + 11;
+    if (after == head.size() || head[after] == '\n' || head[after] == '\r') return Status::ok();
+  }
+  return makeError(ErrorCode::kCorrupt, path, ": PLY header has no 'end_header' line",
+                   head.size() == limits::kMaxTextHeaderBytes ? " in its first 1 MiB" : "");
+}
+
+bool startsWithPly(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[4] = {};
+  in.read(magic, 4);
+  return in.gcount() == 4 && std::string_view(magic, 3) == "ply" &&
+         (magic[3] == '\n' || magic[3] == '\r');
+}
+
+}  // namespace
+
+}  // namespace voxlink::geometry
+
+namespace Assimp {
+void aiAssertViolation(const char* failedExpression, const char* file, int line);
+void aiAssertViolation(const char* failedExpression, const char* file, int line) {
+  voxlink::geometry::assimpAssertion =
+      voxlink::cat("assimp's internal check failed: ", failedExpression, " (",
+                   std::filesystem::path(file).filename().string(), ":", line, ")");
+  throw std::runtime_error(voxlink::geometry::assimpAssertion);
+}
+}  // namespace Assimp
+
+namespace voxlink::geometry {
+
 Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& options) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) return makeError(ErrorCode::kIo, path, ": no such file");
@@ -179,11 +237,15 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   }
   importer.SetIOHandler(new MtlFallbackIo(fallbackMtl));  // the importer owns it
   // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
-  const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate);
+  if (extension == ".ply" || startsWithPly(path)) VOXLINK_RETURN_IF_ERROR(checkPlyHeader(path));
+  assimpAssertion.clear();
+  const aiScene* scene =
+      importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate);
   if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) ||
       scene->mRootNode == nullptr) {
-    return makeError(ErrorCode::kCorrupt, path,
-                     ": cannot parse: ", oneLine(importer.GetErrorString()));
+    return makeError(
+        ErrorCode::kCorrupt, path, ": cannot parse: ",
+        oneLine(assimpAssertion.empty() ? importer.GetErrorString() : assimpAssertion));
   }
   if (scene->mNumMaterials > 65536) {
     return makeError(ErrorCode::kTooLarge, path, ": ", scene->mNumMaterials,

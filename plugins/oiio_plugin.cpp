@@ -1,6 +1,8 @@
 // libvoxlink_imageio_oiio.so: every call to OpenImageIO in VoxLink is in this file.
 #include <OpenImageIO/imageio.h>
 
+#include <string>
+
 #include "plugins/imageio_plugin_api.h"
 
 namespace voxlink::imageio {
@@ -73,11 +75,25 @@ ImageSpec fromOiio(const OIIO::ImageSpec& s) {
   return spec;
 }
 
+// OpenImageIO's error text can span lines (libpng's warnings, then the error); our messages are
+// one line, so the lines are joined with "; ".
+std::string oneLine(const std::string& text) {
+  std::string out;
+  size_t start = 0;
+  while (start <= text.size()) {
+    size_t end = text.find_first_of("\r\n", start);
+    if (end == std::string::npos) end = text.size();
+    if (end > start) out += (out.empty() ? "" : "; ") + text.substr(start, end - start);
+    start = end + 1;
+  }
+  return out;
+}
+
 Result<std::unique_ptr<OIIO::ImageInput>> openInput(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in)
-    return makeError(ErrorCode::kCorrupt, path, ": OpenImageIO cannot open it (", OIIO::geterror(),
-                     ")");
+    return makeError(ErrorCode::kCorrupt, path, ": OpenImageIO cannot open it (",
+                     oneLine(OIIO::geterror()), ")");
   return std::unique_ptr<OIIO::ImageInput>(std::move(in));
 }
 
@@ -99,7 +115,7 @@ Status oiioRead(const std::string& path, int subimage, int channels, ScalarType 
   VOXLINK_ASSIGN_OR_RETURN(auto in, openInput(path));
   if (!in->read_image(subimage, 0, 0, channels, toOiio(as), dst))
     return makeError(ErrorCode::kCorrupt, path, subimage ? cat(": page ", subimage) : std::string(),
-                     ": cannot read pixels (", in->geterror(), ")");
+                     ": cannot read pixels (", oneLine(in->geterror()), ")");
   return Status::ok();
 }
 
@@ -108,14 +124,15 @@ Status oiioWrite(const std::string& path, int width, int height, int channels, S
   auto out = OIIO::ImageOutput::create(path);
   if (!out)
     return makeError(ErrorCode::kUnsupported, path, ": OpenImageIO cannot write this file type (",
-                     OIIO::geterror(), ")");
+                     oneLine(OIIO::geterror()), ")");
   OIIO::ImageSpec spec(width, height, channels, halfFloat ? TypeDesc::HALF : TypeDesc::UINT8);
   if (colorSpace) spec.attribute("oiio:ColorSpace", colorSpace);
   if (!out->open(path, spec))
-    return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", out->geterror());
+    return makeError(ErrorCode::kIo, path, ": cannot open for writing: ", oneLine(out->geterror()));
   if (!out->write_image(toOiio(from), pixels))
-    return makeError(ErrorCode::kIo, path, ": write failed: ", out->geterror());
-  if (!out->close()) return makeError(ErrorCode::kIo, path, ": close failed: ", out->geterror());
+    return makeError(ErrorCode::kIo, path, ": write failed: ", oneLine(out->geterror()));
+  if (!out->close())
+    return makeError(ErrorCode::kIo, path, ": close failed: ", oneLine(out->geterror()));
   return Status::ok();
 }
 

@@ -6,6 +6,12 @@
 # build-fuzz/fuzz-artifacts/<target>/ and makes the script fail. One line per target reports
 # executions, coverage (libFuzzer's cov:) and findings; logs are in build-fuzz/fuzz-logs.
 # FUZZ_KEEP_GOING=1 runs libFuzzer's fork mode, which keeps fuzzing after a finding (long runs).
+# FUZZ_CI=1 (what scripts/run-tests.sh uses) makes the run repeatable: every target starts from
+# the seeds and kept inputs only (a fresh corpus folder, so earlier runs do not change it),
+# replays all of them first, then mutates with the fixed seed FUZZ_SEED (default 1) for SECONDS;
+# the time only decides how long a prefix of that fixed input sequence runs, so a finding is a
+# real one that the same command reproduces. Its per-input timeout is 120 s instead of 25 s, so
+# a loaded CI machine does not report a slow input as a hang.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -13,6 +19,7 @@ build=build-fuzz
 data_dir=${VOXLINK_DATA_DIR:-../shared/data}
 launcher=()
 if command -v ccache > /dev/null; then
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$PWD")}"
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi
 mkdir -p "$build"
@@ -44,11 +51,23 @@ fi
 # Leaks inside libraries that are not ours (Mesa, OpenImageIO) are suppressed by library.
 export LSAN_OPTIONS=suppressions=$(realpath scripts/sanitizers/lsan.supp):print_suppressions=0
 targets=${FUZZ_TARGETS:-$(cat "$build/fuzz/targets.txt")}
+ci=${FUZZ_CI:-0}
+corpus_root="$build/fuzz-corpus"
+seed_args=()
+input_timeout=25
+if [[ $ci == 1 ]]; then
+  corpus_root="$build/fuzz-ci-corpus"
+  rm -rf "$corpus_root"
+  seed_args=(-seed="${FUZZ_SEED:-1}")
+  input_timeout=120
+elif [[ -n "${FUZZ_SEED:-}" ]]; then
+  seed_args=(-seed="$FUZZ_SEED")
+fi
 mkdir -p "$build/fuzz-logs"
 failed=()
 printf '%-18s %8s %12s %8s %6s  %s\n' target seconds execs cov ft findings
 for t in $targets; do
-  corpus="$build/fuzz-corpus/$t"
+  corpus="$corpus_root/$t"
   artifacts="$build/fuzz-artifacts/$t"
   mkdir -p "$corpus" "$artifacts"
   dirs=("$corpus")
@@ -69,9 +88,10 @@ for t in $targets; do
   if [[ -n "${FUZZ_KEEP_GOING:-}" ]]; then
     keep_going=(-fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1)
   fi
-  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=25 -rss_limit_mb=$limit \
+  "$build/fuzz/fuzz_$t" -max_total_time="$seconds" -timeout=$input_timeout -rss_limit_mb=$limit \
     -malloc_limit_mb=$limit \
-    -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "${keep_going[@]}" "${dirs[@]}" \
+    -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/" "${seed_args[@]}" \
+    "${keep_going[@]}" "${dirs[@]}" \
     > "$log" 2>&1 || rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   [[ -n "$execs" ]] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')

@@ -13,7 +13,7 @@ packages=(
   libnifti2-dev
   libglfw3-dev libglm-dev libepoxy-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0
   libimgui-dev xvfb xauth
-  python3 time
+  python3 time ccache
   clang-14 libclang-rt-14-dev clang-format-14
   libfftw3-dev libzip-dev
   libassimp-dev libembree-dev

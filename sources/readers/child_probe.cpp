@@ -3,11 +3,13 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -30,9 +32,23 @@ void writeAll(int fd, const void* data, size_t bytes) {
   }
 }
 
+// The child's address space now plus `bytes`, as its RLIMIT_AS (no limit if /proc is missing).
+void limitAddressSpace(uint64_t bytes) {
+  std::FILE* statm = std::fopen("/proc/self/statm", "r");
+  if (!statm) return;
+  unsigned long long pages = 0;
+  const bool read = std::fscanf(statm, "%llu", &pages) == 1;
+  std::fclose(statm);
+  if (!read) return;
+  const uint64_t now = pages * static_cast<uint64_t>(sysconf(_SC_PAGESIZE));
+  const rlimit limit{now + bytes, now + bytes};
+  setrlimit(RLIMIT_AS, &limit);
+}
+
 }  // namespace
 
-ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
+ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work,
+                          uint64_t memoryBytes) {
   ProbeOutcome outcome;
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) return outcome;  // not leaked into programs run meanwhile
@@ -50,6 +66,7 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work) {
       signal(crash, SIG_DFL);
     const int devNull = open("/dev/null", O_WRONLY);
     if (devNull >= 0) dup2(devNull, STDERR_FILENO);  // the library's and assert's messages
+    if (memoryBytes > 0) limitAddressSpace(memoryBytes);
     const int out = fds[1];
     const MarkFn mark = [out](uint32_t i) { writeAll(out, &i, sizeof i); };
     std::string thrown;

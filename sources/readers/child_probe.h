@@ -28,6 +28,11 @@ using MarkFn = std::function<void(uint32_t)>;
 // "Segmentation fault", "exit status 1": how a child that died ended, for messages.
 std::string describeDeath(const ProbeOutcome& outcome);
 
-ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work);
+// `memoryBytes` > 0 bounds the child's address space to what it had at the fork plus that many
+// bytes (RLIMIT_AS; relative, because a sanitizer's shadow memory is already terabytes of
+// reserved addresses): a library that would allocate more gets std::bad_alloc, which comes back
+// as `thrown`, or dies, instead of taking the machine's memory.
+ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work,
+                          uint64_t memoryBytes = 0);
 
 }  // namespace voxlink::convert

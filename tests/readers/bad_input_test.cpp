@@ -1,5 +1,5 @@
 // Damaged and hostile inputs: each gives the exact ErrorCode and a message naming the file and
-// the field. Bad copies are written into a temp folder; shared data is never modified.
+// the field. Every input is made here, in a temp folder (no shared data needed).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,8 +8,6 @@
 
 namespace voxlink::convert::testing {
 namespace {
-
-namespace fs = std::filesystem;
 
 std::string nrrd(const std::string& fields) { return "NRRD0004\n" + fields + "\n"; }
 
@@ -23,15 +21,15 @@ TEST(BadInput, TruncatedAttachedData) {
 }
 
 TEST(BadInput, TruncatedSliceFileOfAList) {
-  VOXLINK_REQUIRE_DATA("ct/vtk_headsq/quarter.nhdr");
   TempDir dir;
-  for (const auto& e : fs::directory_iterator(dataPath("ct/vtk_headsq")))
-    fs::copy_file(e.path(), dir.file(e.path().filename()));
-  auto slice = readBytes(dir.file("quarter.40"));
-  slice.resize(slice.size() - 100);
-  writeBytes(dir.file("quarter.40"), slice);
-  expectError(openVolume(dir.file("quarter.nhdr")), ErrorCode::kTruncated,
-              {"quarter.nhdr: data file", "quarter.40", "only 8092"});
+  // Three 16x16 i16 slices in numbered files, as vtk_headsq's quarter.%d; the second is cut.
+  writeText(dir.file("slices.nhdr"),
+            nrrd("type: short\ndimension: 3\nsizes: 16 16 3\nendian: little\nencoding: raw\n"
+                 "data file: slice.%d 1 3 1\n"));
+  for (int i = 1; i <= 3; ++i)
+    writeBytes(dir.file("slice." + std::to_string(i)), patternBytes(i == 2 ? 412 : 512, i));
+  expectError(openVolume(dir.file("slices.nhdr")), ErrorCode::kTruncated,
+              {"slices.nhdr: data file", "slice.2", "only 412"});
 }
 
 TEST(BadInput, TruncatedGzipStream) {
@@ -45,23 +43,24 @@ TEST(BadInput, TruncatedGzipStream) {
 }
 
 TEST(BadInput, RawFileWithWrongDims) {
-  VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
+  TempDir dir;
+  writeBytes(dir.file("tooth_13x9x16_uint8.raw"), patternBytes(13 * 9 * 16));
   OpenOptions options;
-  options.dims = std::array<uint32_t, 3>{100, 94, 161};
+  options.dims = std::array<uint32_t, 3>{10, 9, 16};
   options.type = ScalarType::kU8;
-  expectError(openVolume(dataPath("ct/tooth_103x94x161_uint8.raw"), options),
-              ErrorCode::kSizeMismatch, {"tooth_103x94x161_uint8.raw", "100x94x161", "--dims"});
+  expectError(openVolume(dir.file("tooth_13x9x16_uint8.raw"), options), ErrorCode::kSizeMismatch,
+              {"tooth_13x9x16_uint8.raw", "10x9x16", "--dims"});
 }
 
 TEST(BadInput, HeaderSizesSmallerThanTheData) {
-  VOXLINK_REQUIRE_DATA("volume/neghip_64x64x64_uint8.raw");
   TempDir dir;
   // Raw: the header claims 60 slices of a 64-slice file.
+  writeBytes(dir.file("neghip_16x16x64_uint8.raw"), patternBytes(16 * 16 * 64));
   writeText(dir.file("short.nhdr"),
-            nrrd("type: uint8\ndimension: 3\nsizes: 64 64 60\nencoding: raw\ndata file: " +
-                 dataPath("volume/neghip_64x64x64_uint8.raw") + "\n"));
+            nrrd("type: uint8\ndimension: 3\nsizes: 16 16 60\nencoding: raw\ndata file: " +
+                 dir.file("neghip_16x16x64_uint8.raw") + "\n"));
   expectError(openVolume(dir.file("short.nhdr")), ErrorCode::kSizeMismatch,
-              {"short.nhdr: data file", "neghip_64x64x64_uint8.raw", "header sizes"});
+              {"short.nhdr: data file", "neghip_16x16x64_uint8.raw", "header sizes"});
   // Gzip: the stream holds more than the sizes say; found when the last slice is read.
   writeWithHeader(dir.file("long.nrrd"),
                   nrrd("type: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: gzip\n"),
@@ -161,11 +160,14 @@ TEST(BadInput, HostileSizesFailBeforeAllocating) {
 }
 
 TEST(BadInput, CorruptGzipStream) {
-  VOXLINK_REQUIRE_DATA("ct/vtkjs_LIDC2/LIDC2.nhdr");
   TempDir dir;
+  // A detached gzip data file (as vtk.js exports, e.g. LIDC2) damaged in the middle.
   const std::string gz = "b1ad142a1ebc80f957fcdc329e876d51.gz";
-  fs::copy_file(dataPath("ct/vtkjs_LIDC2/LIDC2.nhdr"), dir.file("LIDC2.nhdr"));
-  auto bytes = readBytes(dataPath("ct/vtkjs_LIDC2/" + gz));
+  writeText(dir.file("LIDC2.nhdr"),
+            nrrd("type: short\ndimension: 3\nsizes: 32 32 32\nendian: little\nencoding: gzip\n"
+                 "data file: " +
+                 gz + "\n"));
+  auto bytes = gzipBytes(patternBytes(32 * 32 * 32 * 2));
   for (size_t i = bytes.size() / 2; i < bytes.size() / 2 + 64; ++i) bytes[i] ^= 0x5a;
   writeBytes(dir.file(gz), bytes);
   expectError(openAndReadAll(dir.file("LIDC2.nhdr")), ErrorCode::kCorrupt,
@@ -197,18 +199,22 @@ TEST(BadInput, MissingDetachedDataFile) {
 }
 
 TEST(BadInput, OptionsThatDisagreeWithTheHeader) {
-  VOXLINK_REQUIRE_DATA("ct/vtk_headsq/quarter.nhdr");
+  TempDir dir;
+  const std::string header = dir.file("quarter.nhdr");
+  writeText(header, nrrd("type: short\ndimension: 3\nsizes: 8 8 9\nendian: little\n"
+                         "encoding: raw\ndata file: quarter.raw\n"));
+  writeBytes(dir.file("quarter.raw"), patternBytes(8 * 8 * 9 * 2));
   OpenOptions dims;
-  dims.dims = std::array<uint32_t, 3>{64, 64, 90};
-  expectError(openVolume(dataPath("ct/vtk_headsq/quarter.nhdr"), dims), ErrorCode::kInvalidArgument,
-              {"quarter.nhdr", "--dims 64,64,90", "64x64x93"});
+  dims.dims = std::array<uint32_t, 3>{8, 8, 7};
+  expectError(openVolume(header, dims), ErrorCode::kInvalidArgument,
+              {"quarter.nhdr", "--dims 8,8,7", "8x8x9"});
   OpenOptions type;
   type.type = ScalarType::kU16;
-  expectError(openVolume(dataPath("ct/vtk_headsq/quarter.nhdr"), type), ErrorCode::kInvalidArgument,
+  expectError(openVolume(header, type), ErrorCode::kInvalidArgument,
               {"quarter.nhdr", "--type u16", "i16"});
   OpenOptions spacing;
   spacing.spacing = std::array<double, 3>{1, 2, 3};
-  auto source = openOrDie(dataPath("ct/vtk_headsq/quarter.nhdr"), spacing);
+  auto source = openOrDie(header, spacing);
   ASSERT_TRUE(source);
   EXPECT_EQ(source->info().spacing, (std::array<double, 3>{1, 2, 3}));
   EXPECT_TRUE(hasNote(source->info(), "--spacing")) << notesOf(source->info());

@@ -6,7 +6,9 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <cstdlib>
+#include <vector>
 
 namespace voxlink::convert {
 namespace {
@@ -46,6 +48,30 @@ TEST(ProbeInChild, ChildThatFinishesSurvives) {
   const ProbeOutcome outcome = probeInChild([](const MarkFn& mark) { mark(1); });
   EXPECT_FALSE(outcome.died);
   EXPECT_FALSE(outcome.thrown.has_value());
+}
+
+TEST(ProbeInChild, MemoryBoundStopsAHugeAllocation) {
+  // 8 GiB against a 256 MiB allowance: refused in the child, the parent untouched.
+  const ProbeOutcome outcome = probeInChild(
+      [](const MarkFn& mark) {
+        mark(4);
+        std::vector<char> huge(size_t{8} << 30);
+        huge[huge.size() - 1] = 1;
+        if (huge.back() != 1) std::abort();
+      },
+      uint64_t{256} << 20);
+  EXPECT_TRUE(outcome.died || outcome.thrown.has_value());
+  ASSERT_TRUE(outcome.lastMark.has_value());
+  EXPECT_EQ(*outcome.lastMark, 4u);
+  // Within the allowance the same work finishes.
+  const ProbeOutcome small = probeInChild(
+      [](const MarkFn&) {
+        std::vector<char> buffer(size_t{64} << 20, 1);
+        if (buffer.back() != 1) std::abort();
+      },
+      uint64_t{256} << 20);
+  EXPECT_FALSE(small.died);
+  EXPECT_FALSE(small.thrown.has_value());
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <random>
+#include <string_view>
 
 namespace voxlink::testing {
 
@@ -47,5 +49,10 @@ std::string dataDir() {
 }
 
 std::string dataPath(const std::string& relative) { return dataDir() + "/" + relative; }
+
+bool dataRequired() {
+  const char* value = std::getenv("VOXLINK_REQUIRE_DATA");
+  return value != nullptr && std::string_view(value) == "1";
+}
 
 }  // namespace voxlink::testing

@@ -28,12 +28,19 @@ std::vector<std::string> listDir(const std::filesystem::path& dir);
 // ../shared/data as configured at build time; empty when it does not exist.
 std::string dataDir();
 std::string dataPath(const std::string& relative);
+// VOXLINK_REQUIRE_DATA=1 in the environment (CI sets it when ../shared/data is there): a test
+// whose data is missing then fails instead of skipping, so a moved file cannot hide a test.
+bool dataRequired();
 
 }  // namespace voxlink::testing
 
-// Skips the current test when the real data set is not present.
+// Skips the current test when the real data set is not present (fails under dataRequired()).
 #define VOXLINK_REQUIRE_DATA(relative)                                                 \
   do {                                                                                 \
-    if (!std::filesystem::exists(::voxlink::testing::dataPath(relative)))              \
+    if (!std::filesystem::exists(::voxlink::testing::dataPath(relative))) {            \
+      if (::voxlink::testing::dataRequired())                                          \
+        FAIL() << "real data missing with VOXLINK_REQUIRE_DATA=1: "                    \
+               << ::voxlink::testing::dataPath(relative);                              \
       GTEST_SKIP() << "real data missing: " << ::voxlink::testing::dataPath(relative); \
+    }                                                                                  \
   } while (0)
