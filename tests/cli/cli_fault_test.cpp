@@ -78,7 +78,9 @@ void expectKilledMidConversionLeavesNothing(int sig) {
   if (sig == SIGKILL && !unnamedTempsWork(out.path())) {
     // Named temporaries cannot be removed by a process killed outright.
     ASSERT_LE(left.size(), 1u);
-    if (!left.empty()) EXPECT_TRUE(left[0].starts_with(".vl-")) << left[0];
+    if (!left.empty()) {
+      EXPECT_TRUE(left[0].starts_with(".vl-")) << left[0];
+    }
   } else {
     EXPECT_TRUE(left.empty()) << left.size() << " files left, the first " << left[0];
   }
