@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "voxlink 0.1.0");
   const CommandFactory factories[] = {
-      addConvertCommand, addInfoCommand,        addValidateCommand, addSceneCommand,
-      addStatsCommand,   addDicomCommand,       addKrigeCommand,    addGrfCommand,
+      addConvertCommand, addInfoCommand,        addValidateCommand,
+      addSceneCommand,   addStatsCommand,       addDicomCommand,
+      addKrigeCommand,   addGrfCommand,         addExportCommand,
 #ifdef VOXLINK_WITH_VIEWER
       addRenderCommand,  addBenchRenderCommand, addViewCommand,
 #endif
