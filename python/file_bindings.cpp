@@ -146,6 +146,20 @@ void bindFile(py::module_& m) {
             return py::make_tuple(d[0], d[1], d[2]);
           },
           "Source dims (x, y, z).")
+      .def_property_readonly(
+          "spacing",
+          [](const PyFile& f) {
+            const double* s = f.file->header().spacing;
+            return py::make_tuple(s[0], s[1], s[2]);
+          },
+          "World size of a voxel along x, y, z.")
+      .def_property_readonly(
+          "origin",
+          [](const PyFile& f) {
+            const double* o = f.file->header().origin;
+            return py::make_tuple(o[0], o[1], o[2]);
+          },
+          "World position of voxel (0, 0, 0)'s centre.")
       .def("info", &info, py::arg("vdb") = true,
            "The memory footprint report as a dict, the same as `voxlink info --json`; vdb=False "
            "skips the OpenVDB peer (like --no-vdb).")

@@ -16,6 +16,7 @@ packages=(
   python3 time
   pybind11-dev python3-dev python3-numpy python3-pytest
   python3-openvdb libopenvdb-tools
+  paraview python3-paraview
   clang-14 libclang-rt-14-dev clang-format-14
   libfftw3-dev libzip-dev
   libassimp-dev

@@ -61,7 +61,8 @@ def test_array_matches_npy_file_through_cli(tmp_path, cli):
 
 def test_voxels_and_dense_match_the_array():
     a = ball(dtype=np.int16) - 20
-    f = voxlink.convert(a, threshold=(60, 150), spacing=(1, 2, 3))
+    f = voxlink.convert(a, threshold=(60, 150), spacing=(1, 2, 3), origin=(-1, 0, 5))
+    assert f.spacing == (1, 2, 3) and f.origin == (-1, 0, 5)
     ijk, values, gradients = f.voxels()
     kept = (a >= 60) & (a <= 150)
     assert ijk.dtype == np.int32 and values.dtype == np.float64 and gradients.dtype == np.float32
