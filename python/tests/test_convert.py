@@ -2,6 +2,7 @@
 # clear errors for what it cannot take.
 import hashlib
 import json
+import pathlib
 import subprocess
 
 import numpy as np
@@ -9,6 +10,7 @@ import pytest
 
 import voxlink
 
+SKIN_BONE = pathlib.Path(__file__).resolve().parents[2] / "samples" / "headsq" / "skin-bone.tf.json"
 
 def md5(path):
     return hashlib.md5(path.read_bytes()).hexdigest()
@@ -26,6 +28,10 @@ def ball(n=40, dtype=np.uint8):
     (dict(threshold=60), ["--threshold", "60"]),
     (dict(threshold="60,200", brick=16, axis="x"),
      ["--threshold", "60,200", "--brick", "16", "--axis", "x"]),
+    (dict(tf=SKIN_BONE, value_type="f16"), ["--tf", str(SKIN_BONE), "--value-type", "f16"]),
+    (dict(keep_outside=(20, 200), threads=1, slab=16),
+     ["--keep-outside", "20,200", "--threads", "1", "--slab", "16"]),
+    (dict(threshold=[(40, 80), 200]), ["--threshold", "40,80", "--threshold", "200"]),
 ])
 def test_foot_byte_identical_to_cli(tmp_path, foot_nrrd, cli, options, cli_args):
     by_cli = tmp_path / "cli.vxl"
