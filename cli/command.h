@@ -44,6 +44,7 @@ inline CLI::Validator finiteNumber() {
 // Subcommands, in the order --help lists them.
 CommandRunner addConvertCommand(CLI::App& app);
 CommandRunner addInfoCommand(CLI::App& app);
+CommandRunner addExportCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addSceneCommand(CLI::App& app);
 CommandRunner addStatsCommand(CLI::App& app);

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "convert/vdb_export.h"
 #include "format/footprint.h"
 #include "format/voxlink_file.h"
 #include "sources/readers/dicom_series.h"
@@ -25,11 +26,13 @@ inline constexpr const char* kDicomPlugin = "libvoxlink_dicom.so";
 inline constexpr const char* kDicomPluginEntry = "voxlink_dicom_plugin";
 
 // libvoxlink_vdb.so: .vdb grids (sources/readers/vdb_reader.h) and the OpenVDB footprint peer
-// (convert/vdb_footprint.h).
+// (convert/vdb_footprint.h), the OpenVDB export (convert/vdb_export.h).
 struct VdbPluginApi {
   Result<std::unique_ptr<convert::VolumeSource>> (*open)(const std::string& path,
                                                          const convert::OpenOptions& options);
   Result<format::PeerFootprint> (*measureFootprint)(const format::VoxLinkFile& file);
+  Result<convert::VdbExportSummary> (*exportVdb)(const format::VoxLinkFile& file,
+                                                 const std::string& path);
 };
 inline constexpr const char* kVdbPlugin = "libvoxlink_vdb.so";
 inline constexpr const char* kVdbPluginEntry = "voxlink_vdb_plugin";

@@ -1,0 +1,54 @@
+// voxlink export FILE.vxl -o out.nrrd [--fill V] | -o out.vdb: the classified volume dense
+// again in the source's type, or as OpenVDB grids of values and gradients (through the plugin).
+#include <cstdio>
+
+#include "cli/command.h"
+#include "convert/vdb_export.h"
+#include "format/dense_export.h"
+#include "format/output_file.h"
+#include "format/validator.h"
+
+namespace voxlink::cli {
+
+CommandRunner addExportCommand(CLI::App& app) {
+  struct Args {
+    std::string path, output;
+    double fill = 0;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd =
+      app.add_subcommand("export", "Write a VoxLink file as dense NRRD or as OpenVDB grids");
+  cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", args->output,
+                  "Output: .nrrd (dense, the source's type) or .vdb (values and gradient grids)")
+      ->required();
+  cmd->add_option("--fill", args->fill, "Value of removed voxels (must fit the source type)")
+      ->check(finiteNumber())
+      ->capture_default_str();
+  return [args] {
+    const std::string& out = args->output;
+    const bool vdb = out.ends_with(".vdb");
+    if (!vdb && !out.ends_with(".nrrd"))
+      return reportError(
+          makeError(ErrorCode::kInvalidArgument, out,
+                    ": unknown export format; the output name must end in .nrrd or .vdb"));
+    if (Status s = format::checkOutputTarget(out, {args->path}); !s) return reportError(s);
+    auto file = format::openValidatedFile(args->path);
+    if (!file) return reportError(file.error());
+    if (vdb) {
+      auto written = convert::exportVdb(*file, out);
+      if (!written) return reportError(written.error());
+      std::printf("%s: grids 'values' and 'gradient', %llu active voxels each, %.2f MB\n",
+                  out.c_str(), (unsigned long long)written->voxels, written->bytes / 1e6);
+      return 0;
+    }
+    auto summary = format::exportDenseNrrd(*file, out, args->fill);
+    if (!summary) return reportError(summary.error());
+    std::printf("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD\n", out.c_str(),
+                (unsigned long long)summary->keptVoxels, (unsigned long long)summary->filledVoxels,
+                args->fill, summary->bytes / 1e6);
+    return 0;
+  };
+}
+
+}  // namespace voxlink::cli

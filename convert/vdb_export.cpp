@@ -1,0 +1,72 @@
+#include "convert/vdb_export.h"
+
+#include <openvdb/openvdb.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "format/gradient_codec.h"
+#include "format/output_file.h"
+#include "format/voxel_locator.h"
+
+namespace voxlink::convert {
+
+Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path) {
+  if (file.isScene())
+    return makeError(
+        ErrorCode::kUnsupported, file.path(),
+        ": OpenVDB export reads volume files (version 1); this is a scene (version 2)");
+  openvdb::initialize();
+  const format::FileHeader& h = file.header();
+  // Index (i, j, k) -> world origin + spacing * (i, j, k), row-vector convention.
+  openvdb::math::Mat4d toWorld = openvdb::math::Mat4d::identity();
+  for (int a = 0; a < 3; ++a) {
+    toWorld(a, a) = h.spacing[a];
+    toWorld(3, a) = h.origin[a];
+  }
+  auto transform = openvdb::math::Transform::createLinearTransform(toWorld);
+  auto values = openvdb::FloatGrid::create(0.0f);
+  auto gradients = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
+  values->setName("values");
+  values->setGridClass(openvdb::GRID_FOG_VOLUME);
+  gradients->setName("gradient");
+  gradients->setVectorType(openvdb::VEC_COVARIANT_NORMALIZE);
+  {
+    auto v = values->getAccessor();
+    auto g = gradients->getAccessor();
+    const std::span<const uint16_t> codes = file.gradientCodes();
+    format::VoxelLocator(file).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+      const openvdb::Coord ijk{int(x), int(y), int(z)};
+      v.setValue(ijk, static_cast<float>(file.value(i)));
+      const std::array<float, 3> d = format::decodeGradient(codes[i]);
+      g.setValue(ijk, openvdb::Vec3s(d[0], d[1], d[2]));
+    });
+  }
+  for (openvdb::GridBase::Ptr grid :
+       {openvdb::GridBase::Ptr(values), openvdb::GridBase::Ptr(gradients)}) {
+    grid->setTransform(transform->copy());
+    grid->insertMeta("voxlink_source_file", openvdb::StringMetadata(file.path()));
+    grid->insertMeta("voxlink_meta", openvdb::StringMetadata(file.metaJson()));
+    grid->insertMeta("voxlink_value_max_abs_error", openvdb::DoubleMetadata(h.valueMaxAbsError));
+    grid->insertMeta("voxlink_gradient_codec", openvdb::StringMetadata("polar16, decoded"));
+  }
+
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, ".vdb"));
+  ::close(temp.fd);
+  try {
+    openvdb::io::File out(temp.path);
+    out.write({values, gradients});
+    out.close();
+  } catch (const std::exception& e) {
+    format::discardTemp(temp.path);
+    return makeError(ErrorCode::kIo, path, ": OpenVDB could not write: ", e.what());
+  }
+  VOXLINK_RETURN_IF_ERROR(format::commitTemp(temp.path, path));
+  VdbExportSummary summary;
+  summary.voxels = values->activeVoxelCount();
+  std::error_code ec;
+  summary.bytes = std::filesystem::file_size(path, ec);
+  return summary;
+}
+
+}  // namespace voxlink::convert

@@ -1,0 +1,191 @@
+#include "format/dense_export.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "format/output_file.h"
+#include "format/voxel_locator.h"
+
+namespace voxlink::format {
+namespace {
+
+const char* nrrdTypeName(ScalarType type) {
+  switch (type) {
+    case ScalarType::kU8:
+      return "uint8";
+    case ScalarType::kI8:
+      return "int8";
+    case ScalarType::kU16:
+      return "uint16";
+    case ScalarType::kI16:
+      return "int16";
+    case ScalarType::kU32:
+      return "uint32";
+    case ScalarType::kI32:
+      return "int32";
+    case ScalarType::kF32:
+      return "float";
+    case ScalarType::kF64:
+      return "double";
+  }
+  return nullptr;
+}
+
+template <class T>
+bool fits(double v) {
+  return std::isfinite(v) && v >= double(std::numeric_limits<T>::lowest()) &&
+         v <= double(std::numeric_limits<T>::max());
+}
+
+bool fillFits(ScalarType type, double v) {
+  switch (type) {
+    case ScalarType::kU8:
+      return fits<uint8_t>(v);
+    case ScalarType::kI8:
+      return fits<int8_t>(v);
+    case ScalarType::kU16:
+      return fits<uint16_t>(v);
+    case ScalarType::kI16:
+      return fits<int16_t>(v);
+    case ScalarType::kU32:
+      return fits<uint32_t>(v);
+    case ScalarType::kI32:
+      return fits<int32_t>(v);
+    case ScalarType::kF32:
+      return fits<float>(v);
+    case ScalarType::kF64:
+      return std::isfinite(v);
+  }
+  return false;
+}
+
+// Stores v (in range) as the source type at p; integers are rounded, which is exact for files
+// whose stored type is lossless.
+void store(ScalarType type, double v, uint8_t* p) {
+  auto put = [&](auto t) { std::memcpy(p, &t, sizeof t); };
+  switch (type) {
+    case ScalarType::kU8:
+      return put(static_cast<uint8_t>(std::lround(v)));
+    case ScalarType::kI8:
+      return put(static_cast<int8_t>(std::lround(v)));
+    case ScalarType::kU16:
+      return put(static_cast<uint16_t>(std::lround(v)));
+    case ScalarType::kI16:
+      return put(static_cast<int16_t>(std::lround(v)));
+    case ScalarType::kU32:
+      return put(static_cast<uint32_t>(std::llround(v)));
+    case ScalarType::kI32:
+      return put(static_cast<int32_t>(std::lround(v)));
+    case ScalarType::kF32:
+      return put(static_cast<float>(v));
+    case ScalarType::kF64:
+      return put(v);
+  }
+}
+
+std::string nrrdHeader(const VoxLinkFile& file, double fill) {
+  const FileHeader& h = file.header();
+  std::ostringstream out;
+  out.precision(17);
+  out << "NRRD0004\n"
+      << "# exported by voxlink from a VoxLink file: stored voxels hold their values, removed "
+         "voxels hold "
+      << fill << "\n"
+      << "type: " << nrrdTypeName(file.sourceType()) << "\n"
+      << "dimension: 3\nspace dimension: 3\n"
+      << "sizes: " << h.dims[0] << " " << h.dims[1] << " " << h.dims[2] << "\n"
+      << "space directions: (" << h.spacing[0] << ",0,0) (0," << h.spacing[1] << ",0) (0,0,"
+      << h.spacing[2] << ")\n"
+      << "space origin: (" << h.origin[0] << "," << h.origin[1] << "," << h.origin[2] << ")\n"
+      << "kinds: domain domain domain\nendian: little\nencoding: raw\n\n";
+  return out.str();
+}
+
+Status writeAll(int fd, const void* data, size_t bytes, const std::string& path) {
+  const auto* p = static_cast<const uint8_t*>(data);
+  while (bytes > 0) {
+    const ssize_t n = ::write(fd, p, bytes);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return makeError(ErrorCode::kIo, path, ": write failed: ", std::strerror(errno));
+    }
+    p += n;
+    bytes -= size_t(n);
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::string& path,
+                                           double fill) {
+  if (file.isScene())
+    return makeError(ErrorCode::kUnsupported, file.path(),
+                     ": dense export reads volume files (version 1); this is a scene (version 2)");
+  const ScalarType type = file.sourceType();
+  if (!nrrdTypeName(type))
+    return makeError(ErrorCode::kUnsupported, file.path(), ": header: sourceType ", int(type),
+                     " has no NRRD type");
+  if (!fillFits(type, fill))
+    return makeError(ErrorCode::kInvalidArgument, path, ": --fill ", fill,
+                     " does not fit the source type ", scalarName(type));
+  const FileHeader& h = file.header();
+  const uint32_t n = file.brickSize();
+  const size_t elem = scalarSize(type);
+  const uint64_t sliceBytes = uint64_t{h.dims[0]} * h.dims[1] * elem;
+
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path, ".nrrd"));
+  Status status = [&]() -> Status {
+    const std::string header = nrrdHeader(file, fill);
+    VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), temp.path));
+    // One brick layer of slices: the locator visits bricks z-layer by z-layer.
+    std::vector<uint8_t> layer(sliceBytes * n);
+    std::vector<uint8_t> fillValue(elem);
+    store(type, fill, fillValue.data());
+    auto reset = [&] {
+      for (size_t i = 0; i < layer.size(); i += elem)
+        std::memcpy(&layer[i], fillValue.data(), elem);
+    };
+    reset();
+    uint32_t current = 0;  // brick layer held in `layer`
+    Status writeStatus;
+    auto flush = [&] {
+      const uint32_t slices = std::min(n, h.dims[2] - current * n);
+      if (writeStatus)
+        writeStatus = writeAll(temp.fd, layer.data(), slices * sliceBytes, temp.path);
+      reset();
+      ++current;
+    };
+    VoxelLocator(file).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+      while (z / n > current) flush();
+      const uint64_t at = ((uint64_t{z % n} * h.dims[1] + y) * h.dims[0] + x) * elem;
+      store(type, file.value(i), &layer[at]);
+    });
+    while (current < h.brickGrid[2]) flush();
+    VOXLINK_RETURN_IF_ERROR(writeStatus);
+    if (::close(temp.fd) != 0) {
+      temp.fd = -1;
+      return makeError(ErrorCode::kIo, path, ": close failed: ", std::strerror(errno));
+    }
+    temp.fd = -1;
+    return Status::ok();
+  }();
+  if (!status) {
+    if (temp.fd >= 0) ::close(temp.fd);
+    discardTemp(temp.path);
+    return status.error();
+  }
+  VOXLINK_RETURN_IF_ERROR(commitTemp(temp.path, path));
+  DenseExportSummary summary;
+  summary.keptVoxels = file.voxelCount();
+  summary.filledVoxels = uint64_t{h.dims[0]} * h.dims[1] * h.dims[2] - summary.keptVoxels;
+  summary.bytes = nrrdHeader(file, fill).size() + sliceBytes * h.dims[2];
+  return summary;
+}
+
+}  // namespace voxlink::format

@@ -1,0 +1,25 @@
+// The classified volume dense again: every stored voxel's value in the source's type, removed
+// voxels set to a fill value, written as an NRRD file (attached header, raw little-endian data)
+// that the NRRD reader of sources/ and other tools read. Streams one brick layer (n slices) at
+// a time, to a temporary file renamed into place when complete.
+#pragma once
+
+#include <string>
+
+#include "format/error.h"
+#include "format/voxlink_file.h"
+
+namespace voxlink::format {
+
+struct DenseExportSummary {
+  uint64_t bytes = 0;         // the whole output file
+  uint64_t keptVoxels = 0;    // voxels holding a stored value
+  uint64_t filledVoxels = 0;  // voxels holding the fill
+};
+
+// kInvalidArgument when `fill` is not finite or does not fit the source type; kUnsupported for
+// a scene (version 2) file, whose VALU is not indexed by voxel.
+Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::string& path,
+                                           double fill);
+
+}  // namespace voxlink::format

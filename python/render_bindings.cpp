@@ -1,0 +1,68 @@
+// voxlink.render(): one frame of a .vxl file through EGL, as `voxlink render` makes it (the
+// same option parsing: cli/render_options), returned as an HxWx4 float32 array.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+
+#include "cli/render_options.h"
+#include "python/bindings.h"
+#include "viewer/gl/gl_context.h"
+#include "viewer/gl/voxlink_renderer.h"
+
+namespace voxlink::python {
+namespace {
+
+Result<viewer::Image> renderFrame(const format::VoxLinkFile& file,
+                                  const cli::RenderOptions& options) {
+  VOXLINK_ASSIGN_OR_RETURN(viewer::RenderSettings settings, options.settings(file));
+  VOXLINK_ASSIGN_OR_RETURN(viewer::CameraSpec spec, options.cameraSpec(file));
+  VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf, options.transferFunction(file));
+  VOXLINK_ASSIGN_OR_RETURN(auto context, viewer::createHeadlessContext());
+  VOXLINK_ASSIGN_OR_RETURN(auto renderer, viewer::VoxLinkRenderer::create(file));
+  renderer->setTransferFunction(tf);
+  const viewer::Camera camera = viewer::Camera::framing(renderer->geometry().worldBox(), spec);
+  viewer::RenderTarget target;
+  VOXLINK_RETURN_IF_ERROR(renderer->render(camera, settings, target));
+  return target.read();
+}
+
+py::array_t<float> render(const py::object& fileOrPath, const std::string& size,
+                          const std::string& camera, const std::string& sampling,
+                          const py::object& tf, const std::string& tfPreset) {
+  const PyFile file = py::isinstance<PyFile>(fileOrPath)
+                          ? fileOrPath.cast<PyFile>()
+                          : openFile(py::str(fileOrPath).cast<std::string>());
+  if (!viewer::parseSampling(sampling))  // the CLI checks this in its option parser
+    throw py::value_error("sampling must be voxel or trilinear, not '" + sampling + "'");
+  cli::RenderOptions options;
+  options.size = size;
+  options.camera = camera;
+  options.sampling = sampling;
+  if (!tf.is_none()) options.tfPath = py::str(tf).cast<std::string>();
+  options.tfPreset = tfPreset;
+  Result<viewer::Image> image = [&] {
+    py::gil_scoped_release release;
+    return renderFrame(*file.file, options);
+  }();
+  if (!image) raise(image.error());
+  py::array_t<float> out({py::ssize_t(image->height), py::ssize_t(image->width), py::ssize_t{4}});
+  std::memcpy(out.mutable_data(), image->rgba.data(), image->rgba.size() * sizeof(float));
+  return out;
+}
+
+}  // namespace
+
+void bindRender(py::module_& m) {
+  m.def("render", &render, py::arg("file"), py::kw_only(), py::arg("size") = "512x512",
+        py::arg("camera") = "", py::arg("sampling") = "voxel", py::arg("tf") = py::none(),
+        py::arg("tf_preset") = "",
+        R"doc(Renders one frame headless (EGL) like `voxlink render`; returns HxWx4 float32
+linear RGBA in the renderer's row order (row 0 is the image's first row as the CLI writes it).
+
+file: a voxlink.File or a .vxl path. size "WxH"; camera "AZ,EL[,DIST[,FOV]]" (empty: the
+default view); sampling "voxel" or "trilinear"; tf: a transfer function JSON path, or
+tf_preset: a preset name (as --tf-preset); neither: the file's default.)doc");
+}
+
+}  // namespace voxlink::python

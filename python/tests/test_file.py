@@ -1,0 +1,48 @@
+# voxlink.open(), validate() and to_dense() on files: corrupt files refused with the
+# validator's message, fills that do not fit the source type refused.
+import numpy as np
+import pytest
+
+import voxlink
+
+
+@pytest.fixture
+def small_file(tmp_path):
+    a = np.zeros((20, 24, 28), np.uint8)
+    a[5:15, 6:18, 7:21] = 100
+    path = tmp_path / "box.vxl"
+    voxlink.convert(a, threshold=50, output=path)
+    return path, a
+
+
+def test_open_validate_roundtrip(small_file):
+    path, a = small_file
+    f = voxlink.open(path)
+    assert f.dims == (28, 24, 20)
+    report = f.validate()
+    assert report["voxels_checked"] == (a >= 50).sum()
+    assert report["bytes_checked"] > 0
+    np.testing.assert_array_equal(f.to_dense(fill=3), np.where(a >= 50, a, 3))
+
+
+def test_corrupt_file_refused(small_file):
+    path, _ = small_file
+    data = bytearray(path.read_bytes())
+    data[-20] ^= 0xFF
+    path.write_bytes(bytes(data))
+    with pytest.raises(voxlink.Error, match="box.vxl"):
+        voxlink.open(path)
+
+
+def test_not_a_file(tmp_path):
+    (tmp_path / "text.vxl").write_text("hello")
+    with pytest.raises(voxlink.Error, match="text.vxl"):
+        voxlink.open(tmp_path / "text.vxl")
+
+
+def test_fill_must_fit(small_file):
+    f = voxlink.open(small_file[0])
+    with pytest.raises(voxlink.Error, match="fill"):
+        f.to_dense(fill=300)
+    with pytest.raises(voxlink.Error, match="fill"):
+        f.to_dense(fill=float("nan"))

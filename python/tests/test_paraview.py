@@ -1,0 +1,46 @@
+# The ParaView reader plugin (python/paraview/voxlink_reader.py) in ParaView's own pvpython,
+# headless under Xvfb: .vxl is found by ParaView's file-type lookup and loads as vtkImageData
+# with the values, a hidden-point ghost array for removed voxels and the gradient vectors; a
+# contour of it renders.
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+
+import numpy as np
+import pytest
+
+import voxlink
+
+HERE = pathlib.Path(__file__).resolve().parent
+PLUGIN = HERE.parent / "paraview" / "voxlink_reader.py"
+
+
+def test_paraview_opens_and_renders_the_foot(tmp_path, foot_nrrd):
+    for tool in ("pvpython", "xvfb-run"):
+        if not shutil.which(tool):
+            pytest.fail(f"{tool} not found (scripts/install-deps.sh installs paraview, xvfb)")
+    f = voxlink.convert(foot_nrrd, threshold=60, output=tmp_path / "foot.vxl")
+    ijk, values, _ = f.voxels()
+    probes = [ijk[0].tolist(), ijk[len(ijk) // 2].tolist(), [0, 0, 0]]
+    dense = f.to_dense()
+    expected = [float(dense[z, y, x]) for x, y, z in probes]
+    assert expected[2] == 0  # a removed voxel
+    env = dict(os.environ, PYTHONPATH=os.environ.get("PYTHONPATH", ""))
+    r = subprocess.run(["xvfb-run", "-a", "pvpython", str(HERE / "paraview_load.py"), str(PLUGIN),
+                        str(tmp_path / "foot.vxl"), str(tmp_path / "foot.png"),
+                        json.dumps(probes)], capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["proxy"] == "VoxLinkReader" and out["class"] == "vtkImageData"
+    assert out["dims"] == [256, 256, 256] and out["spacing"] == [1, 1, 1]
+    assert out["scalars"] == "values" and out["vectors"] == "gradient"
+    assert out["arrays"]["values"]["range"] == [0, 255]
+    assert out["arrays"]["vtkGhostType"]["range"] == [0, 2]  # 2: vtkDataSetAttributes.HIDDENPOINT
+    assert out["arrays"]["kept"]["range"] == [0, 1]
+    assert out["arrays"]["gradient"]["components"] == 3
+    assert out["sample"] == expected
+    assert out["image_pixels"] == 128 * 128
+    assert 0.02 * 128 * 128 < out["foreground_pixels"] < 0.9 * 128 * 128
+    assert np.isclose(values.min(), 60)

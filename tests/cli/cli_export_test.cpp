@@ -1,0 +1,137 @@
+// voxlink export to dense NRRD: read back by the project's NRRD reader, the source's type and
+// spacing kept, removed voxels = the fill, and converting the export again with the same
+// threshold gives the same voxels and values; bad fills and paths leave no file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "format/voxel_locator.h"
+#include "format/voxlink_file.h"
+#include "sources/volume_source.h"
+#include "tests/cli/run_command.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::testing {
+namespace {
+
+struct Voxel {
+  uint32_t x, y, z;
+  double value;
+  bool operator==(const Voxel&) const = default;
+};
+
+std::vector<Voxel> voxelsOf(const std::string& path) {
+  auto file = format::VoxLinkFile::open(path);
+  EXPECT_TRUE(file.isOk()) << path;
+  std::vector<Voxel> out;
+  if (!file) return out;
+  format::VoxelLocator(*file).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+    out.push_back({x, y, z, file->value(i)});
+  });
+  return out;
+}
+
+// A 20x18x16 i16 volume with negative values, and spacing 0.5, 1, 2.
+std::vector<int16_t> writeRaw(const std::string& path) {
+  std::vector<int16_t> v(20 * 18 * 16);
+  for (size_t i = 0; i < v.size(); ++i) {
+    const int x = int(i % 20), y = int(i / 20 % 18), z = int(i / 360);
+    v[i] = int16_t((x - 10) * (y - 9) * 3 + z * 7 - 40);
+  }
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * 2));
+  return v;
+}
+
+TEST(CliExport, DenseNrrdKeepsTypeSpacingAndFill) {
+  TempDir dir;
+  const std::vector<int16_t> source = writeRaw(dir.file("v.raw"));
+  auto r =
+      runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,18,16", "--type", "i16", "--spacing",
+                  "0.5,1,2", "--threshold", "-50,60", "-o", dir.file("v.vxl"), "-q"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("v.nrrd"), "--fill", "-999"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("filled with -999"), std::string::npos) << r.out;
+
+  auto volume = convert::openVolume(dir.file("v.nrrd"));
+  ASSERT_TRUE(volume.isOk()) << volume.message();
+  const convert::VolumeInfo& info = (*volume)->info();
+  EXPECT_EQ(info.type, ScalarType::kI16);
+  EXPECT_EQ(info.dims, (std::array<uint32_t, 3>{20, 18, 16}));
+  EXPECT_EQ(info.spacing, (std::array<double, 3>{0.5, 1, 2}));
+  auto bytes = convert::readAll(**volume);
+  ASSERT_TRUE(bytes.isOk());
+  ASSERT_EQ(bytes->size(), source.size() * 2);
+  const auto* dense = reinterpret_cast<const int16_t*>(bytes->data());
+  size_t kept = 0;
+  for (size_t i = 0; i < source.size(); ++i) {
+    const bool keep = source[i] >= -50 && source[i] <= 60;
+    kept += keep;
+    ASSERT_EQ(dense[i], keep ? source[i] : -999) << "voxel " << i;
+  }
+  EXPECT_GT(kept, 100u);
+  EXPECT_LT(kept, source.size() / 2);
+}
+
+TEST(CliExport, FootRoundTripsThroughNrrd) {
+  VOXLINK_REQUIRE_DATA("ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd");
+  TempDir dir;
+  auto r = runVoxlink({"convert", dataPath("ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd"),
+                       "--threshold", "60", "-o", dir.file("foot.vxl"), "-q"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"export", dir.file("foot.vxl"), "-o", dir.file("foot_kept.nrrd")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const uint64_t bytes = std::filesystem::file_size(dir.file("foot_kept.nrrd"));
+  EXPECT_GT(bytes, 256u * 256 * 256);         // u8 data, as the source
+  EXPECT_LT(bytes, 256u * 256 * 256 + 1024);  // and a short header
+  r = runVoxlink({"convert", dir.file("foot_kept.nrrd"), "--threshold", "60", "-o",
+                  dir.file("again.vxl"), "-q"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::vector<Voxel> first = voxelsOf(dir.file("foot.vxl"));
+  EXPECT_GT(first.size(), 1000000u);
+  EXPECT_TRUE(first == voxelsOf(dir.file("again.vxl")));
+}
+
+TEST(CliExport, BadFillPathOrFileLeavesNothing) {
+  TempDir dir;
+  writeRaw(dir.file("v.raw"));
+  auto r = runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,18,16", "--type", "i16",
+                       "--threshold", "0", "-o", dir.file("v.vxl"), "-q"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("out.nrrd"), "--fill", "40000"});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("out.nrrd: --fill 40000 does not fit the source type i16"),
+            std::string::npos)
+      << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("out.nrrd"), "--fill", "nan"});
+  EXPECT_NE(r.status, 0);
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("missing/out.nrrd")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("missing"), std::string::npos) << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("out.png")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("out.png: unknown export format"), std::string::npos) << r.err;
+  // A file that fails validation: refused with the validator's message.
+  std::filesystem::copy_file(dir.file("v.vxl"), dir.file("bad.vxl"));
+  {
+    std::fstream f(dir.file("bad.vxl"), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(-20, std::ios::end);
+    f.put('\x5a');
+  }
+  const auto good = runVoxlink({"validate", dir.file("bad.vxl")});
+  ASSERT_NE(good.status, 0);
+  r = runVoxlink({"export", dir.file("bad.vxl"), "-o", dir.file("out.nrrd")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(r.err, good.err);
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    EXPECT_TRUE(entry.path().extension() != ".nrrd" &&
+                entry.path().filename().string().rfind(".vl-", 0) != 0)
+        << entry.path();
+}
+
+}  // namespace
+}  // namespace voxlink::testing
