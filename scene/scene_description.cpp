@@ -26,13 +26,14 @@ class Fields {
   double number(const json& j, const std::string& where, double lo, double hi) {
     if (!j.is_number()) {
       fail(where, "expected a number");
-      return 0;
+      return lo;
     }
     const double v = j.get<double>();
     if (!std::isfinite(v) || v < lo || v > hi) {
       std::ostringstream range;
       range << v << " is not in [" << lo << ", " << hi << "]";
       fail(where, range.str());
+      return lo;  // in range, so a caller's integer or float cast stays defined
     }
     return v;
   }

@@ -14,6 +14,10 @@
 #include <exception>
 #include <string>
 
+// Set by a sanitizer runtime when there is one (weak: null otherwise). libFuzzer registers a
+// callback here that saves the current input as a crash when the sanitizer ends the process.
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
+
 namespace voxlink::convert {
 
 namespace {
@@ -64,6 +68,10 @@ ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work,
     // into an ordinary exit, which reads as "survived": the child must die by the signal.
     for (const int crash : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS})
       signal(crash, SIG_DFL);
+    // Likewise a sanitizer's death callback: under libFuzzer, a child that the memory bound
+    // stops (the sanitizer reports out-of-memory and exits) would be saved as a crash of the
+    // parent although the parent handles it.
+    if (&__sanitizer_set_death_callback != nullptr) __sanitizer_set_death_callback(nullptr);
     const int devNull = open("/dev/null", O_WRONLY);
     if (devNull >= 0) dup2(devNull, STDERR_FILENO);  // the library's and assert's messages
     if (memoryBytes > 0) limitAddressSpace(memoryBytes);

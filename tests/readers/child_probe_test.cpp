@@ -8,7 +8,18 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
 #include <vector>
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) && !defined(__SANITIZE_ADDRESS__)
+#define __SANITIZE_ADDRESS__ 1
+#endif
+#endif
+
+extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
 
 namespace voxlink::convert {
 namespace {
@@ -72,6 +83,30 @@ TEST(ProbeInChild, MemoryBoundStopsAHugeAllocation) {
       uint64_t{256} << 20);
   EXPECT_FALSE(small.died);
   EXPECT_FALSE(small.thrown.has_value());
+}
+
+std::string deathMarker;  // the file the parent's death callback would create
+void markDeath() { std::ofstream(deathMarker) << "parent's death callback ran in the child\n"; }
+
+TEST(ProbeInChild, ParentsSanitizerDeathCallbackDoesNotRunInTheChild) {
+  // libFuzzer's callback saves the current input as a crash; a sanitizer report in the child
+  // (a library's bad read, or its out-of-memory stop under the memory bound) is the guard
+  // working, not a crash of the parent.
+#if defined(__SANITIZE_ADDRESS__)
+  deathMarker = (std::filesystem::path(::testing::TempDir()) / "child_probe_death_marker").string();
+  std::filesystem::remove(deathMarker);
+  __sanitizer_set_death_callback(markDeath);
+  const ProbeOutcome outcome = probeInChild([](const MarkFn&) {
+    std::vector<char> buffer(16);
+    volatile size_t past = buffer.size();
+    buffer.data()[past] = 1;  // heap-buffer-overflow: AddressSanitizer reports and exits
+  });
+  __sanitizer_set_death_callback(nullptr);
+  EXPECT_TRUE(outcome.died);
+  EXPECT_FALSE(std::filesystem::exists(deathMarker)) << "the child ran the parent's callback";
+#else
+  GTEST_SKIP() << "needs AddressSanitizer";
+#endif
 }
 
 }  // namespace
