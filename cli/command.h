@@ -45,6 +45,8 @@ inline CLI::Validator finiteNumber() {
 CommandRunner addConvertCommand(CLI::App& app);
 CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addExportCommand(CLI::App& app);
+CommandRunner addPackCommand(CLI::App& app);
+CommandRunner addUnpackCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addSceneCommand(CLI::App& app);
 CommandRunner addStatsCommand(CLI::App& app);

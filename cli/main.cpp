@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
   const CommandFactory factories[] = {
       addConvertCommand, addInfoCommand,        addValidateCommand, addSceneCommand,
       addStatsCommand,   addDicomCommand,       addKrigeCommand,    addGrfCommand,
-      addExportCommand,
+      addExportCommand,  addPackCommand,        addUnpackCommand,
 #ifdef VOXLINK_WITH_VIEWER
       addRenderCommand,  addBenchRenderCommand, addViewCommand,     addRenderExactCommand,
 #endif

@@ -78,6 +78,7 @@ FootprintReport computeFootprint(const VoxLinkFile& f) {
   r.bricksOccupied = h.occupiedBrickCount;
   r.bricksNonemptyFraction = r.bricks ? double(r.bricksOccupied) / r.bricks : 0.0;
   r.bytesTotal = f.fileBytes();
+  r.packedBytes = f.packedBytes();
   r.bytesPerVoxel = r.voxels ? double(r.bytesTotal) / r.voxels : 0.0;
   const double perVoxel = r.voxels ? 1.0 / r.voxels : 0.0;
   uint64_t sectionTotal = 0;
@@ -141,6 +142,10 @@ std::string footprintTable(const FootprintReport& r) {
   for (const SectionFootprint& s : r.sections)
     add("  %-22s %14llu %10.3f\n", s.name.c_str(), (unsigned long long)s.bytes, s.bytesPerVoxel);
   add("  %-22s %14llu %10.3f\n", "total", (unsigned long long)r.bytesTotal, r.bytesPerVoxel);
+  if (r.packedBytes)
+    add("  %-22s %14llu %10.3f  (%.2fx smaller; the sizes above are unpacked, in memory)\n",
+        "packed on disk", (unsigned long long)r.packedBytes,
+        r.voxels ? double(r.packedBytes) / r.voxels : 0.0, double(r.bytesTotal) / r.packedBytes);
   if (r.scene) {
     const SceneFootprint& s = *r.scene;
     auto mb = [](uint64_t bytes) { return bytes / 1e6; };
@@ -178,6 +183,7 @@ std::string footprintJson(const FootprintReport& r) {
   j["bricks_nonempty_fraction"] = r.bricksNonemptyFraction;
   j["bytes_total"] = r.bytesTotal;
   j["bytes_per_voxel"] = r.bytesPerVoxel;
+  j["packed_bytes"] = r.packedBytes;
   j["value_type"] = r.valueType;
   j["source_type"] = r.sourceType;
   j["value_mapping"] = {{"scale", r.valueScale}, {"offset", r.valueOffset}};

@@ -57,7 +57,8 @@ struct FootprintReport {
   uint64_t bricks = 0;
   uint64_t bricksOccupied = 0;
   double bricksNonemptyFraction = 0;
-  uint64_t bytesTotal = 0;  // the whole file: header, table, padding, every section
+  uint64_t bytesTotal = 0;   // the whole file: header, table, padding, every section
+  uint64_t packedBytes = 0;  // on disk, when the file is packed (format/packed_file.h); else 0
   double bytesPerVoxel = 0;
   std::vector<SectionFootprint> sections;
   uint64_t denseSourceBytes = 0;  // dims x source element size

@@ -127,6 +127,8 @@ enum class SectionId : uint32_t {
   kSphereRefStart = fourCC("SROF"),  // u32[sphereVoxelCount+1]: slot s references
                                      //   SRID[SROF[s], SROF[s+1])
   kSphereRefs = fourCC("SRID"),      // u32[sphereRefCount]: sphere indices, ascending per voxel
+  // Only in packed files (format/packed_file.h): the original table and each section's codec.
+  kPack = fourCC("PACK"),
 };
 // (B = brick count of the grid, K = occupied bricks, n = brick size.)
 

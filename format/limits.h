@@ -31,6 +31,10 @@ inline constexpr size_t kMaxVvdHeaderBytes = size_t{16} << 20;
 // Bytes of a transfer function JSON file.
 inline constexpr uint64_t kMaxTransferFunctionBytes = uint64_t{64} << 20;
 
+// Bytes a packed .vxl may unpack to in memory (format/packed_file.h). A few bytes of zstd can
+// stand for gigabytes, so the size the file claims is checked against this before allocating.
+inline constexpr uint64_t kMaxUnpackedBytes = uint64_t{64} << 30;
+
 // Memory the GDCM guard's child may use reading a DICOM series, on top of twice its largest file
 // (sources/readers/gdcm_guard.cpp): damaged files can make GDCM allocate gigabytes.
 inline constexpr uint64_t kMaxGdcmProbeBytes = uint64_t{2} << 30;

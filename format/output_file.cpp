@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -130,6 +131,25 @@ Status commitTempFile(const TempFile& temp, const std::string& target) {
     return makeError(ErrorCode::kIo, target, ": closing the output failed: ", std::strerror(e));
   }
   return commitTemp(linked, target);
+}
+
+Status writeWholeFile(const std::string& target, std::span<const uint8_t> bytes) {
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createUnnamedTempBeside(target));
+  const uint8_t* p = bytes.data();
+  uint64_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(temp.fd, p, std::min<uint64_t>(left, uint64_t{1} << 30));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string why = n < 0 ? std::strerror(errno) : "no progress";
+      ::close(temp.fd);
+      if (!temp.unnamed) discardTemp(temp.path);
+      return makeError(ErrorCode::kIo, target, ": write failed: ", why);
+    }
+    p += n;
+    left -= static_cast<uint64_t>(n);
+  }
+  return commitTempFile(temp, target);
 }
 
 Status commitTemp(const std::string& tempPath, const std::string& target) {

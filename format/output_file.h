@@ -6,6 +6,8 @@
 // directory, a FIFO) that a rename would replace.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,6 +42,9 @@ Status commitTempFile(const TempFile& temp, const std::string& target);
 // Renames a finished temporary over `target` and forgets it for signal cleanup; on failure the
 // temporary is removed.
 Status commitTemp(const std::string& tempPath, const std::string& target);
+
+// Writes `bytes` as the whole of `target` through an unnamed temporary: all or nothing.
+Status writeWholeFile(const std::string& target, std::span<const uint8_t> bytes);
 
 // Removes a temporary (after a failure) and forgets it.
 void discardTemp(const std::string& tempPath);

@@ -269,6 +269,12 @@ Status checkScene(const VoxLinkFile& f) {
 
 }  // namespace
 
+Status validateStructure(const VoxLinkFile& f) {
+  ValidationReport report;
+  VOXLINK_RETURN_IF_ERROR(checkBrickLevel(f));
+  return checkBricks(f, report);
+}
+
 Result<VoxLinkFile> openValidatedFile(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::open(path));
   VOXLINK_RETURN_IF_ERROR(validateFile(file).status());

@@ -17,6 +17,10 @@ struct ValidationReport {
 
 Result<ValidationReport> validateFile(const VoxLinkFile& file);
 
+// The brick level and the bricks' rows and masks only (no checksums, values or gradients): what
+// code that walks the structure must know first, e.g. unpacking a packed file's gradients.
+Status validateStructure(const VoxLinkFile& file);
+
 // VoxLinkFile::open() then validateFile(): what every command that reads a .vxl (render, view,
 // info, bench-render) uses, so a file `voxlink validate` rejects is refused with the same
 // message and never reaches a renderer that trusts its invariants.

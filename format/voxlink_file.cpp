@@ -5,6 +5,8 @@
 
 #include "format/crc32c.h"
 #include "format/half.h"
+#include "format/limits.h"
+#include "format/packed_file.h"
 
 namespace voxlink::format {
 namespace {
@@ -87,6 +89,8 @@ std::string_view sectionName(SectionId id) {
       return "SROF";
     case SectionId::kSphereRefs:
       return "SRID";
+    case SectionId::kPack:
+      return "PACK";
   }
   return "????";
 }
@@ -149,6 +153,8 @@ uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t m
       return (header.sphereVoxelCount + 1) * 4;
     case SectionId::kSphereRefs:
       return header.sphereRefCount * 4;
+    case SectionId::kPack:  // packed files only; never part of an unpacked file
+      return 0;
   }
   return 0;
 }
@@ -227,6 +233,8 @@ Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& w
 
 Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(path));
+  if (isPackedFile(std::span(mapped.data(), mapped.size())))
+    return unpackFile(std::span(mapped.data(), mapped.size()), path, limits::kMaxUnpackedBytes);
   auto holder = std::make_shared<MappedFile>(std::move(mapped));
   const uint8_t* data = holder->data();
   const uint64_t size = holder->size();
@@ -234,6 +242,7 @@ Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
 }
 
 Result<VoxLinkFile> VoxLinkFile::fromBytes(std::vector<uint8_t> bytes, const std::string& name) {
+  if (isPackedFile(bytes)) return unpackFile(bytes, name, limits::kMaxUnpackedBytes);
   auto holder = std::make_shared<std::vector<uint8_t>>(std::move(bytes));
   return parse(std::shared_ptr<const void>(holder, holder.get()), holder->data(), holder->size(),
                name);

@@ -24,7 +24,11 @@ class VoxLinkFile {
 
   const std::string& path() const { return path_; }
   const FileHeader& header() const { return *header_; }
-  uint64_t fileBytes() const { return size_; }
+  uint64_t fileBytes() const { return size_; }  // unpacked
+  std::span<const uint8_t> bytes() const { return {data_, size_}; }
+  // Size on disk of the packed file this was unpacked from (format/packed_file.h); 0 when the
+  // file was not packed.
+  uint64_t packedBytes() const { return packedBytes_; }
   const std::vector<SectionEntry>& sectionTable() const { return table_; }
   const SectionEntry* findSection(SectionId id) const;
   std::span<const uint8_t> sectionBytes(SectionId id) const;
@@ -76,12 +80,16 @@ class VoxLinkFile {
                                    uint64_t size, std::string path);
   std::span<const uint32_t> words32(SectionId id) const;
 
+  friend Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::string& name,
+                                        uint64_t maxBytes, unsigned threads);
+
   std::shared_ptr<const void> owner_;  // keeps the mapping or the byte vector alive
   const uint8_t* data_ = nullptr;
   uint64_t size_ = 0;
   std::string path_;
   const FileHeader* header_ = nullptr;
   std::vector<SectionEntry> table_;
+  uint64_t packedBytes_ = 0;
 };
 
 // Checks a header in isolation; `where` prefixes messages (usually the file name).

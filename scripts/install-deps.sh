@@ -18,7 +18,7 @@ packages=(
   python3-openvdb libopenvdb-tools
   paraview python3-paraview
   clang-14 libclang-rt-14-dev clang-format-14
-  libfftw3-dev libzip-dev
+  libfftw3-dev libzip-dev libzstd-dev
   libassimp-dev libembree-dev
   r-cran-gstat
 )

@@ -1,0 +1,299 @@
+#include "format/gradient_predictor.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "format/brick_rows.h"
+#include "format/gradient_codec.h"
+#include "format/half.h"
+#include "format/parallel_for.h"
+
+namespace voxlink::format {
+namespace {
+
+// Compile-time cosine and sine: a fixed sequence of IEEE double operations, so every compiler
+// and machine gets the same table bits (a libm call could differ in the last bit).
+constexpr double kPi = 3.14159265358979323846;
+
+constexpr double taylorCos(double x) {  // |x| <= pi/2
+  double sum = 1, term = 1;
+  for (int k = 1; k <= 30; ++k) {
+    term *= -x * x / ((2.0 * k - 1) * (2.0 * k));
+    sum += term;
+  }
+  return sum;
+}
+constexpr double taylorSin(double x) {  // |x| <= pi/2
+  double sum = x, term = x;
+  for (int k = 1; k <= 30; ++k) {
+    term *= -x * x / ((2.0 * k) * (2.0 * k + 1));
+    sum += term;
+  }
+  return sum;
+}
+constexpr double exactCos(double a) {  // 0 <= a <= pi
+  return a <= kPi / 2 ? taylorCos(a) : -taylorCos(kPi - a);
+}
+constexpr double exactSin(double a) {  // 0 <= a <= pi
+  return a <= kPi / 2 ? taylorSin(a) : taylorSin(kPi - a);
+}
+
+template <int N, bool Sine>
+constexpr std::array<double, N> boundaryTable(int steps) {
+  std::array<double, N> table{};
+  for (int j = 0; j < N; ++j) {
+    const double angle = (j + 0.5) * kPi / steps;
+    table[j] = Sine ? exactSin(angle) : exactCos(angle);
+  }
+  return table;
+}
+
+// Polar index t = number of boundaries j with cos(theta) < kPolar[j].
+constexpr auto kPolar = boundaryTable<kPolarSteps, false>(kPolarSteps);
+// Azimuth in the upper half plane: q = number of boundaries j below the direction's angle.
+constexpr int kHalfTurn = kAzimuthSteps / 2;
+constexpr auto kAzimuthCos = boundaryTable<kHalfTurn, false>(kHalfTurn);
+constexpr auto kAzimuthSin = boundaryTable<kHalfTurn, true>(kHalfTurn);
+
+// One occupied brick's neighbourhood as a dense block with a one-cell halo.
+struct Scratch {
+  std::vector<double> value;
+  std::vector<uint32_t> cell;  // padded cell of each of the brick's voxels, in file order
+  std::vector<double> g[3];
+  std::vector<float> gf[3];
+  std::vector<uint16_t> guess;
+};
+
+class Predictor {
+ public:
+  explicit Predictor(const VoxLinkFile& f)
+      : h_(f.header()),
+        n_(h_.brickSize),
+        frame_(axisFrame(f.predominantAxis())),
+        maskWords_(maskWordsPerBrick(n_)),
+        occupancy_(f.occupancyWords().data()),
+        rank_(f.rankWords().data()),
+        base_(f.brickVoxelBase().data()),
+        rowStart_(f.rowStarts().data()),
+        mask_(f.rowMaskWords().data()),
+        values_(f.valueBytes()) {
+    const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
+    for (int a = 0; a < 3; ++a) {
+      const double s = world ? h_.spacing[a] : 1.0;
+      half_[a] = 0.5 / s;
+      full_[a] = 1.0 / s;
+    }
+    fill_ = h_.valueMin - std::abs(h_.valueScale);
+    const uint32_t p = n_ + 2;
+    stride_ = {1, p, p * p};
+  }
+
+  void predictBrick(uint64_t b, uint64_t k, std::span<uint16_t> codes, Scratch& s) const {
+    const uint32_t n = n_, p = n + 2;
+    // Cells that hold no stored voxel read as the fill value.
+    s.value.assign(size_t{p} * p * p, fill_);
+    const uint32_t origin[3] = {static_cast<uint32_t>(b % h_.brickGrid[0]) * n,
+                                static_cast<uint32_t>(b / h_.brickGrid[0] % h_.brickGrid[1]) * n,
+                                static_cast<uint32_t>(b / (uint64_t{h_.brickGrid[0]} * h_.brickGrid[1])) * n};
+    // The brick's own voxels, in file order.
+    const uint64_t first = base_[k];
+    const uint32_t count = static_cast<uint32_t>(base_[k + 1] - first);
+    s.cell.resize(count);
+    const uint32_t* mask = mask_ + k * maskWords_;
+    uint32_t i = 0;
+    for (uint32_t row = 0; row < n * n; ++row) {
+      for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1) {
+        uint32_t l[3];
+        l[frame_.u] = row % n;
+        l[frame_.v] = row / n;
+        l[frame_.w] = static_cast<uint32_t>(std::countr_zero(bits));
+        const uint32_t c = padded(l[0] + 1, l[1] + 1, l[2] + 1);
+        s.value[c] = value(first + i);
+        s.cell[i++] = c;
+      }
+    }
+    // The faces of the six neighbouring bricks that touch this one.
+    for (int a = 0; a < 3; ++a) {
+      for (int side = -1; side <= 1; side += 2) {
+        const int64_t nb = static_cast<int64_t>(origin[a] / n) + side;
+        if (nb < 0 || nb >= static_cast<int64_t>(h_.brickGrid[a])) continue;
+        uint64_t bc[3] = {origin[0] / n, origin[1] / n, origin[2] / n};
+        bc[a] = static_cast<uint64_t>(nb);
+        const int64_t kn = occupiedIndex((bc[2] * h_.brickGrid[1] + bc[1]) * h_.brickGrid[0] + bc[0]);
+        if (kn < 0) continue;
+        const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+        for (uint32_t i2 = 0; i2 < n; ++i2) {
+          for (uint32_t i1 = 0; i1 < n; ++i1) {
+            uint32_t l[3];
+            l[a] = side > 0 ? 0 : n - 1;
+            l[b1] = i1;
+            l[b2] = i2;
+            const int64_t v = voxelAt(static_cast<uint64_t>(kn), l);
+            if (v < 0) continue;
+            uint32_t q[3];
+            q[a] = side > 0 ? n + 1 : 0;
+            q[b1] = i1 + 1;
+            q[b2] = i2 + 1;
+            const uint32_t c = padded(q[0], q[1], q[2]);
+            s.value[c] = value(static_cast<uint64_t>(v));
+          }
+        }
+      }
+    }
+    // Differences as the converter takes them, then the code.
+    for (int a = 0; a < 3; ++a) {
+      s.g[a].resize(count);
+      s.gf[a].resize(count);
+    }
+    s.guess.resize(count);
+    // A brick away from the volume's faces takes central differences everywhere.
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) inside &= origin[a] > 0 && origin[a] + n < h_.dims[a];
+    for (uint32_t j = 0; j < count; ++j) {
+      const uint32_t c = s.cell[j];
+      double grad[3];
+      if (inside) {
+        for (int a = 0; a < 3; ++a)
+          grad[a] = (s.value[c + stride_[a]] - s.value[c - stride_[a]]) * half_[a];
+      } else {
+        const uint32_t l[3] = {c % p - 1, c / p % p - 1, c / (p * p) - 1};
+        for (int a = 0; a < 3; ++a) {
+          const uint32_t at = origin[a] + l[a];
+          if (h_.dims[a] == 1) {
+            grad[a] = 0;
+            continue;
+          }
+          // One-sided at the volume's faces, as the converter does.
+          const bool hasLo = at > 0, hasHi = at + 1 < h_.dims[a];
+          const uint32_t st = stride_[a];
+          const double lo = hasLo ? s.value[c - st] : s.value[c];
+          const double hi = hasHi ? s.value[c + st] : s.value[c];
+          grad[a] = (hi - lo) * (hasLo && hasHi ? half_[a] : full_[a]);
+        }
+      }
+      const double big = std::max({std::abs(grad[0]), std::abs(grad[1]), std::abs(grad[2])});
+      if (big > 1e30) grad[0] /= big, grad[1] /= big, grad[2] /= big;
+      for (int a = 0; a < 3; ++a) {
+        s.g[a][j] = grad[a];
+        s.gf[a][j] = static_cast<float>(grad[a]);
+      }
+    }
+    encodeGradients(s.gf[0].data(), s.gf[1].data(), s.gf[2].data(), s.guess.data(), count);
+    for (uint32_t j = 0; j < count; ++j)
+      codes[first + j] = exactGradientCode(s.g[0][j], s.g[1][j], s.g[2][j], s.guess[j]);
+  }
+
+  int64_t occupiedIndex(uint64_t b) const {
+    const uint32_t word = occupancy_[b >> 5];
+    const uint32_t bit = 1u << (b & 31);
+    if ((word & bit) == 0) return -1;
+    return int64_t{rank_[b >> 5]} + std::popcount(word & (bit - 1));
+  }
+
+ private:
+  uint32_t padded(uint32_t x, uint32_t y, uint32_t z) const {
+    return x + y * stride_[1] + z * stride_[2];
+  }
+  int64_t voxelAt(uint64_t k, const uint32_t l[3]) const {
+    const uint32_t row = l[frame_.v] * n_ + l[frame_.u];
+    const int r = rankInRow(rowBits(mask_ + k * maskWords_, n_, row), l[frame_.w]);
+    if (r < 0) return -1;
+    return int64_t{base_[k]} + rowStart_[k * n_ * n_ + row] + r;
+  }
+  double value(uint64_t i) const {
+    double stored = 0;
+    switch (static_cast<StoredType>(h_.valueType)) {
+      case StoredType::kU8:
+        stored = values_[i];
+        break;
+      case StoredType::kU16: {
+        uint16_t v;
+        std::memcpy(&v, values_ + 2 * i, 2);
+        stored = v;
+        break;
+      }
+      case StoredType::kF16: {
+        uint16_t v;
+        std::memcpy(&v, values_ + 2 * i, 2);
+        stored = halfToFloat(v);
+        break;
+      }
+      case StoredType::kF32: {
+        float v;
+        std::memcpy(&v, values_ + 4 * i, 4);
+        stored = v;
+        break;
+      }
+    }
+    return stored * h_.valueScale + h_.valueOffset;
+  }
+
+  const FileHeader& h_;
+  uint32_t n_;
+  AxisFrame frame_;
+  uint32_t maskWords_;
+  const uint32_t* occupancy_;
+  const uint32_t* rank_;
+  const uint32_t* base_;
+  const uint16_t* rowStart_;
+  const uint32_t* mask_;
+  const uint8_t* values_;
+  double half_[3], full_[3];
+  double fill_;
+  std::array<uint32_t, 3> stride_;
+};
+
+}  // namespace
+
+std::span<const double> polarBoundaryCosines() { return kPolar; }
+std::span<const double> azimuthBoundaryCosines() { return kAzimuthCos; }
+std::span<const double> azimuthBoundarySines() { return kAzimuthSin; }
+
+uint16_t exactGradientCode(double x, double y, double z, uint16_t guess) {
+  const double big = std::max({std::abs(x), std::abs(y), std::abs(z)});
+  if (!(big > 0) || !std::isfinite(big)) return kZeroGradient;
+  if (big > 1e100 || big < 1e-100) x /= big, y /= big, z /= big;  // squares stay finite
+  // cos(theta) < kPolar[j] as z < kPolar[j] * length: no division.
+  const double length = std::sqrt(x * x + y * y + z * z);
+  int t = guess == kZeroGradient ? kPolarSteps / 2 : std::min(guess >> 8, kPolarSteps);
+  while (t > 0 && !(z < kPolar[t - 1] * length)) --t;
+  while (t < kPolarSteps && z < kPolar[t] * length) ++t;
+  if (t == 0 || t == kPolarSteps) return static_cast<uint16_t>(t << 8);
+  // Azimuth: fold the lower half plane onto the upper one (negation is exact), then find how
+  // many boundary directions lie clockwise of (x, y) by the sign of their cross product.
+  const bool lower = y < 0;
+  const double ax = lower ? -x : x, ay = lower ? -y : y;
+  int q = guess == kZeroGradient ? 0 : (guess & 0xFF) - (lower ? kHalfTurn : 0);
+  q = std::clamp(q, 0, kHalfTurn);
+  auto above = [&](int j) { return kAzimuthCos[j] * ay - kAzimuthSin[j] * ax > 0; };
+  while (q > 0 && !above(q - 1)) --q;
+  while (q < kHalfTurn && above(q)) ++q;
+  const int p = (q + (lower ? kHalfTurn : 0)) % kAzimuthSteps;
+  return static_cast<uint16_t>(t << 8 | p);
+}
+
+void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads) {
+  const Predictor predictor(file);
+  // Occupied bricks in file order, so workers can take ranges of them.
+  std::vector<uint64_t> bricks;
+  bricks.reserve(file.occupiedBrickCount());
+  const auto occupancy = file.occupancyWords();
+  for (uint64_t w = 0; w < occupancy.size(); ++w)
+    for (uint32_t bits = occupancy[w]; bits != 0; bits &= bits - 1)
+      bricks.push_back(w * 32 + static_cast<uint64_t>(std::countr_zero(bits)));
+  // Batches of bricks, each worker with its own scratch blocks.
+  constexpr uint64_t kBatch = 256;
+  const uint64_t batches = (bricks.size() + kBatch - 1) / kBatch;
+  parallelFor(batches, threads, [&](uint64_t batch) {
+    thread_local Scratch scratch;
+    const uint64_t end = std::min<uint64_t>((batch + 1) * kBatch, bricks.size());
+    for (uint64_t k = batch * kBatch; k < end; ++k)
+      predictor.predictBrick(bricks[k], k, codes, scratch);
+  });
+}
+
+}  // namespace voxlink::format

@@ -1,0 +1,39 @@
+// Predicts the gradient codes of a version 1 file from what the file stores besides them: the
+// voxels' positions and values. The converter computed each gradient from the source by central
+// differences (docs/format.md, "Gradients"); where both neighbours along an axis are stored, the
+// same differences of the stored values give the same direction, so the prediction is exact for
+// most voxels of a thresholded CT (99.4 % of the interior voxels of the 1024^3 foot). Packed
+// files (format/packed_file.h) store the difference between the real codes and this
+// prediction, which compresses about 5x better than the codes themselves.
+//
+// The prediction must be the same on every machine, or a file packed on one would unpack wrong
+// on another. So the final code is decided only by IEEE basic operations (no FMA contraction:
+// the file is built with -ffp-contract=off) against boundary tables evaluated at compile time;
+// the fast vectorized encoder only supplies a starting guess that the exact comparisons correct.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "format/voxlink_file.h"
+
+namespace voxlink::format {
+
+// The code whose polar cell holds the direction of (x, y, z) by exact comparisons against the
+// tables below; `guess` (any code, e.g. from encodeGradients) only sets where the search starts.
+// Zero or non-finite input gives kZeroGradient.
+uint16_t exactGradientCode(double x, double y, double z, uint16_t guess);
+
+// The boundary tables: cos((j + 0.5) pi / 254) for the polar index, and the azimuth boundary
+// directions (cos, sin)((j + 0.5) pi / 128) of the upper half plane. Exposed for tests.
+std::span<const double> polarBoundaryCosines();
+std::span<const double> azimuthBoundaryCosines();
+std::span<const double> azimuthBoundarySines();
+
+// Fills `codes` (voxelCount entries) with the predicted code of every voxel, in file order.
+// The file must be version 1 and structurally valid (validateStructure); GRAD is not read.
+// A neighbour that is not stored is taken to be one value step below the smallest stored value
+// (what a threshold removed). Runs on `threads` threads (0: all cores).
+void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads = 0);
+
+}  // namespace voxlink::format

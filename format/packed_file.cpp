@@ -1,0 +1,299 @@
+#include "format/packed_file.h"
+
+#include <chrono>
+#include <cstring>
+
+#include "format/crc32c.h"
+#include "format/gradient_predictor.h"
+#include "format/output_file.h"
+#include "format/validator.h"
+
+namespace voxlink::format {
+namespace {
+
+struct PackPreamble {  // 32 bytes at the start of PACK
+  uint32_t version;
+  uint32_t entryCount;  // original sections
+  uint64_t originalFileBytes;
+  uint64_t originalTableOffset;
+  uint32_t originalHeaderCrc;
+  uint32_t chunkBytes;  // kPackChunkBytes
+};
+static_assert(sizeof(PackPreamble) == 32);
+
+struct PackEntry {  // 40 bytes per original section, in the original table's order
+  SectionEntry original;
+  uint32_t codec;  // SectionCodec
+  uint32_t reserved;
+};
+static_assert(sizeof(PackEntry) == 40);
+
+uint32_t headerCrcOf(FileHeader header) {
+  header.headerCrc = 0;
+  return crc32c(&header, sizeof header);
+}
+
+std::string nameOf(uint32_t id) { return std::string(sectionName(static_cast<SectionId>(id))); }
+
+// How each section is encoded: gradients of a volume file against their prediction, sections
+// of slowly changing numbers (values, row starts, brick bases) as deltas, the rest as they are.
+SectionCodec codecFor(const VoxLinkFile& file, SectionId id, const PackOptions& options) {
+  switch (id) {
+    case SectionId::kGradients:
+      return file.isScene() || !options.predictGradients ? SectionCodec::kDeltaZstd
+                                                         : SectionCodec::kGradientResidual;
+    case SectionId::kValues:
+    case SectionId::kRowStart:
+    case SectionId::kBrickVoxelBase:
+    case SectionId::kSphereRefStart:
+      return SectionCodec::kDeltaZstd;
+    default:
+      return SectionCodec::kZstd;
+  }
+}
+
+// GRAD minus its prediction (u16 wrap-around), padding kept as it is.
+std::vector<uint8_t> gradientResidual(const VoxLinkFile& file, unsigned threads) {
+  const auto raw = file.sectionBytes(SectionId::kGradients);
+  std::vector<uint8_t> out(raw.begin(), raw.end());
+  std::vector<uint16_t> predicted(file.voxelCount());
+  predictGradientCodes(file, predicted, threads);
+  for (uint64_t i = 0; i < predicted.size(); ++i) {
+    uint16_t code;
+    std::memcpy(&code, raw.data() + 2 * i, 2);
+    const uint16_t residual = static_cast<uint16_t>(code - predicted[i]);
+    std::memcpy(out.data() + 2 * i, &residual, 2);
+  }
+  return out;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+bool isPackedFile(std::span<const uint8_t> bytes) {
+  return bytes.size() >= sizeof(kPackedMagic) &&
+         std::memcmp(bytes.data(), kPackedMagic, sizeof(kPackedMagic)) == 0;
+}
+
+Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
+                            const PackOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  VOXLINK_RETURN_IF_ERROR(checkOutputTarget(path, {file.path()}));
+  PackReport report;
+  report.inputBytes = file.fileBytes();
+  const auto& table = file.sectionTable();
+  std::vector<std::vector<uint8_t>> payloads(table.size());
+  std::vector<PackEntry> entries(table.size());
+  for (size_t i = 0; i < table.size(); ++i) {
+    const SectionEntry& e = table[i];
+    const auto id = static_cast<SectionId>(e.id);
+    SectionCodec codec = codecFor(file, id, options);
+    std::vector<uint8_t> residual;
+    std::span<const uint8_t> raw = file.sectionBytes(e);
+    if (codec == SectionCodec::kGradientResidual) {
+      residual = gradientResidual(file, options.threads);
+      raw = residual;
+    }
+    const uint32_t element = e.elementBytes == 1 || e.elementBytes == 2 ? e.elementBytes : 4;
+    VOXLINK_ASSIGN_OR_RETURN(payloads[i],
+                             encodeSection(raw, element, codec, options.level, options.threads));
+    if (payloads[i].size() >= e.bytes && codec != SectionCodec::kGradientResidual) {
+      codec = SectionCodec::kStored;  // incompressible (or tiny): kept as it is
+      const auto original = file.sectionBytes(e);
+      payloads[i].assign(original.begin(), original.end());
+    }
+    entries[i] = PackEntry{e, static_cast<uint32_t>(codec), 0};
+    report.sections.push_back({id, codec, e.bytes, payloads[i].size()});
+  }
+  // Layout: header, payloads (64-byte aligned), PACK, table.
+  const FileHeader& original = file.header();
+  PackPreamble preamble{kPackVersion,
+                        static_cast<uint32_t>(table.size()),
+                        file.fileBytes(),
+                        original.sectionTableOffset,
+                        original.headerCrc,
+                        static_cast<uint32_t>(kPackChunkBytes)};
+  std::vector<uint8_t> pack(sizeof preamble + entries.size() * sizeof(PackEntry));
+  std::memcpy(pack.data(), &preamble, sizeof preamble);
+  std::memcpy(pack.data() + sizeof preamble, entries.data(), entries.size() * sizeof(PackEntry));
+  std::vector<SectionEntry> packedTable;
+  uint64_t at = sizeof(FileHeader);
+  auto place = [&](uint32_t id, uint64_t bytes, const uint8_t* data) {
+    at = alignUp(at, kSectionAlignment);
+    packedTable.push_back(SectionEntry{id, 1, at, bytes, crc32c(data, bytes), 0});
+    at += bytes;
+  };
+  for (size_t i = 0; i < table.size(); ++i)
+    place(table[i].id, payloads[i].size(), payloads[i].data());
+  place(static_cast<uint32_t>(SectionId::kPack), pack.size(), pack.data());
+  const uint64_t tableOffset = alignUp(at, kSectionAlignment);
+  std::vector<uint8_t> out(tableOffset + packedTable.size() * sizeof(SectionEntry), 0);
+  FileHeader header = original;
+  std::memcpy(header.magic, kPackedMagic, sizeof header.magic);
+  header.sectionTableOffset = tableOffset;
+  header.sectionCount = static_cast<uint32_t>(packedTable.size());
+  header.headerCrc = headerCrcOf(header);
+  std::memcpy(out.data(), &header, sizeof header);
+  for (size_t i = 0; i < table.size(); ++i)
+    std::memcpy(out.data() + packedTable[i].offset, payloads[i].data(), payloads[i].size());
+  std::memcpy(out.data() + packedTable.back().offset, pack.data(), pack.size());
+  std::memcpy(out.data() + tableOffset, packedTable.data(),
+              packedTable.size() * sizeof(SectionEntry));
+  payloads.clear();
+  report.outputBytes = out.size();
+
+  // Never write a packed file that does not unpack to the original.
+  const auto check = std::chrono::steady_clock::now();
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile unpacked,
+                           unpackFile(out, path, file.fileBytes(), options.threads));
+  report.unpackSeconds = secondsSince(check);
+  const auto before = file.bytes(), after = unpacked.bytes();
+  if (before.size() != after.size() ||
+      std::memcmp(before.data(), after.data(), before.size()) != 0)
+    return makeError(ErrorCode::kCorrupt, path,
+                     ": packing check: the packed file does not unpack to the original bytes");
+  VOXLINK_RETURN_IF_ERROR(writeWholeFile(path, out));
+  report.packSeconds = secondsSince(start) - report.unpackSeconds;
+  return report;
+}
+
+Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::string& name,
+                               uint64_t maxBytes, unsigned threads) {
+  if (packed.size() < sizeof(FileHeader))
+    return makeError(ErrorCode::kTruncated, name, ": header: packed file has ", packed.size(),
+                     " bytes, a header needs ", sizeof(FileHeader));
+  if (!isPackedFile(packed))
+    return makeError(ErrorCode::kNotAVoxLinkFile, name,
+                     ": header.magic: not a packed VoxLink file (expected \"VOXLINKZ\")");
+  FileHeader header;
+  std::memcpy(&header, packed.data(), sizeof header);
+  if (headerCrcOf(header) != header.headerCrc)
+    return makeError(ErrorCode::kCorrupt, name, ": header.headerCrc: checksum mismatch");
+  if (header.sectionCount == 0 || header.sectionCount > kMaxSectionCount ||
+      header.sectionTableOffset > packed.size() ||
+      uint64_t{header.sectionCount} * sizeof(SectionEntry) >
+          packed.size() - header.sectionTableOffset)
+    return makeError(ErrorCode::kTruncated, name, ": header.sectionTableOffset: table of ",
+                     header.sectionCount, " entries lies beyond the end of the ", packed.size(),
+                     "-byte file");
+  std::vector<SectionEntry> table(header.sectionCount);
+  std::memcpy(table.data(), packed.data() + header.sectionTableOffset,
+              table.size() * sizeof(SectionEntry));
+  const SectionEntry* packEntry = nullptr;
+  for (const SectionEntry& e : table) {
+    if (e.offset > packed.size() || e.bytes > packed.size() - e.offset)
+      return makeError(ErrorCode::kTruncated, name, ": section ", nameOf(e.id),
+                       ": packed payload lies beyond the end of the file");
+    if (crc32c(packed.data() + e.offset, e.bytes) != e.crc)
+      return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(e.id),
+                       ".crc: checksum mismatch in the packed payload");
+    if (e.id == static_cast<uint32_t>(SectionId::kPack)) packEntry = &e;
+  }
+  if (!packEntry) return makeError(ErrorCode::kCorrupt, name, ": section PACK: missing");
+  PackPreamble preamble;
+  if (packEntry->bytes < sizeof preamble)
+    return makeError(ErrorCode::kTruncated, name, ": section PACK: too short");
+  std::memcpy(&preamble, packed.data() + packEntry->offset, sizeof preamble);
+  if (preamble.version != kPackVersion)
+    return makeError(ErrorCode::kUnsupported, name, ": section PACK.version: ", preamble.version,
+                     " (this reader knows ", kPackVersion, ")");
+  if (preamble.chunkBytes != kPackChunkBytes)
+    return makeError(ErrorCode::kUnsupported, name, ": section PACK.chunkBytes: ",
+                     preamble.chunkBytes, " (expected ", kPackChunkBytes, ")");
+  if (preamble.entryCount == 0 || preamble.entryCount > kMaxSectionCount ||
+      packEntry->bytes != sizeof preamble + uint64_t{preamble.entryCount} * sizeof(PackEntry))
+    return makeError(ErrorCode::kCorrupt, name, ": section PACK.entryCount: ",
+                     preamble.entryCount, " does not match the section's ", packEntry->bytes,
+                     " bytes");
+  if (preamble.originalFileBytes > maxBytes)
+    return makeError(ErrorCode::kTooLarge, name, ": section PACK.originalFileBytes: ",
+                     preamble.originalFileBytes, " exceeds the limit of ", maxBytes,
+                     " bytes unpacked in memory");
+  std::vector<PackEntry> entries(preamble.entryCount);
+  std::memcpy(entries.data(), packed.data() + packEntry->offset + sizeof preamble,
+              entries.size() * sizeof(PackEntry));
+
+  // The original header, checked before anything is allocated for it.
+  FileHeader original = header;
+  std::memcpy(original.magic, kMagic, sizeof original.magic);
+  original.sectionTableOffset = preamble.originalTableOffset;
+  original.sectionCount = preamble.entryCount;
+  original.headerCrc = preamble.originalHeaderCrc;
+  if (headerCrcOf(original) != original.headerCrc)
+    return makeError(ErrorCode::kCorrupt, name,
+                     ": section PACK.originalHeaderCrc: the restored header does not match it");
+  VOXLINK_RETURN_IF_ERROR(checkHeader(original, preamble.originalFileBytes, name));
+  std::vector<uint8_t> bytes(preamble.originalFileBytes, 0);
+  std::memcpy(bytes.data(), &original, sizeof original);
+  std::vector<SectionEntry> originalTable(entries.size());
+  for (size_t i = 0; i < entries.size(); ++i) originalTable[i] = entries[i].original;
+  std::memcpy(bytes.data() + original.sectionTableOffset, originalTable.data(),
+              originalTable.size() * sizeof(SectionEntry));
+
+  const PackEntry* residual = nullptr;
+  std::span<const uint8_t> residualPayload;
+  for (const PackEntry& p : entries) {
+    const SectionEntry& e = p.original;
+    const std::string where = name + ": section " + nameOf(e.id);
+    if (e.offset < sizeof(FileHeader) || e.offset > bytes.size() ||
+        e.bytes > bytes.size() - e.offset)
+      return makeError(ErrorCode::kCorrupt, where, ": original bytes [", e.offset, ", ",
+                       e.offset + e.bytes, ") lie outside the ", bytes.size(), "-byte file");
+    if (!isKnownSectionCodec(p.codec) || p.reserved != 0)
+      return makeError(ErrorCode::kUnsupported, where, ": codec ", p.codec, " is not known");
+    const SectionEntry* source = nullptr;
+    for (const SectionEntry& t : table)
+      if (t.id == e.id) source = &t;
+    if (!source || e.id == static_cast<uint32_t>(SectionId::kPack))
+      return makeError(ErrorCode::kCorrupt, where, ": no packed payload");
+    const auto payload = packed.subspan(source->offset, source->bytes);
+    const auto codec = static_cast<SectionCodec>(p.codec);
+    if (codec == SectionCodec::kGradientResidual) {
+      if (e.id != static_cast<uint32_t>(SectionId::kGradients) ||
+          original.versionMajor != kVersionMajor || residual)
+        return makeError(ErrorCode::kCorrupt, where,
+                         ": codec 3 (gradient residual) is only for GRAD of a volume file");
+      residual = &p;
+      residualPayload = payload;
+      continue;  // needs the other sections first
+    }
+    const uint32_t element = e.elementBytes == 1 || e.elementBytes == 2 ? e.elementBytes : 4;
+    VOXLINK_RETURN_IF_ERROR(decodeSection(payload, element, codec,
+                                          std::span(bytes).subspan(e.offset, e.bytes), where,
+                                          threads));
+  }
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::fromBytes(std::move(bytes), name));
+  if (residual) {
+    // The prediction reads the structure and the values: check those first.
+    VOXLINK_RETURN_IF_ERROR(validateStructure(file));
+    const SectionEntry& e = residual->original;
+    // The file owns these bytes (a vector it holds); GRAD is filled in here, before anyone
+    // else sees the file.
+    auto grad = std::span(const_cast<uint8_t*>(file.sectionBytes(SectionId::kGradients).data()),
+                          e.bytes);
+    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, 2, SectionCodec::kGradientResidual,
+                                          grad, name + ": section GRAD", threads));
+    std::vector<uint16_t> predicted(file.voxelCount());
+    predictGradientCodes(file, predicted, threads);
+    for (uint64_t i = 0; i < predicted.size(); ++i) {
+      uint16_t code;
+      std::memcpy(&code, grad.data() + 2 * i, 2);
+      code = static_cast<uint16_t>(code + predicted[i]);
+      std::memcpy(grad.data() + 2 * i, &code, 2);
+    }
+  }
+  // Every section must be what was packed.
+  for (const SectionEntry& e : file.sectionTable()) {
+    const auto data = file.sectionBytes(e);
+    if (crc32c(data.data(), data.size()) != e.crc)
+      return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(e.id),
+                       ": unpacked bytes do not match the original checksum");
+  }
+  file.packedBytes_ = packed.size();
+  return file;
+}
+
+}  // namespace voxlink::format

@@ -1,0 +1,167 @@
+#include "format/section_codec.h"
+
+#include <zstd.h>
+
+#include <cstring>
+#include <memory>
+
+#include "format/layout.h"
+#include "format/parallel_for.h"
+
+namespace voxlink::format {
+namespace {
+
+constexpr uint64_t kChunkTableHead = 8;  // chunkCount, reserved
+
+uint64_t chunkCountOf(uint64_t bytes) { return (bytes + kPackChunkBytes - 1) / kPackChunkBytes; }
+
+// Byte j of element i goes to plane j; with `delta`, each plane then holds differences of
+// neighbouring bytes (mod 256), which are near 0 where values change slowly.
+void toPlanes(const uint8_t* in, uint64_t bytes, uint32_t e, bool delta, uint8_t* out) {
+  const uint64_t count = bytes / e;
+  for (uint32_t j = 0; j < e; ++j) {
+    uint8_t* plane = out + j * count;
+    uint8_t previous = 0;
+    for (uint64_t i = 0; i < count; ++i) {
+      const uint8_t b = in[i * e + j];
+      plane[i] = delta ? static_cast<uint8_t>(b - previous) : b;
+      previous = b;
+    }
+  }
+}
+
+void fromPlanes(const uint8_t* in, uint64_t bytes, uint32_t e, bool delta, uint8_t* out) {
+  const uint64_t count = bytes / e;
+  for (uint32_t j = 0; j < e; ++j) {
+    const uint8_t* plane = in + j * count;
+    uint8_t previous = 0;
+    for (uint64_t i = 0; i < count; ++i) {
+      const uint8_t b = delta ? static_cast<uint8_t>(plane[i] + previous) : plane[i];
+      out[i * e + j] = b;
+      previous = b;
+    }
+  }
+}
+
+bool transforms(SectionCodec codec) {
+  return codec == SectionCodec::kDeltaZstd || codec == SectionCodec::kGradientResidual;
+}
+
+}  // namespace
+
+bool isKnownSectionCodec(uint32_t raw) { return raw <= uint32_t(SectionCodec::kGradientResidual); }
+
+Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
+                                           SectionCodec codec, int level, unsigned threads) {
+  if (codec == SectionCodec::kStored) return std::vector<uint8_t>(raw.begin(), raw.end());
+  const uint64_t chunks = chunkCountOf(raw.size());
+  std::vector<std::vector<uint8_t>> frames(chunks);
+  std::vector<std::string> errors(chunks);
+  parallelFor(chunks, threads, [&](uint64_t c) {
+    const uint64_t begin = c * kPackChunkBytes;
+    const uint64_t bytes = std::min<uint64_t>(kPackChunkBytes, raw.size() - begin);
+    const uint8_t* src = raw.data() + begin;
+    std::vector<uint8_t> planes;
+    if (transforms(codec)) {
+      planes.resize(bytes);
+      toPlanes(src, bytes, elementBytes, codec == SectionCodec::kDeltaZstd, planes.data());
+      src = planes.data();
+    }
+    std::vector<uint8_t>& frame = frames[c];
+    frame.resize(ZSTD_compressBound(bytes));
+    // One context per thread, reused: creating one costs about a millisecond.
+    thread_local std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(),
+                                                                            ZSTD_freeCCtx);
+    const size_t written = ZSTD_compressCCtx(context.get(), frame.data(), frame.size(), src, bytes, level);
+    if (ZSTD_isError(written)) {
+      errors[c] = ZSTD_getErrorName(written);
+      return;
+    }
+    frame.resize(written);
+  });
+  for (const std::string& e : errors)
+    if (!e.empty()) return makeError(ErrorCode::kIo, "zstd: ", e);
+  uint64_t total = kChunkTableHead + 8 * chunks;
+  for (const auto& f : frames) total += f.size();
+  std::vector<uint8_t> out(alignUp(total, 4), 0);
+  const uint32_t head[2] = {static_cast<uint32_t>(chunks), 0};
+  std::memcpy(out.data(), head, sizeof head);
+  uint64_t at = kChunkTableHead + 8 * chunks, end = 0;
+  for (uint64_t c = 0; c < chunks; ++c) {
+    std::memcpy(out.data() + at, frames[c].data(), frames[c].size());
+    at += frames[c].size();
+    end += frames[c].size();
+    std::memcpy(out.data() + kChunkTableHead + 8 * c, &end, 8);
+  }
+  return out;
+}
+
+Status decodeSection(std::span<const uint8_t> packed, uint32_t elementBytes, SectionCodec codec,
+                     std::span<uint8_t> out, const std::string& where, unsigned threads) {
+  if (codec == SectionCodec::kStored) {
+    if (packed.size() != out.size())
+      return makeError(ErrorCode::kSizeMismatch, where, ": stored payload has ", packed.size(),
+                       " bytes, expected ", out.size());
+    std::memcpy(out.data(), packed.data(), out.size());
+    return Status::ok();
+  }
+  const uint64_t chunks = chunkCountOf(out.size());
+  uint32_t head[2];
+  if (packed.size() < sizeof head)
+    return makeError(ErrorCode::kTruncated, where, ": payload of ", packed.size(),
+                     " bytes has no chunk table");
+  std::memcpy(head, packed.data(), sizeof head);
+  if (head[0] != chunks || head[1] != 0)
+    return makeError(ErrorCode::kCorrupt, where, ": chunkCount ", head[0], " (expected ", chunks,
+                     " for ", out.size(), " bytes)");
+  const uint64_t framesAt = kChunkTableHead + 8 * chunks;
+  if (packed.size() < framesAt)
+    return makeError(ErrorCode::kTruncated, where, ": chunk table runs past the payload");
+  std::vector<uint64_t> ends(chunks);
+  if (chunks > 0) std::memcpy(ends.data(), packed.data() + kChunkTableHead, 8 * chunks);
+  uint64_t previous = 0;
+  for (uint64_t c = 0; c < chunks; ++c) {
+    if (ends[c] < previous || ends[c] > packed.size() - framesAt)
+      return makeError(ErrorCode::kCorrupt, where, ": frameEnd[", c, "] = ", ends[c],
+                       " is out of order or past the payload");
+    previous = ends[c];
+  }
+  std::vector<std::string> errors(chunks);
+  parallelFor(chunks, threads, [&](uint64_t c) {
+    const uint64_t begin = c * kPackChunkBytes;
+    const uint64_t bytes = std::min<uint64_t>(kPackChunkBytes, out.size() - begin);
+    const uint8_t* frame = packed.data() + framesAt + (c == 0 ? 0 : ends[c - 1]);
+    const uint64_t frameBytes = ends[c] - (c == 0 ? 0 : ends[c - 1]);
+    const unsigned long long declared = ZSTD_getFrameContentSize(frame, frameBytes);
+    if (declared != bytes) {
+      errors[c] = "chunk " + std::to_string(c) + ": frame declares " +
+                  (declared == ZSTD_CONTENTSIZE_ERROR || declared == ZSTD_CONTENTSIZE_UNKNOWN
+                       ? std::string("no valid size")
+                       : std::to_string(declared) + " bytes") +
+                  ", expected " + std::to_string(bytes);
+      return;
+    }
+    std::vector<uint8_t> planes;
+    uint8_t* dst = out.data() + begin;
+    if (transforms(codec)) {
+      planes.resize(bytes);
+      dst = planes.data();
+    }
+    thread_local std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> context(ZSTD_createDCtx(),
+                                                                            ZSTD_freeDCtx);
+    const size_t got = ZSTD_decompressDCtx(context.get(), dst, bytes, frame, frameBytes);
+    if (ZSTD_isError(got) || got != bytes) {
+      errors[c] = "chunk " + std::to_string(c) + ": " +
+                  (ZSTD_isError(got) ? std::string(ZSTD_getErrorName(got)) : "short frame");
+      return;
+    }
+    if (transforms(codec))
+      fromPlanes(planes.data(), bytes, elementBytes, codec == SectionCodec::kDeltaZstd,
+                 out.data() + begin);
+  });
+  for (const std::string& e : errors)
+    if (!e.empty()) return makeError(ErrorCode::kCorrupt, where, ": ", e);
+  return Status::ok();
+}
+
+}  // namespace voxlink::format

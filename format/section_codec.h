@@ -1,0 +1,40 @@
+// Lossless encodings of one section's payload for packed files (format/packed_file.h). A
+// payload is cut into chunks of kPackChunkBytes that are transformed and compressed with zstd
+// independently, so both directions run on every core:
+//
+//   payload = u32 chunkCount | u32 0 | u64 frameEnd[chunkCount] | zstd frames | zero padding
+//
+// frameEnd[c] is where chunk c's frame ends, counted from the first frame. The transforms make
+// the bytes zstd sees more alike (docs/format.md, "Packed files").
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "format/error.h"
+
+namespace voxlink::format {
+
+enum class SectionCodec : uint32_t {
+  kStored = 0,      // the bytes as they are, no chunk table
+  kZstd = 1,        // zstd of each chunk
+  kDeltaZstd = 2,   // byte planes of the elements, each plane delta-coded, then zstd
+  kGradientResidual = 3,  // GRAD minus its prediction (format/gradient_predictor.h), taken by
+                          // the packer; here: byte planes, then zstd
+};
+bool isKnownSectionCodec(uint32_t raw);
+
+inline constexpr uint64_t kPackChunkBytes = uint64_t{4} << 20;
+
+// Encodes `raw` (a multiple of `elementBytes`, which is 1, 2 or 4) at zstd `level`.
+Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
+                                           SectionCodec codec, int level, unsigned threads);
+
+// Decodes `packed` into `out`, whose size is the original payload size. Every chunk must
+// decode to exactly its share; `where` names the section in errors.
+Status decodeSection(std::span<const uint8_t> packed, uint32_t elementBytes, SectionCodec codec,
+                     std::span<uint8_t> out, const std::string& where, unsigned threads);
+
+}  // namespace voxlink::format

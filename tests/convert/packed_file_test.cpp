@@ -1,0 +1,205 @@
+// Packed files (format/packed_file.h) on converted real CT: they unpack to the original bytes,
+// are much smaller, and every kind of damage is refused with a message naming the section.
+#include "format/packed_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "convert/converter.h"
+#include "format/crc32c.h"
+#include "format/gradient_predictor.h"
+#include "format/validator.h"
+#include "format/voxel_locator.h"
+#include "sources/volume_source.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::format {
+namespace {
+
+using ::voxlink::testing::TempDir;
+
+constexpr const char* kFoot = "ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd";
+constexpr const char* kCarp = "ct/openscivis_lossy/carp_128x128x256_uint16_lossy.nrrd";
+
+std::string convertReal(const TempDir& dir, const std::string& relative, const char* threshold,
+                        const char* valueType = nullptr) {
+  auto source = convert::openVolume(testing::dataPath(relative), {});
+  EXPECT_TRUE(source) << source.message();
+  convert::ConvertOptions options;
+  options.classification = convert::thresholdClassification({threshold}).value();
+  if (valueType) {
+    options.storedType = parseStoredName(valueType);
+    options.errorBound = 1e9;  // f16 rounds the larger values: allowed, the file stays valid
+  }
+  const std::string path = dir.file("in.vxl");
+  auto converted = convert::convertVolume(**source, options, path);
+  EXPECT_TRUE(converted) << converted.message();
+  return path;
+}
+
+struct Packed {
+  std::vector<uint8_t> original, packed;
+};
+
+Packed packReal(const TempDir& dir, const std::string& path, bool predict = true) {
+  Packed out;
+  auto file = openValidatedFile(path);
+  EXPECT_TRUE(file) << file.message();
+  PackOptions options;
+  options.predictGradients = predict;
+  auto report = packFile(*file, dir.file("packed.vxl"), options);
+  EXPECT_TRUE(report) << report.message();
+  out.original = testing::readBytes(path);
+  out.packed = testing::readBytes(dir.file("packed.vxl"));
+  return out;
+}
+
+std::vector<uint8_t> unpacked(const std::vector<uint8_t>& packed) {
+  auto file = unpackFile(packed, "p.vxl", uint64_t{1} << 32);
+  EXPECT_TRUE(file) << file.message();
+  if (!file) return {};
+  return {file->bytes().begin(), file->bytes().end()};
+}
+
+TEST(PackedFile, RealCtUnpacksToTheSameBytesAndIsSmaller) {
+  VOXLINK_REQUIRE_DATA(kFoot);
+  VOXLINK_REQUIRE_DATA(kCarp);
+  TempDir dir;
+  struct Case {
+    const char* data;
+    const char* threshold;
+    const char* valueType;
+  };
+  for (const Case& c : {Case{kFoot, "60", nullptr}, Case{kCarp, "1250", nullptr},
+                        Case{kCarp, "1250", "f16"}, Case{kCarp, "1250", "f32"}}) {
+    SCOPED_TRACE(std::string(c.data) + (c.valueType ? c.valueType : ""));
+    const std::string path = convertReal(dir, c.data, c.threshold, c.valueType);
+    uint64_t sizes[2] = {0, 0};
+    for (bool predict : {true, false}) {
+      const Packed p = packReal(dir, path, predict);
+      EXPECT_EQ(unpacked(p.packed), p.original);
+      EXPECT_LT(p.packed.size(), p.original.size() * 0.9)
+          << p.packed.size() << " of " << p.original.size();
+      sizes[predict] = p.packed.size();
+      // Every reader opens it: open() unpacks, the validator accepts what comes out.
+      auto opened = openValidatedFile(dir.file("packed.vxl"));
+      ASSERT_TRUE(opened) << opened.message();
+      EXPECT_EQ(opened->packedBytes(), p.packed.size());
+    }
+    // Predicted gradients cost less than delta-coded ones (the thin carp's voxels are mostly
+    // surface, where the prediction guesses: there it saves about 12 %).
+    EXPECT_LT(sizes[1], sizes[0]) << sizes[1] << " predicted, " << sizes[0] << " not";
+  }
+}
+
+TEST(PackedFile, PredictionFindsTheConvertersGradientsForMostVoxels) {
+  VOXLINK_REQUIRE_DATA(kFoot);
+  TempDir dir;
+  auto file = openValidatedFile(convertReal(dir, kFoot, "60"));
+  ASSERT_TRUE(file);
+  std::vector<uint16_t> predicted(file->voxelCount());
+  predictGradientCodes(*file, predicted);
+  const auto stored = file->gradientCodes();
+  // Where all six neighbours are stored, the stored values give the converter's differences.
+  const VoxelLocator locator(*file);
+  const auto dims = file->header().dims;
+  uint64_t interior = 0, same = 0;
+  locator.forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+    if (x == 0 || y == 0 || z == 0 || x + 1 == dims[0] || y + 1 == dims[1] || z + 1 == dims[2])
+      return;
+    if (locator.find(x - 1, y, z) < 0 || locator.find(x + 1, y, z) < 0 ||
+        locator.find(x, y - 1, z) < 0 || locator.find(x, y + 1, z) < 0 ||
+        locator.find(x, y, z - 1) < 0 || locator.find(x, y, z + 1) < 0)
+      return;
+    ++interior;
+    same += predicted[i] == stored[i];
+  });
+  EXPECT_GT(interior, file->voxelCount() / 3);
+  EXPECT_GT(double(same) / double(interior), 0.99) << same << " of " << interior;
+  // Threads do not change it.
+  std::vector<uint16_t> single(predicted.size());
+  predictGradientCodes(*file, single, 1);
+  EXPECT_EQ(single, predicted);
+}
+
+// Rewrites the packed table's CRC of the section whose payload holds byte `at`, so damage
+// reaches the decoder instead of being caught by the checksum.
+void refreshCrc(std::vector<uint8_t>& packed, uint64_t at) {
+  FileHeader h;
+  std::memcpy(&h, packed.data(), sizeof h);
+  for (uint32_t i = 0; i < h.sectionCount; ++i) {
+    SectionEntry e;
+    uint8_t* slot = packed.data() + h.sectionTableOffset + i * sizeof e;
+    std::memcpy(&e, slot, sizeof e);
+    if (at >= e.offset && at < e.offset + e.bytes) {
+      e.crc = crc32c(packed.data() + e.offset, e.bytes);
+      std::memcpy(slot, &e, sizeof e);
+    }
+  }
+}
+
+SectionEntry packedEntry(const std::vector<uint8_t>& packed, SectionId id) {
+  FileHeader h;
+  std::memcpy(&h, packed.data(), sizeof h);
+  for (uint32_t i = 0; i < h.sectionCount; ++i) {
+    SectionEntry e;
+    std::memcpy(&e, packed.data() + h.sectionTableOffset + i * sizeof e, sizeof e);
+    if (e.id == static_cast<uint32_t>(id)) return e;
+  }
+  ADD_FAILURE() << "no section " << sectionName(id);
+  return {};
+}
+
+std::string unpackError(const std::vector<uint8_t>& packed, uint64_t maxBytes = uint64_t{1} << 32) {
+  auto file = unpackFile(packed, "p.vxl", maxBytes);
+  if (file) return "";
+  EXPECT_EQ(file.message().find('\n'), std::string::npos) << file.message();
+  return file.message();
+}
+
+TEST(PackedFile, DamageIsRefusedNamingTheSection) {
+  VOXLINK_REQUIRE_DATA(kFoot);
+  TempDir dir;
+  const Packed p = packReal(dir, convertReal(dir, kFoot, "60"));
+  for (SectionId id : {SectionId::kBrickOccupancy, SectionId::kRowMask, SectionId::kValues,
+                       SectionId::kGradients, SectionId::kMeta, SectionId::kPack}) {
+    SCOPED_TRACE(std::string(sectionName(id)));
+    const SectionEntry e = packedEntry(p.packed, id);
+    // A flipped byte: the packed payload's checksum.
+    std::vector<uint8_t> damaged = p.packed;
+    damaged[e.offset + e.bytes / 2] ^= 0x40;
+    const std::string crc = unpackError(damaged);
+    EXPECT_NE(crc.find(std::string("section ") + std::string(sectionName(id))), std::string::npos)
+        << crc;
+    EXPECT_NE(crc.find("checksum"), std::string::npos) << crc;
+    // The same damage with the checksum made to match: the decoder or the original
+    // checksums catch it.
+    refreshCrc(damaged, e.offset + e.bytes / 2);
+    const std::string deep = unpackError(damaged);
+    EXPECT_FALSE(deep.empty()) << "damage in " << sectionName(id) << " was accepted";
+  }
+  // Truncation anywhere.
+  for (uint64_t size : {uint64_t{0}, uint64_t{100}, uint64_t{256}, p.packed.size() / 2,
+                        p.packed.size() - 1}) {
+    std::vector<uint8_t> cut(p.packed.begin(), p.packed.begin() + long(size));
+    EXPECT_FALSE(unpackError(cut).empty()) << size;
+  }
+  // A file that would unpack to more than the caller allows is refused before allocating.
+  EXPECT_NE(unpackError(p.packed, 1 << 20).find("PACK.originalFileBytes"), std::string::npos);
+}
+
+TEST(PackedFile, PackingRefusesItsInputAsOutput) {
+  VOXLINK_REQUIRE_DATA(kFoot);
+  TempDir dir;
+  const std::string path = convertReal(dir, kFoot, "60");
+  auto file = openValidatedFile(path);
+  ASSERT_TRUE(file);
+  auto report = packFile(*file, path);
+  ASSERT_FALSE(report);
+  EXPECT_NE(report.message().find(path), std::string::npos) << report.message();
+  EXPECT_EQ(testing::readBytes(path).size(), file->fileBytes());
+}
+
+}  // namespace
+}  // namespace voxlink::format
