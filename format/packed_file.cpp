@@ -11,6 +11,15 @@
 namespace voxlink::format {
 namespace {
 
+// Fuzzing builds skip the checksums of the packed payloads and header, which a mutated input
+// never matches, so the fuzzer reaches the decoders; the original sections' checksums, checked
+// after decoding, stay.
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+constexpr bool kCheckPackedChecksums = false;
+#else
+constexpr bool kCheckPackedChecksums = true;
+#endif
+
 struct PackPreamble {  // 32 bytes at the start of PACK
   uint32_t version;
   uint32_t entryCount;  // original sections
@@ -104,6 +113,20 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
       codec = SectionCodec::kStored;  // incompressible (or tiny): kept as it is
       const auto original = file.sectionBytes(e);
       payloads[i].assign(original.begin(), original.end());
+    } else {
+      // Never write a payload that does not decode to what was encoded. (The gradient
+      // prediction is the same function on this machine when unpacking: only the codec can
+      // differ from what was meant.)
+      const auto check = std::chrono::steady_clock::now();
+      std::vector<uint8_t> decoded(raw.size());
+      VOXLINK_RETURN_IF_ERROR(decodeSection(payloads[i], element, codec, decoded,
+                                            path + ": packing check of section " +
+                                                std::string(sectionName(id)),
+                                            options.threads));
+      if (std::memcmp(decoded.data(), raw.data(), raw.size()) != 0)
+        return makeError(ErrorCode::kCorrupt, path, ": packing check: section ", sectionName(id),
+                         " does not decode to its bytes");
+      report.checkSeconds += secondsSince(check);
     }
     entries[i] = PackEntry{e, static_cast<uint32_t>(codec), 0};
     report.sections.push_back({id, codec, e.bytes, payloads[i].size()});
@@ -145,18 +168,8 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   payloads.clear();
   report.outputBytes = out.size();
 
-  // Never write a packed file that does not unpack to the original.
-  const auto check = std::chrono::steady_clock::now();
-  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile unpacked,
-                           unpackFile(out, path, file.fileBytes(), options.threads));
-  report.unpackSeconds = secondsSince(check);
-  const auto before = file.bytes(), after = unpacked.bytes();
-  if (before.size() != after.size() ||
-      std::memcmp(before.data(), after.data(), before.size()) != 0)
-    return makeError(ErrorCode::kCorrupt, path,
-                     ": packing check: the packed file does not unpack to the original bytes");
   VOXLINK_RETURN_IF_ERROR(writeWholeFile(path, out));
-  report.packSeconds = secondsSince(start) - report.unpackSeconds;
+  report.packSeconds = secondsSince(start);
   return report;
 }
 
@@ -170,7 +183,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
                      ": header.magic: not a packed VoxLink file (expected \"VOXLINKZ\")");
   FileHeader header;
   std::memcpy(&header, packed.data(), sizeof header);
-  if (headerCrcOf(header) != header.headerCrc)
+  if (kCheckPackedChecksums && headerCrcOf(header) != header.headerCrc)
     return makeError(ErrorCode::kCorrupt, name, ": header.headerCrc: checksum mismatch");
   if (header.sectionCount == 0 || header.sectionCount > kMaxSectionCount ||
       header.sectionTableOffset > packed.size() ||
@@ -187,7 +200,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     if (e.offset > packed.size() || e.bytes > packed.size() - e.offset)
       return makeError(ErrorCode::kTruncated, name, ": section ", nameOf(e.id),
                        ": packed payload lies beyond the end of the file");
-    if (crc32c(packed.data() + e.offset, e.bytes) != e.crc)
+    if (kCheckPackedChecksums && crc32c(packed.data() + e.offset, e.bytes) != e.crc)
       return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(e.id),
                        ".crc: checksum mismatch in the packed payload");
     if (e.id == static_cast<uint32_t>(SectionId::kPack)) packEntry = &e;
@@ -222,7 +235,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   original.sectionTableOffset = preamble.originalTableOffset;
   original.sectionCount = preamble.entryCount;
   original.headerCrc = preamble.originalHeaderCrc;
-  if (headerCrcOf(original) != original.headerCrc)
+  if (kCheckPackedChecksums && headerCrcOf(original) != original.headerCrc)
     return makeError(ErrorCode::kCorrupt, name,
                      ": section PACK.originalHeaderCrc: the restored header does not match it");
   VOXLINK_RETURN_IF_ERROR(checkHeader(original, preamble.originalFileBytes, name));

@@ -44,13 +44,13 @@ struct PackedSection {
 struct PackReport {
   uint64_t inputBytes = 0;
   uint64_t outputBytes = 0;
-  double packSeconds = 0;    // predicting, compressing and writing
-  double unpackSeconds = 0;  // the check: the written file unpacked again in memory
+  double packSeconds = 0;   // predicting, compressing, checking and writing
+  double checkSeconds = 0;  // of which decoding every payload again to compare
   std::vector<PackedSection> sections;
 };
 
 // Packs `file` (which the caller has validated) into `path`: a temporary beside it, renamed into
-// place only after the packed bytes were unpacked again and matched every original checksum.
+// place only after every payload was decoded again and matched what was encoded.
 Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
                             const PackOptions& options = {});
 

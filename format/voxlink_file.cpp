@@ -324,6 +324,7 @@ Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const 
       return makeError(ErrorCode::kSizeMismatch, where, ": section ", sectionName(id),
                        ".bytes: ", e->bytes, " but the header's counts need ", expected);
   }
+  file.values_ = file.sectionBytes(SectionId::kValues).data();  // value(i) is hot
   return file;
 }
 

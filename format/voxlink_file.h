@@ -49,7 +49,7 @@ class VoxLinkFile {
   std::span<const uint16_t> rowStarts() const;  // K * n^2
   std::span<const uint32_t> rowMaskWords() const { return words32(SectionId::kRowMask); }
   std::span<const uint16_t> gradientCodes() const;  // sampleSlots(header())
-  const uint8_t* valueBytes() const { return sectionBytes(SectionId::kValues).data(); }
+  const uint8_t* valueBytes() const { return values_; }
   std::string metaJson() const;
 
   // Version 2 (scene) sections; empty spans in a version 1 file.
@@ -90,6 +90,7 @@ class VoxLinkFile {
   const FileHeader* header_ = nullptr;
   std::vector<SectionEntry> table_;
   uint64_t packedBytes_ = 0;
+  const uint8_t* values_ = nullptr;  // VALU, looked up once
 };
 
 // Checks a header in isolation; `where` prefixes messages (usually the file name).

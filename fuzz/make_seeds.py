@@ -377,6 +377,13 @@ def vxl_seeds(s, d, out, voxlink):
         if subprocess.run(cmd, capture_output=True).returncode == 0:
             with open(dst, "rb") as f:
                 s.add("vxl", name, f.read())
+            # The same file packed, with and without predicted gradients.
+            for suffix, pack_args in (("packed", []), ("packed_fast", ["--fast"])):
+                packed = os.path.join(tmp, name + "." + suffix + ".vxl")
+                if subprocess.run([voxlink, "pack", dst, "-o", packed, "-q"] + pack_args,
+                                  capture_output=True).returncode == 0:
+                    with open(packed, "rb") as f:
+                        s.add("vxl", name + "_" + suffix, f.read())
 
 
 def main():

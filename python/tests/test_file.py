@@ -46,3 +46,16 @@ def test_fill_must_fit(small_file):
         f.to_dense(fill=300)
     with pytest.raises(voxlink.Error, match="fill"):
         f.to_dense(fill=float("nan"))
+
+
+def test_pack_reads_back_the_same_voxels(small_file, tmp_path):
+    path, a = small_file
+    f = voxlink.open(path)
+    report = f.pack(tmp_path / "box.packed.vxl")
+    assert report["packed_bytes"] < report["bytes"]
+    packed = voxlink.open(tmp_path / "box.packed.vxl")
+    assert packed.info(vdb=False)["packed_bytes"] == report["packed_bytes"]
+    for mine, theirs in zip(f.voxels(), packed.voxels()):
+        np.testing.assert_array_equal(mine, theirs)
+    with pytest.raises(voxlink.Error, match="box.vxl"):
+        f.pack(path)  # the input itself

@@ -85,8 +85,10 @@ TEST(ProbeInChild, MemoryBoundStopsAHugeAllocation) {
   EXPECT_FALSE(small.thrown.has_value());
 }
 
+#if defined(__SANITIZE_ADDRESS__)
 std::string deathMarker;  // the file the parent's death callback would create
 void markDeath() { std::ofstream(deathMarker) << "parent's death callback ran in the child\n"; }
+#endif
 
 TEST(ProbeInChild, ParentsSanitizerDeathCallbackDoesNotRunInTheChild) {
   // libFuzzer's callback saves the current input as a crash; a sanitizer report in the child
