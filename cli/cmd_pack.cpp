@@ -37,7 +37,8 @@ CommandRunner addPackCommand(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
-      "pack", "Compress a VoxLink file losslessly for storage and sharing (voxlink unpack undoes it)");
+      "pack",
+      "Compress a VoxLink file losslessly for storage and sharing (voxlink unpack undoes it)");
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Packed output (.vxl)")->required();
   cmd->add_option("--level", args->level, "zstd level (1 fastest, 19 smallest)")
@@ -45,8 +46,8 @@ CommandRunner addPackCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "Threads (0: every core)")->capture_default_str();
   cmd->add_flag("--fast", args->fast,
-                 "Do not predict gradients from the values: packs and unpacks several times "
-                 "faster, files about twice as large");
+                "Do not predict gradients from the values: packs and unpacks several times "
+                "faster, files about twice as large");
   cmd->add_flag("--sections", args->sections, "Print each section's size before and after");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return [args] {
@@ -76,8 +77,8 @@ CommandRunner addPackCommand(CLI::App& app) {
         "input; %.2f s of it decoding again to check), after reading and validating in %.2f s\n",
         args->output.c_str(), report->inputBytes / 1e6, report->outputBytes / 1e6,
         double(report->inputBytes) / double(report->outputBytes), report->outputBytes / voxels,
-        report->packSeconds, report->inputBytes / 1e6 / report->packSeconds,
-        report->checkSeconds, readSeconds);
+        report->packSeconds, report->inputBytes / 1e6 / report->packSeconds, report->checkSeconds,
+        readSeconds);
     return 0;
   };
 }

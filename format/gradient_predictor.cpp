@@ -96,9 +96,10 @@ class Predictor {
     const uint32_t n = n_, p = n + 2;
     // Cells that hold no stored voxel read as the fill value.
     s.value.assign(size_t{p} * p * p, fill_);
-    const uint32_t origin[3] = {static_cast<uint32_t>(b % h_.brickGrid[0]) * n,
-                                static_cast<uint32_t>(b / h_.brickGrid[0] % h_.brickGrid[1]) * n,
-                                static_cast<uint32_t>(b / (uint64_t{h_.brickGrid[0]} * h_.brickGrid[1])) * n};
+    const uint32_t origin[3] = {
+        static_cast<uint32_t>(b % h_.brickGrid[0]) * n,
+        static_cast<uint32_t>(b / h_.brickGrid[0] % h_.brickGrid[1]) * n,
+        static_cast<uint32_t>(b / (uint64_t{h_.brickGrid[0]} * h_.brickGrid[1])) * n};
     // The brick's own voxels, in file order.
     const uint64_t first = base_[k];
     const uint32_t count = static_cast<uint32_t>(base_[k + 1] - first);
@@ -123,7 +124,8 @@ class Predictor {
         if (nb < 0 || nb >= static_cast<int64_t>(h_.brickGrid[a])) continue;
         uint64_t bc[3] = {origin[0] / n, origin[1] / n, origin[2] / n};
         bc[a] = static_cast<uint64_t>(nb);
-        const int64_t kn = occupiedIndex((bc[2] * h_.brickGrid[1] + bc[1]) * h_.brickGrid[0] + bc[0]);
+        const int64_t kn =
+            occupiedIndex((bc[2] * h_.brickGrid[1] + bc[1]) * h_.brickGrid[0] + bc[0]);
         if (kn < 0) continue;
         const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
         for (uint32_t i2 = 0; i2 < n; ++i2) {

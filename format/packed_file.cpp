@@ -119,10 +119,9 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
       // differ from what was meant.)
       const auto check = std::chrono::steady_clock::now();
       std::vector<uint8_t> decoded(raw.size());
-      VOXLINK_RETURN_IF_ERROR(decodeSection(payloads[i], element, codec, decoded,
-                                            path + ": packing check of section " +
-                                                std::string(sectionName(id)),
-                                            options.threads));
+      VOXLINK_RETURN_IF_ERROR(decodeSection(
+          payloads[i], element, codec, decoded,
+          path + ": packing check of section " + std::string(sectionName(id)), options.threads));
       if (std::memcmp(decoded.data(), raw.data(), raw.size()) != 0)
         return makeError(ErrorCode::kCorrupt, path, ": packing check: section ", sectionName(id),
                          " does not decode to its bytes");
@@ -133,12 +132,9 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   }
   // Layout: header, payloads (64-byte aligned), PACK, table.
   const FileHeader& original = file.header();
-  PackPreamble preamble{kPackVersion,
-                        static_cast<uint32_t>(table.size()),
-                        file.fileBytes(),
-                        original.sectionTableOffset,
-                        original.headerCrc,
-                        static_cast<uint32_t>(kPackChunkBytes)};
+  PackPreamble preamble{kPackVersion,       static_cast<uint32_t>(table.size()),
+                        file.fileBytes(),   original.sectionTableOffset,
+                        original.headerCrc, static_cast<uint32_t>(kPackChunkBytes)};
   std::vector<uint8_t> pack(sizeof preamble + entries.size() * sizeof(PackEntry));
   std::memcpy(pack.data(), &preamble, sizeof preamble);
   std::memcpy(pack.data() + sizeof preamble, entries.data(), entries.size() * sizeof(PackEntry));
@@ -214,17 +210,17 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     return makeError(ErrorCode::kUnsupported, name, ": section PACK.version: ", preamble.version,
                      " (this reader knows ", kPackVersion, ")");
   if (preamble.chunkBytes != kPackChunkBytes)
-    return makeError(ErrorCode::kUnsupported, name, ": section PACK.chunkBytes: ",
-                     preamble.chunkBytes, " (expected ", kPackChunkBytes, ")");
+    return makeError(ErrorCode::kUnsupported, name,
+                     ": section PACK.chunkBytes: ", preamble.chunkBytes, " (expected ",
+                     kPackChunkBytes, ")");
   if (preamble.entryCount == 0 || preamble.entryCount > kMaxSectionCount ||
       packEntry->bytes != sizeof preamble + uint64_t{preamble.entryCount} * sizeof(PackEntry))
-    return makeError(ErrorCode::kCorrupt, name, ": section PACK.entryCount: ",
-                     preamble.entryCount, " does not match the section's ", packEntry->bytes,
-                     " bytes");
+    return makeError(ErrorCode::kCorrupt, name, ": section PACK.entryCount: ", preamble.entryCount,
+                     " does not match the section's ", packEntry->bytes, " bytes");
   if (preamble.originalFileBytes > maxBytes)
-    return makeError(ErrorCode::kTooLarge, name, ": section PACK.originalFileBytes: ",
-                     preamble.originalFileBytes, " exceeds the limit of ", maxBytes,
-                     " bytes unpacked in memory");
+    return makeError(ErrorCode::kTooLarge, name,
+                     ": section PACK.originalFileBytes: ", preamble.originalFileBytes,
+                     " exceeds the limit of ", maxBytes, " bytes unpacked in memory");
   std::vector<PackEntry> entries(preamble.entryCount);
   std::memcpy(entries.data(), packed.data() + packEntry->offset + sizeof preamble,
               entries.size() * sizeof(PackEntry));
@@ -274,9 +270,8 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
       continue;  // needs the other sections first
     }
     const uint32_t element = e.elementBytes == 1 || e.elementBytes == 2 ? e.elementBytes : 4;
-    VOXLINK_RETURN_IF_ERROR(decodeSection(payload, element, codec,
-                                          std::span(bytes).subspan(e.offset, e.bytes), where,
-                                          threads));
+    VOXLINK_RETURN_IF_ERROR(decodeSection(
+        payload, element, codec, std::span(bytes).subspan(e.offset, e.bytes), where, threads));
   }
   VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::fromBytes(std::move(bytes), name));
   if (residual) {
@@ -285,10 +280,10 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     const SectionEntry& e = residual->original;
     // The file owns these bytes (a vector it holds); GRAD is filled in here, before anyone
     // else sees the file.
-    auto grad = std::span(const_cast<uint8_t*>(file.sectionBytes(SectionId::kGradients).data()),
-                          e.bytes);
-    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, 2, SectionCodec::kGradientResidual,
-                                          grad, name + ": section GRAD", threads));
+    auto grad =
+        std::span(const_cast<uint8_t*>(file.sectionBytes(SectionId::kGradients).data()), e.bytes);
+    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, 2, SectionCodec::kGradientResidual, grad,
+                                          name + ": section GRAD", threads));
     std::vector<uint16_t> predicted(file.voxelCount());
     predictGradientCodes(file, predicted, threads);
     for (uint64_t i = 0; i < predicted.size(); ++i) {

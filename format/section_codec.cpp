@@ -72,7 +72,8 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
     // One context per thread, reused: creating one costs about a millisecond.
     thread_local std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(),
                                                                             ZSTD_freeCCtx);
-    const size_t written = ZSTD_compressCCtx(context.get(), frame.data(), frame.size(), src, bytes, level);
+    const size_t written =
+        ZSTD_compressCCtx(context.get(), frame.data(), frame.size(), src, bytes, level);
     if (ZSTD_isError(written)) {
       errors[c] = ZSTD_getErrorName(written);
       return;

@@ -18,9 +18,9 @@
 namespace voxlink::format {
 
 enum class SectionCodec : uint32_t {
-  kStored = 0,      // the bytes as they are, no chunk table
-  kZstd = 1,        // zstd of each chunk
-  kDeltaZstd = 2,   // byte planes of the elements, each plane delta-coded, then zstd
+  kStored = 0,            // the bytes as they are, no chunk table
+  kZstd = 1,              // zstd of each chunk
+  kDeltaZstd = 2,         // byte planes of the elements, each plane delta-coded, then zstd
   kGradientResidual = 3,  // GRAD minus its prediction (format/gradient_predictor.h), taken by
                           // the packer; here: byte planes, then zstd
 };

@@ -13,9 +13,7 @@ namespace {
 
 constexpr const char* kFoot = "ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd";
 
-bool oneLine(const std::string& err) {
-  return !err.empty() && err.find('\n') == err.size() - 1;
-}
+bool oneLine(const std::string& err) { return !err.empty() && err.find('\n') == err.size() - 1; }
 
 TEST(CliPack, VolumeRoundTripsAndEveryCommandReadsThePackedFile) {
   VOXLINK_REQUIRE_DATA(kFoot);

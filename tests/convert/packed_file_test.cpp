@@ -180,8 +180,8 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
     EXPECT_FALSE(deep.empty()) << "damage in " << sectionName(id) << " was accepted";
   }
   // Truncation anywhere.
-  for (uint64_t size : {uint64_t{0}, uint64_t{100}, uint64_t{256}, p.packed.size() / 2,
-                        p.packed.size() - 1}) {
+  for (uint64_t size :
+       {uint64_t{0}, uint64_t{100}, uint64_t{256}, p.packed.size() / 2, p.packed.size() - 1}) {
     std::vector<uint8_t> cut(p.packed.begin(), p.packed.begin() + long(size));
     EXPECT_FALSE(unpackError(cut).empty()) << size;
   }
