@@ -20,7 +20,8 @@ CommandRunner addExportCommand(CLI::App& app) {
       app.add_subcommand("export", "Write a VoxLink file as dense NRRD or as OpenVDB grids");
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output,
-                  "Output: .nrrd (dense, the source's type) or .vdb (values and gradient grids)")
+                  "Output: .nrrd (dense, the source's type), .nhdr (the same as a detached header "
+                  "and NAME.raw) or .vdb (values and gradient grids)")
       ->required();
   cmd->add_option("--fill", args->fill, "Value of removed voxels (must fit the source type)")
       ->check(finiteNumber())
@@ -28,10 +29,10 @@ CommandRunner addExportCommand(CLI::App& app) {
   return [args] {
     const std::string& out = args->output;
     const bool vdb = out.ends_with(".vdb");
-    if (!vdb && !out.ends_with(".nrrd"))
-      return reportError(
-          makeError(ErrorCode::kInvalidArgument, out,
-                    ": unknown export format; the output name must end in .nrrd or .vdb"));
+    if (!vdb && !out.ends_with(".nrrd") && !out.ends_with(".nhdr"))
+      return reportError(makeError(
+          ErrorCode::kInvalidArgument, out,
+          ": unknown export format; the output name must end in .nrrd, .nhdr (+ .raw) or .vdb"));
     if (Status s = format::checkOutputTarget(out, {args->path}); !s) return reportError(s);
     auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
@@ -44,9 +45,10 @@ CommandRunner addExportCommand(CLI::App& app) {
     }
     auto summary = format::exportDenseNrrd(*file, out, args->fill);
     if (!summary) return reportError(summary.error());
-    std::printf("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD\n", out.c_str(),
+    std::printf("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n", out.c_str(),
                 (unsigned long long)summary->keptVoxels, (unsigned long long)summary->filledVoxels,
-                args->fill, summary->bytes / 1e6);
+                args->fill, summary->bytes / 1e6,
+                out.ends_with(".nhdr") ? " (header + .raw)" : "");
     return 0;
   };
 }

@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <vector>
@@ -88,7 +91,9 @@ void store(ScalarType type, double v, uint8_t* p) {
   }
 }
 
-std::string nrrdHeader(const VoxLinkFile& file, double fill) {
+// `dataFile` empty: an attached header (the data follows the blank line); else a detached
+// header naming its data file.
+std::string nrrdHeader(const VoxLinkFile& file, double fill, const std::string& dataFile) {
   const FileHeader& h = file.header();
   std::ostringstream out;
   out.precision(17);
@@ -102,7 +107,11 @@ std::string nrrdHeader(const VoxLinkFile& file, double fill) {
       << "space directions: (" << h.spacing[0] << ",0,0) (0," << h.spacing[1] << ",0) (0,0,"
       << h.spacing[2] << ")\n"
       << "space origin: (" << h.origin[0] << "," << h.origin[1] << "," << h.origin[2] << ")\n"
-      << "kinds: domain domain domain\nendian: little\nencoding: raw\n\n";
+      << "kinds: domain domain domain\nendian: little\nencoding: raw\n";
+  if (dataFile.empty())
+    out << "\n";
+  else
+    out << "data file: " << dataFile << "\n";
   return out.str();
 }
 
@@ -139,10 +148,17 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
   const size_t elem = scalarSize(type);
   const uint64_t sliceBytes = uint64_t{h.dims[0]} * h.dims[1] * elem;
 
-  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path, ".nrrd"));
+  // A detached header (.nhdr) names a raw file beside it: both are written to temporaries and
+  // renamed into place data first, so the header never points at a missing or partial file.
+  const bool detached = path.ends_with(".nhdr");
+  const std::string dataPath = detached ? path.substr(0, path.size() - 5) + ".raw" : path;
+  const std::string dataName = std::filesystem::path(dataPath).filename().string();
+  const std::string header = nrrdHeader(file, fill, detached ? dataName : "");
+  if (detached) VOXLINK_RETURN_IF_ERROR(checkOutputTarget(dataPath, {file.path()}));
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(dataPath, detached ? ".raw" : ".nrrd"));
   Status status = [&]() -> Status {
-    const std::string header = nrrdHeader(file, fill);
-    VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), temp.path));
+    if (!detached)
+      VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), temp.path));
     // One brick layer of slices: the locator visits bricks z-layer by z-layer.
     std::vector<uint8_t> layer(sliceBytes * n);
     std::vector<uint8_t> fillValue(elem);
@@ -180,11 +196,35 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
     discardTemp(temp.path);
     return status.error();
   }
-  VOXLINK_RETURN_IF_ERROR(commitTemp(temp.path, path));
+  if (!detached) {
+    VOXLINK_RETURN_IF_ERROR(commitTemp(temp.path, path));
+  } else {
+    auto created = createTempBeside(path, ".nhdr");
+    if (!created) {
+      discardTemp(temp.path);
+      return created.error();
+    }
+    const TempFile head = *created;
+    Status written = writeAll(head.fd, header.data(), header.size(), head.path);
+    if (written && ::close(head.fd) != 0)
+      written = makeError(ErrorCode::kIo, path, ": close failed: ", std::strerror(errno));
+    else if (!written)
+      ::close(head.fd);
+    if (!written) {
+      discardTemp(head.path);
+      discardTemp(temp.path);
+      return written.error();
+    }
+    VOXLINK_RETURN_IF_ERROR(commitTemp(temp.path, dataPath));
+    if (Status s = commitTemp(head.path, path); !s) {
+      std::remove(dataPath.c_str());  // no data file without its header
+      return s.error();
+    }
+  }
   DenseExportSummary summary;
   summary.keptVoxels = file.voxelCount();
   summary.filledVoxels = uint64_t{h.dims[0]} * h.dims[1] * h.dims[2] - summary.keptVoxels;
-  summary.bytes = nrrdHeader(file, fill).size() + sliceBytes * h.dims[2];
+  summary.bytes = header.size() + sliceBytes * h.dims[2];
   return summary;
 }
 

@@ -96,6 +96,34 @@ TEST(CliExport, FootRoundTripsThroughNrrd) {
   EXPECT_TRUE(first == voxelsOf(dir.file("again.vxl")));
 }
 
+TEST(CliExport, RawPlusDetachedHeaderHoldsTheSameVolume) {
+  TempDir dir;
+  const std::vector<int16_t> source = writeRaw(dir.file("v.raw"));
+  auto r =
+      runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,18,16", "--type", "i16", "--spacing",
+                  "0.5,1,2", "--threshold", "-50,60", "-o", dir.file("v.vxl"), "-q"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("a.nrrd"), "--fill", "-7"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("kept.nhdr"), "--fill", "-7"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("(header + .raw)"), std::string::npos) << r.out;
+  // The .raw is the bare data: exactly the attached file's data, readable with dims and type.
+  EXPECT_EQ(std::filesystem::file_size(dir.file("kept.raw")), source.size() * 2);
+  auto attached = convert::openVolume(dir.file("a.nrrd"));
+  auto detached = convert::openVolume(dir.file("kept.nhdr"));
+  ASSERT_TRUE(attached.isOk()) << attached.message();
+  ASSERT_TRUE(detached.isOk()) << detached.message();
+  EXPECT_EQ((*detached)->info().spacing, (std::array<double, 3>{0.5, 1, 2}));
+  EXPECT_EQ(*convert::readAll(**detached), *convert::readAll(**attached));
+  EXPECT_EQ(*convert::readAll(**detached), readBytes(dir.file("kept.raw")));
+  // A raw name that is the input itself is refused, and nothing is written.
+  std::filesystem::copy_file(dir.file("v.vxl"), dir.file("x.raw"));
+  r = runVoxlink({"export", dir.file("x.raw"), "-o", dir.file("x.nhdr")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.nhdr")));
+}
+
 TEST(CliExport, BadFillPathOrFileLeavesNothing) {
   TempDir dir;
   writeRaw(dir.file("v.raw"));
