@@ -47,8 +47,7 @@ CommandRunner addExportCommand(CLI::App& app) {
     if (!summary) return reportError(summary.error());
     std::printf("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n", out.c_str(),
                 (unsigned long long)summary->keptVoxels, (unsigned long long)summary->filledVoxels,
-                args->fill, summary->bytes / 1e6,
-                out.ends_with(".nhdr") ? " (header + .raw)" : "");
+                args->fill, summary->bytes / 1e6, out.ends_with(".nhdr") ? " (header + .raw)" : "");
     return 0;
   };
 }
