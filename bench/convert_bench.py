@@ -14,35 +14,13 @@ import statistics
 import subprocess
 import sys
 
+from bench_timing import fresh, run, warm
+
 voxlink, upsample, vdb_peer, data = sys.argv[1:5]
 quick = "--quick" in sys.argv
 work = os.environ.get("VOXLINK_BENCH_DIR", "/tmp/voxlink-bench")
 os.makedirs(work, exist_ok=True)
 REPEATS = 1 if quick else 3
-
-
-def run(cmd):
-    """Runs cmd under /usr/bin/time; returns (stdout, wall seconds, peak RSS MiB)."""
-    timed = ["/usr/bin/time", "-f", "TIME %e %M"] + cmd
-    p = subprocess.run(timed, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
-    wall, rss = re.search(r"TIME ([\d.]+) (\d+)", p.stderr).groups()
-    return p.stdout, float(wall), int(rss) / 1024.0
-
-
-def fresh(output):
-    """Removes an earlier output and flushes dirty pages, so a timed run neither pays for
-    replacing a file (ext4 flushes the new one on rename-over) nor competes with write-back."""
-    if os.path.exists(output):
-        os.remove(output)
-    os.sync()
-
-
-def warm(path):
-    with open(path, "rb") as f:
-        while f.read(1 << 24):
-            pass
 
 
 def info(vxl):

@@ -14,32 +14,13 @@ import statistics
 import subprocess
 import sys
 
+from bench_timing import fresh, run, warm
+
 voxlink, upsample, vdb_peer, data = sys.argv[1:5]
 work = os.environ.get("VOXLINK_BENCH_DIR", "/tmp/voxlink-bench")
 os.makedirs(work, exist_ok=True)
 REPEATS = 3
 commands = []
-
-
-def run(cmd, env=None):
-    """Runs cmd under /usr/bin/time; returns (stdout, wall seconds)."""
-    p = subprocess.run(["/usr/bin/time", "-f", "TIME %e"] + cmd, capture_output=True, text=True,
-                       env=env)
-    if p.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
-    return p.stdout, float(re.search(r"TIME ([\d.]+)", p.stderr).group(1))
-
-
-def fresh(path):
-    if os.path.exists(path):
-        os.remove(path)
-    os.sync()
-
-
-def warm(path):
-    with open(path, "rb") as f:
-        while f.read(1 << 24):
-            pass
 
 
 def timed(make, output):
@@ -79,7 +60,8 @@ def case(name, raw, dims, threshold):
     vdb = os.path.join(work, name + ".vdb")
     warm(raw)
     subprocess.run([voxlink, "convert", raw, "--dims", ",".join(map(str, dims)), "--type", "u8",
-                    "--threshold", str(threshold), "-o", vxl, "-q"], check=True)
+                    "--threshold", str(threshold), "-o", vxl, "-q"], check=True,
+                   capture_output=True)
     subprocess.run([vdb_peer, raw, *map(str, dims), str(threshold), vdb], check=True,
                    capture_output=True)
     info = subprocess.run([voxlink, "info", vxl, "--no-vdb", "--json"], capture_output=True,

@@ -26,6 +26,12 @@ const char* codecName(format::SectionCodec codec) {
   return "?";
 }
 
+// The input, validated (and unpacked when packed), once the output is known to be writable.
+Result<format::VoxLinkFile> openInputFor(const std::string& input, const std::string& output) {
+  VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, {input}));
+  return format::openValidatedFile(input);
+}
+
 }  // namespace
 
 CommandRunner addPackCommand(CLI::App& app) {
@@ -51,9 +57,8 @@ CommandRunner addPackCommand(CLI::App& app) {
   cmd->add_flag("--sections", args->sections, "Print each section's size before and after");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return [args] {
-    if (Status s = format::checkOutputTarget(args->output, {args->path}); !s) return reportError(s);
     const auto start = std::chrono::steady_clock::now();
-    auto file = format::openValidatedFile(args->path);
+    auto file = openInputFor(args->path, args->output);
     if (!file) return reportError(file.error());
     const double readSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -96,9 +101,8 @@ CommandRunner addUnpackCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "Unpacked output (.vxl)")->required();
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return [args] {
-    if (Status s = format::checkOutputTarget(args->output, {args->path}); !s) return reportError(s);
     const auto start = std::chrono::steady_clock::now();
-    auto file = format::openValidatedFile(args->path);
+    auto file = openInputFor(args->path, args->output);
     if (!file) return reportError(file.error());
     if (file->packedBytes() == 0)
       return reportError(makeError(ErrorCode::kInvalidArgument, args->path,

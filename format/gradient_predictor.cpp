@@ -11,6 +11,7 @@
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/parallel_for.h"
+#include "format/voxel_locator.h"
 
 namespace voxlink::format {
 namespace {
@@ -75,10 +76,8 @@ class Predictor {
         n_(h_.brickSize),
         frame_(axisFrame(f.predominantAxis())),
         maskWords_(maskWordsPerBrick(n_)),
-        occupancy_(f.occupancyWords().data()),
-        rank_(f.rankWords().data()),
+        locator_(f),
         base_(f.brickVoxelBase().data()),
-        rowStart_(f.rowStarts().data()),
         mask_(f.rowMaskWords().data()),
         values_(f.valueBytes()) {
     const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
@@ -117,36 +116,27 @@ class Predictor {
         s.cell[i++] = c;
       }
     }
-    // The faces of the six neighbouring bricks that touch this one.
+    // The faces of the six neighbouring bricks that touch this one (outside the volume, or in
+    // an empty brick, find() gives -1).
     for (int a = 0; a < 3; ++a) {
-      for (int side = -1; side <= 1; side += 2) {
-        const int64_t nb = static_cast<int64_t>(origin[a] / n) + side;
-        if (nb < 0 || nb >= static_cast<int64_t>(h_.brickGrid[a])) continue;
-        uint64_t bc[3] = {origin[0] / n, origin[1] / n, origin[2] / n};
-        bc[a] = static_cast<uint64_t>(nb);
-        const int64_t kn =
-            occupiedIndex((bc[2] * h_.brickGrid[1] + bc[1]) * h_.brickGrid[0] + bc[0]);
-        if (kn < 0) continue;
-        const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
+      for (const int side : {-1, 1}) {
+        if (side < 0 ? origin[a] == 0 : origin[a] + n >= h_.dims[a]) continue;
         for (uint32_t i2 = 0; i2 < n; ++i2) {
           for (uint32_t i1 = 0; i1 < n; ++i1) {
-            uint32_t l[3];
-            l[a] = side > 0 ? 0 : n - 1;
-            l[b1] = i1;
-            l[b2] = i2;
-            const int64_t v = voxelAt(static_cast<uint64_t>(kn), l);
-            if (v < 0) continue;
-            uint32_t q[3];
-            q[a] = side > 0 ? n + 1 : 0;
+            uint32_t g[3], q[3];
+            g[a] = side < 0 ? origin[a] - 1 : origin[a] + n;
+            q[a] = side < 0 ? 0 : n + 1;
+            g[b1] = origin[b1] + i1;
             q[b1] = i1 + 1;
+            g[b2] = origin[b2] + i2;
             q[b2] = i2 + 1;
-            const uint32_t c = padded(q[0], q[1], q[2]);
-            s.value[c] = value(static_cast<uint64_t>(v));
+            const int64_t v = locator_.find(g[0], g[1], g[2]);
+            if (v >= 0) s.value[padded(q[0], q[1], q[2])] = value(static_cast<uint64_t>(v));
           }
         }
       }
     }
-    // Differences as the converter takes them, then the code.
     for (int a = 0; a < 3; ++a) {
       s.g[a].resize(count);
       s.gf[a].resize(count);
@@ -189,22 +179,9 @@ class Predictor {
       codes[first + j] = exactGradientCode(s.g[0][j], s.g[1][j], s.g[2][j], s.guess[j]);
   }
 
-  int64_t occupiedIndex(uint64_t b) const {
-    const uint32_t word = occupancy_[b >> 5];
-    const uint32_t bit = 1u << (b & 31);
-    if ((word & bit) == 0) return -1;
-    return int64_t{rank_[b >> 5]} + std::popcount(word & (bit - 1));
-  }
-
  private:
   uint32_t padded(uint32_t x, uint32_t y, uint32_t z) const {
     return x + y * stride_[1] + z * stride_[2];
-  }
-  int64_t voxelAt(uint64_t k, const uint32_t l[3]) const {
-    const uint32_t row = l[frame_.v] * n_ + l[frame_.u];
-    const int r = rankInRow(rowBits(mask_ + k * maskWords_, n_, row), l[frame_.w]);
-    if (r < 0) return -1;
-    return int64_t{base_[k]} + rowStart_[k * n_ * n_ + row] + r;
   }
   double value(uint64_t i) const {
     double stored = 0;
@@ -238,10 +215,8 @@ class Predictor {
   uint32_t n_;
   AxisFrame frame_;
   uint32_t maskWords_;
-  const uint32_t* occupancy_;
-  const uint32_t* rank_;
+  VoxelLocator locator_;  // neighbouring bricks' voxels
   const uint32_t* base_;
-  const uint16_t* rowStart_;
   const uint32_t* mask_;
   const uint8_t* values_;
   double half_[3], full_[3];

@@ -46,14 +46,20 @@ std::vector<int16_t> writeRaw(const std::string& path) {
   return v;
 }
 
-TEST(CliExport, DenseNrrdKeepsTypeSpacingAndFill) {
-  TempDir dir;
+// writeRaw's volume as dir/v.vxl, keeping [-50, 60].
+std::vector<int16_t> convertSample(const TempDir& dir) {
   const std::vector<int16_t> source = writeRaw(dir.file("v.raw"));
   auto r =
       runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,18,16", "--type", "i16", "--spacing",
                   "0.5,1,2", "--threshold", "-50,60", "-o", dir.file("v.vxl"), "-q"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("v.nrrd"), "--fill", "-999"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  return source;
+}
+
+TEST(CliExport, DenseNrrdKeepsTypeSpacingAndFill) {
+  TempDir dir;
+  const std::vector<int16_t> source = convertSample(dir);
+  auto r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("v.nrrd"), "--fill", "-999"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("filled with -999"), std::string::npos) << r.out;
 
@@ -98,12 +104,8 @@ TEST(CliExport, FootRoundTripsThroughNrrd) {
 
 TEST(CliExport, RawPlusDetachedHeaderHoldsTheSameVolume) {
   TempDir dir;
-  const std::vector<int16_t> source = writeRaw(dir.file("v.raw"));
-  auto r =
-      runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,18,16", "--type", "i16", "--spacing",
-                  "0.5,1,2", "--threshold", "-50,60", "-o", dir.file("v.vxl"), "-q"});
-  ASSERT_EQ(r.status, 0) << r.err;
-  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("a.nrrd"), "--fill", "-7"});
+  const std::vector<int16_t> source = convertSample(dir);
+  auto r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("a.nrrd"), "--fill", "-7"});
   ASSERT_EQ(r.status, 0) << r.err;
   r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("kept.nhdr"), "--fill", "-7"});
   ASSERT_EQ(r.status, 0) << r.err;
