@@ -132,8 +132,18 @@ TEST(GradientCodec, BatchEncoderAgreesWithScalarEncoder) {
   // Specials: zero, non-finite, axes, huge and tiny.
   const float inf = std::numeric_limits<float>::infinity();
   const float specials[][3] = {
-      {0, 0, 0}, {inf, 0, 0}, {0, std::nanf(""), 1},  {1, 0, 0},          {0, -1, 0},
-      {0, 0, 1}, {0, 0, -1},  {3e38f, 3e38f, -3e38f}, {1e-44f, 0, 1e-44f}};
+      {0, 0, 0},
+      {inf, 0, 0},
+      {0, std::nanf(""), 1},
+      {1, 0, 0},
+      {0, -1, 0},
+      {0, 0, 1},
+      {0, 0, -1},
+      {3e38f, 3e38f, -3e38f},
+      {1e-44f, 0, 1e-44f},
+      // A NaN that std::max passes over (the largest magnitude is finite): found by fuzzing.
+      {1, 1, std::nanf("")},
+      {1, std::nanf(""), 0}};
   for (size_t k = 0; k < std::size(specials); ++k) {
     x[k] = specials[k][0];
     y[k] = specials[k][1];
@@ -160,6 +170,8 @@ TEST(GradientCodec, BatchEncoderAgreesWithScalarEncoder) {
     EXPECT_EQ(codes[0], kZeroGradient);
     EXPECT_EQ(codes[1], kZeroGradient);
     EXPECT_EQ(codes[2], kZeroGradient);
+    EXPECT_EQ(codes[9], kZeroGradient);
+    EXPECT_EQ(codes[10], kZeroGradient);
     EXPECT_LT(differ, count / 1000) << differ << " of " << count << " differ";
     std::printf(
         "[ measured ] %s batch encoder: %zu of %zu codes differ from the scalar encoder "
