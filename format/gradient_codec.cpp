@@ -141,9 +141,9 @@ __attribute__((always_inline)) inline void encodeLoop(const float* __restrict gx
   for (size_t i = 0; i < count; ++i) {
     float x = gx[i], y = gy[i], z = gz[i];
     const float big = std::max(std::abs(x), std::max(std::abs(y), std::abs(z)));
-    // False for zero, inf and NaN: std::max can hide a NaN component, x - x == 0 cannot.
-    const bool valid =
-        big > 0.0f && big <= kMaxFloat && x - x == 0.0f && y - y == 0.0f && z - z == 0.0f;
+    // False for zero, inf and NaN (std::max can pass over a NaN component; the sum cannot).
+    const float sum = x + y + z;
+    const bool valid = big > 0.0f && big <= kMaxFloat && sum == sum;
     // Squares must neither overflow nor vanish: rescale by an exact power of two, only when
     // the vector is huge or tiny (no division, so the common case costs a compare).
     const float rescale = big > 0x1p60f ? 0x1p-100f : (big < 0x1p-60f ? 0x1p100f : 1.0f);
