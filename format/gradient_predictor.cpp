@@ -78,6 +78,7 @@ class Predictor {
         maskWords_(maskWordsPerBrick(n_)),
         locator_(f),
         base_(f.brickVoxelBase().data()),
+        rowStart_(f.rowStarts().data()),
         mask_(f.rowMaskWords().data()),
         values_(f.valueBytes()) {
     const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
@@ -116,26 +117,12 @@ class Predictor {
         s.cell[i++] = c;
       }
     }
-    // The faces of the six neighbouring bricks that touch this one (outside the volume, or in
-    // an empty brick, find() gives -1).
+    // The faces of the six neighbouring bricks that touch this one.
+    const uint64_t brickStride[3] = {1, h_.brickGrid[0],
+                                     uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
     for (int a = 0; a < 3; ++a) {
-      const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
-      for (const int side : {-1, 1}) {
-        if (side < 0 ? origin[a] == 0 : origin[a] + n >= h_.dims[a]) continue;
-        for (uint32_t i2 = 0; i2 < n; ++i2) {
-          for (uint32_t i1 = 0; i1 < n; ++i1) {
-            uint32_t g[3], q[3];
-            g[a] = side < 0 ? origin[a] - 1 : origin[a] + n;
-            q[a] = side < 0 ? 0 : n + 1;
-            g[b1] = origin[b1] + i1;
-            q[b1] = i1 + 1;
-            g[b2] = origin[b2] + i2;
-            q[b2] = i2 + 1;
-            const int64_t v = locator_.find(g[0], g[1], g[2]);
-            if (v >= 0) s.value[padded(q[0], q[1], q[2])] = value(static_cast<uint64_t>(v));
-          }
-        }
-      }
+      if (origin[a] > 0) fillFace(b - brickStride[a], a, -1, s);
+      if (origin[a] + n < h_.dims[a]) fillFace(b + brickStride[a], a, 1, s);
     }
     for (int a = 0; a < 3; ++a) {
       s.g[a].resize(count);
@@ -180,6 +167,42 @@ class Predictor {
   }
 
  private:
+  // Copies the face of neighbouring brick `nb` (on side `side` of axis `a`) that touches the
+  // current brick into the halo of s.value, walking the neighbour's rows: a row along the
+  // depth axis crosses the face in one cell, a row in the face lies in it whole.
+  void fillFace(uint64_t nb, int a, int side, Scratch& s) const {
+    const int64_t k = locator_.occupiedIndex(nb);
+    if (k < 0) return;
+    const uint32_t n = n_;
+    const uint32_t* mask = mask_ + static_cast<uint64_t>(k) * maskWords_;
+    const uint16_t* rowStart = rowStart_ + static_cast<uint64_t>(k) * n * n;
+    const uint64_t first = base_[k];
+    const uint32_t inFace = side < 0 ? n - 1 : 0;  // the face's cells, neighbour-local
+    const uint32_t halo = side < 0 ? 0 : n + 1;    // where they go in the padded block
+    uint32_t q[3];
+    q[a] = halo;
+    if (a == frame_.w) {
+      for (uint32_t row = 0; row < n * n; ++row) {
+        const int r = rankInRow(rowBits(mask, n, row), inFace);
+        if (r < 0) continue;
+        q[frame_.u] = row % n + 1;
+        q[frame_.v] = row / n + 1;
+        s.value[padded(q[0], q[1], q[2])] = value(first + rowStart[row] + r);
+      }
+      return;
+    }
+    const bool faceIsU = a == frame_.u;
+    for (uint32_t other = 0; other < n; ++other) {
+      const uint32_t row = faceIsU ? other * n + inFace : inFace * n + other;
+      q[faceIsU ? frame_.v : frame_.u] = other + 1;
+      uint64_t i = first + rowStart[row];
+      for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1) {
+        q[frame_.w] = static_cast<uint32_t>(std::countr_zero(bits)) + 1;
+        s.value[padded(q[0], q[1], q[2])] = value(i++);
+      }
+    }
+  }
+
   uint32_t padded(uint32_t x, uint32_t y, uint32_t z) const {
     return x + y * stride_[1] + z * stride_[2];
   }
@@ -215,8 +238,9 @@ class Predictor {
   uint32_t n_;
   AxisFrame frame_;
   uint32_t maskWords_;
-  VoxelLocator locator_;  // neighbouring bricks' voxels
+  VoxelLocator locator_;  // occupied index of neighbouring bricks
   const uint32_t* base_;
+  const uint16_t* rowStart_;
   const uint32_t* mask_;
   const uint8_t* values_;
   double half_[3], full_[3];
