@@ -89,7 +89,11 @@ Result<TransferFunction> parseTransferFunction(const std::string& text, const st
                      ": field 'opacity': missing (a VoxLink transfer function is an object with "
                      "'opacity' and 'color' point lists)");
   TransferFunction tf;
-  tf.name = j.value("name", "");
+  if (j.contains("name")) {
+    if (!j["name"].is_string())
+      return makeError(ErrorCode::kInvalidArgument, where, ": field 'name': expected a string");
+    tf.name = j["name"].get<std::string>();
+  }
   const auto& op = j["opacity"];
   if (!op.is_array() || op.empty())
     return makeError(ErrorCode::kInvalidArgument, where,

@@ -73,6 +73,12 @@ TEST(TransferFunction, BadFilesNameTheField) {
   EXPECT_NE(r.message().find("not valid JSON"), std::string::npos);
   r = parseTransferFunction(R"({"color":[]})", "bad.json");
   EXPECT_NE(r.message().find("'opacity': missing"), std::string::npos);
+  // Found by fuzzing: a name that is not a string threw out of the parser (abort).
+  r = parseTransferFunction(R"({"name":0,"opacity":[[0,1],[1,1]],"color":[[0,0,1,1]]})",
+                            "bad.json");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("bad.json: field 'name': expected a string"), std::string::npos)
+      << r.message();
 }
 
 TEST(TransferFunction, JsonRoundTrip) {
