@@ -15,7 +15,6 @@
 
 #include "format/brick_rows.h"
 #include "format/crc32c.h"
-#include "format/half.h"
 #include "format/mapped_file.h"
 #include "format/output_file.h"
 #include "format/voxlink_file.h"
@@ -375,25 +374,7 @@ Result<BrickedVolume> BrickedVolumeBuilder::build(std::string metaJson) const {
   if (!sorted.empty()) {
     double lo = INFINITY, hi = -INFINITY;
     for (size_t i = 0; i < sorted.size(); ++i) {
-      double stored = 0;
-      const uint32_t bits = sorted[i].bits;
-      switch (d.valueType) {
-        case StoredType::kU8:
-          stored = bits & 0xFF;
-          break;
-        case StoredType::kU16:
-          stored = bits & 0xFFFF;
-          break;
-        case StoredType::kF16:
-          stored = halfToFloat(static_cast<uint16_t>(bits));
-          break;
-        case StoredType::kF32: {
-          float f;
-          std::memcpy(&f, &bits, 4);
-          stored = f;
-          break;
-        }
-      }
+      const double stored = storedBitsValue(d.valueType, sorted[i].bits);
       const double value = stored * d.valueScale + d.valueOffset;
       lo = std::min(lo, value);
       hi = std::max(hi, value);

@@ -9,7 +9,6 @@
 
 #include "format/brick_rows.h"
 #include "format/gradient_codec.h"
-#include "format/half.h"
 #include "format/parallel_for.h"
 #include "format/voxel_locator.h"
 
@@ -72,15 +71,15 @@ struct Scratch {
 class Predictor {
  public:
   explicit Predictor(const VoxLinkFile& f)
-      : h_(f.header()),
+      : file_(f),
+        h_(f.header()),
         n_(h_.brickSize),
         frame_(axisFrame(f.predominantAxis())),
         maskWords_(maskWordsPerBrick(n_)),
         locator_(f),
         base_(f.brickVoxelBase().data()),
         rowStart_(f.rowStarts().data()),
-        mask_(f.rowMaskWords().data()),
-        values_(f.valueBytes()) {
+        mask_(f.rowMaskWords().data()) {
     const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
     for (int a = 0; a < 3; ++a) {
       const double s = world ? h_.spacing[a] : 1.0;
@@ -206,34 +205,9 @@ class Predictor {
   uint32_t padded(uint32_t x, uint32_t y, uint32_t z) const {
     return x + y * stride_[1] + z * stride_[2];
   }
-  double value(uint64_t i) const {
-    double stored = 0;
-    switch (static_cast<StoredType>(h_.valueType)) {
-      case StoredType::kU8:
-        stored = values_[i];
-        break;
-      case StoredType::kU16: {
-        uint16_t v;
-        std::memcpy(&v, values_ + 2 * i, 2);
-        stored = v;
-        break;
-      }
-      case StoredType::kF16: {
-        uint16_t v;
-        std::memcpy(&v, values_ + 2 * i, 2);
-        stored = halfToFloat(v);
-        break;
-      }
-      case StoredType::kF32: {
-        float v;
-        std::memcpy(&v, values_ + 4 * i, 4);
-        stored = v;
-        break;
-      }
-    }
-    return stored * h_.valueScale + h_.valueOffset;
-  }
+  double value(uint64_t i) const { return file_.value(i); }
 
+  const VoxLinkFile& file_;
   const FileHeader& h_;
   uint32_t n_;
   AxisFrame frame_;
@@ -242,7 +216,6 @@ class Predictor {
   const uint32_t* base_;
   const uint16_t* rowStart_;
   const uint32_t* mask_;
-  const uint8_t* values_;
   double half_[3], full_[3];
   double fill_;
   std::array<uint32_t, 3> stride_;

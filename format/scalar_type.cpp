@@ -1,5 +1,9 @@
 #include "format/scalar_type.h"
 
+#include <cstring>
+
+#include "format/half.h"
+
 namespace voxlink {
 
 size_t scalarSize(ScalarType type) {
@@ -82,5 +86,22 @@ std::optional<StoredType> parseStoredName(std::string_view name) {
 }
 
 bool isValidStoredType(uint8_t raw) { return raw >= 1 && raw <= 4; }
+
+double storedBitsValue(StoredType type, uint32_t bits) {
+  switch (type) {
+    case StoredType::kU8:
+      return bits & 0xFF;
+    case StoredType::kU16:
+      return bits & 0xFFFF;
+    case StoredType::kF16:
+      return format::halfToFloat(static_cast<uint16_t>(bits));
+    case StoredType::kF32: {
+      float f;
+      std::memcpy(&f, &bits, 4);
+      return f;
+    }
+  }
+  return 0;
+}
 
 }  // namespace voxlink

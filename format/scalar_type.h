@@ -98,5 +98,8 @@ size_t storedSize(StoredType type);
 std::string_view storedName(StoredType type);
 std::optional<StoredType> parseStoredName(std::string_view name);
 bool isValidStoredType(uint8_t raw);
+// A stored value as a double, before valueScale/valueOffset: `bits` holds it in its low bytes
+// (u8, u16 and f16 in the low 8/16 bits, f32 as its bit pattern).
+double storedBitsValue(StoredType type, uint32_t bits);
 
 }  // namespace voxlink

@@ -5,31 +5,12 @@
 #include <cstring>
 
 #include "format/gradient_codec.h"
-#include "format/half.h"
 
 namespace voxlink::format {
 namespace {
 
 double storedToSource(const VolumeDescription& d, uint32_t bits) {
-  double stored = 0;
-  switch (d.valueType) {
-    case StoredType::kU8:
-      stored = bits & 0xFF;
-      break;
-    case StoredType::kU16:
-      stored = bits & 0xFFFF;
-      break;
-    case StoredType::kF16:
-      stored = halfToFloat(static_cast<uint16_t>(bits));
-      break;
-    case StoredType::kF32: {
-      float f;
-      std::memcpy(&f, &bits, 4);
-      stored = f;
-      break;
-    }
-  }
-  return stored * d.valueScale + d.valueOffset;
+  return storedBitsValue(d.valueType, bits) * d.valueScale + d.valueOffset;
 }
 
 }  // namespace
