@@ -13,6 +13,11 @@ from paraview import simple, servermanager  # noqa: E402
 
 plugin, vxl, png = sys.argv[1:4]
 simple.LoadPlugin(plugin, ns=globals())
+# The file types ParaView's open dialog offers come from its reader factory.
+session = servermanager.ActiveConnection.Session
+types = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory().GetSupportedFileTypes(
+    session)
+dialog_filters = [t for t in types.split(";;") if t.startswith("VoxLink")]
 reader = simple.OpenDataFile(vxl)
 reader.UpdatePipeline()
 data = servermanager.Fetch(reader)
@@ -24,7 +29,7 @@ for i in range(points.GetNumberOfArrays()):
                            "range": list(a.GetRange(-1 if a.GetNumberOfComponents() > 1 else 0))}
 sample = [data.GetPointData().GetArray("values").GetTuple1(data.ComputePointId(list(p)))
           for p in json.loads(sys.argv[4])]
-result = {"proxy": reader.GetXMLName(), "class": data.GetClassName(),
+result = {"dialog_filters": dialog_filters, "proxy": reader.GetXMLName(), "class": data.GetClassName(),
                   "dims": list(data.GetDimensions()), "spacing": list(data.GetSpacing()),
                   "origin": list(data.GetOrigin()), "arrays": arrays,
                   "scalars": points.GetScalars().GetName(),

@@ -17,11 +17,16 @@ HERE = pathlib.Path(__file__).resolve().parent
 PLUGIN = HERE.parent / "paraview" / "voxlink_reader.py"
 
 
-def test_paraview_opens_and_renders_the_foot(tmp_path, foot_nrrd):
+@pytest.mark.parametrize("packed", [False, True], ids=["plain", "packed"])
+def test_paraview_opens_and_renders_the_foot(tmp_path, foot_nrrd, packed):
     for tool in ("pvpython", "xvfb-run"):
         if not shutil.which(tool):
             pytest.fail(f"{tool} not found (scripts/install-deps.sh installs paraview, xvfb)")
     f = voxlink.convert(foot_nrrd, threshold=60, output=tmp_path / "foot.vxl")
+    opened = tmp_path / "foot.vxl"
+    if packed:  # a packed file opens the same way (voxlink.open unpacks it)
+        opened = tmp_path / "foot.packed.vxl"
+        f.pack(opened)
     ijk, values, _ = f.voxels()
     probes = [ijk[0].tolist(), ijk[len(ijk) // 2].tolist(), [0, 0, 0]]
     dense = f.to_dense()
@@ -29,10 +34,11 @@ def test_paraview_opens_and_renders_the_foot(tmp_path, foot_nrrd):
     assert expected[2] == 0  # a removed voxel
     env = dict(os.environ, PYTHONPATH=os.environ.get("PYTHONPATH", ""))
     r = subprocess.run(["xvfb-run", "-a", "pvpython", str(HERE / "paraview_load.py"), str(PLUGIN),
-                        str(tmp_path / "foot.vxl"), str(tmp_path / "foot.png"),
+                        str(opened), str(tmp_path / "foot.png"),
                         json.dumps(probes)], capture_output=True, text=True, env=env, timeout=300)
     assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
     out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["dialog_filters"] == ["VoxLink files (*.vxl)"]  # what the open dialog lists
     assert out["proxy"] == "VoxLinkReader" and out["class"] == "vtkImageData"
     assert out["dims"] == [256, 256, 256] and out["spacing"] == [1, 1, 1]
     assert out["scalars"] == "values" and out["vectors"] == "gradient"
