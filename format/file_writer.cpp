@@ -209,8 +209,7 @@ Status FileWriter::commit(const std::string& metaJson) {
   }
   header_.sectionTableOffset = layout_.tableOffset;
   header_.sectionCount = static_cast<uint32_t>(layout_.entries.size());
-  header_.headerCrc = 0;
-  header_.headerCrc = crc32c(&header_, sizeof(header_));
+  header_.headerCrc = headerChecksum(header_);
   VOXLINK_RETURN_IF_ERROR(writeRaw(layout_.tableOffset, layout_.entries.data(),
                                    layout_.entries.size() * sizeof(SectionEntry)));
   VOXLINK_RETURN_IF_ERROR(writeRaw(0, &header_, sizeof(header_)));

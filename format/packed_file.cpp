@@ -37,11 +37,6 @@ struct PackEntry {  // 40 bytes per original section, in the original table's or
 };
 static_assert(sizeof(PackEntry) == 40);
 
-uint32_t headerCrcOf(FileHeader header) {
-  header.headerCrc = 0;
-  return crc32c(&header, sizeof header);
-}
-
 std::string nameOf(uint32_t id) { return std::string(sectionName(static_cast<SectionId>(id))); }
 
 // How each section is encoded: gradients of a volume file against their prediction, sections
@@ -61,19 +56,18 @@ SectionCodec codecFor(const VoxLinkFile& file, SectionId id, const PackOptions& 
   }
 }
 
-// GRAD minus its prediction (u16 wrap-around), padding kept as it is.
-std::vector<uint8_t> gradientResidual(const VoxLinkFile& file, unsigned threads) {
-  const auto raw = file.sectionBytes(SectionId::kGradients);
-  std::vector<uint8_t> out(raw.begin(), raw.end());
+// Subtracts (packing) or adds (unpacking) the predicted code of every voxel to GRAD's u16
+// entries, wrapping around; the padding after them is left as it is.
+void applyPrediction(const VoxLinkFile& file, std::span<uint8_t> grad, bool subtract,
+                     unsigned threads) {
   std::vector<uint16_t> predicted(file.voxelCount());
   predictGradientCodes(file, predicted, threads);
   for (uint64_t i = 0; i < predicted.size(); ++i) {
     uint16_t code;
-    std::memcpy(&code, raw.data() + 2 * i, 2);
-    const uint16_t residual = static_cast<uint16_t>(code - predicted[i]);
-    std::memcpy(out.data() + 2 * i, &residual, 2);
+    std::memcpy(&code, grad.data() + 2 * i, 2);
+    code = static_cast<uint16_t>(subtract ? code - predicted[i] : code + predicted[i]);
+    std::memcpy(grad.data() + 2 * i, &code, 2);
   }
-  return out;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -103,12 +97,12 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
     std::vector<uint8_t> residual;
     std::span<const uint8_t> raw = file.sectionBytes(e);
     if (codec == SectionCodec::kGradientResidual) {
-      residual = gradientResidual(file, options.threads);
+      residual.assign(raw.begin(), raw.end());
+      applyPrediction(file, residual, /*subtract=*/true, options.threads);
       raw = residual;
     }
-    const uint32_t element = e.elementBytes == 1 || e.elementBytes == 2 ? e.elementBytes : 4;
-    VOXLINK_ASSIGN_OR_RETURN(payloads[i],
-                             encodeSection(raw, element, codec, options.level, options.threads));
+    VOXLINK_ASSIGN_OR_RETURN(
+        payloads[i], encodeSection(raw, e.elementBytes, codec, options.level, options.threads));
     if (payloads[i].size() >= e.bytes && codec != SectionCodec::kGradientResidual) {
       codec = SectionCodec::kStored;  // incompressible (or tiny): kept as it is
       const auto original = file.sectionBytes(e);
@@ -120,7 +114,7 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
       const auto check = std::chrono::steady_clock::now();
       std::vector<uint8_t> decoded(raw.size());
       VOXLINK_RETURN_IF_ERROR(decodeSection(
-          payloads[i], element, codec, decoded,
+          payloads[i], e.elementBytes, codec, decoded,
           path + ": packing check of section " + std::string(sectionName(id)), options.threads));
       if (std::memcmp(decoded.data(), raw.data(), raw.size()) != 0)
         return makeError(ErrorCode::kCorrupt, path, ": packing check: section ", sectionName(id),
@@ -154,7 +148,7 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   std::memcpy(header.magic, kPackedMagic, sizeof header.magic);
   header.sectionTableOffset = tableOffset;
   header.sectionCount = static_cast<uint32_t>(packedTable.size());
-  header.headerCrc = headerCrcOf(header);
+  header.headerCrc = headerChecksum(header);
   std::memcpy(out.data(), &header, sizeof header);
   for (size_t i = 0; i < table.size(); ++i)
     std::memcpy(out.data() + packedTable[i].offset, payloads[i].data(), payloads[i].size());
@@ -179,7 +173,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
                      ": header.magic: not a packed VoxLink file (expected \"VOXLINKZ\")");
   FileHeader header;
   std::memcpy(&header, packed.data(), sizeof header);
-  if (kCheckPackedChecksums && headerCrcOf(header) != header.headerCrc)
+  if (kCheckPackedChecksums && headerChecksum(header) != header.headerCrc)
     return makeError(ErrorCode::kCorrupt, name, ": header.headerCrc: checksum mismatch");
   if (header.sectionCount == 0 || header.sectionCount > kMaxSectionCount ||
       header.sectionTableOffset > packed.size() ||
@@ -231,7 +225,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   original.sectionTableOffset = preamble.originalTableOffset;
   original.sectionCount = preamble.entryCount;
   original.headerCrc = preamble.originalHeaderCrc;
-  if (kCheckPackedChecksums && headerCrcOf(original) != original.headerCrc)
+  if (kCheckPackedChecksums && headerChecksum(original) != original.headerCrc)
     return makeError(ErrorCode::kCorrupt, name,
                      ": section PACK.originalHeaderCrc: the restored header does not match it");
   VOXLINK_RETURN_IF_ERROR(checkHeader(original, preamble.originalFileBytes, name));
@@ -269,9 +263,9 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
       residualPayload = payload;
       continue;  // needs the other sections first
     }
-    const uint32_t element = e.elementBytes == 1 || e.elementBytes == 2 ? e.elementBytes : 4;
-    VOXLINK_RETURN_IF_ERROR(decodeSection(
-        payload, element, codec, std::span(bytes).subspan(e.offset, e.bytes), where, threads));
+    VOXLINK_RETURN_IF_ERROR(decodeSection(payload, e.elementBytes, codec,
+                                          std::span(bytes).subspan(e.offset, e.bytes), where,
+                                          threads));
   }
   VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::fromBytes(std::move(bytes), name));
   if (residual) {
@@ -282,16 +276,10 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     // else sees the file.
     auto grad =
         std::span(const_cast<uint8_t*>(file.sectionBytes(SectionId::kGradients).data()), e.bytes);
-    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, 2, SectionCodec::kGradientResidual, grad,
+    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, e.elementBytes,
+                                          SectionCodec::kGradientResidual, grad,
                                           name + ": section GRAD", threads));
-    std::vector<uint16_t> predicted(file.voxelCount());
-    predictGradientCodes(file, predicted, threads);
-    for (uint64_t i = 0; i < predicted.size(); ++i) {
-      uint16_t code;
-      std::memcpy(&code, grad.data() + 2 * i, 2);
-      code = static_cast<uint16_t>(code + predicted[i]);
-      std::memcpy(grad.data() + 2 * i, &code, 2);
-    }
+    applyPrediction(file, grad, /*subtract=*/false, threads);
   }
   // Every section must be what was packed.
   for (const SectionEntry& e : file.sectionTable()) {

@@ -13,6 +13,11 @@ namespace {
 
 constexpr uint64_t kChunkTableHead = 8;  // chunkCount, reserved
 
+// Byte planes of an element: 1, 2 or 4 (records of 32 or 64 bytes are split as u32 words).
+uint32_t planesOf(uint32_t elementBytes) {
+  return elementBytes == 1 || elementBytes == 2 ? elementBytes : 4;
+}
+
 uint64_t chunkCountOf(uint64_t bytes) { return (bytes + kPackChunkBytes - 1) / kPackChunkBytes; }
 
 // Byte j of element i goes to plane j; with `delta`, each plane then holds differences of
@@ -64,7 +69,8 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
     std::vector<uint8_t> planes;
     if (transforms(codec)) {
       planes.resize(bytes);
-      toPlanes(src, bytes, elementBytes, codec == SectionCodec::kDeltaZstd, planes.data());
+      toPlanes(src, bytes, planesOf(elementBytes), codec == SectionCodec::kDeltaZstd,
+               planes.data());
       src = planes.data();
     }
     std::vector<uint8_t>& frame = frames[c];
@@ -157,7 +163,7 @@ Status decodeSection(std::span<const uint8_t> packed, uint32_t elementBytes, Sec
       return;
     }
     if (transforms(codec))
-      fromPlanes(planes.data(), bytes, elementBytes, codec == SectionCodec::kDeltaZstd,
+      fromPlanes(planes.data(), bytes, planesOf(elementBytes), codec == SectionCodec::kDeltaZstd,
                  out.data() + begin);
   });
   for (const std::string& e : errors)

@@ -28,7 +28,8 @@ bool isKnownSectionCodec(uint32_t raw);
 
 inline constexpr uint64_t kPackChunkBytes = uint64_t{4} << 20;
 
-// Encodes `raw` (a multiple of `elementBytes`, which is 1, 2 or 4) at zstd `level`.
+// Encodes `raw`, a section of `elementBytes`-sized elements (byte planes of 1, 2 or 4 bytes;
+// larger records as 4-byte words), at zstd `level`.
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
                                            SectionCodec codec, int level, unsigned threads);
 

@@ -13,12 +13,6 @@ namespace {
 
 uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
-uint64_t headerCrcOf(const FileHeader& header) {
-  FileHeader copy = header;
-  copy.headerCrc = 0;
-  return crc32c(&copy, sizeof(copy));
-}
-
 // The version 2 counts: zero in version 1; in version 2 bounded by the voxel count.
 Status checkSceneCounts(const FileHeader& h, const std::string& where) {
   if (h.versionMajor == kVersionMajor) {
@@ -54,6 +48,12 @@ Status checkSceneCounts(const FileHeader& h, const std::string& where) {
 }
 
 }  // namespace
+
+uint32_t headerChecksum(const FileHeader& header) {
+  FileHeader copy = header;
+  copy.headerCrc = 0;
+  return crc32c(&copy, sizeof(copy));
+}
 
 std::string_view sectionName(SectionId id) {
   switch (id) {
@@ -177,9 +177,9 @@ Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& w
   if (h.headerBytes != sizeof(FileHeader))
     return makeError(ErrorCode::kCorrupt, where, ": header.headerBytes: ", h.headerBytes,
                      " (expected ", sizeof(FileHeader), ")");
-  if (headerCrcOf(h) != h.headerCrc)
+  if (headerChecksum(h) != h.headerCrc)
     return makeError(ErrorCode::kCorrupt, where, ": header.headerCrc: checksum mismatch (stored 0x",
-                     std::hex, h.headerCrc, ", computed 0x", headerCrcOf(h), ")");
+                     std::hex, h.headerCrc, ", computed 0x", headerChecksum(h), ")");
   if (!isValidBrickSize(h.brickSize))
     return makeError(ErrorCode::kCorrupt, where, ": header.brickSize: ", h.brickSize,
                      " (expected 4, 8, 16 or 32)");

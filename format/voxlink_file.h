@@ -93,6 +93,9 @@ class VoxLinkFile {
   const uint8_t* values_ = nullptr;  // VALU, looked up once
 };
 
+// CRC-32C of the 256 header bytes with headerCrc taken as 0: what headerCrc must hold.
+uint32_t headerChecksum(const FileHeader& header);
+
 // Checks a header in isolation; `where` prefixes messages (usually the file name).
 Status checkHeader(const FileHeader& header, uint64_t fileBytes, const std::string& where);
 
