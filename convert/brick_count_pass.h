@@ -64,6 +64,7 @@ void countBrickRow(const BrickRow& brickRow, const Keep& keep, bool trackRange, 
   T keptMin = std::numeric_limits<T>::max(), keptMax = std::numeric_limits<T>::lowest();
   for (uint32_t z = z0; z < z1; ++z) {
     const T* slice = reinterpret_cast<const T*>(window.slice(z));
+    const uint8_t* activeSlice = window.active(z);
     for (uint32_t y = y0; y < y1; ++y) {
       const T* __restrict row = slice + uint64_t{y} * nx;
       if constexpr (std::is_floating_point_v<T>) {
@@ -79,6 +80,19 @@ void countBrickRow(const BrickRow& brickRow, const Keep& keep, bool trackRange, 
           result.nonFiniteValue = static_cast<double>(row[x]);
         }
         if (result.nonFinite) return;
+      }
+      if (activeSlice) {  // a source with inactive voxels (OpenVDB): those are never kept
+        const uint8_t* active = activeSlice + uint64_t{y} * nx;
+        for (uint32_t x = 0; x < nx; ++x) {
+          const bool k = active[x] && test(row[x]);
+          if (small)
+            acc8[x] = static_cast<uint8_t>(acc8[x] + (k ? 1 : 0));
+          else
+            acc[x] = static_cast<uint16_t>(acc[x] + (k ? 1 : 0));
+          keptMin = k && row[x] < keptMin ? row[x] : keptMin;
+          keptMax = k && row[x] > keptMax ? row[x] : keptMax;
+        }
+        continue;
       }
       if constexpr (sizeof(T) == 1) {
         // 8-bit sources: sum 64 lines at a time in 8-bit lanes (twice the lanes per vector),

@@ -63,10 +63,15 @@ void rowKeepFlags(const BrickRow& row, uint32_t x0, uint32_t x1, const Keep keep
   const uint32_t y0 = row.by * n, y1 = std::min(row.grid.dims[1], y0 + n);
   for (uint32_t z = z0; z < z1; ++z) {
     const T* slice = reinterpret_cast<const T*>(window.slice(z));
+    const uint8_t* activeSlice = window.active(z);
     for (uint32_t y = y0; y < y1; ++y) {
       const T* __restrict p = slice + uint64_t{y} * nx;
       uint8_t* __restrict f = flags + (size_t{z - z0} * n + (y - y0)) * nx;
       for (uint32_t x = x0; x < x1; ++x) f[x] = keep(p[x]) ? 1 : 0;
+      if (activeSlice) {  // a source with inactive voxels (OpenVDB): those are never kept
+        const uint8_t* __restrict active = activeSlice + uint64_t{y} * nx;
+        for (uint32_t x = x0; x < x1; ++x) f[x] &= active[x];
+      }
     }
   }
 }

@@ -44,7 +44,9 @@ Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins, uint32_t
       dispatchScalar(info.type, [&](auto t) {
         using T = decltype(t);
         const T* v = reinterpret_cast<const T*>(window.slice(z));
+        const uint8_t* active = window.active(z);  // inactive voxels hold no data
         for (uint64_t i = 0; i < info.sliceVoxels(); ++i) {
+          if (active && !active[i]) continue;
           const auto b = static_cast<int64_t>((static_cast<double>(v[i]) - h.lo) * scale);
           ++h.counts[static_cast<size_t>(std::clamp<int64_t>(b, 0, bins - 1))];
         }

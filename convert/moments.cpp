@@ -21,21 +21,26 @@ struct Accumulator {
 };
 
 template <class T>
-Status accumulateSlice(const T* v, uint64_t count, uint32_t z, const VolumeInfo& info,
-                       Accumulator& acc, double& lo, double& hi) {
-  // Two passes over one slice: its mean first, then deviations from it.
-  double sum = 0;
+Status accumulateSlice(const T* v, const uint8_t* active, uint64_t count, uint32_t z,
+                       const VolumeInfo& info, Accumulator& acc, double& lo, double& hi) {
+  // Two passes over one slice: its mean first, then deviations from it. Inactive voxels (null
+  // `active`: none) hold no data and are left out.
+  double sum = 0, kept = 0;
   for (uint64_t i = 0; i < count; ++i) {
+    if (active && !active[i]) continue;
+    ++kept;
     const double x = static_cast<double>(v[i]);
     if (!std::isfinite(x))
       return makeError(ErrorCode::kNonFinite, info.path, ": data: value ", x, " at voxel (",
                        i % info.dims[0], ", ", i / info.dims[0], ", ", z, ") is not finite");
     sum += x;
   }
+  if (kept == 0) return Status::ok();
   Accumulator slice;
-  slice.n = static_cast<double>(count);
+  slice.n = kept;
   slice.mean = sum / slice.n;
   for (uint64_t i = 0; i < count; ++i) {
+    if (active && !active[i]) continue;
     const double d = static_cast<double>(v[i]) - slice.mean;
     slice.m2 += d * d;
     lo = std::min(lo, static_cast<double>(v[i]));
@@ -60,8 +65,8 @@ Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices) {
     for (uint32_t z = z0; z < z1; ++z) {
       Status s = dispatchScalar(info.type, [&](auto t) {
         using T = decltype(t);
-        return accumulateSlice(reinterpret_cast<const T*>(window.slice(z)), info.sliceVoxels(), z,
-                               info, acc, lo, hi);
+        return accumulateSlice(reinterpret_cast<const T*>(window.slice(z)), window.active(z),
+                               info.sliceVoxels(), z, info, acc, lo, hi);
       });
       VOXLINK_RETURN_IF_ERROR(s);
     }

@@ -9,17 +9,27 @@ SlabWindow::SlabWindow(VolumeSource& source, uint32_t halo)
     : source_(source),
       halo_(halo),
       sliceBytes_(source.info().sliceBytes()),
-      depth_(source.info().dims[2]) {}
+      depth_(source.info().dims[2]),
+      sliceVoxels_(source.info().sliceVoxels()) {}
 
 Status SlabWindow::rewind() {
   release();
   first_ = end_ = 0;
   base_ = nullptr;
   buffer_.clear();
+  active_.clear();
   return source_.rewind();
 }
 
 Status SlabWindow::load(uint32_t z0, uint32_t z1) {
+  VOXLINK_RETURN_IF_ERROR(loadValues(z0, z1));
+  if (!source_.hasInactiveVoxels()) return Status::ok();
+  active_.resize(uint64_t{z1 - z0} * sliceVoxels_);
+  activeFirst_ = z0;
+  return source_.readActive(z0, z1 - z0, active_.data());
+}
+
+Status SlabWindow::loadValues(uint32_t z0, uint32_t z1) {
   const uint32_t first = z0 > halo_ ? z0 - halo_ : 0;
   const uint32_t end = std::min(depth_, z1 + halo_);
   if (const void* p = source_.map(first, end - first)) {

@@ -21,12 +21,19 @@ class SlabWindow {
   Status load(uint32_t z0, uint32_t z1);
   // Slice z, which must lie in the loaded range.
   const uint8_t* slice(uint32_t z) const { return base_ + (z - first_) * sliceBytes_; }
+  // Active flags of slice z (in [z0, z1) of the last load, not the halo), x fastest; null when
+  // the source has no inactive voxels.
+  const uint8_t* active(uint32_t z) const {
+    return active_.empty() ? nullptr : active_.data() + (z - activeFirst_) * sliceVoxels_;
+  }
   uint32_t first() const { return first_; }
   uint32_t end() const { return end_; }
   // Lets go of mapped pages of the current window.
   void release();
 
  private:
+  Status loadValues(uint32_t z0, uint32_t z1);
+
   VolumeSource& source_;
   uint32_t halo_;
   uint64_t sliceBytes_;
@@ -35,6 +42,9 @@ class SlabWindow {
   uint32_t first_ = 0, end_ = 0;  // loaded slices [first_, end_)
   bool mapped_ = false;
   std::vector<uint8_t> buffer_;
+  uint64_t sliceVoxels_;
+  uint32_t activeFirst_ = 0;
+  std::vector<uint8_t> active_;  // slices [activeFirst_, z1) of the last load
 };
 
 }  // namespace voxlink::convert

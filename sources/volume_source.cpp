@@ -17,6 +17,12 @@ Status VolumeSource::checkSliceRange(uint32_t z0, uint32_t count) const {
   return Status::ok();
 }
 
+Status VolumeSource::readActive(uint32_t z0, uint32_t count, uint8_t* dst) {
+  VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
+  std::fill_n(dst, info_.sliceVoxels() * count, uint8_t{1});
+  return Status::ok();
+}
+
 Result<std::vector<uint8_t>> readAll(VolumeSource& source) {
   const VolumeInfo& info = source.info();
   const uint64_t bytes = info.voxelCount() * scalarSize(info.type);

@@ -52,6 +52,13 @@ class VolumeSource {
   virtual Status rewind() { return Status::ok(); }
   virtual bool randomAccess() const { return false; }
 
+  // Sources whose voxels may hold no data (OpenVDB's inactive voxels, read as the background)
+  // say so here; a converter never keeps such a voxel, whatever the classification.
+  virtual bool hasInactiveVoxels() const { return false; }
+  // Copies the active flags (1 holds data, 0 does not) of slices [z0, z0 + count) into dst, one
+  // byte per voxel in read()'s order. The default says every voxel is active.
+  virtual Status readActive(uint32_t z0, uint32_t count, uint8_t* dst);
+
   // Zero-copy path: a pointer to slices [z0, z0 + count) already in memory in native layout
   // (a mapped raw file), valid while the source lives; nullptr when the source cannot.
   virtual const void* map(uint32_t /*z0*/, uint32_t /*count*/) { return nullptr; }

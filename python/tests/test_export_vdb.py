@@ -6,6 +6,7 @@ import subprocess
 
 import numpy as np
 import pyopenvdb
+import pytest
 
 import voxlink
 
@@ -53,19 +54,25 @@ def test_transform_from_spacing_and_origin(tmp_path, cli):
     assert grid.evalActiveVoxelBoundingBox() == ((1, 1, 1), (2, 3, 4))
 
 
-def test_round_trip_through_convert(tmp_path, foot_nrrd, cli):
+@pytest.mark.parametrize("keep", [["--keep-all"], ["--threshold", "60"]])
+def test_round_trip_through_convert(tmp_path, foot_nrrd, cli, keep):
     f = voxlink.convert(foot_nrrd, threshold=60, output=tmp_path / "foot.vxl")
     export(cli, tmp_path / "foot.vxl", tmp_path / "foot.vdb")
-    subprocess.run([cli, "convert", str(tmp_path / "foot.vdb"), "--threshold", "60", "-o",
+    subprocess.run([cli, "convert", str(tmp_path / "foot.vdb"), *keep, "-o",
                     str(tmp_path / "again.vxl"), "-q"], check=True, stdout=subprocess.DEVNULL)
     ijk, values, _ = f.voxels()
-    ijk2, values2, _ = voxlink.open(tmp_path / "again.vxl").voxels()
+    again = voxlink.open(tmp_path / "again.vxl")
+    ijk2, values2, _ = again.voxels()
     # The reader's volume is the active bounding box: indices shift by its minimum, and the
-    # bricks (so the file order) move with it; compare in index order.
-    ijk = ijk - ijk.min(axis=0)
+    # bricks (so the file order) move with it; compare in index order. --keep-all keeps the
+    # active voxels only, not the whole box.
+    lo = ijk.min(axis=0)
+    ijk = ijk - lo
     order, order2 = np.lexsort(ijk.T), np.lexsort(ijk2.T)
     np.testing.assert_array_equal(ijk[order], ijk2[order2])
     np.testing.assert_array_equal(values[order], values2[order2])
+    # The same places in the world: the origin moved with the box.
+    np.testing.assert_allclose(again.origin, np.array(f.origin) + lo * np.array(f.spacing))
 
 
 def test_bad_export_paths(tmp_path, cli):

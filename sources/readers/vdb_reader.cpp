@@ -25,14 +25,23 @@ class VdbSource final : public VolumeSource {
   }
 
   bool randomAccess() const override { return true; }
+  bool hasInactiveVoxels() const override { return true; }
 
   // Inactive voxels read as the background even where a leaf stores another value there
   // (tools::copyToDense would copy those stored values), so each 8^3 block is resolved here:
   // a leaf gives per-voxel values and states, a tile one value and state for the whole block.
   Status read(uint32_t z0, uint32_t count, void* dst) override {
+    return readChecked(z0, count, static_cast<float*>(dst), nullptr);
+  }
+  Status readActive(uint32_t z0, uint32_t count, uint8_t* dst) override {
+    return readChecked(z0, count, nullptr, dst);
+  }
+
+ private:
+  Status readChecked(uint32_t z0, uint32_t count, float* values, uint8_t* active) const {
     VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
     try {
-      readBlocks(z0, count, static_cast<float*>(dst));
+      readBlocks(z0, count, values, active);
     } catch (const std::exception& e) {
       return makeError(ErrorCode::kCorrupt, info_.path, ": OpenVDB failed reading slices ", z0,
                        "..", z0 + count - 1, " (", e.what(), ")");
@@ -40,8 +49,9 @@ class VdbSource final : public VolumeSource {
     return Status::ok();
   }
 
- private:
-  void readBlocks(uint32_t z0, uint32_t count, float* out) const {
+  // Values (background where inactive) into `values`, active flags into `active`; either may
+  // be null.
+  void readBlocks(uint32_t z0, uint32_t count, float* values, uint8_t* active) const {
     using Leaf = FloatGrid::TreeType::LeafNodeType;
     constexpr int kDim = static_cast<int>(Leaf::DIM);
     const Coord lo(box_.min().x(), box_.min().y(), box_.min().z() + static_cast<int>(z0));
@@ -57,20 +67,25 @@ class VdbSource final : public VolumeSource {
           const Coord b = Coord::minComponent(origin.offsetBy(kDim - 1), hi);
           const Leaf* leaf = accessor.probeConstLeaf(origin);
           float tileValue = background_;
+          bool tileActive = false;
           if (!leaf) {
             float v;
-            if (accessor.probeValue(origin, v)) tileValue = v;  // active tile
+            tileActive = accessor.probeValue(origin, v);
+            if (tileActive) tileValue = v;
           }
           for (int z = a.z(); z <= b.z(); ++z) {
             for (int y = a.y(); y <= b.y(); ++y) {
-              float* row = out + ((z - lo.z()) * ny + (y - lo.y())) * nx;
+              const int64_t rowStart = (int64_t{z - lo.z()} * ny + (y - lo.y())) * nx - lo.x();
               for (int x = a.x(); x <= b.x(); ++x) {
+                bool on = tileActive;
+                float v = tileValue;
                 if (leaf) {
                   const auto offset = Leaf::coordToOffset(Coord(x, y, z));
-                  row[x - lo.x()] = leaf->isValueOn(offset) ? leaf->getValue(offset) : background_;
-                } else {
-                  row[x - lo.x()] = tileValue;
+                  on = leaf->isValueOn(offset);
+                  v = on ? leaf->getValue(offset) : background_;
                 }
+                if (values) values[rowStart + x] = v;
+                if (active) active[rowStart + x] = on ? 1 : 0;
               }
             }
           }
@@ -163,11 +178,11 @@ Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path,
   const AxesSummary s = summarizeAxes(axes, "grid transform axes");
   info.spacing = s.lengths;
   if (!s.note.empty()) info.notes.push_back(s.note);
-  info.notes.push_back(cat("grid '", grid->getName(),
-                           "': dense over the active voxel bounding box ", "from index (",
-                           box.min().x(), ",", box.min().y(), ",", box.min().z(), ") to (",
-                           box.max().x(), ",", box.max().y(), ",", box.max().z(),
-                           "); inactive voxels read as the background ", grid->background()));
+  info.notes.push_back(
+      cat("grid '", grid->getName(), "': dense over the active voxel bounding box ", "from index (",
+          box.min().x(), ",", box.min().y(), ",", box.min().z(), ") to (", box.max().x(), ",",
+          box.max().y(), ",", box.max().z(), "); inactive voxels read as the background ",
+          grid->background(), " and are never kept"));
   VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, path, "grid transform"));
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
   return std::unique_ptr<VolumeSource>(new VdbSource(std::move(info), grid, box));

@@ -76,5 +76,24 @@ TEST(Histogram, FloatRangeIsSplitEvenly) {
   for (uint64_t c : h->counts) EXPECT_NEAR(double(c), 10.0, 1.0);
 }
 
+TEST(MomentsAndHistogram, InactiveVoxelsAreLeftOut) {
+  // Values x; only x >= 60 is active, so a background of 0..59 must not move the statistics.
+  auto v = testing::makeVolume<float>({100, 3, 2},
+                                      [](uint32_t x, uint32_t, uint32_t) { return float(x); });
+  testing::PartlyActiveSource masked(*v, [](uint32_t x, uint32_t, uint32_t) { return x >= 60; });
+  auto m = measureMoments(masked, 1);
+  ASSERT_TRUE(m) << m.message();
+  EXPECT_EQ(m->count, 40u * 3 * 2);
+  EXPECT_EQ(m->min, 60.0);
+  EXPECT_EQ(m->max, 99.0);
+  EXPECT_DOUBLE_EQ(m->mean, 79.5);
+  EXPECT_NEAR(m->sigma, std::sqrt((40.0 * 40.0 - 1) / 12), 1e-12);
+  auto h = measureHistogram(masked, 4);
+  ASSERT_TRUE(h) << h.message();
+  uint64_t total = 0;
+  for (uint64_t c : h->counts) total += c;
+  EXPECT_EQ(total, m->count);
+}
+
 }  // namespace
 }  // namespace voxlink::convert

@@ -27,6 +27,34 @@ class MemorySource final : public convert::VolumeSource {
   uint32_t nextZ_ = 0;
 };
 
+// A memory volume plus active flags from a function of the voxel position (like OpenVDB's
+// inactive voxels).
+class PartlyActiveSource final : public convert::VolumeSource {
+ public:
+  PartlyActiveSource(MemorySource& values, std::function<bool(uint32_t, uint32_t, uint32_t)> active)
+      : values_(values), active_(std::move(active)) {
+    info_ = values.info();
+  }
+  Status read(uint32_t z0, uint32_t count, void* dst) override {
+    return values_.read(z0, count, dst);
+  }
+  Status rewind() override { return values_.rewind(); }
+  bool randomAccess() const override { return values_.randomAccess(); }
+  bool hasInactiveVoxels() const override { return true; }
+  Status readActive(uint32_t z0, uint32_t count, uint8_t* dst) override {
+    VOXLINK_RETURN_IF_ERROR(checkSliceRange(z0, count));
+    for (uint32_t z = z0; z < z0 + count; ++z)
+      for (uint32_t y = 0; y < info_.dims[1]; ++y)
+        for (uint32_t x = 0; x < info_.dims[0]; ++x) *dst++ = active_(x, y, z) ? 1 : 0;
+    return Status::ok();
+  }
+  bool active(uint32_t x, uint32_t y, uint32_t z) const { return active_(x, y, z); }
+
+ private:
+  MemorySource& values_;
+  std::function<bool(uint32_t, uint32_t, uint32_t)> active_;
+};
+
 // A volume of type T filled by f(x, y, z).
 template <class T>
 std::unique_ptr<MemorySource> makeVolume(std::array<uint32_t, 3> dims,

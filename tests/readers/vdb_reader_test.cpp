@@ -99,6 +99,21 @@ TEST_F(VdbReaderTest, ActiveBoxIsDenseWithBackgroundForInactiveVoxels) {
     ASSERT_EQ(data.size(), expected.size() * 4);
     EXPECT_EQ(std::memcmp(data.data(), expected.data(), data.size()), 0);
   }
+
+  // The active flags: exactly the active voxels (the tile's included, not the inactive voxel
+  // that stores a value).
+  EXPECT_TRUE(source->hasInactiveVoxels());
+  std::vector<uint8_t> expectedActive(expected.size(), 0);
+  for (const auto& [c, v] : active_)
+    expectedActive[(size_t(c.z() - lo.z()) * dims[1] + (c.y() - lo.y())) * dims[0] +
+                   (c.x() - lo.x())] = 1;
+  std::vector<uint8_t> activeFlags(expected.size(), 7);
+  const uint32_t half = dims[2] / 2;
+  ASSERT_TRUE(
+      source->readActive(half, dims[2] - half, activeFlags.data() + half * dims[0] * dims[1]));
+  ASSERT_TRUE(source->readActive(0, half, activeFlags.data()));
+  EXPECT_EQ(activeFlags, expectedActive);
+  EXPECT_FALSE(source->readActive(1, dims[2], activeFlags.data()));
 }
 
 TEST_F(VdbReaderTest, GridSelectionByNameAndRefusals) {
