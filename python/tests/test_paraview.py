@@ -33,10 +33,12 @@ def test_paraview_opens_and_renders_the_foot(tmp_path, foot_nrrd, packed):
     expected = [float(dense[z, y, x]) for x, y, z in probes]
     assert expected[2] == 0  # a removed voxel
     env = dict(os.environ, PYTHONPATH=os.environ.get("PYTHONPATH", ""))
-    r = subprocess.run(["xvfb-run", "-a", "pvpython", str(HERE / "paraview_load.py"), str(PLUGIN),
+    # -n 140: xvfb-run -a looks for a free display from there, not from 99 where the viewer
+    # test's starts: two Xvfb racing for one display break the first one's socket.
+    r = subprocess.run(["xvfb-run", "-a", "-n", "140", "pvpython", str(HERE / "paraview_load.py"), str(PLUGIN),
                         str(opened), str(tmp_path / "foot.png"),
                         json.dumps(probes)], capture_output=True, text=True, env=env, timeout=300)
-    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[:3000] + "\n...\n" + r.stderr[-1000:]
     out = json.loads(r.stdout.strip().splitlines()[-1])
     assert out["dialog_filters"] == ["VoxLink files (*.vxl)"]  # what the open dialog lists
     assert out["proxy"] == "VoxLinkReader" and out["class"] == "vtkImageData"
