@@ -52,3 +52,28 @@ def test_paraview_opens_and_renders_the_foot(tmp_path, foot_nrrd, packed):
     assert out["image_pixels"] == 128 * 128
     assert 0.02 * 128 * 128 < out["foreground_pixels"] < 0.9 * 128 * 128
     assert np.isclose(values.min(), 60)
+
+
+def test_paraview_gui_opens_the_foot_through_the_open_dialog(tmp_path, foot_nrrd):
+    """The ParaView GUI itself (under Xvfb) plays recorded events: File > Open, the foot picked in
+    the open dialog, Apply. ParaView chooses the reader from the dialog's file types; the
+    start-up script reports what the pipeline then holds."""
+    voxlink.convert(foot_nrrd, threshold=60, output=tmp_path / "foot.vxl")
+    events = (HERE / "paraview_gui_open.xml").read_text().replace(
+        "VXL_PATH", str(tmp_path / "foot.vxl"))
+    (tmp_path / "open.xml").write_text(events)
+    report = tmp_path / "gui.json"
+    env = dict(os.environ, HOME=str(tmp_path), VOXLINK_PLUGIN=str(PLUGIN), VOXLINK_OUT=str(report),
+               PYTHONPATH=os.environ.get("PYTHONPATH", ""))
+    # --dr: no user settings (and no start-up dialogs waiting for a click); --exit after the events.
+    r = subprocess.run(["xvfb-run", "-a", "-n", "150", "paraview", "--dr",
+                        "--script=" + str(HERE / "paraview_gui_startup.py"),
+                        "--test-script=" + str(tmp_path / "open.xml"), "--exit"],
+                       capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[:3000]
+    assert "Success =  true" in r.stdout + r.stderr
+    out = json.loads(report.read_text())
+    assert out["name"] == "foot.vxl" and out["proxy"] == "VoxLinkReader"
+    assert out["class"] == "vtkImageData" and out["points"] == 256 ** 3
+    assert out["arrays"] == ["gradient", "kept", "values", "vtkGhostType"]
+    assert out["shown_in"] == ["RenderView"]
