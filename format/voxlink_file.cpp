@@ -399,32 +399,4 @@ std::string VoxLinkFile::metaJson() const {
   return text;
 }
 
-double VoxLinkFile::storedValue(uint64_t voxel) const {
-  const uint8_t* v = valueBytes();
-  switch (valueType()) {
-    case StoredType::kU8:
-      return v[voxel];
-    case StoredType::kU16: {
-      uint16_t x;
-      std::memcpy(&x, v + voxel * 2, 2);
-      return x;
-    }
-    case StoredType::kF16: {
-      uint16_t x;
-      std::memcpy(&x, v + voxel * 2, 2);
-      return halfToFloat(x);
-    }
-    case StoredType::kF32: {
-      float x;
-      std::memcpy(&x, v + voxel * 4, 4);
-      return x;
-    }
-  }
-  return 0;
-}
-
-double VoxLinkFile::value(uint64_t voxel) const {
-  return storedValue(voxel) * header_->valueScale + header_->valueOffset;
-}
-
 }  // namespace voxlink::format
