@@ -9,6 +9,7 @@
 
 #include "format/brick_rows.h"
 #include "format/gradient_codec.h"
+#include "format/mask_rank.h"
 #include "format/parallel_for.h"
 #include "format/voxel_locator.h"
 
@@ -62,7 +63,8 @@ constexpr auto kAzimuthSin = boundaryTable<kHalfTurn, true>(kHalfTurn);
 // One occupied brick's neighbourhood as a dense block with a one-cell halo.
 struct Scratch {
   std::vector<double> value;
-  std::vector<uint32_t> cell;  // padded cell of each of the brick's voxels, in file order
+  std::vector<uint32_t> cell;  // padded cell of each of the brick's samples, in file order
+  std::vector<uint64_t> slot;  // and its entry in GRAD
   std::vector<double> g[3];
   std::vector<float> gf[3];
   std::vector<uint16_t> guess;
@@ -79,7 +81,9 @@ class Predictor {
         locator_(f),
         base_(f.brickVoxelBase().data()),
         rowStart_(f.rowStarts().data()),
-        mask_(f.rowMaskWords().data()) {
+        mask_(f.rowMaskWords().data()),
+        scene_(f.isScene()),
+        samples_(scene_ ? MaskRank(f.volumeMaskWords()) : MaskRank()) {
     const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
     for (int a = 0; a < 3; ++a) {
       const double s = world ? h_.spacing[a] : 1.0;
@@ -105,17 +109,24 @@ class Predictor {
     s.cell.resize(count);
     const uint32_t* mask = mask_ + k * maskWords_;
     uint32_t i = 0;
+    s.slot.resize(count);
+    uint32_t voxel = 0;  // of the brick, in file order
     for (uint32_t row = 0; row < n * n; ++row) {
-      for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1) {
+      for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1, ++voxel) {
+        uint64_t slot;
+        double v;
+        if (!sample(first + voxel, slot, v)) continue;  // a scene's geometry-only voxel
         uint32_t l[3];
         l[frame_.u] = row % n;
         l[frame_.v] = row / n;
         l[frame_.w] = static_cast<uint32_t>(std::countr_zero(bits));
         const uint32_t c = padded(l[0] + 1, l[1] + 1, l[2] + 1);
-        s.value[c] = value(first + i);
+        s.value[c] = v;
+        s.slot[i] = slot;
         s.cell[i++] = c;
       }
     }
+    const uint32_t samples = i;
     // The faces of the six neighbouring bricks that touch this one.
     const uint64_t brickStride[3] = {1, h_.brickGrid[0],
                                      uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
@@ -131,7 +142,7 @@ class Predictor {
     // A brick away from the volume's faces takes central differences everywhere.
     bool inside = true;
     for (int a = 0; a < 3; ++a) inside &= origin[a] > 0 && origin[a] + n < h_.dims[a];
-    for (uint32_t j = 0; j < count; ++j) {
+    for (uint32_t j = 0; j < samples; ++j) {
       const uint32_t c = s.cell[j];
       double grad[3];
       if (inside) {
@@ -160,9 +171,9 @@ class Predictor {
         s.gf[a][j] = static_cast<float>(grad[a]);
       }
     }
-    encodeGradients(s.gf[0].data(), s.gf[1].data(), s.gf[2].data(), s.guess.data(), count);
-    for (uint32_t j = 0; j < count; ++j)
-      codes[first + j] = exactGradientCode(s.g[0][j], s.g[1][j], s.g[2][j], s.guess[j]);
+    encodeGradients(s.gf[0].data(), s.gf[1].data(), s.gf[2].data(), s.guess.data(), samples);
+    for (uint32_t j = 0; j < samples; ++j)
+      codes[s.slot[j]] = exactGradientCode(s.g[0][j], s.g[1][j], s.g[2][j], s.guess[j]);
   }
 
  private:
@@ -186,7 +197,9 @@ class Predictor {
         if (r < 0) continue;
         q[frame_.u] = row % n + 1;
         q[frame_.v] = row / n + 1;
-        s.value[padded(q[0], q[1], q[2])] = value(first + rowStart[row] + r);
+        uint64_t slot;
+        double v;
+        if (sample(first + rowStart[row] + r, slot, v)) s.value[padded(q[0], q[1], q[2])] = v;
       }
       return;
     }
@@ -197,7 +210,9 @@ class Predictor {
       uint64_t i = first + rowStart[row];
       for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1) {
         q[frame_.w] = static_cast<uint32_t>(std::countr_zero(bits)) + 1;
-        s.value[padded(q[0], q[1], q[2])] = value(i++);
+        uint64_t slot;
+        double v;
+        if (sample(i++, slot, v)) s.value[padded(q[0], q[1], q[2])] = v;
       }
     }
   }
@@ -205,7 +220,18 @@ class Predictor {
   uint32_t padded(uint32_t x, uint32_t y, uint32_t z) const {
     return x + y * stride_[1] + z * stride_[2];
   }
-  double value(uint64_t i) const { return file_.value(i); }
+  // The volume sample of voxel i and its slot in VALU and GRAD: voxel i itself in a volume
+  // file; in a scene its VMSK slot, and none for voxels that hold only geometry.
+  bool sample(uint64_t voxel, uint64_t& slot, double& v) const {
+    if (scene_) {
+      if (!samples_.has(voxel)) return false;
+      slot = samples_.slot(voxel);
+    } else {
+      slot = voxel;
+    }
+    v = file_.value(slot);
+    return true;
+  }
 
   const VoxLinkFile& file_;
   const FileHeader& h_;
@@ -216,6 +242,8 @@ class Predictor {
   const uint32_t* base_;
   const uint16_t* rowStart_;
   const uint32_t* mask_;
+  bool scene_;
+  MaskRank samples_;  // scenes: VMSK slots
   double half_[3], full_[3];
   double fill_;
   std::array<uint32_t, 3> stride_;

@@ -1,4 +1,5 @@
-// Predicts the gradient codes of a version 1 file from what the file stores besides them: the
+// Predicts the gradient codes of a file (a volume, or a scene's volume samples) from what the
+// file stores besides them: the
 // voxels' positions and values. The converter computed each gradient from the source by central
 // differences (docs/format.md, "Gradients"); where both neighbours along an axis are stored, the
 // same differences of the stored values give the same direction, so the prediction is exact for
@@ -30,10 +31,12 @@ std::span<const double> polarBoundaryCosines();
 std::span<const double> azimuthBoundaryCosines();
 std::span<const double> azimuthBoundarySines();
 
-// Fills `codes` (voxelCount entries) with the predicted code of every voxel, in file order.
-// The file must be version 1 and structurally valid (validateStructure); GRAD is not read.
-// A neighbour that is not stored is taken to be one value step below the smallest stored value
-// (what a threshold removed). Runs on `threads` threads (0: all cores).
+// Fills `codes` (one entry per GRAD entry: voxelCount in a volume file, volumeVoxelCount in a
+// scene) with the predicted code of every volume sample, in file order. The file must be
+// structurally valid (validateStructure); GRAD is not read. A neighbour without a volume sample
+// (removed by the threshold, or a scene voxel holding only geometry) is taken to be one value
+// step below the smallest stored value (what a threshold removed). Runs on `threads` threads
+// (0: all cores).
 void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads = 0);
 
 }  // namespace voxlink::format

@@ -39,13 +39,12 @@ static_assert(sizeof(PackEntry) == 40);
 
 std::string nameOf(uint32_t id) { return std::string(sectionName(static_cast<SectionId>(id))); }
 
-// How each section is encoded: gradients of a volume file against their prediction, sections
+// How each section is encoded: gradients against their prediction, sections
 // of slowly changing numbers (values, row starts, brick bases) as deltas, the rest as they are.
-SectionCodec codecFor(const VoxLinkFile& file, SectionId id, const PackOptions& options) {
+SectionCodec codecFor(SectionId id, const PackOptions& options) {
   switch (id) {
     case SectionId::kGradients:
-      return file.isScene() || !options.predictGradients ? SectionCodec::kDeltaZstd
-                                                         : SectionCodec::kGradientResidual;
+      return options.predictGradients ? SectionCodec::kGradientResidual : SectionCodec::kDeltaZstd;
     case SectionId::kValues:
     case SectionId::kRowStart:
     case SectionId::kBrickVoxelBase:
@@ -60,7 +59,9 @@ SectionCodec codecFor(const VoxLinkFile& file, SectionId id, const PackOptions& 
 // entries, wrapping around; the padding after them is left as it is.
 void applyPrediction(const VoxLinkFile& file, std::span<uint8_t> grad, bool subtract,
                      unsigned threads) {
-  std::vector<uint16_t> predicted(file.voxelCount());
+  // GRAD entries: one per voxel of a volume file, one per volume sample (VMSK slot) of a scene.
+  std::vector<uint16_t> predicted(file.isScene() ? file.header().volumeVoxelCount
+                                                 : file.voxelCount());
   predictGradientCodes(file, predicted, threads);
   for (uint64_t i = 0; i < predicted.size(); ++i) {
     uint16_t code;
@@ -93,7 +94,7 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   for (size_t i = 0; i < table.size(); ++i) {
     const SectionEntry& e = table[i];
     const auto id = static_cast<SectionId>(e.id);
-    SectionCodec codec = codecFor(file, id, options);
+    SectionCodec codec = codecFor(id, options);
     std::vector<uint8_t> residual;
     std::span<const uint8_t> raw = file.sectionBytes(e);
     if (codec == SectionCodec::kGradientResidual) {
@@ -255,10 +256,9 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     const auto payload = packed.subspan(source->offset, source->bytes);
     const auto codec = static_cast<SectionCodec>(p.codec);
     if (codec == SectionCodec::kGradientResidual) {
-      if (e.id != static_cast<uint32_t>(SectionId::kGradients) ||
-          original.versionMajor != kVersionMajor || residual)
+      if (e.id != static_cast<uint32_t>(SectionId::kGradients) || residual)
         return makeError(ErrorCode::kCorrupt, where,
-                         ": codec 3 (gradient residual) is only for GRAD of a volume file");
+                         ": codec 3 (gradient residual) is only for GRAD");
       residual = &p;
       residualPayload = payload;
       continue;  // needs the other sections first

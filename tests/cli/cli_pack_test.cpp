@@ -61,6 +61,26 @@ TEST(CliPack, SceneWithSurfacesAndSpheresRoundTrips) {
   r = runVoxlink({"unpack", dir.file("p.vxl"), "-o", dir.file("u.vxl"), "-q"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(readBytes(dir.file("u.vxl")), readBytes(dir.file("s.vxl")));
+
+  // The scene's volume samples (VMSK slots) are predicted as the foot's voxels are in a volume
+  // file of their own: surface and sphere voxels count as removed neighbours, as the converter
+  // saw them, so GRAD packs to exactly the same bytes.
+  auto gradLine = [](const std::string& table) {
+    const size_t at = table.find("\nGRAD");
+    return at == std::string::npos ? std::string()
+                                   : table.substr(at + 1, table.find('\n', at + 1) - at - 1);
+  };
+  r = runVoxlink({"pack", dir.file("s.vxl"), "-o", dir.file("p2.vxl"), "--sections"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string sceneGrad = gradLine(r.out);
+  EXPECT_NE(sceneGrad.find("predicted+zstd"), std::string::npos) << r.out;
+  ASSERT_EQ(
+      runVoxlink({"convert", dataPath(kFoot), "--threshold", "60", "-o", dir.file("f.vxl"), "-q"})
+          .status,
+      0);
+  r = runVoxlink({"pack", dir.file("f.vxl"), "-o", dir.file("fp.vxl"), "--sections"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(sceneGrad, gradLine(r.out));
 }
 
 TEST(CliPack, MisuseAndDamageEndWithOneLineAndNoOutput) {
