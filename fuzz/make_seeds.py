@@ -384,6 +384,22 @@ def vxl_seeds(s, d, out, voxlink):
                                   capture_output=True).returncode == 0:
                     with open(packed, "rb") as f:
                         s.add("vxl", name + "_" + suffix, f.read())
+    # A scene (version 2) of the first volume and a sphere, plain and packed: the packed one's
+    # GRAD is predicted over VMSK slots.
+    volume = os.path.join(tmp, "u8_b4.vxl")
+    if os.path.exists(volume):
+        scene_json = os.path.join(tmp, "s.scene.json")
+        with open(scene_json, "w") as f:
+            f.write('{"objects": [{"type": "volume", "file": "u8_b4.vxl"}, '  # beside the scene
+                    '{"type": "sphere", "center": [8, 8, 8], "radius": 3}]}')
+        scene, packed = os.path.join(tmp, "scene.vxl"), os.path.join(tmp, "scene.packed.vxl")
+        if (subprocess.run([voxlink, "scene", "build", scene_json, "-o", scene],
+                           capture_output=True).returncode == 0 and
+                subprocess.run([voxlink, "pack", scene, "-o", packed, "-q"],
+                               capture_output=True).returncode == 0):
+            for name, path in (("scene_sphere", scene), ("scene_sphere_packed", packed)):
+                with open(path, "rb") as f:
+                    s.add("vxl", name, f.read())
 
 
 def main():
