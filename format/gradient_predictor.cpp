@@ -83,7 +83,8 @@ class Predictor {
         rowStart_(f.rowStarts().data()),
         mask_(f.rowMaskWords().data()),
         scene_(f.isScene()),
-        samples_(scene_ ? MaskRank(f.volumeMaskWords()) : MaskRank()) {
+        samples_(scene_ ? MaskRank(f.volumeMaskWords()) : MaskRank()),
+        slots_(scene_ ? h_.volumeVoxelCount : h_.voxelCount) {
     const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
     for (int a = 0; a < 3; ++a) {
       const double s = world ? h_.spacing[a] : 1.0;
@@ -222,10 +223,13 @@ class Predictor {
   }
   // The volume sample of voxel i and its slot in VALU and GRAD: voxel i itself in a volume
   // file; in a scene its VMSK slot, and none for voxels that hold only geometry.
+  // (A slot past VALU's entries, from a mask that disagrees with its count, is no sample:
+  // validateStructure refuses such files, this keeps an unvalidated one inside its sections.)
   bool sample(uint64_t voxel, uint64_t& slot, double& v) const {
     if (scene_) {
       if (!samples_.has(voxel)) return false;
       slot = samples_.slot(voxel);
+      if (slot >= slots_) return false;
     } else {
       slot = voxel;
     }
@@ -244,6 +248,7 @@ class Predictor {
   const uint32_t* mask_;
   bool scene_;
   MaskRank samples_;  // scenes: VMSK slots
+  uint64_t slots_;    // entries of VALU and GRAD
   double half_[3], full_[3];
   double fill_;
   std::array<uint32_t, 3> stride_;

@@ -272,7 +272,9 @@ Status checkScene(const VoxLinkFile& f) {
 Status validateStructure(const VoxLinkFile& f) {
   ValidationReport report;
   VOXLINK_RETURN_IF_ERROR(checkBrickLevel(f));
-  return checkBricks(f, report);
+  VOXLINK_RETURN_IF_ERROR(checkBricks(f, report));
+  // A scene's masks against their counts too: the gradient prediction walks VMSK slots.
+  return checkScene(f);
 }
 
 Result<VoxLinkFile> openValidatedFile(const std::string& path) {

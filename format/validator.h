@@ -17,8 +17,9 @@ struct ValidationReport {
 
 Result<ValidationReport> validateFile(const VoxLinkFile& file);
 
-// The brick level and the bricks' rows and masks only (no checksums, values or gradients): what
-// code that walks the structure must know first, e.g. unpacking a packed file's gradients.
+// The brick level, the bricks' rows and masks, and a scene's masks, materials and sphere
+// references (no checksums, values or gradients): what code that walks the structure must know
+// first, e.g. unpacking a packed file's gradients (which walks VMSK slots in a scene).
 Status validateStructure(const VoxLinkFile& file);
 
 // VoxLinkFile::open() then validateFile(): what every command that reads a .vxl (render, view,

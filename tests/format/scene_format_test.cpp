@@ -10,6 +10,7 @@
 #include "format/file_writer.h"
 #include "format/footprint.h"
 #include "format/gradient_codec.h"
+#include "format/packed_file.h"
 #include "format/scene_builder.h"
 #include "format/scene_index.h"
 #include "format/validator.h"
@@ -295,6 +296,35 @@ TEST_F(SceneBadInput, MissingSceneSection) {
 TEST_F(SceneBadInput, Version1WithSceneCounts) {
   header().versionMajor = kVersionMajor;
   EXPECT_NE(problem().find("version 1"), std::string::npos) << problem();
+}
+
+// Packed scenes predict GRAD over VMSK slots. A VMSK with more bits than volumeVoxelCount (whose
+// packed payload checksum is right, so it reaches the prediction) is refused when unpacking,
+// naming the section, before any slot is used; packing such a file stays inside its sections.
+// (Found by fuzzing the vxl target: the prediction wrote past its codes.)
+TEST(SceneFormat, PackedSceneWithTooManyVolumeBitsIsRefused) {
+  auto built = mixedScene().build("{}");
+  ASSERT_TRUE(built) << built.message();
+  testing::TempDir dir;
+  const std::string path = dir.file("scene.vxl");
+  ASSERT_TRUE(writeBrickedVolume(path, *built).isOk());
+  auto bytes = testing::readBytes(path);
+  auto good = VoxLinkFile::fromBytes(bytes, "scene.vxl");
+  ASSERT_TRUE(good) << good.message();
+  const auto vmsk = good->sectionBytes(SectionId::kVolumeMask);
+  const uint64_t at = static_cast<uint64_t>(vmsk.data() - good->bytes().data());
+  uint32_t word;
+  std::memcpy(&word, bytes.data() + at, 4);
+  ASSERT_EQ(std::popcount(word), 2);
+  word = 0xF;  // all four voxels, two of which hold only geometry
+  std::memcpy(bytes.data() + at, &word, 4);
+  auto damaged = VoxLinkFile::fromBytes(bytes, "damaged.vxl");
+  ASSERT_TRUE(damaged) << damaged.message();
+  ASSERT_TRUE(packFile(*damaged, dir.file("packed.vxl")));
+  auto unpacked = unpackFile(testing::readBytes(dir.file("packed.vxl")), "packed.vxl", 1u << 30);
+  ASSERT_FALSE(unpacked);
+  EXPECT_NE(unpacked.message().find("VMSK"), std::string::npos) << unpacked.message();
+  EXPECT_NE(unpacked.message().find("volumeVoxelCount"), std::string::npos) << unpacked.message();
 }
 
 }  // namespace
