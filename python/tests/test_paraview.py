@@ -77,3 +77,24 @@ def test_paraview_gui_opens_the_foot_through_the_open_dialog(tmp_path, foot_nrrd
     assert out["class"] == "vtkImageData" and out["points"] == 256 ** 3
     assert out["arrays"] == ["gradient", "kept", "values", "vtkGhostType"]
     assert out["shown_in"] == ["RenderView"]
+
+
+@pytest.mark.parametrize("ending", [".nrrd", ".nhdr"])
+def test_paraview_reads_the_dense_export(tmp_path, foot_nrrd, cli, ending):
+    """`voxlink export` to NRRD (and raw + detached header) opens in ParaView's own reader, no
+    plugin: the source's type, shape and spacing, kept values and the fill elsewhere."""
+    f = voxlink.convert(foot_nrrd, threshold=60, output=tmp_path / "foot.vxl")
+    out = tmp_path / ("foot" + ending)
+    r = subprocess.run([cli, "export", str(tmp_path / "foot.vxl"), "-o", str(out), "--fill", "7"],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    ijk, values, _ = f.voxels()
+    probes = [ijk[0].tolist(), ijk[len(ijk) // 2].tolist(), [0, 0, 0]]
+    r = subprocess.run(["xvfb-run", "-a", "-n", "160", "pvpython", str(HERE / "paraview_dense.py"),
+                        str(out), json.dumps(probes)], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[:3000]
+    got = json.loads(r.stdout.strip().splitlines()[-1])
+    assert got["proxy"] == "NrrdReader" and got["class"] == "vtkImageData"
+    assert got["dims"] == [256, 256, 256]
+    assert got["spacing"] == [1, 1, 1] and got["type"] == "unsigned char"
+    assert got["sample"] == [float(values[0]), float(values[len(ijk) // 2]), 7.0]
