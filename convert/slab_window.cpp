@@ -22,17 +22,12 @@ Status SlabWindow::rewind() {
 }
 
 Status SlabWindow::load(uint32_t z0, uint32_t z1) {
-  VOXLINK_RETURN_IF_ERROR(loadValues(z0, z1));
-  if (!source_.hasInactiveVoxels()) return Status::ok();
-  active_.resize(uint64_t{z1 - z0} * sliceVoxels_);
-  activeFirst_ = z0;
-  return source_.readActive(z0, z1 - z0, active_.data());
-}
-
-Status SlabWindow::loadValues(uint32_t z0, uint32_t z1) {
   const uint32_t first = z0 > halo_ ? z0 - halo_ : 0;
   const uint32_t end = std::min(depth_, z1 + halo_);
-  if (const void* p = source_.map(first, end - first)) {
+  // Sources with inactive voxels give values and active flags in one read (one walk of an
+  // OpenVDB tree); they are buffered like streamed sources.
+  const bool masked = source_.hasInactiveVoxels();
+  if (const void* p = masked ? nullptr : source_.map(first, end - first)) {
     release();
     base_ = static_cast<const uint8_t*>(p);
     mapped_ = true;
@@ -45,16 +40,24 @@ Status SlabWindow::loadValues(uint32_t z0, uint32_t z1) {
   uint32_t kept = (!mapped_ && base_ && first >= first_ && end_ > keepFrom) ? end_ - keepFrom : 0;
   kept = std::min(kept, end - first);
   mapped_ = false;
-  const uint64_t needed = uint64_t{end - first} * sliceBytes_;
   if (kept > 0) {
     std::memmove(buffer_.data(), buffer_.data() + (keepFrom - first_) * sliceBytes_,
                  kept * sliceBytes_);
+    if (masked)
+      std::memmove(active_.data(), active_.data() + (keepFrom - first_) * sliceVoxels_,
+                   kept * sliceVoxels_);
   }
-  if (buffer_.size() < needed) buffer_.resize(needed);
+  const uint64_t slices = end - first;
+  if (buffer_.size() < slices * sliceBytes_) buffer_.resize(slices * sliceBytes_);
+  if (masked && active_.size() < slices * sliceVoxels_) active_.resize(slices * sliceVoxels_);
   const uint32_t readFrom = first + kept;
-  if (end > readFrom)
+  if (end > readFrom) {
+    uint8_t* values = buffer_.data() + uint64_t{kept} * sliceBytes_;
     VOXLINK_RETURN_IF_ERROR(
-        source_.read(readFrom, end - readFrom, buffer_.data() + uint64_t{kept} * sliceBytes_));
+        masked ? source_.readWithActive(readFrom, end - readFrom, values,
+                                        active_.data() + uint64_t{kept} * sliceVoxels_)
+               : source_.read(readFrom, end - readFrom, values));
+  }
   base_ = buffer_.data();
   first_ = first;
   end_ = end;

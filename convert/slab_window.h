@@ -21,10 +21,10 @@ class SlabWindow {
   Status load(uint32_t z0, uint32_t z1);
   // Slice z, which must lie in the loaded range.
   const uint8_t* slice(uint32_t z) const { return base_ + (z - first_) * sliceBytes_; }
-  // Active flags of slice z (in [z0, z1) of the last load, not the halo), x fastest; null when
-  // the source has no inactive voxels.
+  // Active flags of slice z (in the loaded range), x fastest; null when the source has no
+  // inactive voxels.
   const uint8_t* active(uint32_t z) const {
-    return active_.empty() ? nullptr : active_.data() + (z - activeFirst_) * sliceVoxels_;
+    return active_.empty() ? nullptr : active_.data() + (z - first_) * sliceVoxels_;
   }
   uint32_t first() const { return first_; }
   uint32_t end() const { return end_; }
@@ -32,8 +32,6 @@ class SlabWindow {
   void release();
 
  private:
-  Status loadValues(uint32_t z0, uint32_t z1);
-
   VolumeSource& source_;
   uint32_t halo_;
   uint64_t sliceBytes_;
@@ -43,8 +41,7 @@ class SlabWindow {
   bool mapped_ = false;
   std::vector<uint8_t> buffer_;
   uint64_t sliceVoxels_;
-  uint32_t activeFirst_ = 0;
-  std::vector<uint8_t> active_;  // slices [activeFirst_, z1) of the last load
+  std::vector<uint8_t> active_;  // active flags of the buffered slices (masked sources)
 };
 
 }  // namespace voxlink::convert

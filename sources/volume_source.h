@@ -58,6 +58,11 @@ class VolumeSource {
   // Copies the active flags (1 holds data, 0 does not) of slices [z0, z0 + count) into dst, one
   // byte per voxel in read()'s order. The default says every voxel is active.
   virtual Status readActive(uint32_t z0, uint32_t count, uint8_t* dst);
+  // read() and readActive() together; sources override it to do both in one pass.
+  virtual Status readWithActive(uint32_t z0, uint32_t count, void* dst, uint8_t* active) {
+    VOXLINK_RETURN_IF_ERROR(read(z0, count, dst));
+    return readActive(z0, count, active);
+  }
 
   // Zero-copy path: a pointer to slices [z0, z0 + count) already in memory in native layout
   // (a mapped raw file), valid while the source lives; nullptr when the source cannot.

@@ -36,6 +36,9 @@ class VdbSource final : public VolumeSource {
   Status readActive(uint32_t z0, uint32_t count, uint8_t* dst) override {
     return readChecked(z0, count, nullptr, dst);
   }
+  Status readWithActive(uint32_t z0, uint32_t count, void* dst, uint8_t* active) override {
+    return readChecked(z0, count, static_cast<float*>(dst), active);
+  }
 
  private:
   Status readChecked(uint32_t z0, uint32_t count, float* values, uint8_t* active) const {
