@@ -199,24 +199,9 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
   if (!detached) {
     VOXLINK_RETURN_IF_ERROR(commitTemp(temp.path, path));
   } else {
-    auto created = createTempBeside(path, ".nhdr");
-    if (!created) {
-      discardTemp(temp.path);
-      return created.error();
-    }
-    const TempFile head = *created;
-    Status written = writeAll(head.fd, header.data(), header.size(), head.path);
-    if (written && ::close(head.fd) != 0)
-      written = makeError(ErrorCode::kIo, path, ": close failed: ", std::strerror(errno));
-    else if (!written)
-      ::close(head.fd);
-    if (!written) {
-      discardTemp(head.path);
-      discardTemp(temp.path);
-      return written.error();
-    }
     VOXLINK_RETURN_IF_ERROR(commitTemp(temp.path, dataPath));
-    if (Status s = commitTemp(head.path, path); !s) {
+    const auto* text = reinterpret_cast<const uint8_t*>(header.data());
+    if (Status s = writeWholeFile(path, {text, header.size()}); !s) {
       std::remove(dataPath.c_str());  // no data file without its header
       return s.error();
     }

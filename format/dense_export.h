@@ -1,9 +1,9 @@
 // The classified volume dense again: every stored voxel's value in the source's type, removed
 // voxels set to a fill value, written as an NRRD file (attached header, raw little-endian data),
 // or for a path ending in .nhdr as a detached header and NAME.raw beside it (raw + header: any
-// tool that takes dims and a type reads the .raw), that the NRRD reader of sources/ and other
-// tools read. Streams one brick layer (n slices) at
-// a time, to a temporary file renamed into place when complete.
+// tool that takes dims and a type reads the .raw). The NRRD reader of sources/ and other tools
+// read both. Streams one brick layer (n slices) at a time, to a temporary file renamed into
+// place when complete.
 #pragma once
 
 #include <string>

@@ -84,7 +84,7 @@ class Predictor {
         mask_(f.rowMaskWords().data()),
         scene_(f.isScene()),
         samples_(scene_ ? MaskRank(f.volumeMaskWords()) : MaskRank()),
-        slots_(scene_ ? h_.volumeVoxelCount : h_.voxelCount) {
+        slots_(sampleSlots(h_)) {
     const bool world = (h_.flags & kFlagGradientsInWorldSpace) != 0;
     for (int a = 0; a < 3; ++a) {
       const double s = world ? h_.spacing[a] : 1.0;

@@ -59,9 +59,7 @@ SectionCodec codecFor(SectionId id, const PackOptions& options) {
 // entries, wrapping around; the padding after them is left as it is.
 void applyPrediction(const VoxLinkFile& file, std::span<uint8_t> grad, bool subtract,
                      unsigned threads) {
-  // GRAD entries: one per voxel of a volume file, one per volume sample (VMSK slot) of a scene.
-  std::vector<uint16_t> predicted(file.isScene() ? file.header().volumeVoxelCount
-                                                 : file.voxelCount());
+  std::vector<uint16_t> predicted(sampleSlots(file.header()));  // GRAD entries
   predictGradientCodes(file, predicted, threads);
   for (uint64_t i = 0; i < predicted.size(); ++i) {
     uint16_t code;
