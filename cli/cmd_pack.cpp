@@ -22,6 +22,10 @@ const char* codecName(format::SectionCodec codec) {
       return "delta+zstd";
     case format::SectionCodec::kGradientResidual:
       return "predicted+zstd";
+    case format::SectionCodec::kGradientResidualPortable:
+      return "predicted-f32+zstd";
+    case format::SectionCodec::kDerived:
+      return "derived";
   }
   return "?";
 }
@@ -79,10 +83,10 @@ CommandRunner addPackCommand(CLI::App& app) {
     const double voxels = std::max<double>(1, double(file->voxelCount()));
     std::printf(
         "%s: %.2f MB -> %.2f MB (%.2fx smaller), %.3f B/voxel | packed in %.2f s (%.0f MB/s of "
-        "input; %.2f s of it decoding again to check), after reading and validating in %.2f s\n",
+        "input; %.2f s of it predicting gradients), after reading and validating in %.2f s\n",
         args->output.c_str(), report->inputBytes / 1e6, report->outputBytes / 1e6,
         double(report->inputBytes) / double(report->outputBytes), report->outputBytes / voxels,
-        report->packSeconds, report->inputBytes / 1e6 / report->packSeconds, report->checkSeconds,
+        report->packSeconds, report->inputBytes / 1e6 / report->packSeconds, report->predictSeconds,
         readSeconds);
     return 0;
   };

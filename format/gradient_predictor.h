@@ -1,16 +1,16 @@
 // Predicts the gradient codes of a file (a volume, or a scene's volume samples) from what the
-// file stores besides them: the
-// voxels' positions and values. The converter computed each gradient from the source by central
-// differences (docs/format.md, "Gradients"); where both neighbours along an axis are stored, the
-// same differences of the stored values give the same direction, so the prediction is exact for
-// most voxels of a thresholded CT (99.4 % of the interior voxels of the 1024^3 foot). Packed
-// files (format/packed_file.h) store the difference between the real codes and this
-// prediction, which compresses about 5x better than the codes themselves.
+// file stores besides them: the voxels' positions and values. The converter computed each
+// gradient from the source by central differences (docs/format.md, "Gradients"); where both
+// neighbours along an axis are stored, the same differences of the stored values give the same
+// direction, so the prediction is exact for most voxels of a thresholded CT (99.4 % of the
+// interior voxels of the 1024^3 foot). Packed files (format/packed_file.h) store the difference
+// between the real codes and this prediction, which compresses about 6x better than the codes.
 //
 // The prediction must be the same on every machine, or a file packed on one would unpack wrong
-// on another. So the final code is decided only by IEEE basic operations (no FMA contraction:
-// the file is built with -ffp-contract=off) against boundary tables evaluated at compile time;
-// the fast vectorized encoder only supplies a starting guess that the exact comparisons correct.
+// on another. So it uses IEEE basic operations only (no FMA contraction: the files are built
+// with -ffp-contract=off). kExact decides the code by comparisons against boundary tables
+// evaluated at compile time (the converter's vectorized encoder only supplies a starting guess);
+// kPortable encodes float differences with portableGradientCodes.
 #pragma once
 
 #include <cstdint>
@@ -31,12 +31,23 @@ std::span<const double> polarBoundaryCosines();
 std::span<const double> azimuthBoundaryCosines();
 std::span<const double> azimuthBoundarySines();
 
+// How the prediction computes: part of the packed format (each is its own GRAD codec).
+enum class GradientPrediction : uint8_t {
+  // Float64 differences, the code by exact comparisons against the boundary tables above
+  // (codec "predicted+zstd", files packed before the portable one existed).
+  kExact,
+  // Float differences, the code by portableGradientCodes (codec "predicted-f32+zstd"): about
+  // 4x faster and as close to the converter's codes (docs/benchmarks.md, "Packed files").
+  kPortable,
+};
+
 // Fills `codes` (one entry per GRAD entry: voxelCount in a volume file, volumeVoxelCount in a
 // scene) with the predicted code of every volume sample, in file order. The file must be
 // structurally valid (validateStructure); GRAD is not read. A neighbour without a volume sample
 // (removed by the threshold, or a scene voxel holding only geometry) is taken to be one value
 // step below the smallest stored value (what a threshold removed). Runs on `threads` threads
 // (0: all cores).
-void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads = 0);
+void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
+                          GradientPrediction kind, unsigned threads = 0);
 
 }  // namespace voxlink::format

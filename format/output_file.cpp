@@ -134,20 +134,27 @@ Status commitTempFile(const TempFile& temp, const std::string& target) {
 }
 
 Status writeWholeFile(const std::string& target, std::span<const uint8_t> bytes) {
+  const std::span<const uint8_t> pieces[1] = {bytes};
+  return writeWholeFile(target, pieces);
+}
+
+Status writeWholeFile(const std::string& target, std::span<const std::span<const uint8_t>> pieces) {
   VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createUnnamedTempBeside(target));
-  const uint8_t* p = bytes.data();
-  uint64_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(temp.fd, p, std::min<uint64_t>(left, uint64_t{1} << 30));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string why = n < 0 ? std::strerror(errno) : "no progress";
-      ::close(temp.fd);
-      if (!temp.unnamed) discardTemp(temp.path);
-      return makeError(ErrorCode::kIo, target, ": write failed: ", why);
+  for (const std::span<const uint8_t> piece : pieces) {
+    const uint8_t* p = piece.data();
+    uint64_t left = piece.size();
+    while (left > 0) {
+      const ssize_t n = ::write(temp.fd, p, std::min<uint64_t>(left, uint64_t{1} << 30));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const std::string why = n < 0 ? std::strerror(errno) : "no progress";
+        ::close(temp.fd);
+        if (!temp.unnamed) discardTemp(temp.path);
+        return makeError(ErrorCode::kIo, target, ": write failed: ", why);
+      }
+      p += n;
+      left -= static_cast<uint64_t>(n);
     }
-    p += n;
-    left -= static_cast<uint64_t>(n);
   }
   return commitTempFile(temp, target);
 }

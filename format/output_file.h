@@ -45,6 +45,8 @@ Status commitTemp(const std::string& tempPath, const std::string& target);
 
 // Writes `bytes` as the whole of `target` through an unnamed temporary: all or nothing.
 Status writeWholeFile(const std::string& target, std::span<const uint8_t> bytes);
+// The same for a file made of `pieces` written one after the other.
+Status writeWholeFile(const std::string& target, std::span<const std::span<const uint8_t>> pieces);
 
 // Removes a temporary (after a failure) and forgets it.
 void discardTemp(const std::string& tempPath);

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "format/crc32c.h"
+#include "format/derived_sections.h"
 #include "format/gradient_predictor.h"
 #include "format/output_file.h"
 #include "format/validator.h"
@@ -39,15 +40,18 @@ static_assert(sizeof(PackEntry) == 40);
 
 std::string nameOf(uint32_t id) { return std::string(sectionName(static_cast<SectionId>(id))); }
 
-// How each section is encoded: gradients against their prediction, sections
-// of slowly changing numbers (values, row starts, brick bases) as deltas, the rest as they are.
+// How each section is encoded: gradients against their prediction, row starts and brick bases
+// derived from the masks (when they match), sections of slowly changing numbers (values) as
+// deltas, the rest as they are.
 SectionCodec codecFor(SectionId id, const PackOptions& options) {
   switch (id) {
     case SectionId::kGradients:
-      return options.predictGradients ? SectionCodec::kGradientResidual : SectionCodec::kDeltaZstd;
-    case SectionId::kValues:
+      return options.predictGradients ? SectionCodec::kGradientResidualPortable
+                                      : SectionCodec::kDeltaZstd;
     case SectionId::kRowStart:
     case SectionId::kBrickVoxelBase:
+      return SectionCodec::kDerived;
+    case SectionId::kValues:
     case SectionId::kSphereRefStart:
       return SectionCodec::kDeltaZstd;
     default:
@@ -55,18 +59,25 @@ SectionCodec codecFor(SectionId id, const PackOptions& options) {
   }
 }
 
-// Subtracts (packing) or adds (unpacking) the predicted code of every voxel to GRAD's u16
-// entries, wrapping around; the padding after them is left as it is.
-void applyPrediction(const VoxLinkFile& file, std::span<uint8_t> grad, bool subtract,
-                     unsigned threads) {
-  std::vector<uint16_t> predicted(sampleSlots(file.header()));  // GRAD entries
-  predictGradientCodes(file, predicted, threads);
-  for (uint64_t i = 0; i < predicted.size(); ++i) {
-    uint16_t code;
-    std::memcpy(&code, grad.data() + 2 * i, 2);
-    code = static_cast<uint16_t>(subtract ? code - predicted[i] : code + predicted[i]);
-    std::memcpy(grad.data() + 2 * i, &code, 2);
-  }
+GradientPrediction predictionOf(SectionCodec codec) {
+  return codec == SectionCodec::kGradientResidual ? GradientPrediction::kExact
+                                                  : GradientPrediction::kPortable;
+}
+
+// The predicted code of every GRAD entry.
+std::vector<uint16_t> predictedCodes(const VoxLinkFile& file, SectionCodec codec,
+                                     unsigned threads) {
+  std::vector<uint16_t> predicted(sampleSlots(file.header()));
+  predictGradientCodes(file, predicted, predictionOf(codec), threads);
+  return predicted;
+}
+
+// Computes a derived section (ROWS or BVOX) from `masks` into `out`.
+Status derive(SectionId id, std::span<const uint8_t> masks, uint32_t brickSize,
+              std::span<uint8_t> out, const std::string& where) {
+  if (id == SectionId::kRowStart) return deriveRowStarts(masks, brickSize, out, where);
+  if (id == SectionId::kBrickVoxelBase) return deriveBrickVoxelBase(masks, brickSize, out, where);
+  return makeError(ErrorCode::kCorrupt, where, ": only ROWS and BVOX can be derived");
 }
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -89,36 +100,37 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   const auto& table = file.sectionTable();
   std::vector<std::vector<uint8_t>> payloads(table.size());
   std::vector<PackEntry> entries(table.size());
+  const std::span<const uint8_t> masks = file.sectionBytes(SectionId::kRowMask);
   for (size_t i = 0; i < table.size(); ++i) {
     const SectionEntry& e = table[i];
     const auto id = static_cast<SectionId>(e.id);
     SectionCodec codec = codecFor(id, options);
-    std::vector<uint8_t> residual;
-    std::span<const uint8_t> raw = file.sectionBytes(e);
-    if (codec == SectionCodec::kGradientResidual) {
-      residual.assign(raw.begin(), raw.end());
-      applyPrediction(file, residual, /*subtract=*/true, options.threads);
-      raw = residual;
+    const std::span<const uint8_t> raw = file.sectionBytes(e);
+    if (codec == SectionCodec::kDerived) {
+      // Stored only if the masks do not give these very bytes.
+      std::vector<uint8_t> derived(raw.size());
+      const bool same = derive(id, masks, file.header().brickSize, derived, path).isOk() &&
+                        derived.size() == raw.size() &&
+                        std::memcmp(derived.data(), raw.data(), raw.size()) == 0;
+      codec = same ? SectionCodec::kDerived : SectionCodec::kDeltaZstd;
     }
-    VOXLINK_ASSIGN_OR_RETURN(
-        payloads[i], encodeSection(raw, e.elementBytes, codec, options.level, options.threads));
-    if (payloads[i].size() >= e.bytes && codec != SectionCodec::kGradientResidual) {
-      codec = SectionCodec::kStored;  // incompressible (or tiny): kept as it is
-      const auto original = file.sectionBytes(e);
-      payloads[i].assign(original.begin(), original.end());
-    } else {
-      // Never write a payload that does not decode to what was encoded. (The gradient
-      // prediction is the same function on this machine when unpacking: only the codec can
-      // differ from what was meant.)
-      const auto check = std::chrono::steady_clock::now();
-      std::vector<uint8_t> decoded(raw.size());
-      VOXLINK_RETURN_IF_ERROR(decodeSection(
-          payloads[i], e.elementBytes, codec, decoded,
-          path + ": packing check of section " + std::string(sectionName(id)), options.threads));
-      if (std::memcmp(decoded.data(), raw.data(), raw.size()) != 0)
-        return makeError(ErrorCode::kCorrupt, path, ": packing check: section ", sectionName(id),
-                         " does not decode to its bytes");
-      report.checkSeconds += secondsSince(check);
+    std::vector<uint16_t> predicted;
+    if (isGradientResidual(codec)) {
+      const auto predictStart = std::chrono::steady_clock::now();
+      predicted = predictedCodes(file, codec, options.threads);
+      report.predictSeconds += secondsSince(predictStart);
+    }
+    if (codec != SectionCodec::kDerived) {
+      auto encoded =
+          encodeSection(raw, e.elementBytes, codec, options.level, options.threads, predicted);
+      if (!encoded)
+        return makeError(encoded.code(), path, ": section ", sectionName(id), ": ",
+                         encoded.message());
+      payloads[i] = std::move(*encoded);
+      if (payloads[i].size() >= e.bytes && !isGradientResidual(codec)) {
+        codec = SectionCodec::kStored;  // incompressible (or tiny): kept as it is
+        payloads[i].assign(raw.begin(), raw.end());
+      }
     }
     entries[i] = PackEntry{e, static_cast<uint32_t>(codec), 0};
     report.sections.push_back({id, codec, e.bytes, payloads[i].size()});
@@ -142,22 +154,28 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
     place(table[i].id, payloads[i].size(), payloads[i].data());
   place(static_cast<uint32_t>(SectionId::kPack), pack.size(), pack.data());
   const uint64_t tableOffset = alignUp(at, kSectionAlignment);
-  std::vector<uint8_t> out(tableOffset + packedTable.size() * sizeof(SectionEntry), 0);
   FileHeader header = original;
   std::memcpy(header.magic, kPackedMagic, sizeof header.magic);
   header.sectionTableOffset = tableOffset;
   header.sectionCount = static_cast<uint32_t>(packedTable.size());
   header.headerCrc = headerChecksum(header);
-  std::memcpy(out.data(), &header, sizeof header);
-  for (size_t i = 0; i < table.size(); ++i)
-    std::memcpy(out.data() + packedTable[i].offset, payloads[i].data(), payloads[i].size());
-  std::memcpy(out.data() + packedTable.back().offset, pack.data(), pack.size());
-  std::memcpy(out.data() + tableOffset, packedTable.data(),
-              packedTable.size() * sizeof(SectionEntry));
-  payloads.clear();
-  report.outputBytes = out.size();
-
-  VOXLINK_RETURN_IF_ERROR(writeWholeFile(path, out));
+  // Written piece by piece (no copy of the whole file): header, each payload after the zero
+  // padding that aligns it, PACK, the table.
+  static constexpr uint8_t kZeros[kSectionAlignment] = {};
+  std::vector<std::span<const uint8_t>> pieces;
+  uint64_t written = 0;
+  auto append = [&](uint64_t offset, std::span<const uint8_t> bytes) {
+    pieces.emplace_back(kZeros, offset - written);
+    pieces.push_back(bytes);
+    written = offset + bytes.size();
+  };
+  append(0, std::span(reinterpret_cast<const uint8_t*>(&header), sizeof header));
+  for (size_t i = 0; i < table.size(); ++i) append(packedTable[i].offset, payloads[i]);
+  append(packedTable.back().offset, pack);
+  append(tableOffset, std::span(reinterpret_cast<const uint8_t*>(packedTable.data()),
+                                packedTable.size() * sizeof(SectionEntry)));
+  report.outputBytes = written;
+  VOXLINK_RETURN_IF_ERROR(writeWholeFile(path, pieces));
   report.packSeconds = secondsSince(start);
   return report;
 }
@@ -237,6 +255,8 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
 
   const PackEntry* residual = nullptr;
   std::span<const uint8_t> residualPayload;
+  std::vector<const PackEntry*> derived;
+  const SectionEntry* masks = nullptr;
   for (const PackEntry& p : entries) {
     const SectionEntry& e = p.original;
     const std::string where = name + ": section " + nameOf(e.id);
@@ -253,31 +273,59 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
       return makeError(ErrorCode::kCorrupt, where, ": no packed payload");
     const auto payload = packed.subspan(source->offset, source->bytes);
     const auto codec = static_cast<SectionCodec>(p.codec);
-    if (codec == SectionCodec::kGradientResidual) {
+    if (isGradientResidual(codec)) {
       if (e.id != static_cast<uint32_t>(SectionId::kGradients) || residual)
-        return makeError(ErrorCode::kCorrupt, where,
-                         ": codec 3 (gradient residual) is only for GRAD");
+        return makeError(ErrorCode::kCorrupt, where, ": codec ", p.codec,
+                         " (gradient residual) is only for GRAD");
       residual = &p;
       residualPayload = payload;
       continue;  // needs the other sections first
     }
+    if (codec == SectionCodec::kDerived) {
+      if ((e.id != static_cast<uint32_t>(SectionId::kRowStart) &&
+           e.id != static_cast<uint32_t>(SectionId::kBrickVoxelBase)) ||
+          !payload.empty())
+        return makeError(ErrorCode::kCorrupt, where,
+                         ": codec 5 (derived, no payload) is only "
+                         "for ROWS and BVOX");
+      derived.push_back(&p);
+      continue;  // needs MASK first
+    }
+    if (e.id == static_cast<uint32_t>(SectionId::kRowMask)) masks = &e;
     VOXLINK_RETURN_IF_ERROR(decodeSection(payload, e.elementBytes, codec,
                                           std::span(bytes).subspan(e.offset, e.bytes), where,
                                           threads));
+  }
+  for (const PackEntry* p : derived) {
+    const SectionEntry& e = p->original;
+    const std::string where = name + ": section " + nameOf(e.id);
+    if (!masks) return makeError(ErrorCode::kCorrupt, where, ": derived, but there is no MASK");
+    VOXLINK_RETURN_IF_ERROR(
+        derive(static_cast<SectionId>(e.id), std::span(bytes).subspan(masks->offset, masks->bytes),
+               original.brickSize, std::span(bytes).subspan(e.offset, e.bytes), where));
   }
   VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::fromBytes(std::move(bytes), name));
   if (residual) {
     // The prediction reads the structure and the values: check those first.
     VOXLINK_RETURN_IF_ERROR(validateStructure(file));
     const SectionEntry& e = residual->original;
+    const auto codec = static_cast<SectionCodec>(residual->codec);
     // The file owns these bytes (a vector it holds); GRAD is filled in here, before anyone
     // else sees the file.
     auto grad =
         std::span(const_cast<uint8_t*>(file.sectionBytes(SectionId::kGradients).data()), e.bytes);
-    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, e.elementBytes,
-                                          SectionCodec::kGradientResidual, grad,
+    VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, e.elementBytes, codec, grad,
                                           name + ": section GRAD", threads));
-    applyPrediction(file, grad, /*subtract=*/false, threads);
+    const std::vector<uint16_t> predicted = predictedCodes(file, codec, threads);
+    if (predicted.size() * 2 > grad.size())
+      return makeError(ErrorCode::kCorrupt, name, ": section GRAD: ", grad.size(), " bytes for ",
+                       predicted.size(), " gradients");
+    for (uint64_t i = 0; i < predicted.size(); ++i) {
+      uint16_t code;
+      std::memcpy(&code, grad.data() + 2 * i, 2);
+      code = static_cast<uint16_t>(code + predicted[i]);
+      std::memcpy(grad.data() + 2 * i, &code, 2);
+    }
   }
   // Every section must be what was packed.
   for (const SectionEntry& e : file.sectionTable()) {

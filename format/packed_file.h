@@ -28,9 +28,9 @@ bool isPackedFile(std::span<const uint8_t> bytes);
 struct PackOptions {
   int level = 1;         // zstd level: 1 is fast; higher levels gain little on these sections
   unsigned threads = 0;  // 0: every core
-  // GRAD of a volume file as the difference to its prediction from the values (about 7x
-  // smaller than the codes, but the prediction costs most of the packing and unpacking time);
-  // false: delta-coded like the other sections.
+  // GRAD as the difference to its prediction from the values (GradientPrediction::kPortable:
+  // about 7x smaller than the codes, but the prediction costs most of the packing and
+  // unpacking time); false: delta-coded like the other sections.
   bool predictGradients = true;
 };
 
@@ -44,13 +44,14 @@ struct PackedSection {
 struct PackReport {
   uint64_t inputBytes = 0;
   uint64_t outputBytes = 0;
-  double packSeconds = 0;   // predicting, compressing, checking and writing
-  double checkSeconds = 0;  // of which decoding every payload again to compare
+  double packSeconds = 0;     // predicting, compressing, checking and writing
+  double predictSeconds = 0;  // of which predicting the gradients
   std::vector<PackedSection> sections;
 };
 
 // Packs `file` (which the caller has validated) into `path`: a temporary beside it, renamed into
-// place only after every payload was decoded again and matched what was encoded.
+// place only after every payload was decoded again and matched what was encoded (and every
+// derived section matched the file's).
 Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
                             const PackOptions& options = {});
 

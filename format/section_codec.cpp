@@ -2,6 +2,7 @@
 
 #include <zstd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 
@@ -21,57 +22,108 @@ uint32_t planesOf(uint32_t elementBytes) {
 uint64_t chunkCountOf(uint64_t bytes) { return (bytes + kPackChunkBytes - 1) / kPackChunkBytes; }
 
 // Byte j of element i goes to plane j; with `delta`, each plane then holds differences of
-// neighbouring bytes (mod 256), which are near 0 where values change slowly.
-void toPlanes(const uint8_t* in, uint64_t bytes, uint32_t e, bool delta, uint8_t* out) {
+// neighbouring bytes (mod 256), which are near 0 where values change slowly. With `predicted`
+// (u16 elements only), element i is first replaced by its difference to predicted[i] for the
+// elements that have one. Bytes after the last whole element are kept as they are.
+void toPlanes(const uint8_t* in, uint64_t bytes, uint32_t e, bool delta, uint8_t* out,
+              std::span<const uint16_t> predicted = {}) {
   const uint64_t count = bytes / e;
-  for (uint32_t j = 0; j < e; ++j) {
-    uint8_t* plane = out + j * count;
-    uint8_t previous = 0;
+  if (!predicted.empty()) {  // e == 2
+    const uint64_t n = std::min<uint64_t>(count, predicted.size());
+    uint8_t* lo = out;
+    uint8_t* hi = out + count;
     for (uint64_t i = 0; i < count; ++i) {
-      const uint8_t b = in[i * e + j];
-      plane[i] = delta ? static_cast<uint8_t>(b - previous) : b;
-      previous = b;
+      uint16_t code;
+      std::memcpy(&code, in + 2 * i, 2);
+      if (i < n) code = static_cast<uint16_t>(code - predicted[i]);
+      lo[i] = static_cast<uint8_t>(code);
+      hi[i] = static_cast<uint8_t>(code >> 8);
+    }
+  } else {
+    for (uint32_t j = 0; j < e; ++j) {
+      uint8_t* plane = out + j * count;
+      uint8_t previous = 0;
+      for (uint64_t i = 0; i < count; ++i) {
+        const uint8_t b = in[i * e + j];
+        plane[i] = delta ? static_cast<uint8_t>(b - previous) : b;
+        previous = b;
+      }
     }
   }
+  std::memcpy(out + count * e, in + count * e, bytes - count * e);
 }
 
 void fromPlanes(const uint8_t* in, uint64_t bytes, uint32_t e, bool delta, uint8_t* out) {
   const uint64_t count = bytes / e;
-  for (uint32_t j = 0; j < e; ++j) {
-    const uint8_t* plane = in + j * count;
-    uint8_t previous = 0;
+  if (e == 2 && !delta) {
     for (uint64_t i = 0; i < count; ++i) {
-      const uint8_t b = delta ? static_cast<uint8_t>(plane[i] + previous) : plane[i];
-      out[i * e + j] = b;
-      previous = b;
+      out[2 * i] = in[i];
+      out[2 * i + 1] = in[count + i];
+    }
+  } else {
+    for (uint32_t j = 0; j < e; ++j) {
+      const uint8_t* plane = in + j * count;
+      uint8_t previous = 0;
+      for (uint64_t i = 0; i < count; ++i) {
+        const uint8_t b = delta ? static_cast<uint8_t>(plane[i] + previous) : plane[i];
+        out[i * e + j] = b;
+        previous = b;
+      }
     }
   }
+  std::memcpy(out + count * e, in + count * e, bytes - count * e);
+}
+
+// Scratch buffers of a worker thread, kept between chunks: fresh ones would cost a page fault
+// per 4 KiB.
+std::vector<uint8_t>& scratch(int which) {
+  thread_local std::vector<uint8_t> buffers[3];
+  return buffers[which];
 }
 
 bool transforms(SectionCodec codec) {
-  return codec == SectionCodec::kDeltaZstd || codec == SectionCodec::kGradientResidual;
+  return codec == SectionCodec::kDeltaZstd || isGradientResidual(codec);
 }
 
 }  // namespace
 
-bool isKnownSectionCodec(uint32_t raw) { return raw <= uint32_t(SectionCodec::kGradientResidual); }
+bool isKnownSectionCodec(uint32_t raw) { return raw <= uint32_t(SectionCodec::kDerived); }
+
+bool isGradientResidual(SectionCodec codec) {
+  return codec == SectionCodec::kGradientResidual ||
+         codec == SectionCodec::kGradientResidualPortable;
+}
 
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
-                                           SectionCodec codec, int level, unsigned threads) {
+                                           SectionCodec codec, int level, unsigned threads,
+                                           std::span<const uint16_t> predicted) {
   if (codec == SectionCodec::kStored) return std::vector<uint8_t>(raw.begin(), raw.end());
+  if (codec == SectionCodec::kDerived)
+    return makeError(ErrorCode::kInvalidArgument, "a derived section has no payload to encode");
+  if (isGradientResidual(codec) && (elementBytes != 2 || predicted.size() * 2 > raw.size()))
+    return makeError(ErrorCode::kInvalidArgument, "gradient residual: ", predicted.size(),
+                     " predicted codes for ", raw.size(), " bytes of ", elementBytes,
+                     "-byte elements");
+  if (!isGradientResidual(codec)) predicted = {};
   const uint64_t chunks = chunkCountOf(raw.size());
+  const uint32_t planes = planesOf(elementBytes);
+  const bool delta = codec == SectionCodec::kDeltaZstd;
   std::vector<std::vector<uint8_t>> frames(chunks);
   std::vector<std::string> errors(chunks);
   parallelFor(chunks, threads, [&](uint64_t c) {
     const uint64_t begin = c * kPackChunkBytes;
     const uint64_t bytes = std::min<uint64_t>(kPackChunkBytes, raw.size() - begin);
-    const uint8_t* src = raw.data() + begin;
-    std::vector<uint8_t> planes;
+    const uint8_t* chunk = raw.data() + begin;
+    const uint8_t* src = chunk;
+    std::vector<uint8_t>& transformed = scratch(0);
+    std::span<const uint16_t> chunkPredicted;
+    if (!predicted.empty() && begin / 2 < predicted.size())
+      chunkPredicted =
+          predicted.subspan(begin / 2, std::min<uint64_t>(bytes / 2, predicted.size() - begin / 2));
     if (transforms(codec)) {
-      planes.resize(bytes);
-      toPlanes(src, bytes, planesOf(elementBytes), codec == SectionCodec::kDeltaZstd,
-               planes.data());
-      src = planes.data();
+      transformed.resize(bytes);
+      toPlanes(chunk, bytes, planes, delta, transformed.data(), chunkPredicted);
+      src = transformed.data();
     }
     std::vector<uint8_t>& frame = frames[c];
     frame.resize(ZSTD_compressBound(bytes));
@@ -85,9 +137,32 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
       return;
     }
     frame.resize(written);
+    // The check, while the chunk is still in the cache: decode as a reader would.
+    thread_local std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> checker(ZSTD_createDCtx(),
+                                                                            ZSTD_freeDCtx);
+    std::vector<uint8_t>& decoded = scratch(1);
+    decoded.resize(bytes);
+    const size_t got =
+        ZSTD_decompressDCtx(checker.get(), decoded.data(), bytes, frame.data(), frame.size());
+    bool same = !ZSTD_isError(got) && got == bytes;
+    if (same && transforms(codec)) {
+      std::vector<uint8_t>& restored = scratch(2);
+      restored.resize(bytes);
+      fromPlanes(decoded.data(), bytes, planes, delta, restored.data());
+      for (uint64_t i = 0; i < chunkPredicted.size(); ++i) {
+        uint16_t code;
+        std::memcpy(&code, restored.data() + 2 * i, 2);
+        code = static_cast<uint16_t>(code + chunkPredicted[i]);
+        std::memcpy(restored.data() + 2 * i, &code, 2);
+      }
+      same = std::memcmp(restored.data(), chunk, bytes) == 0;
+    } else if (same) {
+      same = std::memcmp(decoded.data(), chunk, bytes) == 0;
+    }
+    if (!same) errors[c] = "chunk " + std::to_string(c) + " does not decode to its bytes";
   });
   for (const std::string& e : errors)
-    if (!e.empty()) return makeError(ErrorCode::kIo, "zstd: ", e);
+    if (!e.empty()) return makeError(ErrorCode::kCorrupt, "packing check: ", e);
   uint64_t total = kChunkTableHead + 8 * chunks;
   for (const auto& f : frames) total += f.size();
   std::vector<uint8_t> out(alignUp(total, 4), 0);
@@ -105,6 +180,8 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
 
 Status decodeSection(std::span<const uint8_t> packed, uint32_t elementBytes, SectionCodec codec,
                      std::span<uint8_t> out, const std::string& where, unsigned threads) {
+  if (codec == SectionCodec::kDerived)
+    return makeError(ErrorCode::kInvalidArgument, where, ": a derived section has no payload");
   if (codec == SectionCodec::kStored) {
     if (packed.size() != out.size())
       return makeError(ErrorCode::kSizeMismatch, where, ": stored payload has ", packed.size(),
@@ -148,7 +225,7 @@ Status decodeSection(std::span<const uint8_t> packed, uint32_t elementBytes, Sec
                   ", expected " + std::to_string(bytes);
       return;
     }
-    std::vector<uint8_t> planes;
+    std::vector<uint8_t>& planes = scratch(0);
     uint8_t* dst = out.data() + begin;
     if (transforms(codec)) {
       planes.resize(bytes);

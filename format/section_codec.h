@@ -18,23 +18,32 @@
 namespace voxlink::format {
 
 enum class SectionCodec : uint32_t {
-  kStored = 0,            // the bytes as they are, no chunk table
-  kZstd = 1,              // zstd of each chunk
-  kDeltaZstd = 2,         // byte planes of the elements, each plane delta-coded, then zstd
-  kGradientResidual = 3,  // GRAD minus its prediction (format/gradient_predictor.h), taken by
-                          // the packer; here: byte planes, then zstd
+  kStored = 0,                    // the bytes as they are, no chunk table
+  kZstd = 1,                      // zstd of each chunk
+  kDeltaZstd = 2,                 // byte planes of the elements, each plane delta-coded, then zstd
+  kGradientResidual = 3,          // GRAD minus its float64 prediction (GradientPrediction::kExact,
+                                  // format/gradient_predictor.h): byte planes, then zstd
+  kGradientResidualPortable = 4,  // GRAD minus its float prediction (kPortable), the same way
+  kDerived = 5,  // no payload: ROWS and BVOX follow from MASK (format/derived_sections.h)
 };
 bool isKnownSectionCodec(uint32_t raw);
+// Codecs whose payload is GRAD minus a prediction.
+bool isGradientResidual(SectionCodec codec);
 
 inline constexpr uint64_t kPackChunkBytes = uint64_t{4} << 20;
 
 // Encodes `raw`, a section of `elementBytes`-sized elements (byte planes of 1, 2 or 4 bytes;
-// larger records as 4-byte words), at zstd `level`.
+// larger records as 4-byte words), at zstd `level`. For the residual codecs `predicted` holds
+// one u16 per element of `raw` (the rest of `raw` is taken as it is), subtracted as the
+// chunks are encoded. Every chunk is decoded again right after it was compressed and must give
+// back its bytes: a payload that does not decode to what was meant is never returned.
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
-                                           SectionCodec codec, int level, unsigned threads);
+                                           SectionCodec codec, int level, unsigned threads,
+                                           std::span<const uint16_t> predicted = {});
 
 // Decodes `packed` into `out`, whose size is the original payload size. Every chunk must
-// decode to exactly its share; `where` names the section in errors.
+// decode to exactly its share; `where` names the section in errors. Residual codecs give the
+// residual: the caller adds the prediction.
 Status decodeSection(std::span<const uint8_t> packed, uint32_t elementBytes, SectionCodec codec,
                      std::span<uint8_t> out, const std::string& where, unsigned threads);
 

@@ -138,7 +138,7 @@ py::dict pack(const PyFile& self, const py::object& path, bool fast) {
   d["bytes"] = report->inputBytes;
   d["packed_bytes"] = report->outputBytes;
   d["pack_seconds"] = report->packSeconds;
-  d["check_seconds"] = report->checkSeconds;
+  d["predict_seconds"] = report->predictSeconds;
   return d;
 }
 
@@ -193,7 +193,7 @@ void bindFile(py::module_& m) {
            "voxlink.Error naming the section and field otherwise.")
       .def("pack", &pack, py::arg("path"), py::arg("fast") = false,
            "Writes the file packed (lossless, as `voxlink pack`; voxlink.open reads it back): "
-           "returns bytes, packed_bytes, pack_seconds, check_seconds. fast=True does not "
+           "returns bytes, packed_bytes, pack_seconds, predict_seconds. fast=True does not "
            "predict gradients (faster, larger).")
       .def("__repr__", [](const PyFile& f) {
         const auto& d = f.file->header().dims;

@@ -24,7 +24,7 @@ TEST(CliPack, VolumeRoundTripsAndEveryCommandReadsThePackedFile) {
   ASSERT_EQ(r.status, 0) << r.err;
   r = runVoxlink({"pack", vxl, "-o", packed, "--sections"});
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_NE(r.out.find("predicted+zstd"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("predicted-f32+zstd"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("B/voxel"), std::string::npos) << r.out;
   EXPECT_LT(std::filesystem::file_size(packed), std::filesystem::file_size(vxl) * 6 / 10);
   r = runVoxlink({"unpack", packed, "-o", back});
@@ -73,7 +73,7 @@ TEST(CliPack, SceneWithSurfacesAndSpheresRoundTrips) {
   r = runVoxlink({"pack", dir.file("s.vxl"), "-o", dir.file("p2.vxl"), "--sections"});
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string sceneGrad = gradLine(r.out);
-  EXPECT_NE(sceneGrad.find("predicted+zstd"), std::string::npos) << r.out;
+  EXPECT_NE(sceneGrad.find("predicted-f32+zstd"), std::string::npos) << r.out;
   ASSERT_EQ(
       runVoxlink({"convert", dataPath(kFoot), "--threshold", "60", "-o", dir.file("f.vxl"), "-q"})
           .status,

@@ -8,6 +8,7 @@
 
 #include "convert/converter.h"
 #include "format/crc32c.h"
+#include "format/derived_sections.h"
 #include "format/gradient_predictor.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
@@ -93,22 +94,25 @@ TEST(PackedFile, RealCtUnpacksToTheSameBytesAndIsSmaller) {
   }
 }
 
-// The gradient prediction is part of the packed format: files packed by an earlier build
-// (tests/data/packed-v1) must still unpack, which they only do when this build predicts the same
-// codes (GRAD's original checksum is checked after the prediction is added back).
-TEST(PackedFile, FilesPackedByAnEarlierBuildStillUnpack) {
-  for (const char* name : {"u8_b8_z", "u16_b4_x", "f32_b16_y", "f32_u8_scaled", "scene"}) {
-    SCOPED_TRACE(name);
-    const std::string path = std::string(VOXLINK_PACKED_V1_DIR) + "/" + name + ".packed.vxl";
-    const std::vector<uint8_t> packed = testing::readBytes(path);
-    ASSERT_FALSE(packed.empty()) << path;
-    for (unsigned threads : {1u, 2u}) {
-      auto file = unpackFile(packed, path, uint64_t{1} << 28, threads);
-      ASSERT_TRUE(file) << file.message();
-      const auto report = validateFile(*file);
-      EXPECT_TRUE(report) << report.message();
+// The gradient prediction is part of the packed format: files packed by earlier builds
+// (tests/data/packed: v1 with the float64 prediction, v2 with the portable one and derived row
+// starts) must still unpack, which they only do when this build predicts the same codes (GRAD's
+// original checksum is checked after the prediction is added back).
+TEST(PackedFile, FilesPackedByEarlierBuildsStillUnpack) {
+  for (const char* version : {"v1", "v2"})
+    for (const char* name : {"u8_b8_z", "u16_b4_x", "f32_b16_y", "f32_u8_scaled", "scene"}) {
+      SCOPED_TRACE(std::string(version) + "/" + name);
+      const std::string path =
+          std::string(VOXLINK_PACKED_DIR) + "/" + version + "/" + name + ".packed.vxl";
+      const std::vector<uint8_t> packed = testing::readBytes(path);
+      ASSERT_FALSE(packed.empty()) << path;
+      for (unsigned threads : {1u, 2u}) {
+        auto file = unpackFile(packed, path, uint64_t{1} << 28, threads);
+        ASSERT_TRUE(file) << file.message();
+        const auto report = validateFile(*file);
+        EXPECT_TRUE(report) << report.message();
+      }
     }
-  }
 }
 
 TEST(PackedFile, PredictionFindsTheConvertersGradientsForMostVoxels) {
@@ -116,29 +120,32 @@ TEST(PackedFile, PredictionFindsTheConvertersGradientsForMostVoxels) {
   TempDir dir;
   auto file = openValidatedFile(convertReal(dir, kFoot, "60"));
   ASSERT_TRUE(file);
-  std::vector<uint16_t> predicted(file->voxelCount());
-  predictGradientCodes(*file, predicted);
   const auto stored = file->gradientCodes();
-  // Where all six neighbours are stored, the stored values give the converter's differences.
   const VoxelLocator locator(*file);
   const auto dims = file->header().dims;
-  uint64_t interior = 0, same = 0;
-  locator.forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
-    if (x == 0 || y == 0 || z == 0 || x + 1 == dims[0] || y + 1 == dims[1] || z + 1 == dims[2])
-      return;
-    if (locator.find(x - 1, y, z) < 0 || locator.find(x + 1, y, z) < 0 ||
-        locator.find(x, y - 1, z) < 0 || locator.find(x, y + 1, z) < 0 ||
-        locator.find(x, y, z - 1) < 0 || locator.find(x, y, z + 1) < 0)
-      return;
-    ++interior;
-    same += predicted[i] == stored[i];
-  });
-  EXPECT_GT(interior, file->voxelCount() / 3);
-  EXPECT_GT(double(same) / double(interior), 0.99) << same << " of " << interior;
-  // Threads do not change it.
-  std::vector<uint16_t> single(predicted.size());
-  predictGradientCodes(*file, single, 1);
-  EXPECT_EQ(single, predicted);
+  for (GradientPrediction kind : {GradientPrediction::kExact, GradientPrediction::kPortable}) {
+    SCOPED_TRACE(kind == GradientPrediction::kExact ? "exact" : "portable");
+    std::vector<uint16_t> predicted(file->voxelCount());
+    predictGradientCodes(*file, predicted, kind);
+    // Where all six neighbours are stored, the stored values give the converter's differences.
+    uint64_t interior = 0, same = 0;
+    locator.forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+      if (x == 0 || y == 0 || z == 0 || x + 1 == dims[0] || y + 1 == dims[1] || z + 1 == dims[2])
+        return;
+      if (locator.find(x - 1, y, z) < 0 || locator.find(x + 1, y, z) < 0 ||
+          locator.find(x, y - 1, z) < 0 || locator.find(x, y + 1, z) < 0 ||
+          locator.find(x, y, z - 1) < 0 || locator.find(x, y, z + 1) < 0)
+        return;
+      ++interior;
+      same += predicted[i] == stored[i];
+    });
+    EXPECT_GT(interior, file->voxelCount() / 3);
+    EXPECT_GT(double(same) / double(interior), 0.99) << same << " of " << interior;
+    // Threads do not change it.
+    std::vector<uint16_t> single(predicted.size());
+    predictGradientCodes(*file, single, kind, 1);
+    EXPECT_EQ(single, predicted);
+  }
 }
 
 // Rewrites the packed table's CRC of the section whose payload holds byte `at`, so damage
@@ -217,6 +224,46 @@ TEST(PackedFile, PackingRefusesItsInputAsOutput) {
   ASSERT_FALSE(report);
   EXPECT_NE(report.message().find(path), std::string::npos) << report.message();
   EXPECT_EQ(testing::readBytes(path).size(), file->fileBytes());
+}
+
+TEST(PackedFile, RowStartsAndBrickBasesFollowFromTheMasks) {
+  VOXLINK_REQUIRE_DATA(kCarp);
+  TempDir dir;
+  for (const char* brick : {"4", "16", "32"}) {
+    SCOPED_TRACE(brick);
+    auto source = convert::openVolume(testing::dataPath(kCarp), {});
+    ASSERT_TRUE(source) << source.message();
+    convert::ConvertOptions options;
+    options.classification = convert::thresholdClassification({"1250"}).value();
+    options.brickSize = static_cast<uint32_t>(std::stoul(brick));
+    const std::string path = dir.file(std::string("b") + brick + ".vxl");
+    ASSERT_TRUE(convert::convertVolume(**source, options, path));
+    auto file = openValidatedFile(path);
+    ASSERT_TRUE(file) << file.message();
+    const uint32_t n = file->header().brickSize;
+    const auto masks = file->sectionBytes(SectionId::kRowMask);
+    for (SectionId id : {SectionId::kRowStart, SectionId::kBrickVoxelBase}) {
+      const auto stored = file->sectionBytes(id);
+      std::vector<uint8_t> derived(stored.size(), 0xAB);
+      const Status s = id == SectionId::kRowStart ? deriveRowStarts(masks, n, derived, "t")
+                                                  : deriveBrickVoxelBase(masks, n, derived, "t");
+      ASSERT_TRUE(s.isOk()) << s.message();
+      EXPECT_TRUE(std::equal(derived.begin(), derived.end(), stored.begin())) << sectionName(id);
+      // A size that does not fit the masks' bricks is refused, naming what was derived.
+      const size_t oneMore = id == SectionId::kRowStart ? size_t{2} * n * n : 4;
+      std::vector<uint8_t> longer(stored.size() + oneMore);
+      const Status wrong = id == SectionId::kRowStart
+                               ? deriveRowStarts(masks, n, longer, "f.vxl: ROWS")
+                               : deriveBrickVoxelBase(masks, n, longer, "f.vxl: BVOX");
+      ASSERT_FALSE(wrong.isOk());
+      EXPECT_NE(wrong.message().find("derived from MASK"), std::string::npos) << wrong.message();
+    }
+    // Packing stores neither.
+    const Packed p = packReal(dir, path);
+    EXPECT_EQ(unpacked(p.packed), p.original);
+    for (SectionId id : {SectionId::kRowStart, SectionId::kBrickVoxelBase})
+      EXPECT_EQ(packedEntry(p.packed, id).bytes, 0u) << sectionName(id);
+  }
 }
 
 }  // namespace
