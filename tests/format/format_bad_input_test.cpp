@@ -52,6 +52,48 @@ TEST_F(FormatBadInput, GoodFileOpensAndValidates) {
   EXPECT_TRUE(validateFile(*f));
 }
 
+// The validator's per-voxel checks (it reads the codes and the u8 values in bulk and only walks
+// them one by one to name the first bad one).
+TEST_F(FormatBadInput, NonCanonicalGradientIsNamed) {
+  for (const uint16_t bad : {uint16_t(0x0005), uint16_t(0xFE01), uint16_t(0xFF00)}) {
+    std::vector<uint8_t> good = bytes_;
+    SectionEntry* grad = entry(SectionId::kGradients);
+    for (const uint64_t voxel : {uint64_t{13}, uint64_t{6}})  // the first one named: 6
+      std::memcpy(bytes_.data() + grad->offset + 2 * voxel, &bad, 2);
+    grad->crc = crc32c(bytes_.data() + grad->offset, grad->bytes);
+    auto f = reopen();
+    ASSERT_TRUE(f) << f.message();
+    const auto report = validateFile(*f);
+    ASSERT_FALSE(report) << std::hex << bad;
+    EXPECT_EQ(report.code(), ErrorCode::kCorrupt);
+    EXPECT_NE(report.message().find("section GRAD: voxel 6 has the reserved or non-canonical"),
+              std::string::npos)
+        << report.message();
+    bytes_ = good;
+  }
+}
+
+TEST_F(FormatBadInput, ValueOutsideTheHeadersRangeIsNamed) {
+  // The stored values are 100..119; a header that claims less (or more) is refused.
+  for (const auto& [lo, hi] : {std::pair{100.0, 110.0}, std::pair{105.0, 119.0}}) {
+    std::vector<uint8_t> good = bytes_;
+    header().valueMin = lo;
+    header().valueMax = hi;
+    resealHeader();
+    auto f = reopen();
+    ASSERT_TRUE(f) << f.message();
+    const auto report = validateFile(*f);
+    ASSERT_FALSE(report) << lo << " " << hi;
+    EXPECT_NE(report.message().find("lies outside header.valueMin/valueMax"), std::string::npos)
+        << report.message();
+    bytes_ = good;
+  }
+  // The whole range is accepted.
+  auto f = reopen();
+  ASSERT_TRUE(f);
+  EXPECT_TRUE(validateFile(*f));
+}
+
 TEST_F(FormatBadInput, TruncatedAnywhere) {
   for (size_t keep : {size_t{0}, size_t{10}, size_t{255}, bytes_.size() / 2, bytes_.size() - 1}) {
     std::vector<uint8_t> cut(bytes_.begin(), bytes_.begin() + static_cast<long>(keep));
