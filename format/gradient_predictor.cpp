@@ -206,6 +206,10 @@ class Predictor {
       }
     }
     if constexpr (std::is_same_v<Real, float>) {
+      if (!scene_) {  // a volume's samples are its voxels, in file order
+        portableGradientCodes(g[0], g[1], g[2], codes.data() + first, samples);
+        return;
+      }
       s.guess.resize(count);
       portableGradientCodes(g[0], g[1], g[2], s.guess.data(), samples);
       for (uint32_t j = 0; j < samples; ++j) codes[slots[j]] = s.guess[j];
@@ -237,37 +241,33 @@ class Predictor {
     const uint64_t first = base_[k];
     const uint32_t inFace = side < 0 ? n - 1 : 0;  // the face's cells, neighbour-local
     const uint32_t halo = side < 0 ? 0 : n + 1;    // where they go in the padded block
-    uint32_t q[3];
-    q[a] = halo;
+    const uint32_t face = halo * stride_[a];
+    const uint32_t strideU = stride_[frame_.u], strideV = stride_[frame_.v];
+    const uint32_t strideW = stride_[frame_.w];
+    Real* value = s.value.data();
+    uint64_t slot;
+    Real x;
     if (a == frame_.w) {
-      for (uint32_t row = 0; row < n * n; ++row) {
-        const int r = rankInRow(rowBits(mask, n, row), inFace);
-        if (r < 0) continue;
-        q[frame_.u] = row % n + 1;
-        q[frame_.v] = row / n + 1;
-        uint64_t slot;
-        Real v;
-        if (sample(first + rowStart[row] + r, slot, v)) s.value[padded(q[0], q[1], q[2])] = v;
-      }
+      uint32_t row = 0;
+      for (uint32_t v = 1; v <= n; ++v)
+        for (uint32_t u = 1; u <= n; ++u, ++row) {
+          const int r = rankInRow(rowBits(mask, n, row), inFace);
+          if (r >= 0 && sample(first + rowStart[row] + r, slot, x))
+            value[face + u * strideU + v * strideV] = x;
+        }
       return;
     }
     const bool faceIsU = a == frame_.u;
     for (uint32_t other = 0; other < n; ++other) {
       const uint32_t row = faceIsU ? other * n + inFace : inFace * n + other;
-      q[faceIsU ? frame_.v : frame_.u] = other + 1;
+      const uint32_t rowCell = face + (other + 1) * (faceIsU ? strideV : strideU) + strideW;
       uint64_t i = first + rowStart[row];
-      for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1) {
-        q[frame_.w] = static_cast<uint32_t>(std::countr_zero(bits)) + 1;
-        uint64_t slot;
-        Real v;
-        if (sample(i++, slot, v)) s.value[padded(q[0], q[1], q[2])] = v;
-      }
+      for (uint32_t bits = rowBits(mask, n, row); bits != 0; bits &= bits - 1)
+        if (sample(i++, slot, x))
+          value[rowCell + static_cast<uint32_t>(std::countr_zero(bits)) * strideW] = x;
     }
   }
 
-  uint32_t padded(uint32_t x, uint32_t y, uint32_t z) const {
-    return x + y * stride_[1] + z * stride_[2];
-  }
   // The volume sample of voxel i and its slot in VALU and GRAD: voxel i itself in a volume
   // file; in a scene its VMSK slot, and none for voxels that hold only geometry.
   // (A slot past VALU's entries, from a mask that disagrees with its count, is no sample:
