@@ -130,8 +130,20 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
     // One context per thread, reused: creating one costs about a millisecond.
     thread_local std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(),
                                                                             ZSTD_freeCCtx);
-    const size_t written =
-        ZSTD_compressCCtx(context.get(), frame.data(), frame.size(), src, bytes, level);
+    ZSTD_CCtx_reset(context.get(), ZSTD_reset_session_and_parameters);
+    ZSTD_CCtx_setParameter(context.get(), ZSTD_c_compressionLevel, level);
+    if (level == 1) {
+      // Level 1 with a smaller hash table and a longer minimum match, faster on these
+      // sections and smaller in total (zstd -b on the 1024^3 foot's: GRAD residual 631
+      // against 574 MB/s and 2.9 % smaller, values 486 against 380 MB/s and 0.9 % larger,
+      // masks 435 against 395 MB/s and 0.7 % smaller).
+      ZSTD_CCtx_setParameter(context.get(), ZSTD_c_strategy, ZSTD_fast);
+      ZSTD_CCtx_setParameter(context.get(), ZSTD_c_windowLog, 18);
+      ZSTD_CCtx_setParameter(context.get(), ZSTD_c_hashLog, 10);
+      ZSTD_CCtx_setParameter(context.get(), ZSTD_c_minMatch, 7);
+      ZSTD_CCtx_setParameter(context.get(), ZSTD_c_searchLog, 1);
+    }
+    const size_t written = ZSTD_compress2(context.get(), frame.data(), frame.size(), src, bytes);
     if (ZSTD_isError(written)) {
       errors[c] = ZSTD_getErrorName(written);
       return;
