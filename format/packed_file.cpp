@@ -110,7 +110,6 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
       // Stored only if the masks do not give these very bytes.
       std::vector<uint8_t> derived(raw.size());
       const bool same = derive(id, masks, file.header().brickSize, derived, path).isOk() &&
-                        derived.size() == raw.size() &&
                         std::memcmp(derived.data(), raw.data(), raw.size()) == 0;
       codec = same ? SectionCodec::kDerived : SectionCodec::kDeltaZstd;
     }
