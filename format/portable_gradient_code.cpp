@@ -42,9 +42,11 @@ __attribute__((target_clones("avx512f", "avx2", "default"))) void portableGradie
     const bool finite = (ax <= kLargest) & (ay <= kLargest) & (az <= kLargest);
     const bool zero = !finite | !(big > 0.0f);
     // The angles depend on ratios only; a power of two (exact) keeps the squares below finite
-    // and normal for very small or large input.
+    // and normal for very small or large input. Zero or non-finite input is replaced by zeros,
+    // which give finite angles: converting NaN to int would be undefined.
     const float pre = big < 0x1p-60f ? 0x1p100f : big > 0x1p60f ? 0x1p-100f : 1.0f;
-    const float gx = x[j] * pre, gy = y[j] * pre, gz = z[j] * pre;
+    const float gx = zero ? 0.0f : x[j] * pre, gy = zero ? 0.0f : y[j] * pre,
+                gz = zero ? 0.0f : z[j] * pre;
     const float polar = angleOf(gz, std::sqrt(gx * gx + gy * gy));  // in [0, pi]
     const int t = static_cast<int>(polar * (kPolarSteps / 3.14159265f) + 0.5f);
     const int p = static_cast<int>(angleOf(gx, gy) * (kAzimuthSteps / 6.28318531f) + 0.5f) &
