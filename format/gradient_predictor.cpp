@@ -14,6 +14,7 @@
 #include "format/mask_rank.h"
 #include "format/parallel_for.h"
 #include "format/portable_gradient_code.h"
+#include "format/vector_clones.h"
 #include "format/voxel_locator.h"
 
 namespace voxlink::format {
@@ -106,10 +107,11 @@ template <class Real>
   }
 }
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void centralDifferencesFloat(
-    const float* __restrict value, const uint32_t* __restrict cell, uint32_t count,
-    const uint32_t* stride, const float* half, float* __restrict g0, float* __restrict g1,
-    float* __restrict g2) {
+VOXLINK_VECTOR_CLONES void centralDifferencesFloat(const float* __restrict value,
+                                                   const uint32_t* __restrict cell, uint32_t count,
+                                                   const uint32_t* stride, const float* half,
+                                                   float* __restrict g0, float* __restrict g1,
+                                                   float* __restrict g2) {
   centralDifferences<float>(value, cell, count, stride, half, g0, g1, g2);
 }
 
@@ -147,6 +149,8 @@ class Predictor {
         scene_(f.isScene()),
         valueType_(f.valueType()),
         values_(f.valueBytes()),
+        scale_(f.header().valueScale),
+        offset_(f.header().valueOffset),
         table_(valueTable(f)),
         samples_(scene_ ? MaskRank(f.volumeMaskWords()) : MaskRank()),
         slots_(sampleSlots(h_)) {
@@ -320,8 +324,12 @@ class Predictor {
         std::memcpy(&x, values_ + 2 * slot, 2);
         return table_[x];
       }
-      default:
-        return static_cast<Real>(file_.value(slot));
+      default: {  // f32, computed here (an inline VoxLinkFile::value from a file built with
+                  // FMA could round differently)
+        float x;
+        std::memcpy(&x, values_ + 4 * slot, 4);
+        return static_cast<Real>(double{x} * scale_ + offset_);
+      }
     }
   }
   static std::vector<Real> valueTable(const VoxLinkFile& f) {
@@ -351,6 +359,7 @@ class Predictor {
   bool scene_;
   StoredType valueType_;
   const uint8_t* values_;
+  double scale_, offset_;
   std::vector<Real> table_;  // every value of an 8- or 16-bit type
   MaskRank samples_;         // scenes: VMSK slots
   uint64_t slots_;           // entries of VALU and GRAD

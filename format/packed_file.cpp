@@ -110,7 +110,7 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
       // Stored only if the masks do not give these very bytes.
       std::vector<uint8_t> derived(raw.size());
       const bool same = derive(id, masks, file.header().brickSize, derived, path).isOk() &&
-                        std::memcmp(derived.data(), raw.data(), raw.size()) == 0;
+                        (raw.empty() || std::memcmp(derived.data(), raw.data(), raw.size()) == 0);
       codec = same ? SectionCodec::kDerived : SectionCodec::kDeltaZstd;
     }
     std::vector<uint16_t> predicted;
@@ -249,8 +249,9 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   std::memcpy(bytes.data(), &original, sizeof original);
   std::vector<SectionEntry> originalTable(entries.size());
   for (size_t i = 0; i < entries.size(); ++i) originalTable[i] = entries[i].original;
-  std::memcpy(bytes.data() + original.sectionTableOffset, originalTable.data(),
-              originalTable.size() * sizeof(SectionEntry));
+  const uint64_t tableBegin = original.sectionTableOffset;
+  const uint64_t tableEnd = tableBegin + originalTable.size() * sizeof(SectionEntry);
+  std::memcpy(bytes.data() + tableBegin, originalTable.data(), tableEnd - tableBegin);
 
   const PackEntry* residual = nullptr;
   std::span<const uint8_t> residualPayload;
@@ -263,6 +264,12 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
         e.bytes > bytes.size() - e.offset)
       return makeError(ErrorCode::kCorrupt, where, ": original bytes [", e.offset, ", ",
                        e.offset + e.bytes, ") lie outside the ", bytes.size(), "-byte file");
+    // Decoding must not write over the table restored above: the file would then be read
+    // through a table the packed file chose, and GRAD filled in by the wrong bounds.
+    if (e.bytes > 0 && e.offset < tableEnd && tableBegin < e.offset + e.bytes)
+      return makeError(ErrorCode::kCorrupt, where, ": original bytes [", e.offset, ", ",
+                       e.offset + e.bytes, ") overlap the section table [", tableBegin, ", ",
+                       tableEnd, ")");
     if (!isKnownSectionCodec(p.codec) || p.reserved != 0)
       return makeError(ErrorCode::kUnsupported, where, ": codec ", p.codec, " is not known");
     const SectionEntry* source = nullptr;
@@ -310,9 +317,9 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     const SectionEntry& e = residual->original;
     const auto codec = static_cast<SectionCodec>(residual->codec);
     // The file owns these bytes (a vector it holds); GRAD is filled in here, before anyone
-    // else sees the file.
-    auto grad =
-        std::span(const_cast<uint8_t*>(file.sectionBytes(SectionId::kGradients).data()), e.bytes);
+    // else sees the file. Its bounds are the ones checked above (the table, which cannot have
+    // been written over, names the same).
+    auto grad = std::span(const_cast<uint8_t*>(file.bytes().data()) + e.offset, e.bytes);
     VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, e.elementBytes, codec, grad,
                                           name + ": section GRAD", threads));
     const std::vector<uint16_t> predicted = predictedCodes(file, codec, threads);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "format/gradient_codec.h"
+#include "format/vector_clones.h"
 
 namespace voxlink::format {
 namespace {
@@ -32,15 +33,19 @@ inline float angleOf(float x, float y) {
 
 // Clones for wider vectors, picked when the program starts: the same operations lane by lane,
 // so every clone gives the same bits (the file is built with -ffp-contract=off).
-__attribute__((target_clones("avx512f", "avx2", "default"))) void portableGradientCodes(
-    const float* __restrict x, const float* __restrict y, const float* __restrict z,
-    uint16_t* __restrict codes, uint32_t count) {
+VOXLINK_VECTOR_CLONES void portableGradientCodes(const float* __restrict x,
+                                                 const float* __restrict y,
+                                                 const float* __restrict z,
+                                                 uint16_t* __restrict codes, uint32_t count) {
   constexpr float kLargest = 3.40282347e38f;
   for (uint32_t j = 0; j < count; ++j) {
     const float ax = std::fabs(x[j]), ay = std::fabs(y[j]), az = std::fabs(z[j]);
     const float big = ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
     const bool finite = (ax <= kLargest) & (ay <= kLargest) & (az <= kLargest);
-    const bool zero = !finite | !(big > 0.0f);
+    // A gradient below the smallest normal float counts as zero: a thread that flushes
+    // subnormals to zero (a library built with -ffast-math can switch that on) then gives the
+    // same code as one that does not.
+    const bool zero = !finite | !(big >= 0x1p-126f);
     // The angles depend on ratios only; a power of two (exact) keeps the squares below finite
     // and normal for very small or large input. Zero or non-finite input is replaced by zeros,
     // which give finite angles: converting NaN to int would be undefined.

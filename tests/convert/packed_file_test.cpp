@@ -212,6 +212,29 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
   }
   // A file that would unpack to more than the caller allows is refused before allocating.
   EXPECT_NE(unpackError(p.packed, 1 << 20).find("PACK.originalFileBytes"), std::string::npos);
+  // A section whose original bytes would be decoded over the restored section table: the file
+  // would then be read through a table the packed file chose.
+  {
+    std::vector<uint8_t> damaged = p.packed;
+    const SectionEntry pack = packedEntry(damaged, SectionId::kPack);
+    uint64_t tableOffset;
+    uint32_t entryCount;
+    std::memcpy(&entryCount, damaged.data() + pack.offset + 4, 4);
+    std::memcpy(&tableOffset, damaged.data() + pack.offset + 16, 8);
+    for (uint32_t i = 0; i < entryCount; ++i) {
+      uint8_t* original = damaged.data() + pack.offset + 32 + 40 * i;
+      uint32_t id;
+      std::memcpy(&id, original, 4);
+      if (id != static_cast<uint32_t>(SectionId::kBrickOccupancy)) continue;
+      const uint64_t offset = tableOffset - 64, bytes = 128;
+      std::memcpy(original + 8, &offset, 8);
+      std::memcpy(original + 16, &bytes, 8);
+    }
+    refreshCrc(damaged, pack.offset);
+    const std::string overlap = unpackError(damaged);
+    EXPECT_NE(overlap.find("section BOCC: original bytes"), std::string::npos) << overlap;
+    EXPECT_NE(overlap.find("overlap the section table"), std::string::npos) << overlap;
+  }
 }
 
 TEST(PackedFile, PackingRefusesItsInputAsOutput) {

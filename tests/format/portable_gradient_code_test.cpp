@@ -107,10 +107,13 @@ TEST(PortableGradientCode, AxesPolesZeroAndExtremes) {
   EXPECT_EQ(portableCode(nan, 1, 0), kZeroGradient);
   EXPECT_EQ(portableCode(0, inf, 0), kZeroGradient);
   EXPECT_EQ(portableCode(0, 0, -inf), kZeroGradient);
-  // Scale does not matter, from denormals to the largest floats.
-  const float tiny = std::numeric_limits<float>::denorm_min();
+  // Scale does not matter, from the smallest normal float to the largest; below that (where a
+  // thread flushing subnormals would read zero) the gradient counts as zero.
+  const float smallest = std::numeric_limits<float>::min();
   const float huge = std::numeric_limits<float>::max();
-  EXPECT_EQ(portableCode(3 * tiny, 2 * tiny, tiny), portableCode(3, 2, 1));
+  EXPECT_EQ(portableCode(3 * smallest, 2 * smallest, smallest), portableCode(3, 2, 1));
+  EXPECT_EQ(portableCode(smallest / 2, 0, 0), kZeroGradient);
+  EXPECT_EQ(portableCode(0, 0, -std::numeric_limits<float>::denorm_min()), kZeroGradient);
   EXPECT_EQ(portableCode(huge, -huge / 2, huge / 4), portableCode(4, -2, 1));
   EXPECT_EQ(portableCode(-huge, 0, 0), encodeGradientReference(-1, 0, 0));
 }
