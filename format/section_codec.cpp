@@ -156,7 +156,9 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
     decoded.resize(bytes);
     const size_t got =
         ZSTD_decompressDCtx(checker.get(), decoded.data(), bytes, frame.data(), frame.size());
-    bool same = !ZSTD_isError(got) && got == bytes;
+    // (and the frame must declare its size, which readers require)
+    bool same = !ZSTD_isError(got) && got == bytes &&
+                ZSTD_getFrameContentSize(frame.data(), frame.size()) == bytes;
     if (same && transforms(codec)) {
       std::vector<uint8_t>& restored = scratch(2);
       restored.resize(bytes);
