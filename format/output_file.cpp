@@ -33,6 +33,24 @@ void onSignal(int sig) {
   ::raise(sig);
 }
 
+// A fresh ".vl-XXXXXX<suffix>" name in `dir` (letters and digits at random). Callers register
+// it for cleanup before creating the file, so that no signal finds a temporary on disk that the
+// handler does not know about, and create it exclusively, trying another name if it is taken.
+std::string randomTempName(const std::filesystem::path& dir, std::string_view suffix) {
+  static constexpr char kChars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+  static std::atomic<uint64_t> calls{0};
+  uint64_t state =
+      static_cast<uint64_t>(::getpid()) * 0x9E3779B97F4A7C15ull ^
+      static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()) ^
+      (calls.fetch_add(1) + 1) * 0xD1B54A32D192ED03ull;
+  std::string name = ".vl-XXXXXX";
+  for (size_t i = 4; i < name.size(); ++i) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    name[i] = kChars[(state >> 33) % (sizeof(kChars) - 1)];
+  }
+  return (dir / name).string() + std::string(suffix);
+}
+
 const char* kindOf(mode_t mode) {
   if (S_ISDIR(mode)) return "a directory";
   if (S_ISFIFO(mode)) return "a FIFO";
@@ -63,14 +81,20 @@ Result<TempFile> createTempBeside(const std::string& target, std::string_view su
   std::filesystem::path dir = std::filesystem::path(target).parent_path();
   if (dir.empty()) dir = ".";
   // Short on purpose: the name must fit NAME_MAX whatever the target's name is.
-  std::string pattern = (dir / ".vl-XXXXXX").string() + std::string(suffix);
-  const int fd = mkostemps(pattern.data(), static_cast<int>(suffix.size()), O_CLOEXEC);
-  if (fd < 0)
-    return makeError(ErrorCode::kIo, target, ": cannot create a temporary file in ", dir.string(),
-                     ": ", std::strerror(errno));
-  fchmod(fd, 0644);  // mkstemp makes 0600; outputs are ordinary readable files
-  registerTempForCleanup(pattern);
-  return TempFile{fd, pattern};
+  int error = EEXIST;
+  for (int attempt = 0; attempt < 100 && error == EEXIST; ++attempt) {
+    std::string path = randomTempName(dir, suffix);
+    registerTempForCleanup(path);  // first: a signal from now on removes it
+    const int fd = ::open(path.c_str(), O_CREAT | O_EXCL | O_RDWR | O_CLOEXEC, 0644);
+    if (fd >= 0) {
+      fchmod(fd, 0644);  // whatever the umask: outputs are ordinary readable files
+      return TempFile{fd, path};
+    }
+    error = errno;
+    unregisterTempForCleanup(path);
+  }
+  return makeError(ErrorCode::kIo, target, ": cannot create a temporary file in ", dir.string(),
+                   ": ", std::strerror(error));
 }
 
 Result<TempFile> createUnnamedTempBeside(const std::string& target) {
@@ -98,33 +122,23 @@ Status commitTempFile(const TempFile& temp, const std::string& target) {
   }
   std::filesystem::path dir = std::filesystem::path(target).parent_path();
   if (dir.empty()) dir = ".";
-  // A fresh name for the link: mkstemp's names, taken by creating and removing a file would
-  // race, so try random names until linkat does not find one taken.
-  static constexpr char kChars[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
-  uint64_t state =
-      static_cast<uint64_t>(::getpid()) * 0x9E3779B97F4A7C15ull ^
-      static_cast<uint64_t>(reinterpret_cast<uintptr_t>(&temp)) ^
-      static_cast<uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+  // A fresh name for the link, registered before linkat makes it (see randomTempName).
   std::string linked;
   int linkErrno = EEXIST;
   for (int attempt = 0; attempt < 100 && linkErrno == EEXIST; ++attempt) {
-    std::string name = ".vl-XXXXXX";
-    for (size_t i = 4; i < name.size(); ++i) {
-      state = state * 6364136223846793005ull + 1442695040888963407ull;
-      name[i] = kChars[(state >> 33) % (sizeof(kChars) - 1)];
-    }
-    linked = (dir / name).string();
+    linked = randomTempName(dir, "");
+    registerTempForCleanup(linked);
     linkErrno =
         ::linkat(AT_FDCWD, temp.path.c_str(), AT_FDCWD, linked.c_str(), AT_SYMLINK_FOLLOW) == 0
             ? 0
             : errno;
+    if (linkErrno != 0) unregisterTempForCleanup(linked);
   }
   if (linkErrno != 0) {
     ::close(temp.fd);
     return makeError(ErrorCode::kIo, target, ": cannot link the finished file into ", dir.string(),
                      ": ", std::strerror(linkErrno));
   }
-  registerTempForCleanup(linked);
   if (::close(temp.fd) != 0) {
     const int e = errno;
     discardTemp(linked);
