@@ -115,12 +115,6 @@ VOXLINK_VECTOR_CLONES void centralDifferencesFloat(const float* __restrict value
   centralDifferences<float>(value, cell, count, stride, half, g0, g1, g2);
 }
 
-inline void centralDifferences(const float* value, const uint32_t* cell, uint32_t count,
-                               const uint32_t* stride, const float* half, float* g0, float* g1,
-                               float* g2) {
-  centralDifferencesFloat(value, cell, count, stride, half, g0, g1, g2);
-}
-
 // One occupied brick's neighbourhood as a dense block with a one-cell halo.
 template <class Real>
 struct Scratch {
@@ -214,7 +208,10 @@ class Predictor {
     bool inside = true;
     for (int a = 0; a < 3; ++a) inside &= origin[a] > 0 && origin[a] + n < h_.dims[a];
     if (inside) {
-      centralDifferences(value, cell, samples, stride_.data(), half_, g[0], g[1], g[2]);
+      if constexpr (std::is_same_v<Real, float>)
+        centralDifferencesFloat(value, cell, samples, stride_.data(), half_, g[0], g[1], g[2]);
+      else
+        centralDifferences(value, cell, samples, stride_.data(), half_, g[0], g[1], g[2]);
     } else {
       for (uint32_t j = 0; j < samples; ++j) {
         const uint32_t c = cell[j];

@@ -326,12 +326,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     if (predicted.size() * 2 > grad.size())
       return makeError(ErrorCode::kCorrupt, name, ": section GRAD: ", grad.size(), " bytes for ",
                        predicted.size(), " gradients");
-    for (uint64_t i = 0; i < predicted.size(); ++i) {
-      uint16_t code;
-      std::memcpy(&code, grad.data() + 2 * i, 2);
-      code = static_cast<uint16_t>(code + predicted[i]);
-      std::memcpy(grad.data() + 2 * i, &code, 2);
-    }
+    addPredictedCodes(grad, predicted);
   }
   // Every section must be what was packed.
   for (const SectionEntry& e : file.sectionTable()) {

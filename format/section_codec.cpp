@@ -94,6 +94,15 @@ bool isGradientResidual(SectionCodec codec) {
          codec == SectionCodec::kGradientResidualPortable;
 }
 
+void addPredictedCodes(std::span<uint8_t> codes, std::span<const uint16_t> predicted) {
+  for (uint64_t i = 0; i < predicted.size(); ++i) {
+    uint16_t code;
+    std::memcpy(&code, codes.data() + 2 * i, 2);
+    code = static_cast<uint16_t>(code + predicted[i]);
+    std::memcpy(codes.data() + 2 * i, &code, 2);
+  }
+}
+
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
                                            SectionCodec codec, int level, unsigned threads,
                                            std::span<const uint16_t> predicted) {
@@ -145,7 +154,7 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
     }
     const size_t written = ZSTD_compress2(context.get(), frame.data(), frame.size(), src, bytes);
     if (ZSTD_isError(written)) {
-      errors[c] = ZSTD_getErrorName(written);
+      errors[c] = std::string("zstd: ") + ZSTD_getErrorName(written);
       return;
     }
     frame.resize(written);
@@ -163,20 +172,17 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
       std::vector<uint8_t>& restored = scratch(2);
       restored.resize(bytes);
       fromPlanes(decoded.data(), bytes, planes, delta, restored.data());
-      for (uint64_t i = 0; i < chunkPredicted.size(); ++i) {
-        uint16_t code;
-        std::memcpy(&code, restored.data() + 2 * i, 2);
-        code = static_cast<uint16_t>(code + chunkPredicted[i]);
-        std::memcpy(restored.data() + 2 * i, &code, 2);
-      }
+      addPredictedCodes(restored, chunkPredicted);
       same = std::memcmp(restored.data(), chunk, bytes) == 0;
     } else if (same) {
       same = std::memcmp(decoded.data(), chunk, bytes) == 0;
     }
-    if (!same) errors[c] = "chunk " + std::to_string(c) + " does not decode to its bytes";
+    if (!same)
+      errors[c] = "packing check: chunk " + std::to_string(c) + " does not decode to its bytes";
   });
   for (const std::string& e : errors)
-    if (!e.empty()) return makeError(ErrorCode::kCorrupt, "packing check: ", e);
+    if (!e.empty())
+      return makeError(e.starts_with("zstd") ? ErrorCode::kIo : ErrorCode::kCorrupt, e);
   uint64_t total = kChunkTableHead + 8 * chunks;
   for (const auto& f : frames) total += f.size();
   std::vector<uint8_t> out(alignUp(total, 4), 0);
