@@ -5,7 +5,7 @@
 #pragma once
 
 #if defined(__x86_64__) && defined(__GNUC__)
-#define VOXLINK_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#define VOXLINK_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define VOXLINK_VECTOR_CLONES
 #endif
