@@ -1,11 +1,14 @@
 #include "format/derived_sections.h"
 
+#include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstring>
 #include <vector>
 
 #include "format/brick_rows.h"
 #include "format/layout.h"
+#include "format/parallel_for.h"
 
 namespace voxlink::format {
 namespace {
@@ -22,24 +25,65 @@ Result<uint64_t> brickCount(std::span<const uint8_t> masks, uint32_t n, uint64_t
   return expected;
 }
 
+// The row starts of one brick at a time, from its mask words (copied: MASK need not be aligned).
+class BrickRows {
+ public:
+  explicit BrickRows(uint32_t n) : n_(n), mask_(maskWordsPerBrick(n)), starts_(size_t{n} * n) {}
+  const uint16_t* startsOf(std::span<const uint8_t> masks, uint64_t k) {
+    std::memcpy(mask_.data(), masks.data() + k * mask_.size() * 4, mask_.size() * 4);
+    rowStartsFromMasks(mask_.data(), n_, starts_.data());
+    return starts_.data();
+  }
+
+ private:
+  uint32_t n_;
+  std::vector<uint32_t> mask_;
+  std::vector<uint16_t> starts_;
+};
+
+// Runs fn(begin, end) over ranges of `bricks` on `threads` threads; whether every call returned
+// true.
+template <class Fn>
+bool forEachBrickRange(uint64_t bricks, unsigned threads, Fn&& fn) {
+  constexpr uint64_t kRange = 4096;
+  std::atomic<bool> all{true};
+  parallelFor((bricks + kRange - 1) / kRange, threads, [&](uint64_t r) {
+    if (all.load(std::memory_order_relaxed) && !fn(r * kRange, std::min(bricks, (r + 1) * kRange)))
+      all = false;
+  });
+  return all;
+}
+
 }  // namespace
 
 Status deriveRowStarts(std::span<const uint8_t> masks, uint32_t n, std::span<uint8_t> rowStarts,
-                       const std::string& where) {
+                       const std::string& where, unsigned threads) {
   const uint64_t rowBytes = uint64_t{n} * n * 2;
   const bool fits = n > 0 && rowStarts.size() % rowBytes == 0;
   VOXLINK_ASSIGN_OR_RETURN(
       const uint64_t bricks,
       brickCount(masks, n, fits ? rowStarts.size() / rowBytes : 0, fits, where));
-  const uint32_t words = maskWordsPerBrick(n);
-  std::vector<uint32_t> mask(words);
-  std::vector<uint16_t> starts(size_t{n} * n);
-  for (uint64_t k = 0; k < bricks; ++k) {
-    std::memcpy(mask.data(), masks.data() + k * words * 4, words * 4);
-    rowStartsFromMasks(mask.data(), n, starts.data());
-    std::memcpy(rowStarts.data() + k * rowBytes, starts.data(), rowBytes);
-  }
+  forEachBrickRange(bricks, threads, [&](uint64_t begin, uint64_t end) {
+    BrickRows rows(n);
+    for (uint64_t k = begin; k < end; ++k)
+      std::memcpy(rowStarts.data() + k * rowBytes, rows.startsOf(masks, k), rowBytes);
+    return true;
+  });
   return Status::ok();
+}
+
+bool rowStartsMatch(std::span<const uint8_t> masks, uint32_t n, std::span<const uint8_t> rowStarts,
+                    unsigned threads) {
+  const uint64_t rowBytes = uint64_t{n} * n * 2;
+  const bool fits = n > 0 && rowStarts.size() % rowBytes == 0;
+  if (!brickCount(masks, n, fits ? rowStarts.size() / rowBytes : 0, fits, "")) return false;
+  return forEachBrickRange(rowStarts.size() / rowBytes, threads, [&](uint64_t begin, uint64_t end) {
+    BrickRows rows(n);
+    for (uint64_t k = begin; k < end; ++k)
+      if (std::memcmp(rowStarts.data() + k * rowBytes, rows.startsOf(masks, k), rowBytes) != 0)
+        return false;
+    return true;
+  });
 }
 
 Status deriveBrickVoxelBase(std::span<const uint8_t> masks, uint32_t n,

@@ -14,8 +14,14 @@ namespace voxlink::format {
 
 // `masks`: the MASK words of K occupied bricks of edge n. `rowStarts`: u16[K*n*n] bytes;
 // `brickBase`: u32[K+1] bytes. A size that does not fit K bricks is an error naming `where`.
+// Row starts are computed on `threads` threads (0: every core).
 Status deriveRowStarts(std::span<const uint8_t> masks, uint32_t n, std::span<uint8_t> rowStarts,
-                       const std::string& where);
+                       const std::string& where, unsigned threads = 0);
+
+// Whether `rowStarts` holds what deriveRowStarts would write, compared a range of bricks at a
+// time (no copy of the whole section).
+bool rowStartsMatch(std::span<const uint8_t> masks, uint32_t n, std::span<const uint8_t> rowStarts,
+                    unsigned threads = 0);
 Status deriveBrickVoxelBase(std::span<const uint8_t> masks, uint32_t n,
                             std::span<uint8_t> brickBase, const std::string& where);
 

@@ -1,7 +1,9 @@
 #include "format/packed_file.h"
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 
 #include "format/crc32c.h"
 #include "format/derived_sections.h"
@@ -64,18 +66,31 @@ GradientPrediction predictionOf(SectionCodec codec) {
                                                   : GradientPrediction::kPortable;
 }
 
+// Zeroed codes from calloc: a large block comes zeroed from the system and its pages are
+// touched first by the prediction's threads, not by one thread zeroing 128 MB beforehand.
+struct PredictedCodes {
+  std::unique_ptr<uint16_t[], decltype(&std::free)> codes{nullptr, &std::free};
+  uint64_t count = 0;
+  std::span<uint16_t> span() const { return {codes.get(), count}; }
+};
+
 // The predicted code of every GRAD entry.
-std::vector<uint16_t> predictedCodes(const VoxLinkFile& file, SectionCodec codec,
-                                     unsigned threads) {
-  std::vector<uint16_t> predicted(sampleSlots(file.header()));
-  predictGradientCodes(file, predicted, predictionOf(codec), threads);
+Result<PredictedCodes> predictedCodes(const VoxLinkFile& file, SectionCodec codec, unsigned threads,
+                                      const std::string& where) {
+  PredictedCodes predicted;
+  predicted.count = sampleSlots(file.header());
+  predicted.codes.reset(static_cast<uint16_t*>(std::calloc(predicted.count + 1, 2)));
+  if (!predicted.codes)
+    return makeError(ErrorCode::kTooLarge, where, ": section GRAD: no memory for ", predicted.count,
+                     " predicted gradients");
+  predictGradientCodes(file, predicted.span(), predictionOf(codec), threads);
   return predicted;
 }
 
 // Computes a derived section (ROWS or BVOX) from `masks` into `out`.
 Status derive(SectionId id, std::span<const uint8_t> masks, uint32_t brickSize,
-              std::span<uint8_t> out, const std::string& where) {
-  if (id == SectionId::kRowStart) return deriveRowStarts(masks, brickSize, out, where);
+              std::span<uint8_t> out, const std::string& where, unsigned threads) {
+  if (id == SectionId::kRowStart) return deriveRowStarts(masks, brickSize, out, where, threads);
   if (id == SectionId::kBrickVoxelBase) return deriveBrickVoxelBase(masks, brickSize, out, where);
   return makeError(ErrorCode::kCorrupt, where, ": only ROWS and BVOX can be derived");
 }
@@ -108,20 +123,26 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
     const std::span<const uint8_t> raw = file.sectionBytes(e);
     if (codec == SectionCodec::kDerived) {
       // Stored only if the masks do not give these very bytes.
-      std::vector<uint8_t> derived(raw.size());
-      const bool same = derive(id, masks, file.header().brickSize, derived, path).isOk() &&
-                        (raw.empty() || std::memcmp(derived.data(), raw.data(), raw.size()) == 0);
+      const uint32_t n = file.header().brickSize;
+      bool same;
+      if (id == SectionId::kRowStart) {
+        same = rowStartsMatch(masks, n, raw, options.threads);
+      } else {
+        std::vector<uint8_t> derived(raw.size());
+        same = derive(id, masks, n, derived, path, options.threads).isOk() &&
+               (raw.empty() || std::memcmp(derived.data(), raw.data(), raw.size()) == 0);
+      }
       codec = same ? SectionCodec::kDerived : SectionCodec::kDeltaZstd;
     }
-    std::vector<uint16_t> predicted;
+    PredictedCodes predicted;
     if (isGradientResidual(codec)) {
       const auto predictStart = std::chrono::steady_clock::now();
-      predicted = predictedCodes(file, codec, options.threads);
+      VOXLINK_ASSIGN_OR_RETURN(predicted, predictedCodes(file, codec, options.threads, path));
       report.predictSeconds += secondsSince(predictStart);
     }
     if (codec != SectionCodec::kDerived) {
-      auto encoded =
-          encodeSection(raw, e.elementBytes, codec, options.level, options.threads, predicted);
+      auto encoded = encodeSection(raw, e.elementBytes, codec, options.level, options.threads,
+                                   predicted.span());
       if (!encoded)
         return makeError(encoded.code(), path, ": section ", sectionName(id), ": ",
                          encoded.message());
@@ -308,7 +329,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     if (!masks) return makeError(ErrorCode::kCorrupt, where, ": derived, but there is no MASK");
     VOXLINK_RETURN_IF_ERROR(
         derive(static_cast<SectionId>(e.id), std::span(bytes).subspan(masks->offset, masks->bytes),
-               original.brickSize, std::span(bytes).subspan(e.offset, e.bytes), where));
+               original.brickSize, std::span(bytes).subspan(e.offset, e.bytes), where, threads));
   }
   VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::fromBytes(std::move(bytes), name));
   if (residual) {
@@ -322,11 +343,12 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     auto grad = std::span(const_cast<uint8_t*>(file.bytes().data()) + e.offset, e.bytes);
     VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, e.elementBytes, codec, grad,
                                           name + ": section GRAD", threads));
-    const std::vector<uint16_t> predicted = predictedCodes(file, codec, threads);
-    if (predicted.size() * 2 > grad.size())
+    VOXLINK_ASSIGN_OR_RETURN(const PredictedCodes predicted,
+                             predictedCodes(file, codec, threads, name));
+    if (predicted.count * 2 > grad.size())
       return makeError(ErrorCode::kCorrupt, name, ": section GRAD: ", grad.size(), " bytes for ",
-                       predicted.size(), " gradients");
-    addPredictedCodes(grad, predicted);
+                       predicted.count, " gradients");
+    addPredictedCodes(grad, predicted.span());
   }
   // Every section must be what was packed.
   for (const SectionEntry& e : file.sectionTable()) {

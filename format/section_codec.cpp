@@ -77,7 +77,7 @@ void fromPlanes(const uint8_t* in, uint64_t bytes, uint32_t e, bool delta, uint8
 // Scratch buffers of a worker thread, kept between chunks: fresh ones would cost a page fault
 // per 4 KiB.
 std::vector<uint8_t>& scratch(int which) {
-  thread_local std::vector<uint8_t> buffers[3];
+  thread_local std::vector<uint8_t> buffers[4];
   return buffers[which];
 }
 
@@ -134,8 +134,10 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
       toPlanes(chunk, bytes, planes, delta, transformed.data(), chunkPredicted);
       src = transformed.data();
     }
-    std::vector<uint8_t>& frame = frames[c];
-    frame.resize(ZSTD_compressBound(bytes));
+    // Compressed into reused scratch, then copied out at its size: a fresh bound-sized frame
+    // per chunk would be zeroed and faulted in, about as many bytes as the section itself.
+    std::vector<uint8_t>& bound = scratch(3);
+    bound.resize(ZSTD_compressBound(bytes));
     // One context per thread, reused: creating one costs about a millisecond.
     thread_local std::unique_ptr<ZSTD_CCtx, size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(),
                                                                             ZSTD_freeCCtx);
@@ -152,12 +154,13 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
       ZSTD_CCtx_setParameter(context.get(), ZSTD_c_minMatch, 7);
       ZSTD_CCtx_setParameter(context.get(), ZSTD_c_searchLog, 1);
     }
-    const size_t written = ZSTD_compress2(context.get(), frame.data(), frame.size(), src, bytes);
+    const size_t written = ZSTD_compress2(context.get(), bound.data(), bound.size(), src, bytes);
     if (ZSTD_isError(written)) {
       errors[c] = std::string("zstd: ") + ZSTD_getErrorName(written);
       return;
     }
-    frame.resize(written);
+    std::vector<uint8_t>& frame = frames[c];
+    frame.assign(bound.begin(), bound.begin() + static_cast<ptrdiff_t>(written));
     // The check, while the chunk is still in the cache: decode as a reader would.
     thread_local std::unique_ptr<ZSTD_DCtx, size_t (*)(ZSTD_DCtx*)> checker(ZSTD_createDCtx(),
                                                                             ZSTD_freeDCtx);

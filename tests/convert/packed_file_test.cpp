@@ -318,6 +318,13 @@ TEST(PackedFile, RowStartsAndBrickBasesFollowFromTheMasks) {
                                : deriveBrickVoxelBase(masks, n, longer, "f.vxl: BVOX");
       ASSERT_FALSE(wrong.isOk());
       EXPECT_NE(wrong.message().find("derived from MASK"), std::string::npos) << wrong.message();
+      if (id == SectionId::kRowStart) {  // the check packing makes, a range of bricks at a time
+        EXPECT_TRUE(rowStartsMatch(masks, n, stored));
+        std::vector<uint8_t> changed(stored.begin(), stored.end());
+        changed[changed.size() - 2] ^= 1;  // the last brick's last row
+        EXPECT_FALSE(rowStartsMatch(masks, n, changed));
+        EXPECT_FALSE(rowStartsMatch(masks, n, longer));
+      }
     }
     // Packing stores neither.
     const Packed p = packReal(dir, path);
