@@ -266,7 +266,14 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     return makeError(ErrorCode::kCorrupt, name,
                      ": section PACK.originalHeaderCrc: the restored header does not match it");
   VOXLINK_RETURN_IF_ERROR(checkHeader(original, preamble.originalFileBytes, name));
-  std::vector<uint8_t> bytes(preamble.originalFileBytes, 0);
+  // Zeroed by calloc: a large block comes zeroed from the system, so the decoding threads are
+  // the first to touch its pages (a zero-filled vector is written over once by this thread).
+  const std::shared_ptr<uint8_t> buffer(
+      static_cast<uint8_t*>(std::calloc(preamble.originalFileBytes, 1)), &std::free);
+  if (!buffer)
+    return makeError(ErrorCode::kTooLarge, name, ": section PACK.originalFileBytes: no memory for ",
+                     preamble.originalFileBytes, " bytes");
+  const std::span<uint8_t> bytes(buffer.get(), preamble.originalFileBytes);
   std::memcpy(bytes.data(), &original, sizeof original);
   std::vector<SectionEntry> originalTable(entries.size());
   for (size_t i = 0; i < entries.size(); ++i) originalTable[i] = entries[i].original;
@@ -320,24 +327,25 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     }
     if (e.id == static_cast<uint32_t>(SectionId::kRowMask)) masks = &e;
     VOXLINK_RETURN_IF_ERROR(decodeSection(payload, e.elementBytes, codec,
-                                          std::span(bytes).subspan(e.offset, e.bytes), where,
-                                          threads));
+                                          bytes.subspan(e.offset, e.bytes), where, threads));
   }
   for (const PackEntry* p : derived) {
     const SectionEntry& e = p->original;
     const std::string where = name + ": section " + nameOf(e.id);
     if (!masks) return makeError(ErrorCode::kCorrupt, where, ": derived, but there is no MASK");
-    VOXLINK_RETURN_IF_ERROR(
-        derive(static_cast<SectionId>(e.id), std::span(bytes).subspan(masks->offset, masks->bytes),
-               original.brickSize, std::span(bytes).subspan(e.offset, e.bytes), where, threads));
+    VOXLINK_RETURN_IF_ERROR(derive(static_cast<SectionId>(e.id),
+                                   bytes.subspan(masks->offset, masks->bytes), original.brickSize,
+                                   bytes.subspan(e.offset, e.bytes), where, threads));
   }
-  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::fromBytes(std::move(bytes), name));
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file,
+                           VoxLinkFile::parse(std::shared_ptr<const void>(buffer, buffer.get()),
+                                              bytes.data(), bytes.size(), name));
   if (residual) {
     // The prediction reads the structure and the values: check those first.
     VOXLINK_RETURN_IF_ERROR(validateStructure(file));
     const SectionEntry& e = residual->original;
     const auto codec = static_cast<SectionCodec>(residual->codec);
-    // The file owns these bytes (a vector it holds); GRAD is filled in here, before anyone
+    // The file owns these bytes (the buffer above); GRAD is filled in here, before anyone
     // else sees the file. Its bounds are the ones checked above (the table, which cannot have
     // been written over, names the same).
     auto grad = std::span(const_cast<uint8_t*>(file.bytes().data()) + e.offset, e.bytes);
