@@ -80,6 +80,13 @@ bool denseBrickRowsAvailable() {
   return i;
 }
 
+[[gnu::target("avx2")]] void expandRows(const uint32_t* bits, uint32_t rows, uint32_t n,
+                                        const float* values, float fill, float* cells,
+                                        uint32_t step) {
+  for (uint32_t r = 0; r < rows; ++r)
+    values += expandCells(bits[r], n, values, fill, cells + r * step);
+}
+
 [[gnu::target("avx2")]] uint32_t brickCentralDifferences(const uint32_t* brickMask, uint32_t n,
                                                          const float* block, const float half[3],
                                                          float* gw, float* gu, float* gv) {
@@ -110,6 +117,7 @@ bool denseBrickRowsAvailable() {
 
 bool denseBrickRowsAvailable() { return false; }
 uint32_t expandBrickRows(const uint32_t*, uint32_t, const float*, float, float*) { return 0; }
+void expandRows(const uint32_t*, uint32_t, uint32_t, const float*, float, float*, uint32_t) {}
 uint32_t brickCentralDifferences(const uint32_t*, uint32_t, const float*, const float[3], float*,
                                  float*, float*) {
   return 0;

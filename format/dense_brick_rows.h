@@ -22,6 +22,12 @@ bool denseBrickRowsAvailable();
 uint32_t expandBrickRows(const uint32_t* brickMask, uint32_t n, const float* values, float fill,
                          float* block);
 
+// Writes `rows` rows of n cells, row i from cells + i * step: cell d of row i takes the next of
+// `values` where bit d of bits[i] is set, `fill` elsewhere (the faces of neighbouring bricks in
+// the halo). `values` needs 8 readable floats after the last one taken.
+void expandRows(const uint32_t* bits, uint32_t rows, uint32_t n, const float* values, float fill,
+                float* cells, uint32_t step);
+
 // For every set bit of the mask, in row order: g_w = (block[c + 1] - block[c - 1]) * half[0],
 // g_u with the step p and half[1], g_v with p^2 and half[2]. Returns their count; each output
 // array needs room for it plus 8 floats.

@@ -165,9 +165,6 @@ class Predictor {
     fill_ = static_cast<Real>(h_.valueMin - std::abs(h_.valueScale));
     const uint32_t p = n_ + 2;
     stride_ = {1, p, p * p};
-    denseStride_[frame_.w] = 1;
-    denseStride_[frame_.u] = p;
-    denseStride_[frame_.v] = p * p;
     if constexpr (std::is_same_v<Real, float>)
       dense_ = allowDense && !scene_ && n_ >= 8 && denseBrickRowsAvailable();
   }
@@ -213,8 +210,8 @@ class Predictor {
     const uint64_t brickStride[3] = {1, h_.brickGrid[0],
                                      uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
     for (int a = 0; a < 3; ++a) {
-      if (origin[a] > 0) fillFace(b - brickStride[a], a, -1, stride_, value);
-      if (origin[a] + n < h_.dims[a]) fillFace(b + brickStride[a], a, 1, stride_, value);
+      if (origin[a] > 0) fillFace(b - brickStride[a], a, -1, s);
+      if (origin[a] + n < h_.dims[a]) fillFace(b + brickStride[a], a, 1, s);
     }
     for (int a = 0; a < 3; ++a) s.g[a].resize(count);
     Real* g[3] = {s.g[0].data(), s.g[1].data(), s.g[2].data()};
@@ -293,15 +290,20 @@ class Predictor {
       const uint32_t count = static_cast<uint32_t>(std::min<uint64_t>(base_[k + 1] - first, cells));
       s.rowValues.assign(cells + 8, fill_);
       decodeValues(first, count, s.rowValues.data());
-      s.block.assign(size_t{p} * p * p, fill_);
+      s.block.assign(size_t{p} * p * p, fill_);  // the halo of missing neighbours keeps it
       float* block = s.block.data();
       const uint32_t* mask = mask_ + k * maskWords_;
       expandBrickRows(mask, n, s.rowValues.data(), fill_, block);
       const uint64_t brickStride[3] = {1, h_.brickGrid[0],
                                        uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
       for (int a = 0; a < 3; ++a) {
-        fillFace(b - brickStride[a], a, -1, denseStride_, block);
-        fillFace(b + brickStride[a], a, 1, denseStride_, block);
+        if (a == frame_.w) {
+          fillDepthFace(b - brickStride[a], -1, block);
+          fillDepthFace(b + brickStride[a], 1, block);
+        } else {
+          fillSideFace(b - brickStride[a], a, -1, s);
+          fillSideFace(b + brickStride[a], a, 1, s);
+        }
       }
       if (first != s.pendingFirst + s.pendingCount || s.pendingCount >= kPendingVoxels)
         encodePending(codes, s);
@@ -329,6 +331,60 @@ class Predictor {
  private:
   static constexpr uint32_t kPendingVoxels = 8192;
 
+  // fillFace across the depth axis for the dense path's block, without branching on the
+  // cells: a row's first voxel is at its start, its last just before the next row's start.
+  void fillDepthFace(uint64_t nb, int side, float* block) const {
+    const uint32_t n = n_, p = n + 2, rows = n * n;
+    float* cell = block + (side < 0 ? 0 : n + 1) + p * (1 + p);  // (halo, u = 1, v = 1)
+    const int64_t k = locator_.occupiedIndex(nb);
+    if (k < 0) return;
+    const uint64_t first = base_[k];
+    const uint64_t count = base_[k + 1] - first;
+    if (count == 0) return;
+    const uint16_t* rowStart = rowStart_ + static_cast<uint64_t>(k) * rows;
+    const uint32_t* mask = mask_ + static_cast<uint64_t>(k) * maskWords_;
+    const uint32_t inFace = side < 0 ? n - 1 : 0;
+    uint32_t row = 0;
+    for (uint32_t v = 0; v < n; ++v, cell += 2 * p)
+      for (uint32_t u = 0; u < n; ++u, ++row, cell += p) {
+        const uint32_t bits = rowBits(mask, n, row);
+        const uint64_t end = row + 1 < rows ? rowStart[row + 1] : count;
+        const uint64_t at = std::min<uint64_t>(inFace == 0 ? rowStart[row] : end - 1, count - 1);
+        const float x = value(first + at);
+        *cell = (bits >> inFace & 1u) != 0 ? x : fill_;
+      }
+  }
+
+  // fillFace across u or v for the dense path's block: the n rows in the face, their values
+  // decoded together, expanded eight cells at a time.
+  void fillSideFace(uint64_t nb, int a, int side, Scratch<Real>& s) const {
+    const uint32_t n = n_, p = n + 2;
+    const uint32_t halo = side < 0 ? 0 : n + 1;
+    const bool acrossU = a == frame_.u;  // the rows (inFace, v), else the rows (u, inFace)
+    float* cells = s.block.data() + 1 + p * (acrossU ? halo + p : 1 + p * halo);
+    const uint32_t step = acrossU ? p * p : p;
+    uint32_t bits[32];
+    float* values = s.rowValues.data();  // free again: the brick's own rows are expanded
+    const int64_t k = locator_.occupiedIndex(nb);
+    if (k < 0) return;
+    const uint16_t* rowStart = rowStart_ + static_cast<uint64_t>(k) * n * n;
+    const uint32_t* mask = mask_ + static_cast<uint64_t>(k) * maskWords_;
+    const uint64_t first = base_[k];
+    const uint64_t count = base_[k + 1] - first;
+    const uint32_t inFace = side < 0 ? n - 1 : 0;
+    uint32_t taken = 0;
+    for (uint32_t other = 0; other < n; ++other) {
+      const uint32_t row = acrossU ? other * n + inFace : inFace * n + other;
+      const uint64_t start = std::min<uint64_t>(rowStart[row], count);
+      bits[other] = rowBits(mask, n, row);
+      const uint32_t voxels =
+          static_cast<uint32_t>(std::min<uint64_t>(std::popcount(bits[other]), count - start));
+      decodeValues(first + start, voxels, values + taken);
+      taken += voxels;
+    }
+    expandRows(bits, n, n, values, fill_, cells, step);
+  }
+
   // out[j] = value(first + j) for j < count, the type's switch outside the loop.
   void decodeValues(uint64_t first, uint32_t count, Real* out) const {
     switch (valueType_) {
@@ -349,11 +405,9 @@ class Predictor {
   }
 
   // Copies the face of neighbouring brick `nb` (on side `side` of axis `a`) that touches the
-  // current brick into the halo of `block` (whose cells are `stride` apart along each axis),
-  // walking the neighbour's rows: a row along the depth axis crosses the face in one cell, a row
-  // in the face lies in it whole.
-  void fillFace(uint64_t nb, int a, int side, const std::array<uint32_t, 3>& stride,
-                Real* block) const {
+  // current brick into the halo of s.value, walking the neighbour's rows: a row along the
+  // depth axis crosses the face in one cell, a row in the face lies in it whole.
+  void fillFace(uint64_t nb, int a, int side, Scratch<Real>& s) const {
     const int64_t k = locator_.occupiedIndex(nb);
     if (k < 0) return;
     const uint32_t n = n_;
@@ -362,10 +416,10 @@ class Predictor {
     const uint64_t first = base_[k];
     const uint32_t inFace = side < 0 ? n - 1 : 0;  // the face's cells, neighbour-local
     const uint32_t halo = side < 0 ? 0 : n + 1;    // where they go in the padded block
-    const uint32_t face = halo * stride[a];
-    const uint32_t strideU = stride[frame_.u], strideV = stride[frame_.v];
-    const uint32_t strideW = stride[frame_.w];
-    Real* value = block;
+    const uint32_t face = halo * stride_[a];
+    const uint32_t strideU = stride_[frame_.u], strideV = stride_[frame_.v];
+    const uint32_t strideW = stride_[frame_.w];
+    Real* value = s.value.data();
     uint64_t slot;
     Real x;
     if (a == frame_.w) {
@@ -457,9 +511,8 @@ class Predictor {
   uint64_t slots_;           // entries of VALU and GRAD
   Real half_[3], full_[3];
   Real fill_;
-  std::array<uint32_t, 3> stride_;       // of the per-voxel path's block, x fastest
-  std::array<uint32_t, 3> denseStride_;  // of the dense path's, depth axis fastest
-  bool dense_ = false;                   // whether inside bricks take the dense path
+  std::array<uint32_t, 3> stride_;  // of the per-voxel path's block (x fastest)
+  bool dense_ = false;              // whether inside bricks take the dense path
 };
 
 }  // namespace
