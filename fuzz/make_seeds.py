@@ -384,6 +384,22 @@ def vxl_seeds(s, d, out, voxlink):
                                   capture_output=True).returncode == 0:
                     with open(packed, "rb") as f:
                         s.add("vxl", name + "_" + suffix, f.read())
+    # A 24^3 crop with brick 8: its middle brick lies away from the volume's faces, where
+    # unpacking predicts gradients eight cells at a time (format/dense_brick_rows.h).
+    # (this corner of neghip keeps 132 voxels in the middle brick, 696 in all)
+    crop24 = b"".join(neghip[(z * 64 + y) * 64 : (z * 64 + y) * 64 + 24]
+                      for z in range(16, 40) for y in range(32, 56))
+    src24 = os.path.join(tmp, "crop24.raw")
+    with open(src24, "wb") as f:
+        f.write(crop24)
+    dst = os.path.join(tmp, "u8_b8_z24.vxl")
+    packed = os.path.join(tmp, "u8_b8_z24.packed.vxl")
+    if (subprocess.run([voxlink, "convert", src24, "--dims", "24,24,24", "--type", "u8",
+                        "--threshold", "60", "-o", dst, "-q"], capture_output=True).returncode == 0
+            and subprocess.run([voxlink, "pack", dst, "-o", packed, "-q"],
+                               capture_output=True).returncode == 0):
+        with open(packed, "rb") as f:
+            s.add("vxl", "u8_b8_z24_packed", f.read())
     # A scene (version 2) of the first volume and a sphere, plain and packed: the packed one's
     # GRAD is predicted over VMSK slots.
     volume = os.path.join(tmp, "u8_b4.vxl")
