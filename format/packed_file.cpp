@@ -66,10 +66,14 @@ GradientPrediction predictionOf(SectionCodec codec) {
                                                   : GradientPrediction::kPortable;
 }
 
+struct FreeDeleter {  // for calloc'ed blocks
+  void operator()(void* p) const { std::free(p); }
+};
+
 // Zeroed codes from calloc: a large block comes zeroed from the system and its pages are
 // touched first by the prediction's threads, not by one thread zeroing 128 MB beforehand.
 struct PredictedCodes {
-  std::unique_ptr<uint16_t[], decltype(&std::free)> codes{nullptr, &std::free};
+  std::unique_ptr<uint16_t[], FreeDeleter> codes;
   uint64_t count = 0;
   std::span<uint16_t> span() const { return {codes.get(), count}; }
 };
@@ -265,11 +269,20 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   if (kCheckPackedChecksums && headerChecksum(original) != original.headerCrc)
     return makeError(ErrorCode::kCorrupt, name,
                      ": section PACK.originalHeaderCrc: the restored header does not match it");
+  // (The header is restored first: the file must hold it, and its table must lie after it.)
+  if (preamble.originalFileBytes < sizeof(FileHeader))
+    return makeError(ErrorCode::kCorrupt, name,
+                     ": section PACK.originalFileBytes: ", preamble.originalFileBytes,
+                     " bytes cannot hold the ", sizeof(FileHeader), "-byte header");
+  if (preamble.originalTableOffset < sizeof(FileHeader))
+    return makeError(ErrorCode::kCorrupt, name,
+                     ": section PACK.originalTableOffset: ", preamble.originalTableOffset,
+                     " lies inside the ", sizeof(FileHeader), "-byte header");
   VOXLINK_RETURN_IF_ERROR(checkHeader(original, preamble.originalFileBytes, name));
   // Zeroed by calloc: a large block comes zeroed from the system, so the decoding threads are
   // the first to touch its pages (a zero-filled vector is written over once by this thread).
   const std::shared_ptr<uint8_t> buffer(
-      static_cast<uint8_t*>(std::calloc(preamble.originalFileBytes, 1)), &std::free);
+      static_cast<uint8_t*>(std::calloc(preamble.originalFileBytes, 1)), FreeDeleter());
   if (!buffer)
     return makeError(ErrorCode::kTooLarge, name, ": section PACK.originalFileBytes: no memory for ",
                      preamble.originalFileBytes, " bytes");

@@ -5,7 +5,10 @@
 // the same IEEE operations lane by lane, in files built with -ffp-contract=off (no FMA).
 #pragma once
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(__x86_64__) && defined(__clang__)
+// (clang 14 cannot dispatch to an "arch=x86-64-v4" clone: it gets AVX-512F by name)
+#define VOXLINK_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#elif defined(__x86_64__) && defined(__GNUC__)
 #define VOXLINK_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define VOXLINK_VECTOR_CLONES

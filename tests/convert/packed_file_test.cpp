@@ -177,12 +177,15 @@ TEST(PackedFile, DenseBrickKernelsPredictThePerVoxelCodes) {
     auto file =
         openValidatedFile(convertReal(dir, c.data, c.threshold, c.valueType, c.brickSize, c.axis));
     ASSERT_TRUE(file) << file.message();
-    std::vector<uint16_t> dense(file->voxelCount()), perVoxel(file->voxelCount());
-    predictGradientCodes(*file, dense, GradientPrediction::kPortable);
+    std::vector<uint16_t> perVoxel(file->voxelCount());
     predictGradientCodesPerVoxel(*file, perVoxel, GradientPrediction::kPortable);
-    uint64_t differ = 0;
-    for (uint64_t i = 0; i < dense.size(); ++i) differ += dense[i] != perVoxel[i];
-    EXPECT_EQ(differ, 0u) << "of " << dense.size();
+    for (unsigned threads : {1u, 2u}) {  // one thread: the batches of bricks in one long run
+      std::vector<uint16_t> dense(file->voxelCount());
+      predictGradientCodes(*file, dense, GradientPrediction::kPortable, threads);
+      uint64_t differ = 0;
+      for (uint64_t i = 0; i < dense.size(); ++i) differ += dense[i] != perVoxel[i];
+      EXPECT_EQ(differ, 0u) << "of " << dense.size() << " with " << threads << " threads";
+    }
   }
 }
 
@@ -272,6 +275,50 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
     const std::string overlap = unpackError(damaged);
     EXPECT_NE(overlap.find("section BOCC: original bytes"), std::string::npos) << overlap;
     EXPECT_NE(overlap.find("overlap the section table"), std::string::npos) << overlap;
+  }
+  // An original file too small for its header, or a table inside the header, with every checksum
+  // made to match (a PACK of one entry, the restored header's checksum recomputed): restoring the
+  // header would write past the file, the table over the header.
+  struct Forged {
+    uint64_t fileBytes;
+    const char* field;
+  };
+  for (const Forged& f :
+       {Forged{32, "PACK.originalFileBytes"}, Forged{255, "PACK.originalFileBytes"},
+        Forged{4096, "PACK.originalTableOffset"}}) {
+    SCOPED_TRACE(f.fileBytes);
+    const uint64_t fileBytes = f.fileBytes;
+    std::vector<uint8_t> damaged = p.packed;
+    FileHeader h;
+    std::memcpy(&h, damaged.data(), sizeof h);
+    SectionEntry pack;
+    uint8_t* packSlot = nullptr;
+    for (uint32_t i = 0; i < h.sectionCount; ++i) {
+      uint8_t* slot = damaged.data() + h.sectionTableOffset + i * sizeof pack;
+      std::memcpy(&pack, slot, sizeof pack);
+      if (pack.id == static_cast<uint32_t>(SectionId::kPack)) {
+        packSlot = slot;
+        break;
+      }
+    }
+    ASSERT_NE(packSlot, nullptr);
+    uint8_t* preamble = damaged.data() + pack.offset;
+    const uint32_t entryCount = 1;
+    const uint64_t tableOffset = 0;
+    std::memcpy(preamble + 4, &entryCount, 4);
+    std::memcpy(preamble + 8, &fileBytes, 8);
+    std::memcpy(preamble + 16, &tableOffset, 8);
+    FileHeader original = h;
+    std::memcpy(original.magic, kMagic, sizeof original.magic);
+    original.sectionTableOffset = tableOffset;
+    original.sectionCount = entryCount;
+    const uint32_t originalCrc = headerChecksum(original);
+    std::memcpy(preamble + 24, &originalCrc, 4);
+    pack.bytes = 32 + 40;
+    pack.crc = crc32c(preamble, pack.bytes);
+    std::memcpy(packSlot, &pack, sizeof pack);
+    const std::string refused = unpackError(damaged);
+    EXPECT_NE(refused.find(f.field), std::string::npos) << refused;
   }
 }
 
