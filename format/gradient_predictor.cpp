@@ -125,6 +125,7 @@ struct Scratch {
   std::vector<Real> g[3];
   std::vector<float> gf[3];
   std::vector<uint16_t> guess;
+  std::vector<uint16_t> sum;     // codes to be added to the output's
   std::vector<float> rowValues;  // the dense path's: the brick's values, then padding
   std::vector<float> block;      // its block, in brick-row order (format/dense_brick_rows.h)
   // and the differences of consecutive dense bricks' voxels, codes[pendingFirst ...], encoded
@@ -138,8 +139,9 @@ struct Scratch {
 template <class Real>
 class Predictor {
  public:
-  Predictor(const VoxLinkFile& f, bool allowDense)
+  Predictor(const VoxLinkFile& f, bool allowDense, bool add)
       : file_(f),
+        add_(add),
         h_(f.header()),
         n_(h_.brickSize),
         frame_(axisFrame(f.predominantAxis())),
@@ -244,12 +246,12 @@ class Predictor {
     }
     if constexpr (std::is_same_v<Real, float>) {
       if (!scene_) {  // a volume's samples are its voxels, in file order
-        portableGradientCodes(g[0], g[1], g[2], codes.data() + first, samples);
+        putPortableCodes(g, codes.data() + first, samples, s);
         return;
       }
       s.guess.resize(count);
       portableGradientCodes(g[0], g[1], g[2], s.guess.data(), samples);
-      for (uint32_t j = 0; j < samples; ++j) codes[slots[j]] = s.guess[j];
+      for (uint32_t j = 0; j < samples; ++j) put(codes[slots[j]], s.guess[j]);
     } else {
       for (int a = 0; a < 3; ++a) s.gf[a].resize(count);
       float* gf[3] = {s.gf[0].data(), s.gf[1].data(), s.gf[2].data()};
@@ -261,7 +263,7 @@ class Predictor {
       s.guess.resize(count);
       encodeGradients(gf[0], gf[1], gf[2], s.guess.data(), samples);
       for (uint32_t j = 0; j < samples; ++j)
-        codes[slots[j]] = exactCode(g[0][j], g[1][j], g[2][j], s.guess[j]);
+        put(codes[slots[j]], exactCode(g[0][j], g[1][j], g[2][j], s.guess[j]));
     }
   }
 
@@ -321,14 +323,31 @@ class Predictor {
  public:
   // Encodes the dense bricks' differences still waiting in `s`.
   void encodePending(std::span<uint16_t> codes, Scratch<Real>& s) const {
-    if constexpr (std::is_same_v<Real, float>)
-      if (s.pendingCount > 0)
-        portableGradientCodes(s.pending[0].data(), s.pending[1].data(), s.pending[2].data(),
-                              codes.data() + s.pendingFirst, s.pendingCount);
+    if constexpr (std::is_same_v<Real, float>) {
+      if (s.pendingCount > 0) {
+        const float* g[3] = {s.pending[0].data(), s.pending[1].data(), s.pending[2].data()};
+        putPortableCodes(g, codes.data() + s.pendingFirst, s.pendingCount, s);
+      }
+    }
     s.pendingCount = 0;
   }
 
  private:
+  // The code `code` into `slot`, or added to what it holds.
+  void put(uint16_t& slot, uint16_t code) const {
+    slot = add_ ? static_cast<uint16_t>(slot + code) : code;
+  }
+  // out[j] = (or +=) the portable code of (g[0][j], g[1][j], g[2][j]) for j < count.
+  void putPortableCodes(const Real* const* g, uint16_t* out, uint32_t count,
+                        Scratch<Real>& s) const {
+    if constexpr (std::is_same_v<Real, float>) {
+      if (!add_) return portableGradientCodes(g[0], g[1], g[2], out, count);
+      s.sum.resize(count);
+      portableGradientCodes(g[0], g[1], g[2], s.sum.data(), count);
+      for (uint32_t j = 0; j < count; ++j) out[j] = static_cast<uint16_t>(out[j] + s.sum[j]);
+    }
+  }
+
   static constexpr uint32_t kPendingVoxels = 8192;
 
   // fillFace across the depth axis for the dense path's block, without branching on the
@@ -494,6 +513,7 @@ class Predictor {
   }
 
   const VoxLinkFile& file_;
+  bool add_;  // add the predicted codes to the output's instead of writing them
   const FileHeader& h_;
   uint32_t n_;
   AxisFrame frame_;
@@ -529,8 +549,8 @@ namespace {
 
 template <class Real>
 void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads,
-                 bool allowDense) {
-  const Predictor<Real> predictor(file, allowDense);
+                 bool allowDense, bool add) {
+  const Predictor<Real> predictor(file, allowDense, add);
   // Occupied bricks in file order, so workers can take ranges of them.
   std::vector<uint64_t> bricks;
   bricks.reserve(file.occupiedBrickCount());
@@ -555,17 +575,25 @@ void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned th
 void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
                           GradientPrediction kind, unsigned threads) {
   if (kind == GradientPrediction::kExact)
-    predictWith<double>(file, codes, threads, true);
+    predictWith<double>(file, codes, threads, true, false);
   else
-    predictWith<float>(file, codes, threads, true);
+    predictWith<float>(file, codes, threads, true, false);
+}
+
+void addPredictedGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
+                               GradientPrediction kind, unsigned threads) {
+  if (kind == GradientPrediction::kExact)
+    predictWith<double>(file, codes, threads, true, true);
+  else
+    predictWith<float>(file, codes, threads, true, true);
 }
 
 void predictGradientCodesPerVoxel(const VoxLinkFile& file, std::span<uint16_t> codes,
                                   GradientPrediction kind, unsigned threads) {
   if (kind == GradientPrediction::kExact)
-    predictWith<double>(file, codes, threads, false);
+    predictWith<double>(file, codes, threads, false, false);
   else
-    predictWith<float>(file, codes, threads, false);
+    predictWith<float>(file, codes, threads, false, false);
 }
 
 }  // namespace voxlink::format

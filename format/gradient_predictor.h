@@ -50,6 +50,11 @@ enum class GradientPrediction : uint8_t {
 void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
                           GradientPrediction kind, unsigned threads = 0);
 
+// Adds (mod 2^16) each predicted code to the entry of `codes` that it belongs to: a packed
+// file's GRAD residuals become the codes in place, without a buffer of predictions.
+void addPredictedGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
+                               GradientPrediction kind, unsigned threads = 0);
+
 // The same codes, one voxel at a time: without the eight-cell kernels that predictGradientCodes
 // uses for a volume's bricks away from its faces where the CPU has them
 // (format/dense_brick_rows.h). The reference that tests hold those kernels to.
