@@ -57,7 +57,7 @@ CommandRunner addPackCommand(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Threads (0: every core)")->capture_default_str();
   cmd->add_flag("--fast", args->fast,
                 "Do not predict gradients from the values: on CT twice as fast to load, files "
-                "about 2.4x as large, about as fast to pack (docs/benchmarks.md)");
+                "about 2.4x as large, not reliably faster to pack (docs/benchmarks.md)");
   cmd->add_flag("--sections", args->sections, "Print each section's size before and after");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
   return [args] {

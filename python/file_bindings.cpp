@@ -194,8 +194,8 @@ void bindFile(py::module_& m) {
       .def("pack", &pack, py::arg("path"), py::arg("fast") = false,
            "Writes the file packed (lossless, as `voxlink pack`; voxlink.open reads it back): "
            "returns bytes, packed_bytes, pack_seconds, predict_seconds. fast=True does not "
-           "predict gradients (on CT twice as fast to load, files about 2.4x as large, about "
-           "as fast to pack).")
+           "predict gradients (on CT twice as fast to load, files about 2.4x as large, not "
+           "reliably faster to pack).")
       .def("__repr__", [](const PyFile& f) {
         const auto& d = f.file->header().dims;
         return "<voxlink.File '" + f.file->path() + "' " + std::to_string(d[0]) + "x" +
