@@ -378,10 +378,11 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   // half the file).
   const auto& sections = file.sectionTable();
   std::vector<uint8_t> matches(sections.size());
-  parallelFor(sections.size(), threads, [&](uint64_t i) {
-    const auto data = file.sectionBytes(sections[i]);
-    matches[i] = crc32c(data.data(), data.size()) == sections[i].crc;
-  });
+  parallelFor(sections.size(), file.fileBytes() >= kParallelChecksumBytes ? threads : 1,
+              [&](uint64_t i) {
+                const auto data = file.sectionBytes(sections[i]);
+                matches[i] = crc32c(data.data(), data.size()) == sections[i].crc;
+              });
   for (size_t i = 0; i < sections.size(); ++i)
     if (!matches[i])
       return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(sections[i].id),

@@ -28,12 +28,14 @@ Status checkPadding(const VoxLinkFile& f, SectionId id, uint64_t used) {
   return Status::ok();
 }
 
-// The sections are checksummed on every core (GRAD alone is about half a file), the first
-// mismatch in table order reported.
+// The sections of a large file are checksummed on every core (GRAD alone is about half of it),
+// the first mismatch in table order reported. Small files stay on the calling thread: starting
+// threads would cost more than it saves.
 Status checkChecksums(const VoxLinkFile& f, ValidationReport& report) {
   const auto& sections = f.sectionTable();
   std::vector<uint32_t> crcs(sections.size());
-  parallelFor(sections.size(), 0, [&](uint64_t i) {
+  const unsigned threads = f.fileBytes() >= kParallelChecksumBytes ? 0 : 1;
+  parallelFor(sections.size(), threads, [&](uint64_t i) {
     const auto bytes = f.sectionBytes(sections[i]);
     crcs[i] = crc32c(bytes.data(), bytes.size());
   });

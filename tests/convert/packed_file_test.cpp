@@ -10,10 +10,14 @@
 #include "format/crc32c.h"
 #include "format/dense_brick_rows.h"
 #include "format/derived_sections.h"
+#include "format/file_writer.h"
+#include "format/gradient_codec.h"
 #include "format/gradient_predictor.h"
+#include "format/scene_builder.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
 #include "sources/volume_source.h"
+#include "tests/convert/volume_fixtures.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::format {
@@ -179,12 +183,74 @@ TEST(PackedFile, DenseBrickKernelsPredictThePerVoxelCodes) {
     ASSERT_TRUE(file) << file.message();
     std::vector<uint16_t> perVoxel(file->voxelCount());
     predictGradientCodesPerVoxel(*file, perVoxel, GradientPrediction::kPortable);
-    for (unsigned threads : {1u, 2u}) {  // one thread: the batches of bricks in one long run
+    for (unsigned threads : {1u, 2u}) {
       std::vector<uint16_t> dense(file->voxelCount());
       predictGradientCodes(*file, dense, GradientPrediction::kPortable, threads);
       uint64_t differ = 0;
       for (uint64_t i = 0; i < dense.size(); ++i) differ += dense[i] != perVoxel[i];
       EXPECT_EQ(differ, 0u) << "of " << dense.size() << " with " << threads << " threads";
+    }
+  }
+}
+
+// Unpacking adds the prediction to GRAD's residuals in place (addPredictedGradientCodes): every
+// entry exactly once, whatever the number of threads, with both predictions, for a volume (bricks
+// at and away from its faces, more than one batch of bricks) and a scene (codes by VMSK slot,
+// voxels that hold only a surface in between). No real data needed.
+TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
+  TempDir dir;
+  const std::array<uint32_t, 3> dims = {96, 80, 72};
+  auto ball = testing::makeBall(dims);
+  convert::ConvertOptions options;
+  options.classification = convert::thresholdClassification({"40"}).value();
+  const std::string volume = dir.file("ball.vxl");
+  ASSERT_TRUE(convert::convertVolume(*ball, options, volume));
+  // The same ball as a scene: two voxels of three hold a volume sample, the third a surface.
+  VolumeDescription description;
+  description.dims = dims;
+  description.valueMin = 40;
+  description.valueMax = 255;
+  SceneBuilder builder(description);
+  MaterialRecord grey{};
+  grey.color[0] = grey.color[1] = grey.color[2] = 0.5f;
+  grey.opacity = grey.refractiveIndex = 1;
+  builder.setMaterials({grey});
+  const uint8_t* values = ball->bytes().data();
+  for (uint32_t z = 0; z < dims[2]; ++z)
+    for (uint32_t y = 0; y < dims[1]; ++y)
+      for (uint32_t x = 0; x < dims[0]; ++x) {
+        const uint8_t v = *values++;
+        if (v < 40) continue;
+        if ((x + y + z) % 3 != 0)
+          builder.addVolumeSample(x, y, z, v, encodeGradient(1.0, 0.0, 0.0));
+        else
+          builder.addSurface(x, y, z, encodeGradient(0.0, 1.0, 0.0), 0);
+      }
+  auto built = builder.build();
+  ASSERT_TRUE(built) << built.message();
+  const std::string scene = dir.file("scene.vxl");
+  ASSERT_TRUE(writeBrickedVolume(scene, *built).isOk());
+  for (const std::string& path : {volume, scene}) {
+    auto file = openValidatedFile(path);
+    ASSERT_TRUE(file) << file.message();
+    ASSERT_GT(file->occupiedBrickCount(), 256u);  // more than one batch of bricks
+    const uint64_t slots = sampleSlots(file->header());
+    std::vector<uint16_t> residual(slots);
+    uint32_t state = 12345;
+    for (uint16_t& r : residual)
+      r = static_cast<uint16_t>((state = state * 1664525u + 1013904223u) >> 16);
+    for (GradientPrediction kind : {GradientPrediction::kExact, GradientPrediction::kPortable}) {
+      std::vector<uint16_t> expected(slots);
+      predictGradientCodes(*file, expected, kind, 1);
+      for (uint64_t i = 0; i < slots; ++i)
+        expected[i] = static_cast<uint16_t>(expected[i] + residual[i]);
+      for (unsigned threads : {1u, 2u, 3u}) {
+        SCOPED_TRACE(path + (kind == GradientPrediction::kExact ? " exact, " : " portable, ") +
+                     std::to_string(threads) + " threads");
+        std::vector<uint16_t> added = residual;
+        addPredictedGradientCodes(*file, added, kind, threads);
+        EXPECT_EQ(added, expected);
+      }
     }
   }
 }
@@ -280,13 +346,15 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
   // made to match (a PACK of one entry, the restored header's checksum recomputed): restoring the
   // header would write past the file, the table over the header.
   struct Forged {
-    uint64_t fileBytes;
-    const char* field;
+    uint64_t fileBytes, tableOffset;
+    const char* message;
   };
   for (const Forged& f :
-       {Forged{32, "PACK.originalFileBytes"}, Forged{255, "PACK.originalFileBytes"},
-        Forged{4096, "PACK.originalTableOffset"}}) {
-    SCOPED_TRACE(f.fileBytes);
+       {Forged{32, 0, "PACK.originalFileBytes: 32 bytes cannot hold the 256-byte header"},
+        Forged{255, 0, "PACK.originalFileBytes: 255 bytes cannot hold the 256-byte header"},
+        Forged{4096, 0, "PACK.originalTableOffset: 0 lies inside the 256-byte header"},
+        Forged{4096, 100, "PACK.originalTableOffset: 100 lies inside the 256-byte header"}}) {
+    SCOPED_TRACE(f.message);
     const uint64_t fileBytes = f.fileBytes;
     std::vector<uint8_t> damaged = p.packed;
     FileHeader h;
@@ -304,7 +372,7 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
     ASSERT_NE(packSlot, nullptr);
     uint8_t* preamble = damaged.data() + pack.offset;
     const uint32_t entryCount = 1;
-    const uint64_t tableOffset = 0;
+    const uint64_t tableOffset = f.tableOffset;
     std::memcpy(preamble + 4, &entryCount, 4);
     std::memcpy(preamble + 8, &fileBytes, 8);
     std::memcpy(preamble + 16, &tableOffset, 8);
@@ -318,7 +386,7 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
     pack.crc = crc32c(preamble, pack.bytes);
     std::memcpy(packSlot, &pack, sizeof pack);
     const std::string refused = unpackError(damaged);
-    EXPECT_NE(refused.find(f.field), std::string::npos) << refused;
+    EXPECT_NE(refused.find(f.message), std::string::npos) << refused;
   }
 }
 
