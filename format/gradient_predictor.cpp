@@ -547,10 +547,17 @@ uint16_t exactGradientCode(double x, double y, double z, uint16_t guess) {
 
 namespace {
 
+// How a public entry point predicts: with the eight-cell kernels where they apply (else one
+// voxel at a time), and adding to the output's codes or writing them.
+struct PredictionMode {
+  bool dense;
+  bool add;
+};
+
 template <class Real>
 void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads,
-                 bool allowDense, bool add) {
-  const Predictor<Real> predictor(file, allowDense, add);
+                 PredictionMode mode) {
+  const Predictor<Real> predictor(file, mode.dense, mode.add);
   // Occupied bricks in file order, so workers can take ranges of them.
   std::vector<uint64_t> bricks;
   bricks.reserve(file.occupiedBrickCount());
@@ -570,30 +577,29 @@ void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned th
   });
 }
 
+void predictAs(GradientPrediction kind, const VoxLinkFile& file, std::span<uint16_t> codes,
+               unsigned threads, PredictionMode mode) {
+  if (kind == GradientPrediction::kExact)
+    predictWith<double>(file, codes, threads, mode);
+  else
+    predictWith<float>(file, codes, threads, mode);
+}
+
 }  // namespace
 
 void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
                           GradientPrediction kind, unsigned threads) {
-  if (kind == GradientPrediction::kExact)
-    predictWith<double>(file, codes, threads, true, false);
-  else
-    predictWith<float>(file, codes, threads, true, false);
+  predictAs(kind, file, codes, threads, {.dense = true, .add = false});
 }
 
 void addPredictedGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
                                GradientPrediction kind, unsigned threads) {
-  if (kind == GradientPrediction::kExact)
-    predictWith<double>(file, codes, threads, true, true);
-  else
-    predictWith<float>(file, codes, threads, true, true);
+  predictAs(kind, file, codes, threads, {.dense = true, .add = true});
 }
 
 void predictGradientCodesPerVoxel(const VoxLinkFile& file, std::span<uint16_t> codes,
                                   GradientPrediction kind, unsigned threads) {
-  if (kind == GradientPrediction::kExact)
-    predictWith<double>(file, codes, threads, false, false);
-  else
-    predictWith<float>(file, codes, threads, false, false);
+  predictAs(kind, file, codes, threads, {.dense = false, .add = false});
 }
 
 }  // namespace voxlink::format
