@@ -8,10 +8,6 @@
 
 namespace voxlink::format {
 
-// Files of at least this many bytes have their sections checksummed on every core (validator,
-// unpacking); below it, starting threads costs more than it saves.
-inline constexpr uint64_t kParallelChecksumBytes = uint64_t{8} << 20;
-
 // Extends `crc` (0 for a fresh checksum) over `size` bytes.
 uint32_t crc32c(const void* data, size_t size, uint32_t crc = 0);
 

@@ -25,6 +25,15 @@ Result<uint64_t> brickCount(std::span<const uint8_t> masks, uint32_t n, uint64_t
   return expected;
 }
 
+// The bricks whose row starts fill `rowStartBytes`, or an error when that is not whole bricks
+// or not as many as `masks` holds.
+Result<uint64_t> rowStartBricks(std::span<const uint8_t> masks, uint32_t n, uint64_t rowStartBytes,
+                                const std::string& where) {
+  const uint64_t rowBytes = uint64_t{n} * n * 2;
+  const bool fits = n > 0 && rowStartBytes % rowBytes == 0;
+  return brickCount(masks, n, fits ? rowStartBytes / rowBytes : 0, fits, where);
+}
+
 // The row starts of one brick at a time, from its mask words (copied: MASK need not be aligned).
 class BrickRows {
  public:
@@ -59,10 +68,8 @@ bool forEachBrickRange(uint64_t bricks, unsigned threads, Fn&& fn) {
 Status deriveRowStarts(std::span<const uint8_t> masks, uint32_t n, std::span<uint8_t> rowStarts,
                        const std::string& where, unsigned threads) {
   const uint64_t rowBytes = uint64_t{n} * n * 2;
-  const bool fits = n > 0 && rowStarts.size() % rowBytes == 0;
-  VOXLINK_ASSIGN_OR_RETURN(
-      const uint64_t bricks,
-      brickCount(masks, n, fits ? rowStarts.size() / rowBytes : 0, fits, where));
+  VOXLINK_ASSIGN_OR_RETURN(const uint64_t bricks,
+                           rowStartBricks(masks, n, rowStarts.size(), where));
   forEachBrickRange(bricks, threads, [&](uint64_t begin, uint64_t end) {
     BrickRows rows(n);
     for (uint64_t k = begin; k < end; ++k)
@@ -75,9 +82,9 @@ Status deriveRowStarts(std::span<const uint8_t> masks, uint32_t n, std::span<uin
 bool rowStartsMatch(std::span<const uint8_t> masks, uint32_t n, std::span<const uint8_t> rowStarts,
                     unsigned threads) {
   const uint64_t rowBytes = uint64_t{n} * n * 2;
-  const bool fits = n > 0 && rowStarts.size() % rowBytes == 0;
-  if (!brickCount(masks, n, fits ? rowStarts.size() / rowBytes : 0, fits, "")) return false;
-  return forEachBrickRange(rowStarts.size() / rowBytes, threads, [&](uint64_t begin, uint64_t end) {
+  auto bricks = rowStartBricks(masks, n, rowStarts.size(), "");
+  if (!bricks) return false;
+  return forEachBrickRange(*bricks, threads, [&](uint64_t begin, uint64_t end) {
     BrickRows rows(n);
     for (uint64_t k = begin; k < end; ++k)
       if (std::memcmp(rowStarts.data() + k * rowBytes, rows.startsOf(masks, k), rowBytes) != 0)

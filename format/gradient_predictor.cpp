@@ -140,8 +140,7 @@ template <class Real>
 class Predictor {
  public:
   Predictor(const VoxLinkFile& f, bool allowDense, bool add)
-      : file_(f),
-        add_(add),
+      : add_(add),
         h_(f.header()),
         n_(h_.brickSize),
         frame_(axisFrame(f.predominantAxis())),
@@ -167,6 +166,7 @@ class Predictor {
     fill_ = static_cast<Real>(h_.valueMin - std::abs(h_.valueScale));
     const uint32_t p = n_ + 2;
     stride_ = {1, p, p * p};
+    brickStride_ = {1, h_.brickGrid[0], uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
     if constexpr (std::is_same_v<Real, float>)
       dense_ = allowDense && !scene_ && n_ >= 8 && denseBrickRowsAvailable();
   }
@@ -176,10 +176,7 @@ class Predictor {
     if (dense_ && isInside(b)) return predictInside(b, k, codes, s);
     // Cells that hold no stored voxel read as the fill value.
     s.value.assign(size_t{p} * p * p, fill_);
-    const uint32_t origin[3] = {
-        static_cast<uint32_t>(b % h_.brickGrid[0]) * n,
-        static_cast<uint32_t>(b / h_.brickGrid[0] % h_.brickGrid[1]) * n,
-        static_cast<uint32_t>(b / (uint64_t{h_.brickGrid[0]} * h_.brickGrid[1])) * n};
+    const uint32_t origin[3] = {brickOrigin(b, 0), brickOrigin(b, 1), brickOrigin(b, 2)};
     // The brick's own voxels, in file order: rows of n cells along the depth axis w.
     const uint64_t first = base_[k];
     const uint32_t count = static_cast<uint32_t>(base_[k + 1] - first);
@@ -209,18 +206,14 @@ class Predictor {
     }
     const uint32_t samples = i;
     // The faces of the six neighbouring bricks that touch this one.
-    const uint64_t brickStride[3] = {1, h_.brickGrid[0],
-                                     uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
     for (int a = 0; a < 3; ++a) {
-      if (origin[a] > 0) fillFace(b - brickStride[a], a, -1, s);
-      if (origin[a] + n < h_.dims[a]) fillFace(b + brickStride[a], a, 1, s);
+      if (origin[a] > 0) fillFace(b - brickStride_[a], a, -1, s);
+      if (origin[a] + n < h_.dims[a]) fillFace(b + brickStride_[a], a, 1, s);
     }
     for (int a = 0; a < 3; ++a) s.g[a].resize(count);
     Real* g[3] = {s.g[0].data(), s.g[1].data(), s.g[2].data()};
     // A brick away from the volume's faces takes central differences everywhere.
-    bool inside = true;
-    for (int a = 0; a < 3; ++a) inside &= origin[a] > 0 && origin[a] + n < h_.dims[a];
-    if (inside) {
+    if (isInside(b)) {
       if constexpr (std::is_same_v<Real, float>)
         centralDifferencesFloat(value, cell, samples, stride_.data(), half_, g[0], g[1], g[2]);
       else
@@ -296,15 +289,13 @@ class Predictor {
       float* block = s.block.data();
       const uint32_t* mask = mask_ + k * maskWords_;
       expandBrickRows(mask, n, s.rowValues.data(), fill_, block);
-      const uint64_t brickStride[3] = {1, h_.brickGrid[0],
-                                       uint64_t{h_.brickGrid[0]} * h_.brickGrid[1]};
       for (int a = 0; a < 3; ++a) {
         if (a == frame_.w) {
-          fillDepthFace(b - brickStride[a], -1, block);
-          fillDepthFace(b + brickStride[a], 1, block);
+          fillDepthFace(b - brickStride_[a], -1, block);
+          fillDepthFace(b + brickStride_[a], 1, block);
         } else {
-          fillSideFace(b - brickStride[a], a, -1, s);
-          fillSideFace(b + brickStride[a], a, 1, s);
+          fillSideFace(b - brickStride_[a], a, -1, s);
+          fillSideFace(b + brickStride_[a], a, 1, s);
         }
       }
       if (first != s.pendingFirst + s.pendingCount || s.pendingCount >= kPendingVoxels)
@@ -477,7 +468,7 @@ class Predictor {
     v = value(slot);
     return true;
   }
-  // file_.value(slot) (rounded to Real), through a table of every stored value for 8- and
+  // VoxLinkFile::value(slot) (rounded to Real), through a table of every stored value for 8- and
   // 16-bit types (the same operations give the same bits).
   Real value(uint64_t slot) const {
     switch (valueType_) {
@@ -512,7 +503,6 @@ class Predictor {
     return table;
   }
 
-  const VoxLinkFile& file_;
   bool add_;  // add the predicted codes to the output's instead of writing them
   const FileHeader& h_;
   uint32_t n_;
@@ -531,8 +521,9 @@ class Predictor {
   uint64_t slots_;           // entries of VALU and GRAD
   Real half_[3], full_[3];
   Real fill_;
-  std::array<uint32_t, 3> stride_;  // of the per-voxel path's block (x fastest)
-  bool dense_ = false;              // whether inside bricks take the dense path
+  std::array<uint32_t, 3> stride_;       // of the per-voxel path's block (x fastest)
+  std::array<uint64_t, 3> brickStride_;  // between neighbouring bricks' indices
+  bool dense_ = false;                   // whether inside bricks take the dense path
 };
 
 }  // namespace

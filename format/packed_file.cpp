@@ -9,7 +9,6 @@
 #include "format/derived_sections.h"
 #include "format/gradient_predictor.h"
 #include "format/output_file.h"
-#include "format/parallel_for.h"
 #include "format/validator.h"
 
 namespace voxlink::format {
@@ -374,17 +373,11 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     addPredictedGradientCodes(file, std::span(reinterpret_cast<uint16_t*>(grad.data()), count),
                               predictionOf(codec), threads);
   }
-  // Every section must be what was packed (the sections checked on every core: GRAD alone is
-  // half the file).
+  // Every section must be what was packed.
   const auto& sections = file.sectionTable();
-  std::vector<uint8_t> matches(sections.size());
-  parallelFor(sections.size(), file.fileBytes() >= kParallelChecksumBytes ? threads : 1,
-              [&](uint64_t i) {
-                const auto data = file.sectionBytes(sections[i]);
-                matches[i] = crc32c(data.data(), data.size()) == sections[i].crc;
-              });
+  const std::vector<uint32_t> crcs = sectionChecksums(file, threads);
   for (size_t i = 0; i < sections.size(); ++i)
-    if (!matches[i])
+    if (crcs[i] != sections[i].crc)
       return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(sections[i].id),
                        ": unpacked bytes do not match the original checksum");
   file.packedBytes_ = packed.size();

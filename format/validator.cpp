@@ -28,17 +28,10 @@ Status checkPadding(const VoxLinkFile& f, SectionId id, uint64_t used) {
   return Status::ok();
 }
 
-// The sections of a large file are checksummed on every core (GRAD alone is about half of it),
-// the first mismatch in table order reported. Small files stay on the calling thread: starting
-// threads would cost more than it saves.
+// The first mismatch in table order is the one reported.
 Status checkChecksums(const VoxLinkFile& f, ValidationReport& report) {
   const auto& sections = f.sectionTable();
-  std::vector<uint32_t> crcs(sections.size());
-  const unsigned threads = f.fileBytes() >= kParallelChecksumBytes ? 0 : 1;
-  parallelFor(sections.size(), threads, [&](uint64_t i) {
-    const auto bytes = f.sectionBytes(sections[i]);
-    crcs[i] = crc32c(bytes.data(), bytes.size());
-  });
+  const std::vector<uint32_t> crcs = sectionChecksums(f);
   for (size_t i = 0; i < sections.size(); ++i) {
     const SectionEntry& e = sections[i];
     if (crcs[i] != e.crc)
@@ -326,6 +319,17 @@ Status validateStructure(const VoxLinkFile& f) {
   VOXLINK_RETURN_IF_ERROR(checkBricks(f, report));
   // A scene's masks against their counts too: the gradient prediction walks VMSK slots.
   return checkScene(f);
+}
+
+std::vector<uint32_t> sectionChecksums(const VoxLinkFile& f, unsigned threads) {
+  constexpr uint64_t kParallelBytes = uint64_t{8} << 20;
+  const auto& sections = f.sectionTable();
+  std::vector<uint32_t> crcs(sections.size());
+  parallelFor(sections.size(), f.fileBytes() >= kParallelBytes ? threads : 1, [&](uint64_t i) {
+    const auto bytes = f.sectionBytes(sections[i]);
+    crcs[i] = crc32c(bytes.data(), bytes.size());
+  });
+  return crcs;
 }
 
 Result<VoxLinkFile> openValidatedFile(const std::string& path) {

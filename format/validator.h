@@ -2,7 +2,9 @@
 // Returns the first problem found, naming file, section and field; it never aborts.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "format/error.h"
 #include "format/voxlink_file.h"
@@ -21,6 +23,11 @@ Result<ValidationReport> validateFile(const VoxLinkFile& file);
 // references (no checksums, values or gradients): what code that walks the structure must know
 // first, e.g. unpacking a packed file's gradients (which walks VMSK slots in a scene).
 Status validateStructure(const VoxLinkFile& file);
+
+// The CRC-32C of every section, in table order. A file of 8 MiB or more is checksummed on
+// `threads` threads (0: every core; GRAD alone is about half of it); a smaller one on the calling
+// thread, where starting threads would cost more than it saves.
+std::vector<uint32_t> sectionChecksums(const VoxLinkFile& file, unsigned threads = 0);
 
 // VoxLinkFile::open() then validateFile(): what every command that reads a .vxl (render, view,
 // info, bench-render) uses, so a file `voxlink validate` rejects is refused with the same

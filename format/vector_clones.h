@@ -1,8 +1,8 @@
 // VOXLINK_VECTOR_CLONES before a function with a vectorizable loop: on x86-64 the compiler also
 // builds it for AVX2 and AVX-512 (x86-64-v4: with only AVX-512F, GCC kept 256-bit vectors) and
-// picks the widest the CPU runs when the program starts;
-// elsewhere it is the one plain build. Only for code whose result must not depend on the clone:
-// the same IEEE operations lane by lane, in files built with -ffp-contract=off (no FMA).
+// picks the widest the CPU runs when the program starts; elsewhere it is the one plain build. Only
+// for code whose result must not depend on the clone: the same IEEE operations lane by lane, in
+// files built with -ffp-contract=off (no FMA).
 #pragma once
 
 #if defined(__x86_64__) && defined(__clang__)
