@@ -147,6 +147,14 @@ template <class Stored, class Real>
   }
 }
 
+// Where the predicted codes go: entries [first, first + size) of GRAD, the whole section or the
+// part that a range prediction covers.
+struct CodeWindow {
+  uint16_t* data;
+  uint64_t first = 0;
+  uint16_t* at(uint64_t entry) const { return data + (entry - first); }
+};
+
 // Real = double: GradientPrediction::kExact; float: kPortable.
 template <class Real>
 class Predictor {
@@ -183,7 +191,7 @@ class Predictor {
       dense_ = allowDense && !scene_ && n_ >= 8 && denseBrickRowsAvailable();
   }
 
-  void predictBrick(uint64_t b, uint64_t k, std::span<uint16_t> codes, Scratch<Real>& s) const {
+  void predictBrick(uint64_t b, uint64_t k, CodeWindow codes, Scratch<Real>& s) const {
     const uint32_t n = n_, p = n + 2;
     if (dense_ && isInside(b)) return predictInside(b, k, codes, s);
     // Cells that hold no stored voxel read as the fill value.
@@ -251,12 +259,12 @@ class Predictor {
     }
     if constexpr (std::is_same_v<Real, float>) {
       if (!scene_) {  // a volume's samples are its voxels, in file order
-        putPortableCodes(g, codes.data() + first, samples, s);
+        putPortableCodes(g, codes.at(first), samples, s);
         return;
       }
       s.guess.resize(count);
       portableGradientCodes(g[0], g[1], g[2], s.guess.data(), samples);
-      for (uint32_t j = 0; j < samples; ++j) put(codes[slots[j]], s.guess[j]);
+      for (uint32_t j = 0; j < samples; ++j) put(*codes.at(slots[j]), s.guess[j]);
     } else {
       for (int a = 0; a < 3; ++a) s.gf[a].resize(count);
       float* gf[3] = {s.gf[0].data(), s.gf[1].data(), s.gf[2].data()};
@@ -268,7 +276,7 @@ class Predictor {
       s.guess.resize(count);
       encodeGradients(gf[0], gf[1], gf[2], s.guess.data(), samples);
       for (uint32_t j = 0; j < samples; ++j)
-        put(codes[slots[j]], exactCode(g[0][j], g[1][j], g[2][j], s.guess[j]));
+        put(*codes.at(slots[j]), exactCode(g[0][j], g[1][j], g[2][j], s.guess[j]));
     }
   }
 
@@ -290,7 +298,7 @@ class Predictor {
 
   // predictBrick for a volume's brick away from the faces, eight cells of a row at a time: the
   // same values in the same cells and the same float operations, in another order.
-  void predictInside(uint64_t b, uint64_t k, std::span<uint16_t> codes, Scratch<Real>& s) const {
+  void predictInside(uint64_t b, uint64_t k, CodeWindow codes, Scratch<Real>& s) const {
     if constexpr (std::is_same_v<Real, float>) {  // (dense_ is false otherwise)
       const uint32_t n = n_, p = n + 2, cells = n * n * n;
       const uint64_t first = base_[k];
@@ -334,11 +342,11 @@ class Predictor {
 
  public:
   // Encodes the dense bricks' differences still waiting in `s`.
-  void encodePending(std::span<uint16_t> codes, Scratch<Real>& s) const {
+  void encodePending(CodeWindow codes, Scratch<Real>& s) const {
     if constexpr (std::is_same_v<Real, float>) {
       if (s.pendingCount > 0) {
         const float* g[3] = {s.pending[0].data(), s.pending[1].data(), s.pending[2].data()};
-        putPortableCodes(g, codes.data() + s.pendingFirst, s.pendingCount, s);
+        putPortableCodes(g, codes.at(s.pendingFirst), s.pendingCount, s);
       }
     }
     s.pendingCount = 0;
@@ -570,26 +578,32 @@ struct PredictionMode {
   bool add;
 };
 
-template <class Real>
-void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads,
-                 PredictionMode mode) {
-  const Predictor<Real> predictor(file, mode.dense, mode.add);
-  // Occupied bricks in file order, so workers can take ranges of them.
+// Occupied bricks in file order, so workers can take ranges of them.
+std::vector<uint64_t> occupiedBricks(const VoxLinkFile& file) {
   std::vector<uint64_t> bricks;
   bricks.reserve(file.occupiedBrickCount());
   const auto occupancy = file.occupancyWords();
   for (uint64_t w = 0; w < occupancy.size(); ++w)
     for (uint32_t bits = occupancy[w]; bits != 0; bits &= bits - 1)
       bricks.push_back(w * 32 + static_cast<uint64_t>(std::countr_zero(bits)));
+  return bricks;
+}
+
+template <class Real>
+void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned threads,
+                 PredictionMode mode) {
+  const Predictor<Real> predictor(file, mode.dense, mode.add);
+  const std::vector<uint64_t> bricks = occupiedBricks(file);
   // Batches of bricks, each worker with its own scratch blocks.
   constexpr uint64_t kBatch = 256;
   const uint64_t batches = (bricks.size() + kBatch - 1) / kBatch;
+  const CodeWindow window{codes.data()};
   parallelFor(batches, threads, [&](uint64_t batch) {
     thread_local Scratch<Real> scratch;
     const uint64_t end = std::min<uint64_t>((batch + 1) * kBatch, bricks.size());
     for (uint64_t k = batch * kBatch; k < end; ++k)
-      predictor.predictBrick(bricks[k], k, codes, scratch);
-    predictor.encodePending(codes, scratch);
+      predictor.predictBrick(bricks[k], k, window, scratch);
+    predictor.encodePending(window, scratch);
   });
 }
 
@@ -602,6 +616,74 @@ void predictAs(GradientPrediction kind, const VoxLinkFile& file, std::span<uint1
 }
 
 }  // namespace
+
+class GradientRangePredictor::Impl {
+ public:
+  virtual ~Impl() = default;
+  virtual void predict(uint64_t first, std::span<uint16_t> out) const = 0;
+};
+
+namespace {
+
+template <class Real>
+class RangePrediction final : public GradientRangePredictor::Impl {
+ public:
+  explicit RangePrediction(const VoxLinkFile& file)
+      : predictor_(file, /*allowDense=*/true, /*add=*/false),
+        bricks_(occupiedBricks(file)),
+        start_(bricks_.size() + 1) {
+    // Each brick's first GRAD entry: its first voxel's, in a scene the VMSK slot of the first
+    // volume sample at or after it.
+    const auto base = file.brickVoxelBase();
+    const MaskRank samples = file.isScene() ? MaskRank(file.volumeMaskWords()) : MaskRank();
+    // (Kept non-decreasing whatever the file says: the searches below rely on it.)
+    for (size_t k = 0; k < start_.size(); ++k) {
+      const uint64_t at = k >= base.size() ? 0 : file.isScene() ? samples.slot(base[k]) : base[k];
+      start_[k] = std::max(k == 0 ? 0 : start_[k - 1], at);
+    }
+  }
+
+  void predict(uint64_t first, std::span<uint16_t> out) const override {
+    std::fill(out.begin(), out.end(), uint16_t{0});
+    if (out.empty() || bricks_.empty()) return;
+    const uint64_t end = first + out.size();
+    // The bricks whose entries meet [first, end), predicted whole into a window of their own.
+    const auto from = std::upper_bound(start_.begin(), start_.end(), first);
+    const uint64_t k0 =
+        from == start_.begin() ? 0 : static_cast<uint64_t>(from - start_.begin()) - 1;
+    const uint64_t k1 = std::min<uint64_t>(
+        static_cast<uint64_t>(std::lower_bound(start_.begin(), start_.end(), end) - start_.begin()),
+        bricks_.size());
+    if (k0 >= k1) return;
+    thread_local std::vector<uint16_t> codes;
+    codes.assign(start_[k1] - start_[k0], 0);
+    const CodeWindow window{codes.data(), start_[k0]};
+    thread_local Scratch<Real> scratch;
+    for (uint64_t k = k0; k < k1; ++k) predictor_.predictBrick(bricks_[k], k, window, scratch);
+    predictor_.encodePending(window, scratch);
+    const uint64_t begin = std::max(first, start_[k0]), stop = std::min(end, start_[k1]);
+    if (begin < stop) std::copy(window.at(begin), window.at(stop), out.data() + (begin - first));
+  }
+
+ private:
+  Predictor<Real> predictor_;
+  std::vector<uint64_t> bricks_;
+  std::vector<uint64_t> start_;  // occupied brick k's first GRAD entry; [k + 1] ends it
+};
+
+}  // namespace
+
+GradientRangePredictor::GradientRangePredictor(const VoxLinkFile& file, GradientPrediction kind) {
+  if (kind == GradientPrediction::kExact)
+    impl_ = std::make_unique<RangePrediction<double>>(file);
+  else
+    impl_ = std::make_unique<RangePrediction<float>>(file);
+}
+GradientRangePredictor::~GradientRangePredictor() = default;
+
+void GradientRangePredictor::predict(uint64_t first, std::span<uint16_t> out) const {
+  impl_->predict(first, out);
+}
 
 void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
                           GradientPrediction kind, unsigned threads) {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 
 #include "format/voxlink_file.h"
@@ -54,6 +55,23 @@ void predictGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
 // file's GRAD residuals become the codes in place, without a buffer of predictions.
 void addPredictedGradientCodes(const VoxLinkFile& file, std::span<uint16_t> codes,
                                GradientPrediction kind, unsigned threads = 0);
+
+// The codes of predictGradientCodes a range of GRAD entries at a time, from any number of
+// threads at once: packing predicts each chunk of GRAD just before it compresses it, instead of
+// the whole section into a buffer as large as GRAD. Each call predicts the bricks that the
+// range meets, whole (about two bricks' voxels more than the range).
+class GradientRangePredictor {
+ public:
+  GradientRangePredictor(const VoxLinkFile& file, GradientPrediction kind);
+  ~GradientRangePredictor();
+  // out[j] = the predicted code of GRAD entry first + j (0 for entries past the last sample).
+  void predict(uint64_t first, std::span<uint16_t> out) const;
+
+  class Impl;
+
+ private:
+  std::unique_ptr<const Impl> impl_;
+};
 
 // The same codes, one voxel at a time: without the eight-cell kernels that predictGradientCodes
 // uses for a volume's bricks away from its faces where the CPU has them

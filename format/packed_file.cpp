@@ -1,9 +1,13 @@
 #include "format/packed_file.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
+#include <thread>
 
 #include "format/crc32c.h"
 #include "format/derived_sections.h"
@@ -70,27 +74,6 @@ struct FreeDeleter {  // for calloc'ed blocks
   void operator()(void* p) const { std::free(p); }
 };
 
-// Zeroed codes from calloc: a large block comes zeroed from the system and its pages are
-// touched first by the prediction's threads, not by one thread zeroing 128 MB beforehand.
-struct PredictedCodes {
-  std::unique_ptr<uint16_t[], FreeDeleter> codes;
-  uint64_t count = 0;
-  std::span<uint16_t> span() const { return {codes.get(), count}; }
-};
-
-// The predicted code of every GRAD entry (packing; unpacking adds them in place).
-Result<PredictedCodes> predictedCodes(const VoxLinkFile& file, SectionCodec codec, unsigned threads,
-                                      const std::string& where) {
-  PredictedCodes predicted;
-  predicted.count = sampleSlots(file.header());
-  predicted.codes.reset(static_cast<uint16_t*>(std::calloc(predicted.count + 1, 2)));
-  if (!predicted.codes)
-    return makeError(ErrorCode::kTooLarge, where, ": section GRAD: no memory for ", predicted.count,
-                     " predicted gradients");
-  predictGradientCodes(file, predicted.span(), predictionOf(codec), threads);
-  return predicted;
-}
-
 // Computes a derived section (ROWS or BVOX) from `masks` into `out`.
 Status derive(SectionId id, std::span<const uint8_t> masks, uint32_t brickSize,
               std::span<uint8_t> out, const std::string& where, unsigned threads) {
@@ -116,6 +99,8 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   VOXLINK_RETURN_IF_ERROR(checkOutputTarget(path, {file.path()}));
   PackReport report;
   report.inputBytes = file.fileBytes();
+  const unsigned workers =
+      options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   const auto& table = file.sectionTable();
   std::vector<std::vector<uint8_t>> payloads(table.size());
   std::vector<PackEntry> entries(table.size());
@@ -138,15 +123,27 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
       }
       codec = same ? SectionCodec::kDerived : SectionCodec::kDeltaZstd;
     }
-    PredictedCodes predicted;
+    // GRAD's predictions are made chunk by chunk as the workers encode them: no buffer of
+    // them as large as GRAD, and each chunk's are still in the cache when they are subtracted.
+    std::optional<GradientRangePredictor> predictor;
+    std::atomic<uint64_t> predictNanoseconds{0};  // summed over the workers
+    CodePrediction prediction;
     if (isGradientResidual(codec)) {
       const auto predictStart = std::chrono::steady_clock::now();
-      VOXLINK_ASSIGN_OR_RETURN(predicted, predictedCodes(file, codec, options.threads, path));
+      predictor.emplace(file, predictionOf(codec));
       report.predictSeconds += secondsSince(predictStart);
+      prediction.count = sampleSlots(file.header());
+      prediction.fill = [&](uint64_t first, std::span<uint16_t> out) {
+        const auto chunkStart = std::chrono::steady_clock::now();
+        predictor->predict(first, out);
+        predictNanoseconds += static_cast<uint64_t>(secondsSince(chunkStart) * 1e9);
+      };
     }
     if (codec != SectionCodec::kDerived) {
-      auto encoded = encodeSection(raw, e.elementBytes, codec, options.level, options.threads,
-                                   predicted.span());
+      auto encoded =
+          encodeSection(raw, e.elementBytes, codec, options.level, options.threads, prediction);
+      // (wall-clock time: the workers' time over their number)
+      report.predictSeconds += predictNanoseconds / 1e9 / workers;
       if (!encoded)
         return makeError(encoded.code(), path, ": section ", sectionName(id), ": ",
                          encoded.message());

@@ -105,15 +105,15 @@ void addPredictedCodes(std::span<uint8_t> codes, std::span<const uint16_t> predi
 
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
                                            SectionCodec codec, int level, unsigned threads,
-                                           std::span<const uint16_t> predicted) {
+                                           const CodePrediction& prediction) {
   if (codec == SectionCodec::kStored) return std::vector<uint8_t>(raw.begin(), raw.end());
   if (codec == SectionCodec::kDerived)
     return makeError(ErrorCode::kInvalidArgument, "a derived section has no payload to encode");
-  if (isGradientResidual(codec) && (elementBytes != 2 || predicted.size() * 2 > raw.size()))
-    return makeError(ErrorCode::kInvalidArgument, "gradient residual: ", predicted.size(),
+  const bool residual = isGradientResidual(codec);
+  if (residual && (elementBytes != 2 || prediction.count * 2 > raw.size() || !prediction.fill))
+    return makeError(ErrorCode::kInvalidArgument, "gradient residual: ", prediction.count,
                      " predicted codes for ", raw.size(), " bytes of ", elementBytes,
                      "-byte elements");
-  if (!isGradientResidual(codec)) predicted = {};
   const uint64_t chunks = chunkCountOf(raw.size());
   const uint32_t planes = planesOf(elementBytes);
   const bool delta = codec == SectionCodec::kDeltaZstd;
@@ -126,9 +126,12 @@ Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_
     const uint8_t* src = chunk;
     std::vector<uint8_t>& transformed = scratch(0);
     std::span<const uint16_t> chunkPredicted;
-    if (!predicted.empty() && begin / 2 < predicted.size())
-      chunkPredicted =
-          predicted.subspan(begin / 2, std::min<uint64_t>(bytes / 2, predicted.size() - begin / 2));
+    if (residual && begin / 2 < prediction.count) {
+      thread_local std::vector<uint16_t> predicted;
+      predicted.resize(std::min<uint64_t>(bytes / 2, prediction.count - begin / 2));
+      prediction.fill(begin / 2, predicted);
+      chunkPredicted = predicted;
+    }
     if (transforms(codec)) {
       transformed.resize(bytes);
       toPlanes(chunk, bytes, planes, delta, transformed.data(), chunkPredicted);

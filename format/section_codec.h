@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,14 +36,21 @@ void addPredictedCodes(std::span<uint8_t> codes, std::span<const uint16_t> predi
 
 inline constexpr uint64_t kPackChunkBytes = uint64_t{4} << 20;
 
+// What the residual codecs subtract: the first `count` u16 of the section minus their
+// predictions (the rest is taken as it is). fill(first, out) writes the predictions of entries
+// [first, first + out.size()); it is called for each chunk as it is encoded, from every worker.
+struct CodePrediction {
+  uint64_t count = 0;
+  std::function<void(uint64_t first, std::span<uint16_t> out)> fill;
+};
+
 // Encodes `raw`, a section of `elementBytes`-sized elements (byte planes of 1, 2 or 4 bytes;
-// larger records as 4-byte words), at zstd `level`. For the residual codecs `predicted` holds
-// one u16 per element of `raw` (the rest of `raw` is taken as it is), subtracted as the
-// chunks are encoded. Every chunk is decoded again right after it was compressed and must give
-// back its bytes: a payload that does not decode to what was meant is never returned.
+// larger records as 4-byte words), at zstd `level`; the residual codecs need `prediction`.
+// Every chunk is decoded again right after it was compressed and must give back its bytes: a
+// payload that does not decode to what was meant is never returned.
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,
                                            SectionCodec codec, int level, unsigned threads,
-                                           std::span<const uint16_t> predicted = {});
+                                           const CodePrediction& prediction = {});
 
 // Decodes `packed` into `out`, whose size is the original payload size. Every chunk must
 // decode to exactly its share; `where` names the section in errors. Residual codecs give the

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "convert/converter.h"
@@ -13,6 +14,7 @@
 #include "format/file_writer.h"
 #include "format/gradient_codec.h"
 #include "format/gradient_predictor.h"
+#include "format/parallel_for.h"
 #include "format/scene_builder.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
@@ -197,15 +199,15 @@ TEST(PackedFile, DenseBrickKernelsPredictThePerVoxelCodes) {
 // entry exactly once, whatever the number of threads, with both predictions, for a volume (bricks
 // at and away from its faces, more than one batch of bricks) and a scene (codes by VMSK slot,
 // voxels that hold only a surface in between). No real data needed.
-TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
-  TempDir dir;
+// A ball as a volume file and as a scene (two voxels of three hold a volume sample, the third a
+// surface), both of more than one batch of bricks: the paths of the two predictions.
+std::vector<std::string> ballVolumeAndScene(const TempDir& dir) {
   const std::array<uint32_t, 3> dims = {96, 80, 72};
   auto ball = testing::makeBall(dims);
   convert::ConvertOptions options;
   options.classification = convert::thresholdClassification({"40"}).value();
   const std::string volume = dir.file("ball.vxl");
-  ASSERT_TRUE(convert::convertVolume(*ball, options, volume));
-  // The same ball as a scene: two voxels of three hold a volume sample, the third a surface.
+  EXPECT_TRUE(convert::convertVolume(*ball, options, volume));
   VolumeDescription description;
   description.dims = dims;
   description.valueMin = 40;
@@ -227,10 +229,15 @@ TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
           builder.addSurface(x, y, z, encodeGradient(0.0, 1.0, 0.0), 0);
       }
   auto built = builder.build();
-  ASSERT_TRUE(built) << built.message();
+  EXPECT_TRUE(built) << built.message();
   const std::string scene = dir.file("scene.vxl");
-  ASSERT_TRUE(writeBrickedVolume(scene, *built).isOk());
-  for (const std::string& path : {volume, scene}) {
+  EXPECT_TRUE(built && writeBrickedVolume(scene, *built).isOk());
+  return {volume, scene};
+}
+
+TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
+  TempDir dir;
+  for (const std::string& path : ballVolumeAndScene(dir)) {
     auto file = openValidatedFile(path);
     ASSERT_TRUE(file) << file.message();
     ASSERT_GT(file->occupiedBrickCount(), 256u);  // more than one batch of bricks
@@ -250,6 +257,34 @@ TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
         std::vector<uint16_t> added = residual;
         addPredictedGradientCodes(*file, added, kind, threads);
         EXPECT_EQ(added, expected);
+      }
+    }
+  }
+}
+
+// Packing predicts GRAD a chunk at a time: any range, from several threads at once, must give
+// the codes of the whole section's prediction (ranges that start or end inside a brick, cover
+// many bricks, or reach past the last entry, which gives 0).
+TEST(PackedFile, RangePredictionsEqualTheWholeSections) {
+  TempDir dir;
+  for (const std::string& path : ballVolumeAndScene(dir)) {
+    auto file = openValidatedFile(path);
+    ASSERT_TRUE(file) << file.message();
+    const uint64_t slots = sampleSlots(file->header());
+    for (GradientPrediction kind : {GradientPrediction::kExact, GradientPrediction::kPortable}) {
+      std::vector<uint16_t> expected(slots);
+      predictGradientCodes(*file, expected, kind, 1);
+      const GradientRangePredictor predictor(*file, kind);
+      for (uint64_t size : {uint64_t{1}, uint64_t{7}, uint64_t{1000}, uint64_t{65536}, slots}) {
+        SCOPED_TRACE(path + (kind == GradientPrediction::kExact ? " exact" : " portable") +
+                     ", ranges of " + std::to_string(size));
+        const uint64_t ranges = (slots + size - 1) / size + 1;  // the last one past the end
+        std::vector<uint16_t> got(ranges * size, 1);
+        parallelFor(ranges, 2, [&](uint64_t r) {
+          predictor.predict(r * size, std::span(got).subspan(r * size, size));
+        });
+        EXPECT_TRUE(std::equal(expected.begin(), expected.end(), got.begin()));
+        EXPECT_TRUE(std::all_of(got.begin() + slots, got.end(), [](uint16_t c) { return c == 0; }));
       }
     }
   }
