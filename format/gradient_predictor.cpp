@@ -600,6 +600,7 @@ void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned th
   const CodeWindow window{codes.data()};
   parallelFor(batches, threads, [&](uint64_t batch) {
     thread_local Scratch<Real> scratch;
+    scratch.pendingCount = 0;  // (nothing from a call that an exception ended)
     const uint64_t end = std::min<uint64_t>((batch + 1) * kBatch, bricks.size());
     for (uint64_t k = batch * kBatch; k < end; ++k)
       predictor.predictBrick(bricks[k], k, window, scratch);
@@ -659,6 +660,7 @@ class RangePrediction final : public GradientRangePredictor::Impl {
     codes.assign(start_[k1] - start_[k0], 0);
     const CodeWindow window{codes.data(), start_[k0]};
     thread_local Scratch<Real> scratch;
+    scratch.pendingCount = 0;  // (nothing from a call that an exception ended)
     for (uint64_t k = k0; k < k1; ++k) predictor_.predictBrick(bricks_[k], k, window, scratch);
     predictor_.encodePending(window, scratch);
     const uint64_t begin = std::max(first, start_[k0]), stop = std::min(end, start_[k1]);

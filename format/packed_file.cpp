@@ -142,8 +142,9 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
     if (codec != SectionCodec::kDerived) {
       auto encoded =
           encodeSection(raw, e.elementBytes, codec, options.level, options.threads, prediction);
-      // (wall-clock time: the workers' time over their number)
-      report.predictSeconds += predictNanoseconds / 1e9 / workers;
+      // (wall-clock time: the workers' time over the number of them that had a chunk)
+      const uint64_t chunks = (raw.size() + kPackChunkBytes - 1) / kPackChunkBytes;
+      report.predictSeconds += predictNanoseconds / 1e9 / std::clamp<uint64_t>(chunks, 1, workers);
       if (!encoded)
         return makeError(encoded.code(), path, ": section ", sectionName(id), ": ",
                          encoded.message());

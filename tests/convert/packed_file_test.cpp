@@ -104,6 +104,23 @@ TEST(PackedFile, RealCtUnpacksToTheSameBytesAndIsSmaller) {
   }
 }
 
+// Packing predicts GRAD a chunk at a time, unpacking the whole section at once: a GRAD of several
+// chunks (the foot at a low threshold: 4.7 million entries, three chunks) unpacks to its bytes
+// only if every chunk's predictions are the whole section's, for small and large bricks.
+TEST(PackedFile, GradientsOfSeveralChunksUnpackToTheSameBytes) {
+  VOXLINK_REQUIRE_DATA(kFoot);
+  TempDir dir;
+  for (uint32_t brick : {8u, 32u}) {
+    SCOPED_TRACE("brick " + std::to_string(brick));
+    const std::string path = convertReal(dir, kFoot, "5", nullptr, brick, Axis::kY);
+    auto file = openValidatedFile(path);
+    ASSERT_TRUE(file) << file.message();
+    ASSERT_GT(file->gradientCodes().size_bytes(), 2 * kPackChunkBytes);  // three chunks or more
+    const Packed p = packReal(dir, path);
+    EXPECT_EQ(unpacked(p.packed), p.original);
+  }
+}
+
 // The gradient prediction is part of the packed format: files packed by earlier builds
 // (tests/data/packed: v1 with the float64 prediction, v2 with the portable one and derived row
 // starts) must still unpack, which they only do when this build predicts the same codes (GRAD's
