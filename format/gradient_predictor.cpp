@@ -310,8 +310,9 @@ class Predictor {
       s.rowValues.resize(cells + 8);
       float* rowValues = s.rowValues.data();
       decodeValues(first, count, rowValues);
-      // A mask with more bits than the brick's count (a file that fails validation) reads the
-      // fill value past them, not what an earlier brick left.
+      // Past them the fill value: a mask with more bits than the brick's count (a file that
+      // fails validateStructure, which callers must not pass) then still predicts the same
+      // codes whatever earlier bricks left here.
       uint32_t maskBits = 0;
       for (uint32_t w = 0; w < maskWords_; ++w) maskBits += std::popcount(mask[w]);
       std::fill(rowValues + count, rowValues + (maskBits > count ? cells + 8 : count + 8), fill_);
@@ -488,8 +489,8 @@ class Predictor {
 
   // The volume sample of voxel i and its slot in VALU and GRAD: voxel i itself in a volume
   // file; in a scene its VMSK slot, and none for voxels that hold only geometry.
-  // (A slot past VALU's entries, from a mask that disagrees with its count, is no sample:
-  // validateStructure refuses such files, this keeps an unvalidated one inside its sections.)
+  // (In a scene, a slot past VALU's entries is no sample. Otherwise the predictor relies on a
+  // structurally valid file, as the header says: every caller runs validateStructure first.)
   bool sample(uint64_t voxel, uint64_t& slot, Real& v) const {
     if (scene_) {
       if (!samples_.has(voxel)) return false;
