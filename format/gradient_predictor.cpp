@@ -191,6 +191,17 @@ class Predictor {
       dense_ = allowDense && !scene_ && n_ >= 8 && denseBrickRowsAvailable();
   }
 
+  // Predicts occupied bricks [k0, k1) (their grid indices in `bricks`) into `codes`, with this
+  // thread's scratch; any number of threads at once.
+  void predictBricks(std::span<const uint64_t> bricks, uint64_t k0, uint64_t k1,
+                     CodeWindow codes) const {
+    thread_local Scratch<Real> scratch;
+    scratch.pendingCount = 0;  // (nothing from a call that an exception ended)
+    for (uint64_t k = k0; k < k1; ++k) predictBrick(bricks[k], k, codes, scratch);
+    encodePending(codes, scratch);
+  }
+
+ private:
   void predictBrick(uint64_t b, uint64_t k, CodeWindow codes, Scratch<Real>& s) const {
     const uint32_t n = n_, p = n + 2;
     if (dense_ && isInside(b)) return predictInside(b, k, codes, s);
@@ -280,7 +291,6 @@ class Predictor {
     }
   }
 
- private:
   uint32_t brickOrigin(uint64_t b, int a) const {
     const uint64_t cell = a == 0   ? b % h_.brickGrid[0]
                           : a == 1 ? b / h_.brickGrid[0] % h_.brickGrid[1]
@@ -341,7 +351,6 @@ class Predictor {
     }
   }
 
- public:
   // Encodes the dense bricks' differences still waiting in `s`.
   void encodePending(CodeWindow codes, Scratch<Real>& s) const {
     if constexpr (std::is_same_v<Real, float>) {
@@ -353,7 +362,6 @@ class Predictor {
     s.pendingCount = 0;
   }
 
- private:
   // The code `code` into `slot`, or added to what it holds.
   void put(uint16_t& slot, uint16_t code) const {
     slot = add_ ? static_cast<uint16_t>(slot + code) : code;
@@ -595,17 +603,13 @@ void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned th
                  PredictionMode mode) {
   const Predictor<Real> predictor(file, mode.dense, mode.add);
   const std::vector<uint64_t> bricks = occupiedBricks(file);
-  // Batches of bricks, each worker with its own scratch blocks.
+  // Batches of bricks, each worker with its own scratch.
   constexpr uint64_t kBatch = 256;
   const uint64_t batches = (bricks.size() + kBatch - 1) / kBatch;
   const CodeWindow window{codes.data()};
   parallelFor(batches, threads, [&](uint64_t batch) {
-    thread_local Scratch<Real> scratch;
-    scratch.pendingCount = 0;  // (nothing from a call that an exception ended)
-    const uint64_t end = std::min<uint64_t>((batch + 1) * kBatch, bricks.size());
-    for (uint64_t k = batch * kBatch; k < end; ++k)
-      predictor.predictBrick(bricks[k], k, window, scratch);
-    predictor.encodePending(window, scratch);
+    predictor.predictBricks(bricks, batch * kBatch,
+                            std::min<uint64_t>((batch + 1) * kBatch, bricks.size()), window);
   });
 }
 
@@ -660,10 +664,7 @@ class RangePrediction final : public GradientRangePredictor::Impl {
     thread_local std::vector<uint16_t> codes;
     codes.assign(start_[k1] - start_[k0], 0);
     const CodeWindow window{codes.data(), start_[k0]};
-    thread_local Scratch<Real> scratch;
-    scratch.pendingCount = 0;  // (nothing from a call that an exception ended)
-    for (uint64_t k = k0; k < k1; ++k) predictor_.predictBrick(bricks_[k], k, window, scratch);
-    predictor_.encodePending(window, scratch);
+    predictor_.predictBricks(bricks_, k0, k1, window);
     const uint64_t begin = std::max(first, start_[k0]), stop = std::min(end, start_[k1]);
     if (begin < stop) std::copy(window.at(begin), window.at(stop), out.data() + (begin - first));
   }

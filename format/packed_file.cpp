@@ -7,12 +7,12 @@
 #include <cstring>
 #include <memory>
 #include <optional>
-#include <thread>
 
 #include "format/crc32c.h"
 #include "format/derived_sections.h"
 #include "format/gradient_predictor.h"
 #include "format/output_file.h"
+#include "format/parallel_for.h"
 #include "format/validator.h"
 
 namespace voxlink::format {
@@ -99,8 +99,7 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   VOXLINK_RETURN_IF_ERROR(checkOutputTarget(path, {file.path()}));
   PackReport report;
   report.inputBytes = file.fileBytes();
-  const unsigned workers =
-      options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned workers = threadCount(options.threads);
   const auto& table = file.sectionTable();
   std::vector<std::vector<uint8_t>> payloads(table.size());
   std::vector<PackEntry> entries(table.size());

@@ -11,9 +11,14 @@
 
 namespace voxlink::format {
 
+// The threads that `threads` asks for: itself, or every core for 0.
+inline unsigned threadCount(unsigned threads) {
+  return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+}
+
 template <class Fn>
 void parallelFor(uint64_t count, unsigned threads, Fn&& fn) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = threadCount(threads);
   std::atomic<uint64_t> next{0};
   auto work = [&] {
     for (uint64_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) fn(i);

@@ -112,6 +112,17 @@ std::vector<uint8_t>& scratch(int which) {
   return buffers[which];
 }
 
+// Adds predicted[i] to the i-th u16 of `codes`, wrapping around: a residual back to the codes.
+// `codes` must hold at least predicted.size() entries.
+void addPredictedCodes(std::span<uint8_t> codes, std::span<const uint16_t> predicted) {
+  for (uint64_t i = 0; i < predicted.size(); ++i) {
+    uint16_t code;
+    std::memcpy(&code, codes.data() + 2 * i, 2);
+    code = static_cast<uint16_t>(code + predicted[i]);
+    std::memcpy(codes.data() + 2 * i, &code, 2);
+  }
+}
+
 bool transforms(SectionCodec codec) {
   return codec == SectionCodec::kDeltaZstd || isGradientResidual(codec);
 }
@@ -123,15 +134,6 @@ bool isKnownSectionCodec(uint32_t raw) { return raw <= uint32_t(SectionCodec::kD
 bool isGradientResidual(SectionCodec codec) {
   return codec == SectionCodec::kGradientResidual ||
          codec == SectionCodec::kGradientResidualPortable;
-}
-
-void addPredictedCodes(std::span<uint8_t> codes, std::span<const uint16_t> predicted) {
-  for (uint64_t i = 0; i < predicted.size(); ++i) {
-    uint16_t code;
-    std::memcpy(&code, codes.data() + 2 * i, 2);
-    code = static_cast<uint16_t>(code + predicted[i]);
-    std::memcpy(codes.data() + 2 * i, &code, 2);
-  }
 }
 
 Result<std::vector<uint8_t>> encodeSection(std::span<const uint8_t> raw, uint32_t elementBytes,

@@ -30,9 +30,6 @@ enum class SectionCodec : uint32_t {
 bool isKnownSectionCodec(uint32_t raw);
 // Codecs whose payload is GRAD minus a prediction.
 bool isGradientResidual(SectionCodec codec);
-// Adds predicted[i] to the i-th u16 of `codes`, wrapping around: a residual back to the codes.
-// `codes` must hold at least predicted.size() entries.
-void addPredictedCodes(std::span<uint8_t> codes, std::span<const uint16_t> predicted);
 
 inline constexpr uint64_t kPackChunkBytes = uint64_t{4} << 20;
 
