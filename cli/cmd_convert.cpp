@@ -163,7 +163,8 @@ CommandRunner addConvertCommand(CLI::App& app) {
   cmd->add_option("--error-bound", a->errorBound,
                   "Largest absolute value error allowed; picks the smallest type within it")
       ->check(finiteNumber());
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)")->capture_default_str();
+  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)")
+      ->capture_default_str();
   cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", a->quiet, "No progress bar");

@@ -95,7 +95,7 @@ CommandRunner addGrfCommand(CLI::App& app) {
   cmd->add_option("--type", a->type, "Stored value type")
       ->check(CLI::IsMember({"f64", "f32"}))
       ->capture_default_str();
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)");
+  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)");
   cmd->add_flag("--stats", a->stats,
                 "Print empirical mean, sigma, 95 % interval exceedance and axis variograms");
   return [a] { return runGrf(*a); };

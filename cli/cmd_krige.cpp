@@ -216,7 +216,7 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   cmd->add_option("--nodata", a->noData,
                   "Value written where no sample is within --max-distance (default NaN)");
   cmd->add_flag("--cross-validate", a->crossValidate, "Print leave-one-out statistics");
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores)");
+  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)");
   return [a] { return runKrige(*a); };
 }
 

@@ -54,7 +54,8 @@ CommandRunner addPackCommand(CLI::App& app) {
   cmd->add_option("--level", args->level, "zstd level (1 fastest, 19 smallest)")
       ->check(CLI::Range(1, 19))
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "Threads (0: every core)")->capture_default_str();
+  cmd->add_option("--threads", args->threads, "Threads (0: every core; at most 1024)")
+      ->capture_default_str();
   cmd->add_flag("--fast", args->fast,
                 "Do not predict gradients from the values: on CT twice as fast to load, files "
                 "about 2.4x as large, not reliably faster to pack (docs/benchmarks.md)");

@@ -15,6 +15,7 @@
 #include "convert/value_mapping.h"
 #include "convert/worker_pool.h"
 #include "format/file_writer.h"
+#include "format/parallel_for.h"
 
 namespace voxlink::convert {
 namespace {
@@ -359,6 +360,7 @@ Result<ConvertSummary> runForType(Passes& passes, const std::string& outputPath)
 Result<ConvertSummary> convertVolume(VolumeSource& source, const ConvertOptions& options,
                                      const std::string& outputPath) {
   const VolumeInfo& info = source.info();
+  VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(options.threads, "--threads"));
   if (!format::isValidBrickSize(options.brickSize))
     return makeError(ErrorCode::kInvalidArgument, "--brick ", options.brickSize,
                      ": expected 4, 8, 16 or 32");

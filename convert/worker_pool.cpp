@@ -1,9 +1,11 @@
 #include "convert/worker_pool.h"
 
+#include "format/parallel_for.h"
+
 namespace voxlink::convert {
 
 WorkerPool::WorkerPool(unsigned threads) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = format::threadCount(threads);
   for (unsigned i = 1; i < threads; ++i) workers_.emplace_back([this, i] { loop(i); });
 }
 

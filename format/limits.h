@@ -35,6 +35,11 @@ inline constexpr uint64_t kMaxTransferFunctionBytes = uint64_t{64} << 20;
 // stand for gigabytes, so the size the file claims is checked against this before allocating.
 inline constexpr uint64_t kMaxUnpackedBytes = uint64_t{64} << 30;
 
+// Threads any part of the toolkit starts for one task (`--threads`, Python's `threads=`). More
+// is a mistake (a typo, -1 read as unsigned), not a machine: each thread holds a stack and a
+// kernel task, and a request for 100000 exhausted this machine's tasks before the first ran.
+inline constexpr unsigned kMaxThreads = 1024;
+
 // Memory the GDCM guard's child may use reading a DICOM series, on top of twice its largest file
 // (sources/readers/gdcm_guard.cpp): damaged files can make GDCM allocate gigabytes.
 inline constexpr uint64_t kMaxGdcmProbeBytes = uint64_t{2} << 30;

@@ -96,6 +96,7 @@ bool isPackedFile(std::span<const uint8_t> bytes) {
 Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
                             const PackOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  VOXLINK_RETURN_IF_ERROR(checkThreadCount(options.threads, "--threads"));
   VOXLINK_RETURN_IF_ERROR(checkOutputTarget(path, {file.path()}));
   PackReport report;
   report.inputBytes = file.fileBytes();

@@ -9,11 +9,26 @@
 #include <thread>
 #include <vector>
 
+#include "format/error.h"
+#include "format/limits.h"
+
 namespace voxlink::format {
 
-// The threads that `threads` asks for: itself, or every core for 0.
+using limits::kMaxThreads;
+
+// Refuses a thread count above kMaxThreads (format/limits.h); `option` names it in the error.
+inline Status checkThreadCount(unsigned threads, const char* option) {
+  if (threads > kMaxThreads)
+    return makeError(ErrorCode::kInvalidArgument, option, " ", threads, " is more than ",
+                     kMaxThreads, " threads (0: every core)");
+  return Status::ok();
+}
+
+// The threads that `threads` asks for: itself, or every core for 0; never more than
+// kMaxThreads, whatever a caller that did not check passes.
 inline unsigned threadCount(unsigned threads) {
-  return threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  return std::min(kMaxThreads,
+                  threads ? threads : std::max(1u, std::thread::hardware_concurrency()));
 }
 
 template <class Fn>

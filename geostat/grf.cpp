@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include "format/parallel_for.h"
+
 namespace voxlink::kriging {
 namespace {
 
@@ -96,6 +98,7 @@ std::string GrfReport::text() const {
 }
 
 Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
+  VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(spec.threads, "random field: threads"));
   for (int a = 0; a < 3; ++a)
     if (spec.dims[a] == 0 || spec.dims[a] > kMaxGrfAxis)
       return makeError(ErrorCode::kInvalidArgument, "random field: dims axis ", a,
@@ -131,9 +134,8 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
                                    (spec.dims[1] + B[1] - 1) / B[1],
                                    (spec.dims[2] + B[2] - 1) / B[2]};
   report.blocks = uint64_t{nb[0]} * nb[1] * nb[2];
-  const unsigned threads = std::max(
-      1u, std::min<unsigned>(spec.threads ? spec.threads : std::thread::hardware_concurrency(),
-                             nb[0] * nb[1]));
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(format::threadCount(spec.threads), nb[0] * nb[1]));
   const uint64_t slabBytes = uint64_t{spec.dims[0]} * spec.dims[1] * B[2] * sizeof(double);
   const uint64_t blockBytes = complexCount * sizeof(fftw_complex);
   report.peakBufferBytes = std::max(

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <thread>
 
+#include "format/parallel_for.h"
+
 namespace voxlink::kriging {
 
 std::string KrigingSummary::text() const {
@@ -25,6 +27,7 @@ std::string KrigingSummary::text() const {
 
 Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,
                                  const GridKrigingOptions& options) {
+  VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(options.threads, "kriging grid: threads"));
   for (int a = 0; a < 3; ++a)
     if (grid.dims[a] == 0)
       return makeError(ErrorCode::kInvalidArgument, "kriging grid: axis ", a, " has size 0");
@@ -38,8 +41,7 @@ Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, con
     return makeError(ErrorCode::kTooLarge, "kriging grid: a batch of ", batchNodes,
                      " nodes does not fit in memory");
   }
-  const unsigned threads =
-      options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = format::threadCount(options.threads);
   KrigingSummary summary;
   const auto start = std::chrono::steady_clock::now();
   double neighbourSum = 0;

@@ -115,6 +115,9 @@ def test_bad_options(tmp_path):
         voxlink.convert(ball(), threshold="sixty")
     with pytest.raises(voxlink.Error, match="missing.nrrd"):
         voxlink.convert(tmp_path / "missing.nrrd", threshold=60)
+    # Refused before any thread starts: 100000 threads exhausted this machine's tasks.
+    with pytest.raises(voxlink.Error, match="threads 100000 is more than 1024"):
+        voxlink.convert(ball(), threshold=60, threads=100000)
 
 
 def test_unwritable_output_leaves_nothing(tmp_path):

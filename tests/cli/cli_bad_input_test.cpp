@@ -86,6 +86,31 @@ TEST_F(CliBadInput, OutputThatCannotBeWritten) {
   EXPECT_EQ(r.status, 3);
 }
 
+// A thread count meant as -1 or mistyped would start that many threads (100000 exhausted this
+// machine's tasks); every command with --threads refuses it before starting any.
+TEST_F(CliBadInput, AbsurdThreadCountsAreRefused) {
+  const std::string in = rawVolume();
+  expectCleanFailure(runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold",
+                                 "10", "--threads", "100000", "-o", dir_.file("o.vxl")}),
+                     "--threads 100000 is more than 1024 threads");
+  const auto grf =
+      runVoxlink({"grf", "--dims", "8,8,8", "--threads", "1025", "-o", dir_.file("g.nhdr")});
+  EXPECT_NE(grf.status, 0);
+  EXPECT_EQ(lines(grf.err), 1) << grf.err;
+  EXPECT_NE(grf.err.find("threads 1025 is more than 1024"), std::string::npos) << grf.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("g.nhdr")));
+  const std::string vxl = convertedFile(in);
+  ASSERT_FALSE(vxl.empty());
+  const auto pack = runVoxlink({"pack", vxl, "--threads", "4294967295", "-o", dir_.file("p.vxl")});
+  EXPECT_NE(pack.status, 0);
+  EXPECT_EQ(lines(pack.err), 1) << pack.err;
+  EXPECT_NE(pack.err.find("--threads 4294967295 is more than 1024"), std::string::npos) << pack.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_.file("p.vxl")));
+  // The limit itself is allowed.
+  EXPECT_EQ(runVoxlink({"pack", vxl, "--threads", "1024", "-o", dir_.file("p.vxl"), "-q"}).status,
+            0);
+}
+
 TEST_F(CliBadInput, NoClassificationGiven) {
   const std::string in = rawVolume();
   auto r =
