@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <future>
 #include <nlohmann/json.hpp>
+#include <system_error>
 #include <vector>
 
 #include "convert/brick_count_pass.h"
@@ -201,7 +202,11 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
         return makeError(ErrorCode::kCorrupt, info.path,
                          ": data: the source changed between the two passes of the conversion");
     if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
-    pendingWrite = std::async(std::launch::async, writeSlab, std::cref(b));
+    try {
+      pendingWrite = std::async(std::launch::async, writeSlab, std::cref(b));
+    } catch (const std::system_error&) {  // no thread to spare (task or address-space limits)
+      VOXLINK_RETURN_IF_ERROR(writeSlab(b));
+    }
     report(0.25 + 0.75 * bz1 / layers(), "writing");
   }
   if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());

@@ -1,12 +1,22 @@
 #include "convert/worker_pool.h"
 
+#include <system_error>
+
 #include "format/parallel_for.h"
 
 namespace voxlink::convert {
 
 WorkerPool::WorkerPool(unsigned threads) {
   threads = format::threadCount(threads);
-  for (unsigned i = 1; i < threads; ++i) workers_.emplace_back([this, i] { loop(i); });
+  // A thread the system cannot start (task or address-space limits) is left out: the pool runs
+  // with those that did start (size() says how many), instead of aborting the program.
+  for (unsigned i = 1; i < threads; ++i) {
+    try {
+      workers_.emplace_back([this, i] { loop(i); });
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
 }
 
 WorkerPool::~WorkerPool() {

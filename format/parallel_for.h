@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <functional>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -31,17 +33,36 @@ inline unsigned threadCount(unsigned threads) {
                   threads ? threads : std::max(1u, std::thread::hardware_concurrency()));
 }
 
+// Runs work(t) on the calling thread (t = 0) and on up to threads - 1 more (t = 1, 2, ...), and
+// waits for all of them. A thread the system cannot start (a task or address-space limit, as on
+// a shared node or in a container) is left out and the ones already running do its share, so
+// `work` must take its items from a shared counter, never decide them by t.
+template <class Work>
+void runOnThreads(unsigned threads, Work&& work) {
+  std::vector<std::thread> pool;
+  struct JoinAll {
+    std::vector<std::thread>& pool;
+    ~JoinAll() {
+      for (std::thread& t : pool) t.join();
+    }
+  } joinAll{pool};
+  for (unsigned t = 1; t < threads; ++t) {
+    try {
+      pool.emplace_back(std::ref(work), t);
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
+  work(0u);
+}
+
 template <class Fn>
 void parallelFor(uint64_t count, unsigned threads, Fn&& fn) {
-  threads = threadCount(threads);
   std::atomic<uint64_t> next{0};
-  auto work = [&] {
-    for (uint64_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) fn(i);
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads && t < count; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  runOnThreads(static_cast<unsigned>(std::min<uint64_t>(threadCount(threads), count)),
+               [&](unsigned) {
+                 for (uint64_t i = next.fetch_add(1); i < count; i = next.fetch_add(1)) fn(i);
+               });
 }
 
 }  // namespace voxlink::format

@@ -9,7 +9,6 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "format/parallel_for.h"
 
@@ -224,10 +223,7 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
           }
       }
     };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
+    format::runOnThreads(threads, work);
     status = sink(z0, zCount, slab.data());
   }
   fftw_destroy_plan(forward);

@@ -6,7 +6,6 @@
 #include <mutex>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "format/parallel_for.h"
 
@@ -93,10 +92,7 @@ Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, con
       summary.systemsReused += ws.systemsReused;
       neighbourSum += localNeighbours;
     };
-    std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& t : pool) t.join();
+    format::runOnThreads(threads, [&](unsigned) { work(); });
     if (failure) return *failure;
     VOXLINK_RETURN_IF_ERROR(sink(z0, count, values.data(), variances.data()));
   }

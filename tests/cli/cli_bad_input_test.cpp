@@ -111,6 +111,36 @@ TEST_F(CliBadInput, AbsurdThreadCountsAreRefused) {
             0);
 }
 
+// Threads the system cannot start (here: 1000 stacks of 8 MB in a 4 GB address space, as under
+// `ulimit -v` on a shared node) are left out; the command finishes with the others and writes
+// the same bytes, instead of aborting or hanging.
+TEST_F(CliBadInput, ThreadsThatCannotStartAreLeftOut) {
+  const std::string in = rawVolume();
+  const auto convert = [&](const std::string& threads, const std::string& out) {
+    RunOptions limited;
+    limited.addressSpaceBytes = uint64_t{4} << 30;
+    limited.timeoutSeconds = 60;
+    return runVoxlink({"convert", in, "--dims", "20,20,20", "--type", "u8", "--threshold", "100",
+                       "--threads", threads, "-o", dir_.file(out), "-q"},
+                      limited);
+  };
+  const auto one = convert("1", "one.vxl");
+  ASSERT_EQ(one.status, 0) << one.err;
+  const auto many = convert("1000", "many.vxl");
+  ASSERT_EQ(many.status, 0) << many.err;
+  EXPECT_EQ(readBytes(dir_.file("one.vxl")), readBytes(dir_.file("many.vxl")));
+  RunOptions limited;
+  limited.addressSpaceBytes = uint64_t{4} << 30;
+  limited.timeoutSeconds = 60;
+  const auto pack = runVoxlink(
+      {"pack", dir_.file("one.vxl"), "--threads", "1000", "-o", dir_.file("p.vxl"), "-q"}, limited);
+  EXPECT_EQ(pack.status, 0) << pack.err;
+  const auto unpack =
+      runVoxlink({"unpack", dir_.file("p.vxl"), "-o", dir_.file("u.vxl"), "-q"}, limited);
+  EXPECT_EQ(unpack.status, 0) << unpack.err;
+  EXPECT_EQ(readBytes(dir_.file("one.vxl")), readBytes(dir_.file("u.vxl")));
+}
+
 TEST_F(CliBadInput, NoClassificationGiven) {
   const std::string in = rawVolume();
   auto r =

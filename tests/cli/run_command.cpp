@@ -1,6 +1,7 @@
 #include "tests/cli/run_command.h"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +22,10 @@ CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions&
   const pid_t pid = fork();
   if (pid == 0) {
     if (options.timeoutSeconds > 0) alarm(options.timeoutSeconds);
+    if (options.addressSpaceBytes > 0) {
+      const rlimit limit{options.addressSpaceBytes, options.addressSpaceBytes};
+      setrlimit(RLIMIT_AS, &limit);
+    }
     const int out = open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const int err = open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, 1);

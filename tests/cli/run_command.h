@@ -1,6 +1,7 @@
 // Runs the `voxlink` executable as a user would and captures its exit status and output.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,8 +16,9 @@ struct CommandResult {
 CommandResult runVoxlink(const std::vector<std::string>& args);
 
 struct RunOptions {
-  std::string stdoutPath;       // where stdout goes (e.g. /dev/full); empty: captured
-  unsigned timeoutSeconds = 0;  // SIGALRM after this many seconds (a hang fails, not blocks)
+  std::string stdoutPath;          // where stdout goes (e.g. /dev/full); empty: captured
+  unsigned timeoutSeconds = 0;     // SIGALRM after this many seconds (a hang fails, not blocks)
+  uint64_t addressSpaceBytes = 0;  // the command's RLIMIT_AS (`ulimit -v`); 0: unchanged
 };
 CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions& options);
 
