@@ -3,7 +3,9 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <map>
+#include <new>
 #include <vector>
 
 #include "cli/command.h"
@@ -51,6 +53,22 @@ int reportParseError(CLI::App& app, const CLI::ParseError& e) {
   return 2;
 }
 
+// A command that ran out of memory, or a library that threw where it should have returned an
+// error: one line and status 1 instead of std::terminate's text and an abort, and no temporary
+// output left behind (the registry knows them; unwinding to here has closed them).
+int runCommand(const CommandRunner& run) {
+  try {
+    return run();
+  } catch (const std::bad_alloc&) {
+    format::removeRegisteredTemps();
+    std::fprintf(stderr, "voxlink: out of memory\n");
+  } catch (const std::exception& e) {
+    format::removeRegisteredTemps();
+    std::fprintf(stderr, "voxlink: internal error: %s\n", printableMessage(e.what()).c_str());
+  }
+  return 1;
+}
+
 }  // namespace
 
 }  // namespace voxlink::cli
@@ -82,6 +100,6 @@ int main(int argc, char** argv) {
   }
   voxlink::format::removeTempsOnSignals();
   for (auto& [sub, run] : commands)
-    if (sub->parsed()) return finishStandardOutput(run());
+    if (sub->parsed()) return finishStandardOutput(voxlink::cli::runCommand(run));
   return 2;
 }

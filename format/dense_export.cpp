@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <new>
 #include <sstream>
 #include <vector>
 
@@ -159,8 +160,16 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
   Status status = [&]() -> Status {
     if (!detached)
       VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), temp.path));
-    // One brick layer of slices: the locator visits bricks z-layer by z-layer.
-    std::vector<uint8_t> layer(sliceBytes * n);
+    // One brick layer of slices: the locator visits bricks z-layer by z-layer. A valid file can
+    // be wide enough that this does not fit (65536^2 float64 voxels, 8-voxel bricks: 256 GiB).
+    std::vector<uint8_t> layer;
+    try {
+      layer.resize(sliceBytes * n);
+    } catch (const std::bad_alloc&) {
+      return makeError(ErrorCode::kTooLarge, file.path(), ": a layer of bricks (", h.dims[0], " x ",
+                       h.dims[1], " x ", n, " ", scalarName(type), " voxels, ", sliceBytes * n,
+                       " bytes) does not fit in memory for the dense export");
+    }
     std::vector<uint8_t> fillValue(elem);
     store(type, fill, fillValue.data());
     auto reset = [&] {

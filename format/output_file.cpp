@@ -212,11 +212,21 @@ void unregisterTempForCleanup(const std::string& path) {
   }
 }
 
+void removeRegisteredTemps() {
+  for (size_t i = 0; i < kSlots; ++i) {
+    int expected = 2;
+    if (!slotState[i].compare_exchange_strong(expected, 1)) continue;
+    ::unlink(slotPath[i].data());
+    slotState[i].store(0);
+  }
+}
+
 void removeTempsOnSignals() {
   struct sigaction sa {};
   sa.sa_handler = onSignal;
   sigemptyset(&sa.sa_mask);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaction(sig, &sa, nullptr);
+  // SIGABRT too: an exception that escapes a thread, or a failed check, ends in abort().
+  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGABRT}) sigaction(sig, &sa, nullptr);
 }
 
 }  // namespace voxlink::format

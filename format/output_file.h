@@ -55,8 +55,11 @@ void discardTemp(const std::string& tempPath);
 // fixed slots, no allocation in the handler). At most 32 at a time; more are not tracked.
 void registerTempForCleanup(const std::string& path);
 void unregisterTempForCleanup(const std::string& path);
-// Installs SIGINT, SIGTERM and SIGHUP handlers that unlink registered temporaries, then die of
-// the same signal (so the exit status still says how the process ended).
+// Installs SIGINT, SIGTERM, SIGHUP and SIGABRT handlers that unlink registered temporaries, then
+// die of the same signal (so the exit status still says how the process ended).
 void removeTempsOnSignals();
+// Unlinks every registered temporary now (a program that caught an exception it cannot go on
+// from, before it reports it).
+void removeRegisteredTemps();
 
 }  // namespace voxlink::format

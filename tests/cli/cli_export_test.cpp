@@ -3,11 +3,13 @@
 // threshold gives the same voxels and values; bad fills and paths leave no file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <vector>
 
+#include "format/file_writer.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
 #include "sources/volume_source.h"
@@ -161,6 +163,35 @@ TEST(CliExport, BadFillPathOrFileLeavesNothing) {
     EXPECT_TRUE(entry.path().extension() != ".nrrd" &&
                 entry.path().filename().string().rfind(".vl-", 0) != 0)
         << entry.path();
+}
+
+// A valid file whose dense grid is far too large for memory (65536 x 65536 x 8 u16, one voxel
+// stored): the export fails with one line naming the file, and leaves no temporary behind,
+// instead of dying of an uncaught std::bad_alloc with its temporaries on disk.
+TEST(CliExport, DenseGridTooLargeForMemoryFailsCleanly) {
+  TempDir dir;
+  format::VolumeDescription d;
+  d.dims = {65536, 65536, 8};
+  d.valueType = StoredType::kU16;
+  d.sourceType = ScalarType::kU16;
+  format::BrickedVolumeBuilder builder(d);
+  builder.add(5, 6, 7, 1000, 0);
+  auto volume = builder.build();
+  ASSERT_TRUE(volume) << volume.message();
+  ASSERT_TRUE(format::writeBrickedVolume(dir.file("wide.vxl"), *volume).isOk());
+  RunOptions limited;
+  limited.addressSpaceBytes = uint64_t{8} << 30;  // the layer alone needs 64 GiB
+  limited.timeoutSeconds = 120;
+  for (const char* out : {"wide.nrrd", "wide.nhdr"}) {
+    const auto r = runVoxlink({"export", dir.file("wide.vxl"), "-o", dir.file(out)}, limited);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("wide.vxl: a layer of bricks (65536 x 65536 x 8 u16 voxels, "
+                         "68719476736 bytes) does not fit in memory"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"wide.vxl"});
 }
 
 }  // namespace
