@@ -1,9 +1,13 @@
 #include "convert/vdb_export.h"
 
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "format/gradient_codec.h"
 #include "format/output_file.h"
@@ -53,10 +57,18 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
 
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, ".vdb"));
   ::close(temp.fd);
+  // Through a stream of our own: openvdb::io::File does not check its stream, so a full disk
+  // gave a cut-off file and success. The bytes are the same but for the archive's random UUID.
   try {
-    openvdb::io::File out(temp.path);
-    out.write({values, gradients});
+    std::ofstream out(temp.path, std::ios::binary | std::ios::trunc);
+    openvdb::io::Stream(out).write({values, gradients});
     out.close();
+    if (out.fail()) {
+      const int e = errno;
+      format::discardTemp(temp.path);
+      return makeError(ErrorCode::kIo, path,
+                       ": write failed: ", e ? std::strerror(e) : "I/O error");
+    }
   } catch (const std::exception& e) {
     format::discardTemp(temp.path);
     return makeError(ErrorCode::kIo, path, ": OpenVDB could not write: ", e.what());

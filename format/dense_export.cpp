@@ -159,7 +159,7 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
   VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(dataPath, detached ? ".raw" : ".nrrd"));
   Status status = [&]() -> Status {
     if (!detached)
-      VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), temp.path));
+      VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), dataPath));
     // One brick layer of slices: the locator visits bricks z-layer by z-layer. A valid file can
     // be wide enough that this does not fit (65536^2 float64 voxels, 8-voxel bricks: 256 GiB).
     std::vector<uint8_t> layer;
@@ -181,8 +181,7 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
     Status writeStatus;
     auto flush = [&] {
       const uint32_t slices = std::min(n, h.dims[2] - current * n);
-      if (writeStatus)
-        writeStatus = writeAll(temp.fd, layer.data(), slices * sliceBytes, temp.path);
+      if (writeStatus) writeStatus = writeAll(temp.fd, layer.data(), slices * sliceBytes, dataPath);
       reset();
       ++current;
     };

@@ -165,6 +165,36 @@ TEST(CliExport, BadFillPathOrFileLeavesNothing) {
         << entry.path();
 }
 
+// A full disk (writes past 1000 bytes fail with EFBIG): every writer reports it and leaves
+// nothing. OpenVDB's own file writer did not check its stream, so `.vdb` export printed success
+// over a cut-off file.
+TEST(CliExport, FullDiskFailsEveryWriterCleanly) {
+  TempDir dir;
+  convertSample(dir);
+  RunOptions full;
+  full.fileSizeBytes = 1000;
+  const std::vector<std::vector<std::string>> commands = {
+      {"export", dir.file("v.vxl"), "-o", dir.file("out/v.vdb")},
+      {"export", dir.file("v.vxl"), "-o", dir.file("out/v.nrrd")},
+      {"export", dir.file("v.vxl"), "-o", dir.file("out/v.nhdr")},
+      {"pack", dir.file("v.vxl"), "-o", dir.file("out/p.vxl")},
+      {"convert", dir.file("v.raw"), "--dims", "20,18,16", "--type", "i16", "--threshold", "0",
+       "-o", dir.file("out/c.vxl")},
+  };
+  std::filesystem::create_directory(dir.file("out"));
+  for (const auto& command : commands) {
+    const auto r = runVoxlink(command, full);
+    EXPECT_NE(r.status, 0) << command[0] << " " << command.back() << ": " << r.out;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    // The error names the output, not its temporary (the data file for .nhdr).
+    const std::string named =
+        command.back().ends_with(".nhdr") ? dir.file("out/v.raw") : command.back();
+    EXPECT_EQ(r.err.find("voxlink: " + named + ": "), 0u) << r.err;
+    EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+    EXPECT_EQ(listDir(dir.file("out")), std::vector<std::string>{}) << command.back();
+  }
+}
+
 // A valid file whose dense grid is far too large for memory (65536 x 65536 x 8 u16, one voxel
 // stored): the export fails with one line naming the file, and leaves no temporary behind,
 // instead of dying of an uncaught std::bad_alloc with its temporaries on disk.

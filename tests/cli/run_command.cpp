@@ -1,6 +1,7 @@
 #include "tests/cli/run_command.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +23,11 @@ CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions&
   const pid_t pid = fork();
   if (pid == 0) {
     if (options.timeoutSeconds > 0) alarm(options.timeoutSeconds);
+    if (options.fileSizeBytes > 0) {
+      signal(SIGXFSZ, SIG_IGN);
+      const rlimit limit{options.fileSizeBytes, options.fileSizeBytes};
+      setrlimit(RLIMIT_FSIZE, &limit);
+    }
     if (options.addressSpaceBytes > 0) {
       const rlimit limit{options.addressSpaceBytes, options.addressSpaceBytes};
       setrlimit(RLIMIT_AS, &limit);

@@ -19,6 +19,9 @@ struct RunOptions {
   std::string stdoutPath;          // where stdout goes (e.g. /dev/full); empty: captured
   unsigned timeoutSeconds = 0;     // SIGALRM after this many seconds (a hang fails, not blocks)
   uint64_t addressSpaceBytes = 0;  // the command's RLIMIT_AS (`ulimit -v`); 0: unchanged
+  // The command's RLIMIT_FSIZE, SIGXFSZ ignored: writes past it fail with EFBIG, as on a full
+  // disk. 0: unchanged.
+  uint64_t fileSizeBytes = 0;
 };
 CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions& options);
 
