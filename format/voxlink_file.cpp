@@ -1,7 +1,10 @@
 #include "format/voxlink_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
+#include <vector>
 
 #include "format/crc32c.h"
 #include "format/half.h"
@@ -231,6 +234,34 @@ Status checkHeader(const FileHeader& h, uint64_t fileBytes, const std::string& w
   return Status::ok();
 }
 
+namespace {
+
+// Every byte of a file belongs to the header, a section or the table, each preceded by less than
+// kSectionAlignment bytes of padding: a file cannot carry, nor a packed file unpack to, gigabytes
+// that nothing describes (the checksums cover only what the table names).
+Status checkEveryByteIsDescribed(const std::vector<SectionEntry>& table, const FileHeader& h,
+                                 uint64_t size, const std::string& where) {
+  std::vector<std::pair<uint64_t, uint64_t>> parts = {
+      {0, sizeof(FileHeader)},
+      {h.sectionTableOffset, h.sectionTableOffset + table.size() * sizeof(SectionEntry)}};
+  for (const SectionEntry& e : table) parts.emplace_back(e.offset, e.offset + e.bytes);
+  std::sort(parts.begin(), parts.end());
+  uint64_t described = 0;
+  for (const auto& [begin, end] : parts) {
+    if (begin >= described + kSectionAlignment)
+      return makeError(ErrorCode::kCorrupt, where, ": bytes [", described, ", ", begin,
+                       ") belong to no section (more than ", kSectionAlignment - 1,
+                       " bytes of padding)");
+    described = std::max(described, end);
+  }
+  if (size >= described + kSectionAlignment)
+    return makeError(ErrorCode::kCorrupt, where, ": the last ", size - described, " bytes of the ",
+                     size, "-byte file belong to no section");
+  return Status::ok();
+}
+
+}  // namespace
+
 Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(path));
   if (isPackedFile(std::span(mapped.data(), mapped.size())))
@@ -294,6 +325,7 @@ Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const 
                          sectionName(static_cast<SectionId>(o.id)));
     }
   }
+  VOXLINK_RETURN_IF_ERROR(checkEveryByteIsDescribed(file.table_, h, size, where));
   const SectionEntry* meta = file.findSection(SectionId::kMeta);
   for (SectionId id : kRequiredSections) {
     const SectionEntry* e = file.findSection(id);

@@ -394,6 +394,20 @@ TEST(PackedFile, DamageIsRefusedNamingTheSection) {
     EXPECT_NE(overlap.find("section BOCC: original bytes"), std::string::npos) << overlap;
     EXPECT_NE(overlap.find("overlap the section table"), std::string::npos) << overlap;
   }
+  // An original file larger than what its table describes, with every checksum made to match:
+  // the unpacked file would end in a megabyte of zeros that nothing covers.
+  {
+    std::vector<uint8_t> damaged = p.packed;
+    const SectionEntry pack = packedEntry(damaged, SectionId::kPack);
+    uint64_t fileBytes;
+    std::memcpy(&fileBytes, damaged.data() + pack.offset + 8, 8);
+    fileBytes += 1 << 20;
+    std::memcpy(damaged.data() + pack.offset + 8, &fileBytes, 8);
+    refreshCrc(damaged, pack.offset);
+    const std::string inflated = unpackError(damaged);
+    EXPECT_NE(inflated.find("p.vxl: the last 1048"), std::string::npos) << inflated;
+    EXPECT_NE(inflated.find("belong to no section"), std::string::npos) << inflated;
+  }
   // An original file too small for its header, or a table inside the header, with every checksum
   // made to match (a PACK of one entry, the restored header's checksum recomputed): restoring the
   // header would write past the file, the table over the header.

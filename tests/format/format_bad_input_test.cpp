@@ -165,6 +165,37 @@ TEST_F(FormatBadInput, SectionPastTheEnd) {
   EXPECT_NE(f.message().find("VALU"), std::string::npos);
 }
 
+// Bytes that no section describes are refused: the checksums cover only what the table names, so
+// a file (or a packed file's unpacked size) could otherwise carry anything, of any size.
+TEST_F(FormatBadInput, BytesThatNoSectionDescribes) {
+  const std::vector<uint8_t> good = bytes_;
+  bytes_.resize(good.size() + 63, 0);  // less than the alignment: padding
+  EXPECT_TRUE(reopen().isOk());
+  bytes_.resize(good.size() + 1000, 0);
+  auto f = reopen();
+  EXPECT_EQ(f.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(
+      f.message().find("bad.vxl: the last 1000 bytes of the " + std::to_string(good.size() + 1000) +
+                       "-byte file belong to no section"),
+      std::string::npos)
+      << f.message();
+  // A gap inside: META moved 128 bytes further (its bytes and checksum moved with it).
+  bytes_ = good;
+  SectionEntry* meta = entry(SectionId::kMeta);
+  const uint64_t from = meta->offset, bytes = meta->bytes;
+  bytes_.insert(bytes_.begin() + long(from), 128, 0);
+  header().sectionTableOffset += 128;
+  resealHeader();
+  meta = entry(SectionId::kMeta);
+  meta->offset = from + 128;
+  ASSERT_EQ(meta->bytes, bytes);
+  f = reopen();
+  EXPECT_EQ(f.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(f.message().find(") belong to no section (more than 63 bytes of padding)"),
+            std::string::npos)
+      << f.message();
+}
+
 TEST_F(FormatBadInput, MissingSection) {
   entry(SectionId::kRowMask)->id = fourCC("XXXX");
   auto f = reopen();
