@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -67,6 +68,24 @@ bool fillFits(ScalarType type, double v) {
   }
   return false;
 }
+
+}  // namespace
+
+Status checkFill(ScalarType type, double fill, const std::string& where, std::string_view option) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, fill).ptr;  // shortest, exact
+  const std::string shown(text, end);
+  if (!fillFits(type, fill))
+    return makeError(ErrorCode::kInvalidArgument, where, ": ", option, " ", shown,
+                     " does not fit the source type ", scalarName(type));
+  if (type != ScalarType::kF32 && type != ScalarType::kF64 && fill != std::trunc(fill))
+    return makeError(ErrorCode::kInvalidArgument, where, ": ", option, " ", shown,
+                     " is not a whole number, and the source type ", scalarName(type),
+                     " holds only whole numbers");
+  return Status::ok();
+}
+
+namespace {
 
 // Stores v (in range) as the source type at p; integers are rounded, which is exact for files
 // whose stored type is lossless.
@@ -141,9 +160,7 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
   if (!nrrdTypeName(type))
     return makeError(ErrorCode::kUnsupported, file.path(), ": header: sourceType ", int(type),
                      " has no NRRD type");
-  if (!fillFits(type, fill))
-    return makeError(ErrorCode::kInvalidArgument, path, ": --fill ", fill,
-                     " does not fit the source type ", scalarName(type));
+  VOXLINK_RETURN_IF_ERROR(checkFill(type, fill, path));
   const FileHeader& h = file.header();
   const uint32_t n = file.brickSize();
   const size_t elem = scalarSize(type);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include "format/error.h"
 #include "format/voxlink_file.h"
@@ -19,8 +20,15 @@ struct DenseExportSummary {
   uint64_t filledVoxels = 0;  // voxels holding the fill
 };
 
-// kInvalidArgument when `fill` is not finite or does not fit the source type; kUnsupported for
-// a scene (version 2) file, whose VALU is not indexed by voxel.
+// kInvalidArgument (naming `where` and the value as typed) when `fill` is not finite, does not
+// fit `type`, or is not a whole number for an integer type: one rule for every dense export,
+// so the command line and Python give the same volume or the same error.
+// `option` names the setting as the caller's user typed it.
+Status checkFill(ScalarType type, double fill, const std::string& where,
+                 std::string_view option = "--fill");
+
+// Fails as checkFill does (naming `path`); kUnsupported for a scene (version 2) file, whose
+// VALU is not indexed by voxel.
 Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::string& path,
                                            double fill);
 

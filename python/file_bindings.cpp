@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "convert/vdb_footprint.h"
+#include "format/dense_export.h"
 #include "format/footprint.h"
 #include "format/gradient_codec.h"
 #include "format/packed_file.h"
@@ -68,10 +69,7 @@ py::tuple voxels(const PyFile& self) {
 
 template <class T>
 py::array denseOf(const format::VoxLinkFile& f, double fill) {
-  if (!std::isfinite(fill) || fill < double(std::numeric_limits<T>::lowest()) ||
-      fill > double(std::numeric_limits<T>::max()))
-    raise(makeError(ErrorCode::kInvalidArgument, f.path(), ": fill ", fill,
-                    " does not fit the source type ", scalarName(f.sourceType())));
+  raiseIfError(format::checkFill(f.sourceType(), fill, f.path(), "fill"));
   const uint32_t* dims = f.header().dims;
   py::array_t<T> out(std::vector<py::ssize_t>{dims[2], dims[1], dims[0]});
   T* d = out.mutable_data();

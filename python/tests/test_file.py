@@ -46,6 +46,10 @@ def test_fill_must_fit(small_file):
         f.to_dense(fill=300)
     with pytest.raises(voxlink.Error, match="fill"):
         f.to_dense(fill=float("nan"))
+    # The command line's rule: an integer source takes whole numbers only (it rounded 1.5 to 2
+    # where Python truncated it to 1).
+    with pytest.raises(voxlink.Error, match="fill 1.5 is not a whole number"):
+        f.to_dense(fill=1.5)
 
 
 def test_pack_reads_back_the_same_voxels(small_file, tmp_path):

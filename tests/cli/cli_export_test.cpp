@@ -141,6 +141,15 @@ TEST(CliExport, BadFillPathOrFileLeavesNothing) {
       << r.err;
   r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("out.nrrd"), "--fill", "nan"});
   EXPECT_NE(r.status, 0);
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("out.nrrd"), "--fill", "2.5"});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("out.nrrd: --fill 2.5 is not a whole number, and the source type i16 "
+                       "holds only whole numbers"),
+            std::string::npos)
+      << r.err;
+  r = runVoxlink(
+      {"export", dir.file("v.vxl"), "-o", dir.file("out.nrrd"), "--fill", "2147483647.5"});
+  EXPECT_NE(r.err.find("--fill 2147483647.5 does not fit"), std::string::npos) << r.err;
   r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("missing/out.nrrd")});
   EXPECT_NE(r.status, 0);
   EXPECT_NE(r.err.find("missing"), std::string::npos) << r.err;
