@@ -194,6 +194,24 @@ TEST_F(CliBadInput, DamagedVoxLinkFilesForInfoAndValidate) {
   EXPECT_NE(r.err.find("header.magic"), std::string::npos) << r.err;
 }
 
+// Image sizes are parsed whole: sscanf's %u wrapped 4294967360 to 64 and read -5 as 4294967291.
+TEST_F(CliBadInput, ImageSizesThatDoNotParseAreRefused) {
+  const std::string vxl = convertedFile(rawVolume());
+  ASSERT_FALSE(vxl.empty());
+  if (runVoxlink({"render", "--help"}).status != 0) GTEST_SKIP() << "built without the viewer";
+  for (const char* size : {"4294967360x4294967360", "4294967297x1", "-5x5", "5x+5", "16x", "x16",
+                           "16x16x", "0x16", "16 x16", "16x16 ", "1e3x16"}) {
+    const auto r = runVoxlink({"render", vxl, "-o", dir_.file("out.png"), "--size", size});
+    EXPECT_EQ(r.status, 2) << size;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(std::string("--size: expected WxH such as 512x512, got '") + size + "'"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_TRUE(listDir(dir_.path()) == std::vector<std::string>({"in.raw", "ok.vxl"}) ||
+              listDir(dir_.path()) == std::vector<std::string>({"ok.vxl", "in.raw"}));
+}
+
 // A rendered image is written under a temporary name and renamed: a failed write leaves
 // nothing, a good one leaves exactly the image.
 TEST_F(CliBadInput, RenderedImageIsWholeOrAbsent) {

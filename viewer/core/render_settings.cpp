@@ -1,7 +1,10 @@
 #include "viewer/core/render_settings.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
+#include <system_error>
 
 namespace voxlink::viewer {
 
@@ -50,14 +53,23 @@ Status checkSettings(const RenderSettings& s, const std::string& where) {
   return Status::ok();
 }
 
+// Digits only, each side parsed whole: sscanf's %u took "-5" as 4294967291 and wrapped
+// 4294967360 to 64.
 Result<std::array<uint32_t, 2>> parseImageSize(const std::string& text) {
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
-      w == 0 || h == 0)
+  const size_t x = text.find_first_of("xX");
+  std::array<uint32_t, 2> size{0, 0};
+  bool ok = x != std::string::npos;
+  for (int i = 0; i < 2 && ok; ++i) {
+    const std::string_view side =
+        i == 0 ? std::string_view(text).substr(0, x) : std::string_view(text).substr(x + 1);
+    const auto [end, ec] = std::from_chars(side.data(), side.data() + side.size(), size[i]);
+    ok = !side.empty() && ec == std::errc() && end == side.data() + side.size() &&
+         side.find_first_not_of("0123456789") == std::string_view::npos && size[i] > 0;
+  }
+  if (!ok)
     return makeError(ErrorCode::kInvalidArgument, "--size: expected WxH such as 512x512, got '",
                      text, "'");
-  return std::array<uint32_t, 2>{w, h};
+  return size;
 }
 
 }  // namespace voxlink::viewer
