@@ -338,6 +338,12 @@ Result<VoxLinkFile> openValidatedFile(const std::string& path) {
   return file;
 }
 
+Result<VoxLinkFile> readValidatedFile(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::read(path));
+  VOXLINK_RETURN_IF_ERROR(validateFile(file).status());
+  return file;
+}
+
 Result<ValidationReport> validateFile(const VoxLinkFile& f) {
   ValidationReport report;
   VOXLINK_RETURN_IF_ERROR(checkChecksums(f, report));

@@ -33,5 +33,7 @@ std::vector<uint32_t> sectionChecksums(const VoxLinkFile& file, unsigned threads
 // info, bench-render) uses, so a file `voxlink validate` rejects is refused with the same
 // message and never reaches a renderer that trusts its invariants.
 Result<VoxLinkFile> openValidatedFile(const std::string& path);
+// VoxLinkFile::read() then validateFile(): the same for long-lived handles (a private copy).
+Result<VoxLinkFile> readValidatedFile(const std::string& path);
 
 }  // namespace voxlink::format

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <new>
 #include <utility>
 #include <vector>
 
@@ -270,6 +271,19 @@ Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
   const uint8_t* data = holder->data();
   const uint64_t size = holder->size();
   return parse(std::shared_ptr<const void>(holder, holder.get()), data, size, path);
+}
+
+Result<VoxLinkFile> VoxLinkFile::read(const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(path));
+  const std::span<const uint8_t> bytes(mapped.data(), mapped.size());
+  if (isPackedFile(bytes)) return unpackFile(bytes, path, limits::kMaxUnpackedBytes);
+  std::vector<uint8_t> copy;
+  try {
+    copy.assign(bytes.begin(), bytes.end());
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, path, ": ", bytes.size(), " bytes do not fit in memory");
+  }
+  return fromBytes(std::move(copy), path);
 }
 
 Result<VoxLinkFile> VoxLinkFile::fromBytes(std::vector<uint8_t> bytes, const std::string& name) {

@@ -21,6 +21,10 @@ namespace voxlink::format {
 class VoxLinkFile {
  public:
   static Result<VoxLinkFile> open(const std::string& path);
+  // Like open(), but the bytes are a private copy in memory instead of a mapping of the file: for
+  // handles that live long (Python, ParaView), which a later in-place overwrite or truncation of
+  // the file on disk must not crash (a mapping would raise SIGBUS or SIGSEGV).
+  static Result<VoxLinkFile> read(const std::string& path);
   // For tests and tools that hold a file in memory; `name` is used in error messages.
   static Result<VoxLinkFile> fromBytes(std::vector<uint8_t> bytes, const std::string& name);
 

@@ -109,7 +109,7 @@ std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
   return std::make_unique<ArraySource>(std::move(info), a.data());
 }
 
-// A fresh private folder for a file nobody named; removed once the file is mapped.
+// A fresh private folder for a file nobody named; removed once the file is read.
 struct ScratchDir {
   std::filesystem::path dir;
   ScratchDir() {
@@ -177,7 +177,7 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     }();
     if (!summary) raise(summary.error());
   }
-  return openFile(outPath);  // mapped: the scratch folder may go
+  return openFile(outPath);  // read into memory: the scratch folder may go
 }
 
 }  // namespace

@@ -145,14 +145,17 @@ py::dict pack(const PyFile& self, const py::object& path, bool fast) {
 PyFile openFile(const std::string& path) {
   Result<format::VoxLinkFile> file = [&] {
     py::gil_scoped_release release;
-    return format::openValidatedFile(path);
+    return format::readValidatedFile(path);  // a copy: the file may change on disk later
   }();
   if (!file) raise(file.error());
   return PyFile{std::make_shared<const format::VoxLinkFile>(std::move(*file))};
 }
 
 void bindFile(py::module_& m) {
-  py::class_<PyFile>(m, "File", "A validated VoxLink (.vxl) file, memory-mapped.")
+  py::class_<PyFile>(
+      m, "File",
+      "A validated VoxLink (.vxl) file, held in memory (a private copy: changing the file on disk "
+      "later does not affect it).")
       .def_property_readonly(
           "path", [](const PyFile& f) { return f.file->path(); }, "The file's path.")
       .def_property_readonly(

@@ -1,5 +1,9 @@
 # voxlink.open(), validate() and to_dense() on files: corrupt files refused with the
 # validator's message, fills that do not fit the source type refused.
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -23,6 +27,29 @@ def test_open_validate_roundtrip(small_file):
     assert report["voxels_checked"] == (a >= 50).sum()
     assert report["bytes_checked"] > 0
     np.testing.assert_array_equal(f.to_dense(fill=3), np.where(a >= 50, a, 3))
+
+
+def test_file_changed_on_disk_does_not_affect_an_open_file(small_file):
+    """A File holds a private copy: truncating or overwriting the .vxl in place afterwards (cp
+    over it, a re-run writing in place) used to kill Python through the mapping (SIGBUS,
+    SIGSEGV). Run in a child so that a crash fails this test instead of the whole session."""
+    path, a = small_file
+    other = path.parent / "other.vxl"
+    voxlink.convert(np.where(a > 0, 200, 0).astype(np.uint8), threshold=150, output=other)
+    script = f"""
+import numpy as np, voxlink
+f = voxlink.open({str(path)!r})
+open({str(path)!r}, "r+b").truncate(4096)
+assert f.validate()["voxels_checked"] == {int((a >= 50).sum())}
+open({str(path)!r}, "wb").write(open({str(other)!r}, "rb").read())
+ijk, values, _ = f.voxels()
+assert len(values) == {int((a >= 50).sum())} and set(values.tolist()) == {{100}}
+assert f.to_dense().shape == {a.shape}
+print("ok")
+"""
+    r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                       env=os.environ, timeout=120)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", (r.returncode, r.stderr)
 
 
 def test_corrupt_file_refused(small_file):
