@@ -3,7 +3,9 @@
 // variogram given or fitted, and a summary of the solver's numerical health.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <limits>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
@@ -131,8 +133,22 @@ int runKrige(const KrigeArgs& a) {
         cv->evaluated, cv->meanError, cv->rmse, cv->meanStandardizedSquaredError, cv->correlation);
   }
   if (a.output.empty()) return 0;
-  for (const std::string& out : {a.output, a.varianceOutput})
-    if (Status s = format::checkOutputTarget(out, {a.input}); !s) return reportError(s);
+  // Every file the two grids go to (an .nhdr's .raw too) must spare the input and each other:
+  // `-o s.nhdr` over an input named s.raw, or the variance given the values' name, replaced
+  // data without a word.
+  const std::string varianceFile =
+      a.varianceOutput.empty() ? variancePath(a.output) : a.varianceOutput;
+  std::vector<std::string> written;
+  for (const std::string& out : {a.output, varianceFile})
+    for (const std::string& file : GridWriter::filesOf(out)) {
+      if (Status s = format::checkOutputTarget(file, {a.input}); !s) return reportError(s);
+      for (const std::string& other : written)
+        if (std::filesystem::weakly_canonical(other) == std::filesystem::weakly_canonical(file))
+          return reportError(makeError(ErrorCode::kInvalidArgument, file,
+                                       ": the values and the kriging variance would both be "
+                                       "written here (give --variance-output another name)"));
+      written.push_back(file);
+    }
 
   auto grid = gridFromArgs(a, *points);
   if (!grid) return reportError(grid.error());
@@ -140,8 +156,7 @@ int runKrige(const KrigeArgs& a) {
                     a.type == "f32" ? ScalarType::kF32 : ScalarType::kF64};
   auto values = GridWriter::create(a.output, info);
   if (!values) return reportError(values.error());
-  auto variances = GridWriter::create(
-      a.varianceOutput.empty() ? variancePath(a.output) : a.varianceOutput, info);
+  auto variances = GridWriter::create(varianceFile, info);
   if (!variances) return reportError(variances.error());
   GridKrigingOptions gridOptions;
   gridOptions.threads = a.threads;
@@ -160,7 +175,7 @@ int runKrige(const KrigeArgs& a) {
               grid->dims[1], grid->dims[2], grid->origin[0], grid->origin[1], grid->origin[2],
               grid->spacing[0], grid->spacing[1], grid->spacing[2], summary->text().c_str());
   std::printf("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
-              (a.varianceOutput.empty() ? variancePath(a.output) : a.varianceOutput).c_str());
+              varianceFile.c_str());
   return 0;
 }
 

@@ -42,6 +42,11 @@ std::string npyHeader(ScalarType type, std::array<uint32_t, 3> dims) {
   return header + dict;
 }
 
+std::vector<std::string> GridWriter::filesOf(const std::string& path) {
+  if (endsWith(path, ".nhdr")) return {path, path.substr(0, path.size() - 5) + ".raw"};
+  return {path};
+}
+
 Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
                                                        const GridFileInfo& info) {
   if (info.type != ScalarType::kF64 && info.type != ScalarType::kF32)
@@ -59,7 +64,8 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
     return makeError(ErrorCode::kInvalidArgument, path,
                      ": output name must end in .nhdr (raw + NRRD header) or .npy");
   }
-  if (w->nrrd_) VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(path));
+  for (const std::string& file : filesOf(path))
+    VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));
   // A unique O_EXCL temporary (never a fixed name a symlink could be planted at); the data and
   // the header are renamed into place together by finish().
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(w->dataPath_));

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "format/error.h"
 #include "format/scalar_type.h"
@@ -34,6 +35,8 @@ class GridWriter {
   Status finish();
   // The files finish() produced (the .nhdr and .raw, or the .npy).
   std::string dataPath() const { return dataPath_; }
+  // The files a grid named `path` is written to: the .nhdr and its .raw, or the .npy.
+  static std::vector<std::string> filesOf(const std::string& path);
 
  private:
   GridWriter() = default;

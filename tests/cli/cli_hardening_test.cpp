@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <thread>
 
@@ -208,6 +209,37 @@ TEST(CliHardening, OutputsThatMustNotBeReplaced) {
   expectOneLineFailure(r, {"output is the input"});
   EXPECT_EQ(runVoxlink({"validate", vxl}).status, 0);
   EXPECT_FALSE(anyTempLeft(dir));
+}
+
+// krige writes two grids, each .nhdr with a .raw beside it: none of those files may be the input
+// (a CSV named s.raw under -o s.nhdr was replaced), nor both grids one file (the values were
+// lost under the variance).
+TEST(CliHardening, KrigeOutputsSpareTheInputAndEachOther) {
+  TempDir dir;
+  {
+    std::ofstream csv(dir.file("s.raw"));
+    csv << "x,y,v\n0,0,1\n4,0,2\n0,4,3\n4,4,4\n2,2,5\n";
+  }
+  const std::vector<uint8_t> before = readBytes(dir.file("s.raw"));
+  const std::vector<std::string> krige = {"krige",       dir.file("s.raw"), "--value", "v",
+                                          "--variogram", "exp:range=4",     "--dims",  "4,4",
+                                          "-o"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = krige;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return runVoxlink(args);
+  };
+  auto r = with({dir.file("s.nhdr")});
+  expectOneLineFailure(r, {"s.raw", "output is the input"});
+  r = with({dir.file("k.nhdr"), "--variance-output", dir.file("s.nhdr")});
+  expectOneLineFailure(r, {"s.raw", "output is the input"});
+  r = with({dir.file("k.nhdr"), "--variance-output", dir.file("k.nhdr")});
+  expectOneLineFailure(r, {"k.nhdr", "would both be written here"});
+  EXPECT_EQ(readBytes(dir.file("s.raw")), before);
+  EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"s.raw"});
+  r = with({dir.file("k.nhdr")});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("k_variance.raw")));
 }
 
 TEST(CliHardening, LongestLegalOutputNameWorks) {
