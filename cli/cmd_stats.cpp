@@ -6,6 +6,7 @@
 #include "cli/printable_message.h"
 #include "cli/source_options.h"
 #include "convert/histogram.h"
+#include "format/limits.h"
 
 namespace voxlink::cli {
 
@@ -20,7 +21,9 @@ CommandRunner addStatsCommand(CLI::App& app) {
       "stats", "Value statistics and histogram of a dense volume (to choose a threshold)");
   cmd->add_option("input", a->input, "Dense volume")->required();
   addSourceOptions(*cmd, a->source);
-  cmd->add_option("--bins", a->bins, "Histogram bins")->capture_default_str();
+  cmd->add_option("--bins", a->bins, "Histogram bins")
+      ->check(CLI::Range(uint32_t{1}, limits::kMaxHistogramBins))
+      ->capture_default_str();
   return [a] {
     auto open = toOpenOptions(a->source);
     if (!open) return reportError(open.error());

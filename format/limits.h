@@ -40,6 +40,10 @@ inline constexpr uint64_t kMaxUnpackedBytes = uint64_t{64} << 30;
 // kernel task, and a request for 100000 exhausted this machine's tasks before the first ran.
 inline constexpr unsigned kMaxThreads = 1024;
 
+// Histogram bins `voxlink stats --bins` prints, one line each: more is a typo (2^32 - 1 bins ran
+// out of memory; 10^8 wrote 6.4 GB of text about a 512-byte file).
+inline constexpr uint32_t kMaxHistogramBins = uint32_t{1} << 20;
+
 // Memory the GDCM guard's child may use reading a DICOM series, on top of twice its largest file
 // (sources/readers/gdcm_guard.cpp): damaged files can make GDCM allocate gigabytes.
 inline constexpr uint64_t kMaxGdcmProbeBytes = uint64_t{2} << 30;

@@ -325,6 +325,8 @@ TEST(CliHardening, OptionParserErrorsAreOneLineWithStatus2) {
        {std::vector<std::string>{"convert", "--no-such-option"},
         {"convert"},
         {"stats", "x.raw", "--bins", "many"},
+        {"stats", "x.raw", "--bins", "0"},
+        {"stats", "x.raw", "--bins", "4294967295"},
         {"no-such-command"},
         {"convert", "in.raw", "--keep-outside", "-1,1", "--mean", "nan", "--sigma", "1", "-o", "o"},
         {"convert", "in.raw", "--keep-outside", "nan,1", "-o", "o"},
