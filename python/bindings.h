@@ -26,6 +26,11 @@ inline void raiseIfError(const Status& status) {
   if (!status) raise(status.error());
 }
 
+// A path argument as the os module takes it (str, bytes or os.PathLike; TypeError otherwise,
+// where str(None) used to become a file named "None"), refused with ValueError if it holds a NUL
+// (the C library would silently open the part before it).
+std::string pathArgument(const py::object& path);
+
 // What a Python File holds: a validated file, shared by the arrays and renders made from it.
 struct PyFile {
   std::shared_ptr<const format::VoxLinkFile> file;

@@ -48,8 +48,7 @@ convert::Classification classificationFrom(const py::object& threshold, const py
     return valueOrRaise(convert::thresholdClassification(specs));
   }
   if (!tf.is_none())
-    return convert::tfClassification(
-        valueOrRaise(format::loadTransferFunction(py::str(tf).cast<std::string>())));
+    return convert::tfClassification(valueOrRaise(format::loadTransferFunction(pathArgument(tf))));
   if (!keepOutside.is_none()) {
     auto range = keepOutside.cast<std::vector<double>>();
     if (range.size() != 2) throw py::value_error("keep_outside must be (LO, HI)");
@@ -151,7 +150,7 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     scratch.emplace();
     outPath = (scratch->dir / "converted.vxl").string();
   } else {
-    outPath = py::str(output).cast<std::string>();
+    outPath = pathArgument(output);
   }
 
   std::unique_ptr<convert::VolumeSource> source;
@@ -161,7 +160,7 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     array = input.cast<py::array>();
     source = arraySource(array, spacing, origin);
   } else {
-    const std::string path = py::str(input).cast<std::string>();
+    const std::string path = pathArgument(input);
     inputs.push_back(path);
     Result<std::unique_ptr<convert::VolumeSource>> opened = [&] {
       py::gil_scoped_release release;

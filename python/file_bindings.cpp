@@ -124,7 +124,7 @@ py::dict validate(const PyFile& self) {
 }
 
 py::dict pack(const PyFile& self, const py::object& path, bool fast) {
-  const std::string out = py::str(path).cast<std::string>();
+  const std::string out = pathArgument(path);
   Result<format::PackReport> report = [&] {
     py::gil_scoped_release release;
     format::PackOptions options;
@@ -141,6 +141,13 @@ py::dict pack(const PyFile& self, const py::object& path, bool fast) {
 }
 
 }  // namespace
+
+std::string pathArgument(const py::object& path) {
+  const std::string text = py::module_::import("os").attr("fsdecode")(path).cast<std::string>();
+  if (text.find('\0') != std::string::npos)
+    throw py::value_error("path contains a NUL character: " + py::repr(path).cast<std::string>());
+  return text;
+}
 
 PyFile openFile(const std::string& path) {
   Result<format::VoxLinkFile> file = [&] {
@@ -204,8 +211,8 @@ void bindFile(py::module_& m) {
                std::to_string(f.file->voxelCount()) + " voxels>";
       });
   m.def(
-      "open", [](const py::object& path) { return openFile(py::str(path).cast<std::string>()); },
-      py::arg("path"), "Opens and validates a .vxl file (as `voxlink render` and `info` do).");
+      "open", [](const py::object& path) { return openFile(pathArgument(path)); }, py::arg("path"),
+      "Opens and validates a .vxl file (as `voxlink render` and `info` do).");
 }
 
 }  // namespace voxlink::python

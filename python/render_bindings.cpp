@@ -30,16 +30,15 @@ Result<viewer::Image> renderFrame(const format::VoxLinkFile& file,
 py::array_t<float> render(const py::object& fileOrPath, const std::string& size,
                           const std::string& camera, const std::string& sampling,
                           const py::object& tf, const std::string& tfPreset) {
-  const PyFile file = py::isinstance<PyFile>(fileOrPath)
-                          ? fileOrPath.cast<PyFile>()
-                          : openFile(py::str(fileOrPath).cast<std::string>());
+  const PyFile file = py::isinstance<PyFile>(fileOrPath) ? fileOrPath.cast<PyFile>()
+                                                         : openFile(pathArgument(fileOrPath));
   if (!viewer::parseSampling(sampling))  // the CLI checks this in its option parser
     throw py::value_error("sampling must be voxel or trilinear, not '" + sampling + "'");
   cli::RenderOptions options;
   options.size = size;
   options.camera = camera;
   options.sampling = sampling;
-  if (!tf.is_none()) options.tfPath = py::str(tf).cast<std::string>();
+  if (!tf.is_none()) options.tfPath = pathArgument(tf);
   options.tfPreset = tfPreset;
   Result<viewer::Image> image = [&] {
     py::gil_scoped_release release;

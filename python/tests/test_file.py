@@ -90,3 +90,19 @@ def test_pack_reads_back_the_same_voxels(small_file, tmp_path):
         np.testing.assert_array_equal(mine, theirs)
     with pytest.raises(voxlink.Error, match="box.vxl"):
         f.pack(path)  # the input itself
+
+
+def test_path_arguments(small_file):
+    """Paths are what the os module takes: str(None) no longer names a file "None", and a NUL
+    no longer opens the part of the path before it."""
+    path, _ = small_file
+    assert voxlink.open(os.fsencode(path)).dims == voxlink.open(path).dims
+    for bad in (None, 5, [path]):
+        with pytest.raises(TypeError, match="os.PathLike"):
+            voxlink.open(bad)
+    with pytest.raises(TypeError, match="os.PathLike"):
+        voxlink.convert(None, threshold=1)
+    with pytest.raises(ValueError, match="NUL"):
+        voxlink.open(str(path) + "\0.ignored")
+    with pytest.raises(ValueError, match="NUL"):
+        voxlink.render(str(path) + "\0", size="8x8")
