@@ -62,6 +62,9 @@ const char* kindOf(mode_t mode) {
 }  // namespace
 
 Status checkOutputTarget(const std::string& target, const std::vector<std::string>& inputs) {
+  // Refused before any work: an empty name only failed at the final rename.
+  if (target.empty())
+    return makeError(ErrorCode::kInvalidArgument, "output path is empty; give a file name");
   struct stat out {};
   if (::stat(target.c_str(), &out) != 0) return Status::ok();  // does not exist yet
   if (!S_ISREG(out.st_mode))

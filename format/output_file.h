@@ -16,8 +16,8 @@
 
 namespace voxlink::format {
 
-// kInvalidArgument when `target` exists and is not a regular file, or is the same file (device
-// and inode) as one of `inputs`.
+// kInvalidArgument when `target` is empty, exists and is not a regular file, or is the same file
+// (device and inode) as one of `inputs`.
 Status checkOutputTarget(const std::string& target, const std::vector<std::string>& inputs = {});
 
 // An open, empty temporary file in the target's directory: "<dir>/.vl-XXXXXX<suffix>", mode

@@ -106,3 +106,11 @@ def test_path_arguments(small_file):
         voxlink.open(str(path) + "\0.ignored")
     with pytest.raises(ValueError, match="NUL"):
         voxlink.render(str(path) + "\0", size="8x8")
+
+
+def test_empty_output_path_is_refused_before_any_work(small_file, tmp_path):
+    path, a = small_file
+    with pytest.raises(voxlink.Error, match="output path is empty"):
+        voxlink.convert(a, threshold=50, output="")
+    with pytest.raises(voxlink.Error, match="output path is empty"):
+        voxlink.open(path).pack("")

@@ -32,7 +32,11 @@ CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions&
       const rlimit limit{options.addressSpaceBytes, options.addressSpaceBytes};
       setrlimit(RLIMIT_AS, &limit);
     }
-    const int out = open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    // A given path (a device such as /dev/full) is opened as it is, never created: a missing
+    // device must not become a regular file that later tests write to.
+    const int out = options.stdoutPath.empty()
+                        ? open(outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644)
+                        : open(outPath.c_str(), O_WRONLY);
     const int err = open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, 1);
     dup2(err, 2);
