@@ -3,6 +3,7 @@
 // scene, the same voxel scene) and prints the image error.
 #include <chrono>
 #include <cstdio>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/render_options.h"
@@ -37,7 +38,10 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   "Write the reference image here (implies --reference)");
   args->source.add(cmd);
   return [args] {
-    for (const std::string& out : {args->output, args->referenceOut})
+    // -o is required; --reference-output is optional (empty: not asked for).
+    std::vector<std::string> outputs = {args->output};
+    if (!args->referenceOut.empty()) outputs.push_back(args->referenceOut);
+    for (const std::string& out : outputs)
       if (Status s = format::checkOutputTarget(out, {args->path, args->source.path}); !s)
         return reportError(s);
     auto file = format::openValidatedFile(args->path);

@@ -81,7 +81,10 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   return [args] {
-    for (const std::string& out : {args->output, args->voxelOutput})
+    // -o is required; --voxel-output is optional (empty: not asked for).
+    std::vector<std::string> outputs = {args->output};
+    if (!args->voxelOutput.empty()) outputs.push_back(args->voxelOutput);
+    for (const std::string& out : outputs)
       if (Status s = format::checkOutputTarget(out, {args->scene, args->compare}); !s)
         return reportError(s);
     if (!args->voxelOutput.empty() && args->compare.empty())

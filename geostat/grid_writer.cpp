@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <utility>
@@ -89,13 +90,36 @@ GridWriter::~GridWriter() {
   if (!tempPath_.empty()) format::discardTemp(tempPath_);
 }
 
+namespace {
+
+// The grid's values must be finite in the file's type, as `voxlink convert` requires: a mean of
+// 1e308 written as f32 (inf), or a sill that overflows (NaN), gave a file of non-finite values
+// and exit status 0.
+template <class T>
+Status checkFinite(const T* values, uint64_t n, uint64_t firstIndex, const GridFileInfo& info,
+                   const std::string& path) {
+  for (uint64_t i = 0; i < n; ++i)
+    if (!std::isfinite(values[i])) {
+      const uint64_t at = firstIndex + i, nx = info.dims[0], ny = info.dims[1];
+      return makeError(ErrorCode::kInvalidArgument, path, ": value ", values[i], " at node (",
+                       at % nx, ", ", at / nx % ny, ", ", at / (nx * ny), ") is not finite as ",
+                       scalarName(info.type), " (check the mean, the sill and the output type)");
+    }
+  return Status::ok();
+}
+
+}  // namespace
+
 Status GridWriter::append(uint32_t count, const double* slices) {
   const uint64_t n = uint64_t{info_.dims[0]} * info_.dims[1] * count;
+  const uint64_t first = uint64_t{info_.dims[0]} * info_.dims[1] * slicesWritten_;
   size_t written;
   if (info_.type == ScalarType::kF64) {
+    VOXLINK_RETURN_IF_ERROR(checkFinite(slices, n, first, info_, path_));
     written = std::fwrite(slices, sizeof(double), n, file_);
   } else {
     std::vector<float> f(slices, slices + n);
+    VOXLINK_RETURN_IF_ERROR(checkFinite(f.data(), n, first, info_, path_));
     written = std::fwrite(f.data(), sizeof(float), n, file_);
   }
   if (written != n)
@@ -117,7 +141,7 @@ Status GridWriter::finish() {
   const auto& s = info_.spacing;
   const auto& o = info_.origin;
   const std::string text =
-      cat("NRRD0004\n# written by voxlink krige\n",
+      cat("NRRD0004\n# written by voxlink (krige or grf)\n",
           "type: ", info_.type == ScalarType::kF32 ? "float" : "double", "\n",
           "dimension: 3\nsizes: ", d[0], " ", d[1], " ", d[2], "\n", "space dimension: 3\n",
           "space directions: (", num(s[0]), ",0,0) (0,", num(s[1]), ",0) (0,0,", num(s[2]), ")\n",

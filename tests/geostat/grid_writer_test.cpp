@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -52,6 +53,38 @@ TEST(GridWriter, RefusesUnknownEndingsAndIncompleteGrids) {
   auto st = (*w)->finish();
   ASSERT_FALSE(st);
   EXPECT_NE(st.message().find("1 slices written, 2 expected"), std::string::npos) << st.message();
+}
+
+// Values that are not finite in the file's type are refused, naming the node: 1e308 fits f64
+// but is inf as f32; NaN in neither. Nothing is left of the refused grid.
+TEST(GridWriter, RefusesValuesThatAreNotFiniteInTheFilesType) {
+  testing::TempDir dir;
+  const GridFileInfo f32{{2, 2, 2}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF32};
+  auto w = GridWriter::create(dir.file("f.nhdr"), f32);
+  ASSERT_TRUE(w);
+  const double slice[4] = {1, 2, 3, 4}, huge[4] = {1, 2, 1e308, 4};
+  ASSERT_TRUE((*w)->append(1, slice));
+  auto st = (*w)->append(1, huge);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("f.nhdr: value inf at node (0, 1, 1) is not finite as f32"),
+            std::string::npos)
+      << st.message();
+  const GridFileInfo f64{{2, 2, 1}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF64};
+  auto d = GridWriter::create(dir.file("d.npy"), f64);
+  ASSERT_TRUE(d);
+  ASSERT_TRUE((*d)->append(1, huge));
+  const double nan[4] = {1, std::nan(""), 3, 4};
+  auto d2 = GridWriter::create(dir.file("d2.npy"), f64);
+  ASSERT_TRUE(d2);
+  st = (*d2)->append(1, nan);
+  ASSERT_FALSE(st);
+  EXPECT_NE(st.message().find("at node (1, 0, 0) is not finite as f64"), std::string::npos)
+      << st.message();
+  w->reset();
+  d->reset();
+  d2->reset();
+  for (const std::string& name : testing::listDir(dir.path()))
+    EXPECT_EQ(name.find(".vl-"), std::string::npos) << name;
 }
 
 }  // namespace
