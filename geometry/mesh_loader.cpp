@@ -224,7 +224,10 @@ namespace voxlink::geometry {
 
 Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& options) {
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return makeError(ErrorCode::kIo, path, ": no such file");
+  if (!fs::is_regular_file(path, ec))
+    return makeError(ErrorCode::kIo, path,
+                     fs::exists(path, ec) ? ": not a regular file (a directory, FIFO or device)"
+                                          : ": no such file");
   const std::string extension = lower(fs::path(path).extension().string());
   const bool isObj = extension == ".obj";
 

@@ -102,7 +102,10 @@ std::string elementFromAtomName(std::string name) {
 Result<std::ifstream> openText(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    return makeError(ErrorCode::kIo, path, ": no such file");
+    return makeError(ErrorCode::kIo, path,
+                     std::filesystem::exists(path, ec)
+                         ? ": not a regular file (a directory, FIFO or device)"
+                         : ": no such file");
   std::ifstream in(path);
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
   return in;

@@ -19,6 +19,7 @@ class Fields {
   Fields(const std::string& file, Status& status) : file_(file), status_(status) {}
 
   bool ok() const { return status_.isOk(); }
+  const std::string& file() const { return file_; }
   void fail(const std::string& where, const std::string& what) {
     if (ok()) status_ = makeError(ErrorCode::kInvalidArgument, file_, ": ", where, ": ", what);
   }
@@ -196,6 +197,7 @@ std::vector<std::string> thresholdSpecs(Fields& f, const json& j, const std::str
 SceneObject readObject(const json& j, const std::string& where, const std::filesystem::path& base,
                        const SceneDescription& scene, Fields& f) {
   SceneObject o;
+  o.where = f.file() + ": " + where;
   if (!j.is_object() || !j.contains("type")) {
     f.fail(where, "expected an object with a \"type\" (mesh, particles, sphere or volume)");
     return o;

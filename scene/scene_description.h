@@ -44,6 +44,9 @@ struct SceneObject {
   // tfPath: a transfer function JSON (--tf). Both empty: `path` is a .vxl.
   std::vector<std::string> thresholds;
   std::string tfPath;
+  // The scene file and the object's place in it ("cornell.scene.json: objects[2]"): errors from
+  // the object's own files and voxelization start with it.
+  std::string where;
 };
 
 struct SceneGrid {

@@ -89,8 +89,8 @@ Status placeMesh(const SceneObject& o, MaterialTable& table, PlacedScene& out) {
                         ? table.named(*o.material)
                         : table.add(mesh.materials[m].name, toRecord(mesh.materials[m], 0, 0));
   if (table.size() > format::kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ",
-                     format::kMaxMaterials, " materials");
+    return makeError(ErrorCode::kTooLarge, "the scene has more than ", format::kMaxMaterials,
+                     " materials");
   const uint32_t base = static_cast<uint32_t>(out.mesh.vertexCount());
   for (size_t v = 0; v < mesh.vertexCount(); ++v) {
     const auto p = o.transform.apply(
@@ -140,8 +140,8 @@ Status placeSpheres(const SceneObject& o, MaterialTable& table, PlacedScene& out
     if (materialOf.empty()) materialOf.push_back(table.add("particle", toRecord({}, 0, 0)));
   }
   if (table.size() > format::kMaxMaterials)
-    return makeError(ErrorCode::kTooLarge, o.path, ": the scene has more than ",
-                     format::kMaxMaterials, " materials");
+    return makeError(ErrorCode::kTooLarge, "the scene has more than ", format::kMaxMaterials,
+                     " materials");
   for (geometry::Sphere s : spheres) {
     const auto c = o.transform.apply({s.center[0], s.center[1], s.center[2]});
     for (int a = 0; a < 3; ++a) s.center[a] = float(c[a]);
@@ -159,18 +159,25 @@ Result<PlacedScene> placeSceneGeometry(const SceneDescription& scene) {
   PlacedScene placed;
   MaterialTable table(scene);
   for (const SceneObject& o : scene.objects) {
+    Status placedObject;
     switch (o.kind) {
       case ObjectKind::kMesh:
-        VOXLINK_RETURN_IF_ERROR(placeMesh(o, table, placed));
+        placedObject = placeMesh(o, table, placed);
         break;
       case ObjectKind::kParticles:
       case ObjectKind::kSphere:
-        VOXLINK_RETURN_IF_ERROR(placeSpheres(o, table, placed));
+        placedObject = placeSpheres(o, table, placed);
         break;
       case ObjectKind::kVolume:
         placed.volumes.push_back(&o);
         break;
     }
+    // Named by the scene file and the object ("cornell.scene.json: objects[2]: bunny.obj: ..."),
+    // as docs/scene.md promises: a scene names many files.
+    if (!placedObject)
+      return o.where.empty() ? placedObject.error()
+                             : makeError(placedObject.error().code, o.where, ": ",
+                                         placedObject.error().message);
   }
   if (table.size() == 0) table.add("default", toRecord({}, 0, 0));
   placed.materialNames = table.names();

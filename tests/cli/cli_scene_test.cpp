@@ -217,8 +217,17 @@ TEST(CliScene, BadInputIsOneLine) {
             R"({"objects": [{"type": "mesh", "file": "missing.obj"}]})");
   auto r = runVoxlink({"scene", "build", dir.file("bad.scene.json"), "-o", dir.file("out.vxl")});
   EXPECT_NE(r.status, 0);
-  EXPECT_NE(r.err.find("missing.obj"), std::string::npos) << r.err;
+  // The scene file and the object come first, then the object's file.
+  EXPECT_NE(r.err.find("bad.scene.json: objects[0]: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("missing.obj: no such file"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  std::filesystem::create_directory(dir.file("folder.obj"));
+  writeText(dir.file("dir.scene.json"),
+            R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
+                            {"type": "mesh", "file": "folder.obj"}]})");
+  r = runVoxlink({"scene", "build", dir.file("dir.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_NE(r.err.find("dir.scene.json: objects[1]: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("folder.obj: not a regular file"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
   writeText(dir.file("nan.obj"), "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
   writeText(dir.file("nan.scene.json"), R"({"objects": [{"type": "mesh", "file": "nan.obj"}]})");
