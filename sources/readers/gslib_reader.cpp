@@ -134,6 +134,19 @@ class GslibSource final : public VolumeSource {
                              "' is not a number");
         }
       }
+      // Every row holds every variable: a short row would shift the columns of the rows after
+      // it in any other reader, and here it hid a damaged file.
+      size_t fields = column_ + 1;
+      for (;;) {
+        while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+        if (p == end) break;
+        while (p < end && !std::isspace(static_cast<unsigned char>(*p))) ++p;
+        ++fields;
+      }
+      if (fields != header_.names.size())
+        return makeError(ErrorCode::kCorrupt, stream_->name(), ": line ", stream_->lineNumber(),
+                         ": ", fields, " values, the header declares ", header_.names.size(),
+                         " variables");
       if (out) out[i] = v;
       ++i;
     }

@@ -139,6 +139,21 @@ TEST(GslibReader, BadInputNamesTheFileAndTheField) {
   auto mismatch = openVolume(bad, o);
   ASSERT_FALSE(mismatch);
   EXPECT_EQ(mismatch.code(), ErrorCode::kSizeMismatch);
+  // Every row holds every variable: one value short (or one too many) in a two-variable file
+  // was read as long as the selected column was there.
+  for (const char* row : {"3", "3 3 3"}) {
+    const std::string ragged = dir.file("ragged.sgems");
+    writeText(ragged, std::string("2 2 1\n2\nv\nw\n1 1\n2 2\n") + row + "\n4 4\n");
+    auto r = openVolume(ragged);
+    ASSERT_TRUE(r) << r.message();
+    std::vector<double> values(4);
+    const Status read = (*r)->read(0, 1, values.data());
+    ASSERT_FALSE(read) << row;
+    EXPECT_EQ(read.code(), ErrorCode::kCorrupt);
+    EXPECT_NE(read.message().find("line 7: "), std::string::npos) << read.message();
+    EXPECT_NE(read.message().find("values, the header declares 2 variables"), std::string::npos)
+        << read.message();
+  }
 }
 
 }  // namespace
