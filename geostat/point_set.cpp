@@ -74,10 +74,12 @@ Result<std::array<int, 4>> findColumns(const std::string& path,
 Status addRow(const std::string& path, size_t line, const std::vector<std::string>& fields,
               const std::array<int, 4>& col, const std::vector<std::string>& names, bool geoEas,
               PointSet& out, size_t& skipped) {
-  const int needed = *std::max_element(col.begin(), col.end());
-  if (static_cast<int>(fields.size()) <= needed)
-    return makeError(ErrorCode::kTruncated, path, ": line ", line, ": ", fields.size(),
-                     " fields, expected ", names.size());
+  // Every row holds every column (an empty field is a missing value): a row with a field too
+  // many or too few has its columns shifted, and was read as long as the used ones were there.
+  if (fields.size() != names.size())
+    return makeError(fields.size() < names.size() ? ErrorCode::kTruncated : ErrorCode::kCorrupt,
+                     path, ": line ", line, ": ", fields.size(), " fields, expected ",
+                     names.size());
   double v = 0;
   const std::string& valueField = fields[col[3]];
   if (isMissing(valueField) ||

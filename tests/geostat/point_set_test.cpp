@@ -50,6 +50,16 @@ TEST(PointSet, BadTablesNameTheLineAndColumn) {
   auto shortRow = readPoints(dir.file("short.csv"), {"x", "y", "", "v"});
   ASSERT_FALSE(shortRow);
   EXPECT_EQ(shortRow.code(), ErrorCode::kTruncated);
+  // A row with a field too many, or one short of a column no selection uses: the columns after
+  // the change would be shifted.
+  std::ofstream(dir.file("long.csv")) << "x,y,v,w\n1,2,3,4\n1,2,3,4,5\n";
+  auto longRow = readPoints(dir.file("long.csv"), {"x", "y", "", "v"});
+  ASSERT_FALSE(longRow);
+  EXPECT_EQ(longRow.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(longRow.message().find("line 3: 5 fields, expected 4"), std::string::npos)
+      << longRow.message();
+  std::ofstream(dir.file("unused.csv")) << "x,y,v,w\n1,2,3\n";
+  EXPECT_FALSE(readPoints(dir.file("unused.csv"), {"x", "y", "", "v"}));
 }
 
 }  // namespace
