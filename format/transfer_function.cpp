@@ -88,6 +88,14 @@ Result<TransferFunction> parseTransferFunction(const std::string& text, const st
     return makeError(ErrorCode::kInvalidArgument, where,
                      ": field 'opacity': missing (a VoxLink transfer function is an object with "
                      "'opacity' and 'color' point lists)");
+  // The two fields the writer stamps: a file of another format or a newer version is refused
+  // rather than read as if it were this one (both may be left out).
+  if (j.contains("format") && j["format"] != "voxlink-transfer-function")
+    return makeError(ErrorCode::kInvalidArgument, where, ": field 'format': ", j["format"].dump(),
+                     " (expected \"voxlink-transfer-function\")");
+  if (j.contains("version") && j["version"] != 1)
+    return makeError(ErrorCode::kInvalidArgument, where, ": field 'version': ", j["version"].dump(),
+                     " (this reader knows version 1)");
   TransferFunction tf;
   if (j.contains("name")) {
     if (!j["name"].is_string())

@@ -79,6 +79,19 @@ TEST(TransferFunction, BadFilesNameTheField) {
   ASSERT_FALSE(r);
   EXPECT_NE(r.message().find("bad.json: field 'name': expected a string"), std::string::npos)
       << r.message();
+  // Another format, or a version this reader does not know, is refused; version 1 is read.
+  const std::string points = R"("opacity":[[0,1],[1,1]],"color":[[0,0,1,1]])";
+  r = parseTransferFunction("{\"version\":2," + points + "}", "new.json");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("new.json: field 'version': 2 (this reader knows version 1)"),
+            std::string::npos)
+      << r.message();
+  r = parseTransferFunction("{\"format\":\"paraview\"," + points + "}", "pv.json");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.message().find("pv.json: field 'format': \"paraview\""), std::string::npos)
+      << r.message();
+  EXPECT_TRUE(parseTransferFunction(
+      "{\"format\":\"voxlink-transfer-function\",\"version\":1," + points + "}", "ok.json"));
 }
 
 TEST(TransferFunction, JsonRoundTrip) {
