@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "format/limits.h"
 #include "format/regular_file.h"
 #include "imageio/image_io.h"
 #include "sources/readers/file_list.h"
@@ -40,6 +41,24 @@ Status checkSlice(const imageio::ImageSpec& spec, const std::string& where, Slic
     return makeError(ErrorCode::kSizeMismatch, where, ": pixel format ", spec.formatName, " x ",
                      spec.channels, " channels differs from ", first.formatName, " x ",
                      first.channels, " of ", shape.from);
+  return Status::ok();
+}
+
+// A PNG's pixels are zlib-compressed, which expands at most limits::kMaxZlibRatio to 1: a file
+// too small for the size its header claims is refused before a slab of that size is allocated
+// (a 65-byte PNG claiming 60000 x 60000 x 16 bit made the converter allocate 7.2 GB first).
+Status checkPngCanHoldItsPixels(const std::string& file, const imageio::ImageSpec& spec) {
+  if (lowerExtension(file) != ".png") return Status::ok();
+  std::error_code ec;
+  const uint64_t fileBytes = fs::file_size(file, ec);
+  if (ec) return Status::ok();  // probe() read it; the read reports what went wrong
+  const uint64_t pixelBytes = uint64_t(spec.width) * uint64_t(spec.height) *
+                              uint64_t(std::max(spec.channels, 1)) * scalarSize(spec.type);
+  if (pixelBytes / limits::kMaxZlibRatio > fileBytes)
+    return makeError(ErrorCode::kTruncated, file, ": image size ", spec.width, "x", spec.height,
+                     " needs ", pixelBytes, " bytes of pixels; a PNG of ", fileBytes,
+                     " bytes cannot hold them (zlib expands at most ", limits::kMaxZlibRatio,
+                     ":1)");
   return Status::ok();
 }
 
@@ -131,6 +150,7 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
       VOXLINK_RETURN_IF_ERROR(checkNetpbmHeader(file));
       VOXLINK_ASSIGN_OR_RETURN(imageio::ImageSpec spec, imageio::probe(file));
       VOXLINK_RETURN_IF_ERROR(checkSlice(spec, file, shape));
+      VOXLINK_RETURN_IF_ERROR(checkPngCanHoldItsPixels(file, spec));
     }
     slices = files.size();
   } else {
