@@ -56,17 +56,13 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
   std::unique_ptr<GridWriter> w(new GridWriter);
   w->path_ = path;
   w->info_ = info;
-  if (endsWith(path, ".nhdr")) {
-    w->nrrd_ = true;
-    w->dataPath_ = path.substr(0, path.size() - 5) + ".raw";
-  } else if (endsWith(path, ".npy")) {
-    w->dataPath_ = path;
-  } else {
+  if (!endsWith(path, ".nhdr") && !endsWith(path, ".npy"))
     return makeError(ErrorCode::kInvalidArgument, path,
                      ": output name must end in .nhdr (raw + NRRD header) or .npy");
-  }
-  for (const std::string& file : filesOf(path))
-    VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));
+  w->nrrd_ = endsWith(path, ".nhdr");
+  const std::vector<std::string> files = filesOf(path);
+  w->dataPath_ = files.back();  // the .raw beside an .nhdr, or the .npy itself
+  for (const std::string& file : files) VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));
   // A unique O_EXCL temporary (never a fixed name a symlink could be planted at); the data and
   // the header are renamed into place together by finish().
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(w->dataPath_));
