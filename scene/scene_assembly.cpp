@@ -13,6 +13,7 @@
 #include "format/voxlink_file.h"
 #include "geometry/sphere_voxelizer.h"
 #include "geometry/voxel_grid.h"
+#include "scene/build_estimate.h"
 #include "scene/scene_geometry.h"
 #include "scene/scene_volume.h"
 
@@ -94,6 +95,10 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   VOXLINK_RETURN_IF_ERROR(format::checkDescription(d));
   report.dims = d.dims;
   report.spacing = d.spacing;
+  const SceneBuildEstimate estimate =
+      estimateSceneBuild(placed, d, volume ? volume->voxelCount() : 0);
+  VOXLINK_RETURN_IF_ERROR(checkSceneBuildFits(estimate, memoryForThisProcess(), scene.path,
+                                              scene.grid.resolution, volume.has_value()));
 
   const auto voxelizeStart = Clock::now();
   stage("voxelize", 0);

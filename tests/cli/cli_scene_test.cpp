@@ -249,5 +249,29 @@ TEST(CliScene, BadInputIsOneLine) {
   EXPECT_NE(r.err.find("no geometry and no volume"), std::string::npos) << r.err;
 }
 
+// A resolution the machine cannot hold is refused before voxelizing, naming the field to change,
+// instead of working for minutes and dying of std::bad_alloc or the OOM killer.
+TEST(CliScene, ResolutionBeyondMemoryIsRefusedAtOnce) {
+  VOXLINK_REQUIRE_DATA("mesh/c3dtm_stanford-bunny.obj");
+  TempDir dir;
+  writeText(dir.file("bunny.scene.json"),
+            R"({"grid": {"resolution": 60000}, "objects": [{"type": "mesh", "file": ")" +
+                dataPath("mesh/c3dtm_stanford-bunny.obj") + R"("}]})");
+  // About 6 billion surface voxels: no machine that runs these tests holds their 600 GB.
+  auto r = runVoxlink({"scene", "build", dir.file("bunny.scene.json"), "-o", dir.file("out.vxl")});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("bunny.scene.json: grid.resolution 60000: building needs about "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("lower grid.resolution or --resolution"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.vxl")));
+  // The same file at a resolution that fits builds.
+  r = runVoxlink({"scene", "build", dir.file("bunny.scene.json"), "-o", dir.file("out.vxl"),
+                  "--resolution", "64"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out.vxl")));
+}
+
 }  // namespace
 }  // namespace voxlink::testing

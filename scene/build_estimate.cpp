@@ -1,0 +1,64 @@
+#include "scene/build_estimate.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace voxlink::scene {
+
+SceneBuildEstimate estimateSceneBuild(const PlacedScene& placed,
+                                      const format::VolumeDescription& grid,
+                                      uint64_t volumeVoxels) {
+  SceneBuildEstimate e;
+  const geometry::TriangleMesh& mesh = placed.mesh;
+  auto vertex = [&](uint32_t v, int a) {  // in voxel units
+    return (double(mesh.positions[3 * size_t(v) + a]) - grid.origin[a]) / grid.spacing[a];
+  };
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    double p[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a) p[c][a] = vertex(mesh.triangles[3 * t + c], a);
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double w[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    // Twice the projected areas onto the yz, zx and xy planes.
+    const double projected = std::abs(u[1] * w[2] - u[2] * w[1]) +
+                             std::abs(u[2] * w[0] - u[0] * w[2]) +
+                             std::abs(u[0] * w[1] - u[1] * w[0]);
+    if (std::isfinite(projected)) e.surfaceVoxels += 0.5 * projected;
+  }
+  for (const geometry::Sphere& s : placed.spheres) {
+    const double r = s.radius / grid.spacing[0];
+    if (std::isfinite(r)) e.sphereRefs += 1.5 * 4.0 * M_PI * r * r;
+  }
+  e.volumeVoxels = double(volumeVoxels);
+  e.peakBytes = e.surfaceVoxels * kSurfaceVoxelBuildBytes + e.sphereRefs * kSphereRefBuildBytes +
+                e.volumeVoxels * kVolumeVoxelBuildBytes;
+  return e;
+}
+
+uint64_t memoryForThisProcess() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
+  uint64_t bytes = pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : UINT64_MAX;
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    bytes = std::min<uint64_t>(bytes, limit.rlim_cur);
+  return bytes;
+}
+
+Status checkSceneBuildFits(const SceneBuildEstimate& estimate, uint64_t memoryBytes,
+                           const std::string& scenePath, uint32_t resolution, bool hasVolume) {
+  if (estimate.peakBytes <= double(memoryBytes)) return Status();
+  const double entries = estimate.surfaceVoxels + estimate.sphereRefs + estimate.volumeVoxels;
+  auto gigabytes = [](double bytes) { return std::round(bytes / 1e8) / 10; };
+  const std::string where = hasVolume ? std::string(": on the volume's grid")
+                                      : ": grid.resolution " + std::to_string(resolution);
+  return makeError(
+      ErrorCode::kTooLarge, scenePath, where, ": building needs about ",
+      std::llround(entries / 1e6), " million voxel entries, ", gigabytes(estimate.peakBytes),
+      " GB of memory; this process may use ", gigabytes(double(memoryBytes)), " GB (",
+      hasVolume ? "give a smaller volume" : "lower grid.resolution or --resolution", ")");
+}
+
+}  // namespace voxlink::scene
