@@ -324,6 +324,11 @@ def mesh_seeds(s, d):
         body += b"".join(struct.pack(order + "B%di" % len(f), len(f), *f) for f in faces)
         s.add("mesh", "bunny_part_%s.ply" % name,
               (head % (fmt, len(verts), len(faces))).encode() + body)
+    # OFF (assimp's reader; the loader checks its counts and indices first).
+    s.add("mesh", "bunny_part.off",
+          ("OFF\n# bunny part\n%d %d 0\n" % (len(verts), len(faces))).encode()
+          + "".join("%g %g %g\n" % v for v in verts).encode()
+          + "".join("%d %s\n" % (len(f), " ".join(map(str, f))) for f in faces).encode())
     tris = [f for f in faces if len(f) == 3][:100]
     ascii_stl = "solid part\n" + "".join(
         "facet normal 0 0 0\nouter loop\n" + "".join("vertex %g %g %g\n" % verts[i] for i in t)

@@ -19,6 +19,7 @@
 #include <string_view>
 
 #include "format/limits.h"
+#include "geometry/mesh_file_checks.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -180,34 +181,6 @@ struct Collector {
 // exception"), and loadMesh reports the recorded check instead.
 thread_local std::string assimpAssertion;
 
-namespace {
-
-// assimp 5.2's PLY reader loops forever on a header without its `end_header` line (found by the
-// mesh fuzz target), so a PLY file's header is checked here first.
-Status checkPlyHeader(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(limits::kMaxTextHeaderBytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  for (size_t at = head.find("\nend_header"); at != std::string::npos;
-       at = head.find("\nend_header", at + 1)) {
-    const size_t after = at + 11;
-    if (after == head.size() || head[after] == '\n' || head[after] == '\r') return Status::ok();
-  }
-  return makeError(ErrorCode::kCorrupt, path, ": PLY header has no 'end_header' line",
-                   head.size() == limits::kMaxTextHeaderBytes ? " in its first 1 MiB" : "");
-}
-
-bool startsWithPly(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  char magic[4] = {};
-  in.read(magic, 4);
-  return in.gcount() == 4 && std::string_view(magic, 3) == "ply" &&
-         (magic[3] == '\n' || magic[3] == '\r');
-}
-
-}  // namespace
-
 }  // namespace voxlink::geometry
 
 namespace Assimp {
@@ -240,7 +213,8 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   }
   importer.SetIOHandler(new MtlFallbackIo(fallbackMtl));  // the importer owns it
   // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
-  if (extension == ".ply" || startsWithPly(path)) VOXLINK_RETURN_IF_ERROR(checkPlyHeader(path));
+  if (extension == ".ply" || looksLikePly(path)) VOXLINK_RETURN_IF_ERROR(checkPlyFile(path));
+  if (extension == ".off" || looksLikeOff(path)) VOXLINK_RETURN_IF_ERROR(checkOffFile(path));
   assimpAssertion.clear();
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate);

@@ -1,7 +1,8 @@
 // Meshes through assimp (geometry/mesh_loader.h): OBJ (+ MTL files given as extra fuzz files),
-// PLY and STL. The extension, which picks assimp's importer, follows the content: "ply" starts
-// a PLY file, "solid" or a NUL byte in the 84-byte binary header an STL file, anything else is
-// read as OBJ. A loaded mesh must keep its own invariants; a broken one aborts (a finding).
+// PLY, OFF and STL. The extension, which picks assimp's importer, follows the content: "ply"
+// starts a PLY file, "OFF", "COFF" or "NOFF" an OFF file, "solid" or a NUL byte in the 84-byte
+// binary header an STL file, anything else is read as OBJ. A loaded mesh must keep its own
+// invariants; a broken one aborts (a finding).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,8 @@ namespace {
 std::string meshFileName(Input input) {
   const std::string_view text(reinterpret_cast<const char*>(input.data()), input.size());
   if (text.starts_with("ply")) return "input.ply";
+  if (text.starts_with("OFF") || text.starts_with("COFF") || text.starts_with("NOFF"))
+    return "input.off";
   if (text.starts_with("solid")) return "input.stl";
   if (text.substr(0, 84).find('\0') != std::string_view::npos) return "input.stl";
   return "input.obj";

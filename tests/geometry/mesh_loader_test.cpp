@@ -230,5 +230,62 @@ TEST(MeshLoaderErrors, TriangleLimit) {
   EXPECT_TRUE(loadMesh(dir.file("two.obj")));
 }
 
+// Counts a file cannot hold are refused from the header, naming the element, instead of
+// assimp reserving them and failing with a bare std::bad_alloc.
+TEST(MeshLoaderErrors, CountsBeyondTheFileNameTheElement) {
+  TempDir dir;
+  const std::string binaryHeader =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  writeText(dir.file("vertices.ply"), binaryHeader + std::string(40, '\0'));
+  auto mesh = loadMesh(dir.file("vertices.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(mesh.message().find("vertices.ply: element vertex 4000000000: needs at least "
+                                "4000000000 x 12 bytes, but the file has 40 after its header"),
+            std::string::npos)
+      << mesh.message();
+  writeText(dir.file("faces.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 2000000000\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  mesh = loadMesh(dir.file("faces.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("faces.ply: element face 2000000000: "), std::string::npos)
+      << mesh.message();
+  writeText(dir.file("counts.off"), "OFF\n4000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  mesh = loadMesh(dir.file("counts.off"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("counts.off: header claims 4000000000 vertices and 1 faces"),
+            std::string::npos)
+      << mesh.message();
+  writeText(dir.file("short.off"), "OFF 4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n");
+  mesh = loadMesh(dir.file("short.off"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("short.off: face 1: missing (the header claims 2)"),
+            std::string::npos)
+      << mesh.message();
+}
+
+// assimp clamps an OFF face index past the vertices to the last vertex and loads a wrong mesh.
+TEST(MeshLoaderErrors, OffIndexPastTheVerticesIsRefused) {
+  TempDir dir;
+  writeText(dir.file("index.off"),
+            "OFF\n# three vertices\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n\n3 0 1 7\n");
+  auto mesh = loadMesh(dir.file("index.off"));
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(mesh.message().find("index.off: line 8: face 0: vertex index 7 outside the 3 vertices"),
+            std::string::npos)
+      << mesh.message();
+  // The same file with a valid index, a quad and a comment loads: three triangles.
+  writeText(dir.file("good.off"),
+            "OFF\n# three vertices\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n\n3 0 1 2\n4 0 1 3 2\n");
+  mesh = loadMesh(dir.file("good.off"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->triangleCount(), 3u);
+}
+
 }  // namespace
 }  // namespace voxlink::geometry

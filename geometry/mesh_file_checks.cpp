@@ -1,0 +1,187 @@
+#include "geometry/mesh_file_checks.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "format/limits.h"
+
+namespace voxlink::geometry {
+namespace {
+
+std::string readHead(const std::string& path, size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(bytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
+uint64_t fileBytes(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  return ec ? 0 : uint64_t(size);
+}
+
+// Bytes of one PLY scalar type; 0 for an unknown name (left to assimp).
+uint64_t plyTypeBytes(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
+      type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+// The OFF keyword with assimp's optional prefixes (ST, C, N, 4, n), or npos.
+size_t offKeywordLength(std::string_view token) {
+  size_t at = 0;
+  if (token.substr(at, 2) == "ST") at += 2;
+  for (char prefix : {'C', 'N', '4', 'n'})
+    if (at < token.size() && token[at] == prefix) ++at;
+  return token.substr(at) == "OFF" ? at + 3 : std::string_view::npos;
+}
+
+// The next line that holds more than spaces and is no '#' comment.
+bool nextDataLine(std::istream& in, std::string& line, uint64_t& number) {
+  while (std::getline(in, line)) {
+    ++number;
+    const size_t first = line.find_first_not_of(" \t\r");
+    if (first != std::string::npos && line[first] != '#') return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+bool looksLikePly(const std::string& path) {
+  const std::string magic = readHead(path, 4);
+  return magic.size() == 4 && magic.compare(0, 3, "ply") == 0 &&
+         (magic[3] == '\n' || magic[3] == '\r');
+}
+
+bool looksLikeOff(const std::string& path) {
+  std::istringstream head(readHead(path, 16));
+  std::string token;
+  head >> token;
+  return offKeywordLength(token) != std::string_view::npos;
+}
+
+Status checkPlyFile(const std::string& path) {
+  const std::string head = readHead(path, limits::kMaxTextHeaderBytes);
+  size_t end = std::string::npos;
+  for (size_t at = head.find("\nend_header"); at != std::string::npos;
+       at = head.find("\nend_header", at + 1)) {
+    const size_t after = at + 11;
+    if (after == head.size() || head[after] == '\n' || head[after] == '\r') {
+      end = after;
+      break;
+    }
+  }
+  if (end == std::string::npos)
+    return makeError(ErrorCode::kCorrupt, path, ": PLY header has no 'end_header' line",
+                     head.size() == limits::kMaxTextHeaderBytes ? " in its first 1 MiB" : "");
+  // Each element's count times the least bytes one item takes must fit in the data: binary, the
+  // scalars and list counts (lists may be empty); ASCII, a character and a separator per value.
+  std::istringstream header(head.substr(0, end));
+  size_t dataStart = end;  // after end_header's line end
+  if (dataStart < head.size() && head[dataStart] == '\r') ++dataStart;
+  if (dataStart < head.size() && head[dataStart] == '\n') ++dataStart;
+  const uint64_t dataBytes = fileBytes(path) - std::min<uint64_t>(fileBytes(path), dataStart);
+  bool ascii = false;
+  struct Element {
+    std::string name;
+    uint64_t count = 0, itemBytes = 0;
+  };
+  std::vector<Element> elements;
+  std::string line;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::string keyword;
+    words >> keyword;
+    if (keyword == "format") {
+      std::string kind;
+      words >> kind;
+      ascii = kind == "ascii";
+    } else if (keyword == "element") {
+      Element e;
+      std::string count;
+      words >> e.name >> count;
+      if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos ||
+          count.size() > 19)
+        return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, ": count '", count,
+                         "' is not a whole number");
+      e.count = std::stoull(count);
+      elements.push_back(e);
+    } else if (keyword == "property" && !elements.empty()) {
+      std::string type;
+      words >> type;
+      if (type == "list") words >> type;  // the count's type
+      const uint64_t bytes = plyTypeBytes(type);
+      if (bytes == 0) return Status::ok();  // a type assimp may know; its own error then
+      elements.back().itemBytes += ascii ? 2 : bytes;
+    }
+  }
+  uint64_t needed = 0;
+  for (const Element& e : elements) {
+    const uint64_t itemBytes = std::max<uint64_t>(e.itemBytes, 1);
+    if (e.count > (dataBytes - std::min(dataBytes, needed)) / itemBytes)
+      return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, " ", e.count,
+                       ": needs at least ", e.count, " x ", itemBytes, " bytes, but the file has ",
+                       dataBytes, " after its header");
+    needed += e.count * itemBytes;
+  }
+  return Status::ok();
+}
+
+Status checkOffFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  uint64_t number = 0;
+  if (!nextDataLine(in, line, number)) return Status::ok();  // assimp names the empty file
+  std::istringstream header(line);
+  std::string token;
+  header >> token;
+  if (offKeywordLength(token) == std::string::npos) return Status::ok();
+  if (token.find('n') != std::string::npos) return Status::ok();  // nOFF: a dimension first
+  // The counts follow the keyword on its line or on the next data line.
+  uint64_t vertices = 0, faces = 0;
+  if (!(header >> vertices >> faces)) {
+    if (!nextDataLine(in, line, number)) return Status::ok();
+    std::istringstream counts(line);
+    if (!(counts >> vertices >> faces))
+      return makeError(ErrorCode::kCorrupt, path, ": line ", number,
+                       ": expected the vertex and face counts");
+  }
+  // A vertex line holds at least "0 0 0\n", a face line "3 0 0 0\n".
+  const uint64_t bytes = fileBytes(path);
+  if (vertices > bytes / 6 || faces > bytes / 8 || vertices * 6 + faces * 8 > bytes)
+    return makeError(ErrorCode::kCorrupt, path, ": header claims ", vertices, " vertices and ",
+                     faces, " faces; a file of ", bytes, " bytes holds fewer");
+  for (uint64_t v = 0; v < vertices; ++v)
+    if (!nextDataLine(in, line, number))
+      return makeError(ErrorCode::kCorrupt, path, ": vertex ", v, ": missing (the header claims ",
+                       vertices, ")");
+  for (uint64_t f = 0; f < faces; ++f) {
+    if (!nextDataLine(in, line, number))
+      return makeError(ErrorCode::kCorrupt, path, ": face ", f, ": missing (the header claims ",
+                       faces, ")");
+    std::istringstream face(line);
+    uint64_t corners = 0;
+    face >> corners;
+    for (uint64_t c = 0; c < corners; ++c) {
+      int64_t index = -1;
+      if (!(face >> index)) break;  // assimp's own error for a short face
+      if (index < 0 || uint64_t(index) >= vertices)
+        return makeError(ErrorCode::kCorrupt, path, ": line ", number, ": face ", f,
+                         ": vertex index ", index, " outside the ", vertices, " vertices");
+    }
+  }
+  return Status::ok();
+}
+
+}  // namespace voxlink::geometry

@@ -1,0 +1,20 @@
+// Checks of mesh files that assimp 5.2 does not make, run before it reads them: a PLY header
+// without `end_header` (assimp loops forever), PLY or OFF counts the file cannot hold (assimp
+// reserves them first and fails with a bare std::bad_alloc), and OFF face indices past the
+// vertices (assimp clamps them to the last vertex and logs, so a damaged file loaded as a wrong
+// mesh). Each error names the file and the field.
+#pragma once
+
+#include <string>
+
+#include "format/error.h"
+
+namespace voxlink::geometry {
+
+bool looksLikePly(const std::string& path);  // starts with "ply" and a line end
+bool looksLikeOff(const std::string& path);  // starts with [ST][C][N][4][n]OFF
+
+Status checkPlyFile(const std::string& path);
+Status checkOffFile(const std::string& path);
+
+}  // namespace voxlink::geometry
