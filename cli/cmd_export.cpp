@@ -5,6 +5,7 @@
 #include "cli/command.h"
 #include "convert/vdb_export.h"
 #include "format/dense_export.h"
+#include "format/file_name.h"
 #include "format/output_file.h"
 #include "format/validator.h"
 
@@ -28,8 +29,8 @@ CommandRunner addExportCommand(CLI::App& app) {
       ->capture_default_str();
   return [args] {
     const std::string& out = args->output;
-    const bool vdb = out.ends_with(".vdb");
-    if (!vdb && !out.ends_with(".nrrd") && !out.ends_with(".nhdr"))
+    const bool vdb = format::hasExtension(out, ".vdb");
+    if (!vdb && !format::hasExtension(out, ".nrrd") && !format::hasExtension(out, ".nhdr"))
       return reportError(makeError(
           ErrorCode::kInvalidArgument, out,
           ": unknown export format; the output name must end in .nrrd, .nhdr (+ .raw) or .vdb"));
@@ -47,7 +48,8 @@ CommandRunner addExportCommand(CLI::App& app) {
     if (!summary) return reportError(summary.error());
     std::printf("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n", out.c_str(),
                 (unsigned long long)summary->keptVoxels, (unsigned long long)summary->filledVoxels,
-                args->fill, summary->bytes / 1e6, out.ends_with(".nhdr") ? " (header + .raw)" : "");
+                args->fill, summary->bytes / 1e6,
+                format::hasExtension(out, ".nhdr") ? " (header + .raw)" : "");
     return 0;
   };
 }

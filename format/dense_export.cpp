@@ -13,6 +13,7 @@
 #include <sstream>
 #include <vector>
 
+#include "format/file_name.h"
 #include "format/output_file.h"
 #include "format/voxel_locator.h"
 
@@ -168,7 +169,7 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
 
   // A detached header (.nhdr) names a raw file beside it: both are written to temporaries and
   // renamed into place data first, so the header never points at a missing or partial file.
-  const bool detached = path.ends_with(".nhdr");
+  const bool detached = hasExtension(path, ".nhdr");
   const std::string dataPath = detached ? path.substr(0, path.size() - 5) + ".raw" : path;
   const std::string dataName = std::filesystem::path(dataPath).filename().string();
   const std::string header = nrrdHeader(file, fill, detached ? dataName : "");

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "format/file_name.h"
 #include "format/output_file.h"
 
 namespace voxlink::kriging {
@@ -20,10 +21,6 @@ std::string num(double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
-}
-
-bool endsWith(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
 }  // namespace
@@ -44,7 +41,7 @@ std::string npyHeader(ScalarType type, std::array<uint32_t, 3> dims) {
 }
 
 std::vector<std::string> GridWriter::filesOf(const std::string& path) {
-  if (endsWith(path, ".nhdr")) return {path, path.substr(0, path.size() - 5) + ".raw"};
+  if (format::hasExtension(path, ".nhdr")) return {path, path.substr(0, path.size() - 5) + ".raw"};
   return {path};
 }
 
@@ -56,10 +53,10 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
   std::unique_ptr<GridWriter> w(new GridWriter);
   w->path_ = path;
   w->info_ = info;
-  if (!endsWith(path, ".nhdr") && !endsWith(path, ".npy"))
+  if (!format::hasExtension(path, ".nhdr") && !format::hasExtension(path, ".npy"))
     return makeError(ErrorCode::kInvalidArgument, path,
                      ": output name must end in .nhdr (raw + NRRD header) or .npy");
-  w->nrrd_ = endsWith(path, ".nhdr");
+  w->nrrd_ = format::hasExtension(path, ".nhdr");
   const std::vector<std::string> files = filesOf(path);
   w->dataPath_ = files.back();  // the .raw beside an .nhdr, or the .npy itself
   for (const std::string& file : files) VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));

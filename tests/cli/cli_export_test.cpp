@@ -128,6 +128,27 @@ TEST(CliExport, RawPlusDetachedHeaderHoldsTheSameVolume) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.nhdr")));
 }
 
+// Output names in capitals pick the same formats: FOOT.NRRD is a NRRD file to every peer tool.
+TEST(CliExport, ExtensionsIgnoreCase) {
+  TempDir dir;
+  convertSample(dir);
+  auto r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("lower.nrrd")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("UPPER.NRRD")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(readBytes(dir.file("UPPER.NRRD")), readBytes(dir.file("lower.nrrd")));
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("KEPT.Nhdr")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("(header + .raw)"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("KEPT.raw")));
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("V.VDB")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("grids 'values' and 'gradient'"), std::string::npos) << r.out;
+  r = runVoxlink({"export", dir.file("v.vxl"), "-o", dir.file("v.NRRDX")});
+  EXPECT_EQ(r.status, 2) << r.err;  // a usage error
+  EXPECT_NE(r.err.find("unknown export format"), std::string::npos) << r.err;
+}
+
 TEST(CliExport, BadFillPathOrFileLeavesNothing) {
   TempDir dir;
   writeRaw(dir.file("v.raw"));

@@ -40,6 +40,23 @@ TEST(GridWriter, WritesRawDataWithADetachedNrrdHeader) {
   EXPECT_EQ(std::memcmp(all->data(), v.data(), 24 * sizeof(double)), 0);
 }
 
+// Endings in capitals pick the same formats (FIELD.NPY is a NumPy file to numpy.load).
+TEST(GridWriter, EndingsIgnoreCase) {
+  testing::TempDir dir;
+  const GridFileInfo info{{2, 2, 1}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF32};
+  const double slice[4] = {1, 2, 3, 4};
+  for (const char* name : {"K.NHDR", "F.Npy"}) {
+    auto w = GridWriter::create(dir.file(name), info);
+    ASSERT_TRUE(w) << w.message();
+    ASSERT_TRUE((*w)->append(1, slice));
+    ASSERT_TRUE((*w)->finish());
+  }
+  EXPECT_EQ(testing::listDir(dir.path()), (std::vector<std::string>{"F.Npy", "K.NHDR", "K.raw"}));
+  auto npy = convert::openVolume(dir.file("F.Npy"));
+  ASSERT_TRUE(npy) << npy.message();
+  EXPECT_EQ((*npy)->info().dims, (std::array<uint32_t, 3>{2, 2, 1}));
+}
+
 TEST(GridWriter, RefusesUnknownEndingsAndIncompleteGrids) {
   testing::TempDir dir;
   auto bad = GridWriter::create(dir.file("k.tif"), {});
