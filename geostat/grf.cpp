@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "format/parallel_for.h"
+#include "format/process_memory.h"
 
 namespace voxlink::kriging {
 namespace {
@@ -90,7 +91,7 @@ std::string GrfReport::text() const {
       << ", truncated kernel energy " << kernel.truncatedEnergy << "\n"
       << "blocks: " << blocks << " of " << blockSize[0] << "x" << blockSize[1] << "x"
       << blockSize[2] << " voxels, FFT " << fftSize[0] << "x" << fftSize[1] << "x" << fftSize[2]
-      << "\n"
+      << ", " << threads << (threads == 1 ? " thread" : " threads") << "\n"
       << "buffers: " << double(peakBufferBytes) / (1 << 20) << " MiB peak besides the sink\n"
       << "time: " << kernelSeconds << " s kernel, " << seconds << " s total\n";
   return out.str();
@@ -133,10 +134,26 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
                                    (spec.dims[1] + B[1] - 1) / B[1],
                                    (spec.dims[2] + B[2] - 1) / B[2]};
   report.blocks = uint64_t{nb[0]} * nb[1] * nb[2];
-  const unsigned threads =
+  unsigned threads =
       std::max(1u, std::min<unsigned>(format::threadCount(spec.threads), nb[0] * nb[1]));
   const uint64_t slabBytes = uint64_t{spec.dims[0]} * spec.dims[1] * B[2] * sizeof(double);
   const uint64_t blockBytes = complexCount * sizeof(fftw_complex);
+  // The FFT block must hold the kernel's reach on both sides, so a long range needs large
+  // blocks. Fewer threads than asked for when their blocks do not all fit; none fitting is
+  // refused now rather than by the OOM killer once the pages are touched.
+  const double kernelBytes = double(kernel.octant.size()) * sizeof(double);
+  const double fixedBytes = double(slabBytes) + double(complexCount) * sizeof(double) + kernelBytes;
+  const double memory =
+      double(spec.memoryBytes ? spec.memoryBytes : format::memoryForThisProcess());
+  if (fixedBytes + double(blockBytes) > memory)
+    return makeError(ErrorCode::kTooLarge, "random field: range ", spec.model.range,
+                     " voxels needs FFT blocks of ", P[0], " x ", P[1], " x ", P[2], " (",
+                     std::round(double(blockBytes) / 1e8) / 10, " GB each, ",
+                     std::round((fixedBytes + double(blockBytes)) / 1e8) / 10,
+                     " GB with one thread); this process may use ", std::round(memory / 1e8) / 10,
+                     " GB (a shorter range, or a coarser grid with the range in its voxels)");
+  while (threads > 1 && fixedBytes + double(threads) * double(blockBytes) > memory) --threads;
+  report.threads = threads;
   report.peakBufferBytes = std::max(
       kernel.embeddingBytes, threads * blockBytes + slabBytes + complexCount * sizeof(double));
 

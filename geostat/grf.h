@@ -30,6 +30,7 @@ struct GrfSpec {
   uint32_t fftSize = 0;  // 0: chosen per axis for speed within maxBlockBytes
   uint64_t maxBlockBytes = uint64_t{512} << 20;  // in-place FFT buffer of one thread
   unsigned threads = 0;                          // 0: hardware concurrency
+  uint64_t memoryBytes = 0;  // what the buffers may take; 0: format::memoryForThisProcess()
 };
 
 struct GrfReport {
@@ -37,6 +38,7 @@ struct GrfReport {
   std::array<uint32_t, 3> fftSize{1, 1, 1};
   std::array<uint32_t, 3> blockSize{1, 1, 1};  // output voxels per block
   uint64_t blocks = 0;
+  unsigned threads = 0;  // fewer than asked for when their FFT blocks do not all fit in memory
   uint64_t peakBufferBytes = 0;  // kernel embedding or FFT buffers + slab, whichever is larger
   double kernelSeconds = 0, seconds = 0;
   std::string text() const;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <new>
 
 namespace voxlink::kriging {
 namespace {
@@ -114,7 +115,13 @@ Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> 
   const double rescale = kept > 0 ? std::sqrt(sill / kept) : 0;
   const uint32_t s = radius + 1;
   const uint32_t sx = active[0] ? s : 1, sy = active[1] ? s : 1, sz = active[2] ? s : 1;
-  k.octant.resize(uint64_t{sx} * sy * sz);
+  try {
+    k.octant.resize(uint64_t{sx} * sy * sz);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, "random field: the kernel of radius ", radius,
+                     " voxels (", uint64_t{sx} * sy * sz * sizeof(double),
+                     " bytes) does not fit in memory beside its embedding; use a shorter range");
+  }
   for (uint32_t z = 0; z < sz; ++z)
     for (uint32_t y = 0; y < sy; ++y)
       for (uint32_t x = 0; x < sx; ++x)

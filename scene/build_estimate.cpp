@@ -1,8 +1,5 @@
 #include "scene/build_estimate.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -36,15 +33,6 @@ SceneBuildEstimate estimateSceneBuild(const PlacedScene& placed,
   e.peakBytes = e.surfaceVoxels * kSurfaceVoxelBuildBytes + e.sphereRefs * kSphereRefBuildBytes +
                 e.volumeVoxels * kVolumeVoxelBuildBytes;
   return e;
-}
-
-uint64_t memoryForThisProcess() {
-  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGESIZE);
-  uint64_t bytes = pages > 0 && pageSize > 0 ? uint64_t(pages) * uint64_t(pageSize) : UINT64_MAX;
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-    bytes = std::min<uint64_t>(bytes, limit.rlim_cur);
-  return bytes;
 }
 
 Status checkSceneBuildFits(const SceneBuildEstimate& estimate, uint64_t memoryBytes,

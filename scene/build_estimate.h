@@ -8,6 +8,7 @@
 
 #include "format/error.h"
 #include "format/file_writer.h"
+#include "format/process_memory.h"
 #include "scene/scene_geometry.h"
 
 namespace voxlink::scene {
@@ -30,9 +31,6 @@ inline constexpr double kVolumeVoxelBuildBytes = 96;    // measured 106
 
 SceneBuildEstimate estimateSceneBuild(const PlacedScene& placed,
                                       const format::VolumeDescription& grid, uint64_t volumeVoxels);
-
-// What this process may allocate: the machine's physical memory, or less under `ulimit -v`.
-uint64_t memoryForThisProcess();
 
 // kTooLarge, naming the scene file and the resolution, when the estimate exceeds `memoryBytes`.
 Status checkSceneBuildFits(const SceneBuildEstimate& estimate, uint64_t memoryBytes,

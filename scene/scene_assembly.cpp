@@ -97,7 +97,7 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   report.spacing = d.spacing;
   const SceneBuildEstimate estimate =
       estimateSceneBuild(placed, d, volume ? volume->voxelCount() : 0);
-  VOXLINK_RETURN_IF_ERROR(checkSceneBuildFits(estimate, memoryForThisProcess(), scene.path,
+  VOXLINK_RETURN_IF_ERROR(checkSceneBuildFits(estimate, format::memoryForThisProcess(), scene.path,
                                               scene.grid.resolution, volume.has_value()));
 
   const auto voxelizeStart = Clock::now();

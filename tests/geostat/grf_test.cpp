@@ -139,6 +139,34 @@ TEST(RandomField, DoesNotDependOnBlockSizeOrThreadsAndDependsOnTheSeed) {
   EXPECT_GT(diff / big.values.size(), 0.5);
 }
 
+// Blocks that do not all fit in memory run on fewer threads (the same field); a block that does
+// not fit alone is refused before any is allocated, naming the range.
+TEST(RandomField, FitsItsThreadsToTheMemoryAndRefusesWhatCannotFit) {
+  GrfSpec spec;
+  spec.dims = {45, 38, 29};
+  spec.model = {VariogramType::kExponential, 0, 1, 6, 0.5};
+  spec.seed = 7;
+  spec.threads = 2;
+  spec.fftSize = 32;
+  const Collected two = generate(spec);
+  ASSERT_EQ(two.report.threads, 2u);
+  // 32^3 in place: 17 x 32 x 32 complex values per block, 278,528 bytes.
+  const uint64_t block = uint64_t{17} * 32 * 32 * 16;
+  spec.memoryBytes = two.report.peakBufferBytes - block + block / 2 +
+                     uint64_t(two.report.kernel.side()) * two.report.kernel.side() *
+                         two.report.kernel.side() * sizeof(double);
+  const Collected one = generate(spec);
+  EXPECT_EQ(one.report.threads, 1u);
+  EXPECT_EQ(one.values, two.values);
+  spec.memoryBytes = block;
+  auto refused = generateGrf(spec, [](uint32_t, uint32_t, const double*) { return Status::ok(); });
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.code(), ErrorCode::kTooLarge);
+  EXPECT_NE(refused.message().find("random field: range 6 voxels needs FFT blocks of 32 x 32 x 32"),
+            std::string::npos)
+      << refused.message();
+}
+
 TEST(RandomField, ReportsKernelDiagnosticsAndRefusesBadSpecs) {
   GrfSpec spec;
   spec.dims = {32, 32, 32};

@@ -77,7 +77,7 @@ TEST(SceneBuildEstimate, RefusesWhatExceedsTheMemoryInOneLine) {
 }
 
 TEST(SceneBuildEstimate, MemoryForThisProcessIsPositive) {
-  EXPECT_GT(memoryForThisProcess(), uint64_t{64} << 20);
+  EXPECT_GT(format::memoryForThisProcess(), uint64_t{64} << 20);
 }
 
 }  // namespace
