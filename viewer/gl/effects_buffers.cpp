@@ -14,15 +14,25 @@ GlStorageBuffer dynamicBuffer(uint64_t bytes) {
 
 }  // namespace
 
-void EffectsBuffers::resize(uint32_t width, uint32_t height) {
-  if (width == width_ && height == height_ && counters_.bytes) return;
+Status EffectsBuffers::resize(uint32_t width, uint32_t height) {
+  if (width == width_ && height == height_ && counters_.bytes) return Status::ok();
+  while (glGetError() != GL_NO_ERROR) {
+  }
   const uint64_t pixels = uint64_t(width) * height;
   capacity_ = uint32_t(std::min<uint64_t>(2 * pixels + 64, kMaxRayBufferBytes / sizeof(GpuRay)));
   for (GlStorageBuffer& r : rays_) r = dynamicBuffer(uint64_t(capacity_) * sizeof(GpuRay));
   accum_ = dynamicBuffer(pixels * 4 * sizeof(uint32_t));
   counters_ = dynamicBuffer(2 * sizeof(uint32_t));
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+    counters_ = GlStorageBuffer{};
+    width_ = height_ = 0;
+    return makeError(ErrorCode::kTooLarge, "render: GL cannot allocate the effects buffers for a ",
+                     width, "x", height, " image (GL error 0x", std::hex, e,
+                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); use a smaller --size");
+  }
   width_ = width;
   height_ = height;
+  return Status::ok();
 }
 
 void EffectsBuffers::clearCounters() const {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "format/error.h"
 #include "viewer/gl/gl_objects.h"
 
 namespace voxlink::viewer {
@@ -33,7 +34,8 @@ class EffectsBuffers {
  public:
   // Sizes the buffers for an image (keeps them when the size is unchanged). Each ray buffer holds
   // two rays per pixel, within kMaxRayBufferBytes.
-  void resize(uint32_t width, uint32_t height);
+  // Fails (kTooLarge) when GL cannot allocate the buffers for that many pixels.
+  Status resize(uint32_t width, uint32_t height);
   uint32_t rayCapacity() const { return capacity_; }
   const GlStorageBuffer& rays(int i) const { return rays_[i]; }
   const GlStorageBuffer& accum() const { return accum_; }

@@ -2,14 +2,25 @@
 
 namespace voxlink::viewer {
 
-void RenderTarget::resize(uint32_t width, uint32_t height) {
-  if (texture_ && width == width_ && height == height_) return;
+Status RenderTarget::resize(uint32_t width, uint32_t height) {
+  if (texture_ && width == width_ && height == height_) return Status::ok();
+  while (glGetError() != GL_NO_ERROR) {
+  }
   texture_ = createTexture(GL_TEXTURE_2D);
   glTextureStorage2D(texture_.id(), 1, GL_RGBA32F, GLsizei(width), GLsizei(height));
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+    texture_ = GlTexture();
+    width_ = height_ = 0;
+    return makeError(ErrorCode::kTooLarge, "render: GL cannot allocate the ", width, "x", height,
+                     " image (RGBA32F, ", uint64_t{width} * height * 16 / 1000000,
+                     " MB; GL error 0x", std::hex, e,
+                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); use a smaller --size");
+  }
   glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   width_ = width;
   height_ = height;
+  return Status::ok();
 }
 
 Image RenderTarget::read() const {

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 
+#include "format/error.h"
 #include "viewer/core/image.h"
 #include "viewer/gl/gl_objects.h"
 
@@ -10,8 +11,9 @@ namespace voxlink::viewer {
 
 class RenderTarget {
  public:
-  // Reallocates when the size changes.
-  void resize(uint32_t width, uint32_t height);
+  // Reallocates when the size changes. Fails (kTooLarge, naming the size and the bytes) when GL
+  // cannot allocate the texture: a compute pass into it would run for minutes, then fail.
+  Status resize(uint32_t width, uint32_t height);
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   GLuint texture() const { return texture_.id(); }

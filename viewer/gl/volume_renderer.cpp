@@ -154,7 +154,7 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
   if (settings.effects.any()) return renderEffects(camera, settings, target);
   VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* p, program(settings));
-  target.resize(settings.width, settings.height);
+  VOXLINK_RETURN_IF_ERROR(target.resize(settings.width, settings.height));
   p->use();
   setFrameUniforms(*p, camera, settings, settings.width, settings.height);
   bindTables(*p);
@@ -163,8 +163,8 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   if (const GLenum e = glGetError(); e != GL_NO_ERROR)
-    return makeError(ErrorCode::kUnsupported, name(), ": GL error 0x", std::hex, e,
-                     " while rendering");
+    return makeError(ErrorCode::kUnsupported, "render (", name(), " renderer): GL error 0x",
+                     std::hex, e, " while rendering");
   return Status::ok();
 }
 

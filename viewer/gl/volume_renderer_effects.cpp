@@ -56,8 +56,8 @@ Status VolumeRenderer::renderEffects(const Camera& camera, const RenderSettings&
   if (uint64_t(w) * h > kMaxEffectsPixels)
     return makeError(ErrorCode::kInvalidArgument, name(), ": the ray-traced mode renders at most ",
                      kMaxEffectsPixels, " pixels (8192x8192); ", w, "x", h, " is larger");
-  target.resize(w, h);
-  effects_.resize(w, h);
+  VOXLINK_RETURN_IF_ERROR(target.resize(w, h));
+  VOXLINK_RETURN_IF_ERROR(effects_.resize(w, h));
   effectsStats_ = {};
   const GLbitfield barrier =
       GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT;
@@ -114,8 +114,8 @@ Status VolumeRenderer::renderEffects(const Camera& camera, const RenderSettings&
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   if (const GLenum e = glGetError(); e != GL_NO_ERROR)
-    return makeError(ErrorCode::kUnsupported, name(), ": GL error 0x", std::hex, e,
-                     " while ray tracing effects");
+    return makeError(ErrorCode::kUnsupported, "render (", name(), " renderer): GL error 0x",
+                     std::hex, e, " while ray tracing effects");
   return Status::ok();
 }
 
