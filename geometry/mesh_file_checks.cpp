@@ -126,14 +126,18 @@ Status checkPlyFile(const std::string& path) {
       elements.back().itemBytes += ascii ? 2 : bytes;
     }
   }
-  uint64_t needed = 0;
+  // ASCII: the last value needs no separator after it.
+  uint64_t left = dataBytes + (ascii ? 1 : 0);
+  bool earlier = false;  // elements before this one took bytes
   for (const Element& e : elements) {
     const uint64_t itemBytes = std::max<uint64_t>(e.itemBytes, 1);
-    if (e.count > (dataBytes - std::min(dataBytes, needed)) / itemBytes)
+    if (e.count > left / itemBytes)
       return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, " ", e.count,
                        ": needs at least ", e.count, " x ", itemBytes, " bytes, but the file has ",
-                       dataBytes, " after its header");
-    needed += e.count * itemBytes;
+                       std::min(left, dataBytes), " after its header",
+                       earlier ? " and the elements before" : "");
+    left -= e.count * itemBytes;
+    earlier = earlier || e.count > 0;
   }
   return Status::ok();
 }
@@ -157,9 +161,9 @@ Status checkOffFile(const std::string& path) {
       return makeError(ErrorCode::kCorrupt, path, ": line ", number,
                        ": expected the vertex and face counts");
   }
-  // A vertex line holds at least "0 0 0\n", a face line "3 0 0 0\n".
+  // A vertex line holds at least "0 0 0\n", a face line "1 0\n" (assimp takes 1 to 9 corners).
   const uint64_t bytes = fileBytes(path);
-  if (vertices > bytes / 6 || faces > bytes / 8 || vertices * 6 + faces * 8 > bytes)
+  if (vertices > bytes / 6 || faces > bytes / 4 || vertices * 6 + faces * 4 > bytes)
     return makeError(ErrorCode::kCorrupt, path, ": header claims ", vertices, " vertices and ",
                      faces, " faces; a file of ", bytes, " bytes holds fewer");
   for (uint64_t v = 0; v < vertices; ++v)

@@ -141,10 +141,15 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
   // The FFT block must hold the kernel's reach on both sides, so a long range needs large
   // blocks. Fewer threads than asked for when their blocks do not all fit; none fitting is
   // refused now rather than by the OOM killer once the pages are touched.
-  const double kernelBytes = double(kernel.octant.size()) * sizeof(double);
-  const double fixedBytes = double(slabBytes) + double(complexCount) * sizeof(double) + kernelBytes;
   const double memory =
       double(spec.memoryBytes ? spec.memoryBytes : format::memoryForThisProcess());
+  if (double(slabBytes) > memory)
+    return makeError(ErrorCode::kTooLarge, "random field: an output slab of ", spec.dims[0], " x ",
+                     spec.dims[1], " x ", B[2], " voxels (",
+                     std::round(double(slabBytes) / 1e8) / 10, " GB) does not fit in the ",
+                     std::round(memory / 1e8) / 10, " GB this process may use");
+  const double kernelBytes = double(kernel.octant.size()) * sizeof(double);
+  const double fixedBytes = double(slabBytes) + double(complexCount) * sizeof(double) + kernelBytes;
   if (fixedBytes + double(blockBytes) > memory)
     return makeError(ErrorCode::kTooLarge, "random field: range ", spec.model.range,
                      " voxels needs FFT blocks of ", P[0], " x ", P[1], " x ", P[2], " (",

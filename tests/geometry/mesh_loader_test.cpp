@@ -268,6 +268,27 @@ TEST(MeshLoaderErrors, CountsBeyondTheFileNameTheElement) {
       << mesh.message();
 }
 
+// The count check's lower bound holds for the tightest valid files: one-character ASCII values
+// with no line end after the last one (17 bytes for three vertices of three values).
+TEST(MeshLoader, TightestAsciiPlyPassesTheCountCheck) {
+  TempDir dir;
+  writeText(dir.file("tight.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0");
+  auto mesh = loadMesh(dir.file("tight.ply"));
+  ASSERT_FALSE(mesh);  // points only
+  EXPECT_EQ(mesh.message().find("needs at least"), std::string::npos) << mesh.message();
+  writeText(dir.file("short.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n1 0 0\n0 1");
+  mesh = loadMesh(dir.file("short.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("short.ply: element vertex 3: needs at least 3 x 6 bytes, but "
+                                "the file has 15 after its header"),
+            std::string::npos)
+      << mesh.message();
+}
+
 // assimp clamps an OFF face index past the vertices to the last vertex and loads a wrong mesh.
 TEST(MeshLoaderErrors, OffIndexPastTheVerticesIsRefused) {
   TempDir dir;

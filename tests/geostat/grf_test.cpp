@@ -152,9 +152,11 @@ TEST(RandomField, FitsItsThreadsToTheMemoryAndRefusesWhatCannotFit) {
   ASSERT_EQ(two.report.threads, 2u);
   // 32^3 in place: 17 x 32 x 32 complex values per block, 278,528 bytes.
   const uint64_t block = uint64_t{17} * 32 * 32 * 16;
-  spec.memoryBytes = two.report.peakBufferBytes - block + block / 2 +
-                     uint64_t(two.report.kernel.side()) * two.report.kernel.side() *
-                         two.report.kernel.side() * sizeof(double);
+  // Room for the output slab, the kernel's spectrum, the kernel and one and a half blocks.
+  const uint64_t slab = uint64_t{45} * 38 * two.report.blockSize[2] * sizeof(double);
+  const uint64_t spectrum = uint64_t{17} * 32 * 32 * sizeof(double);
+  const uint64_t side = two.report.kernel.side();
+  spec.memoryBytes = slab + spectrum + side * side * side * sizeof(double) + block + block / 2;
   const Collected one = generate(spec);
   EXPECT_EQ(one.report.threads, 1u);
   EXPECT_EQ(one.values, two.values);

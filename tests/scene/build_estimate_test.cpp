@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -53,6 +54,24 @@ TEST(SceneBuildEstimate, MatchesWhatTheVoxelizersStore) {
                                            estimate.sphereRefs * kSphereRefBuildBytes +
                                            1234.0 * kVolumeVoxelBuildBytes);
   std::filesystem::remove_all(dir);
+}
+
+// The voxelizers clip to the grid: on a volume's grid, what lies outside it stores nothing.
+TEST(SceneBuildEstimate, LeavesOutWhatLiesOutsideTheGrid) {
+  PlacedScene placed;
+  placed.mesh.positions = {0, 0, 5,  10, 0, 5,  0, 10, 5,    // inside: 50 voxels of area
+                           0, 0, 50, 10, 0, 50, 0, 10, 50};  // beyond z
+  placed.mesh.triangles = {0, 1, 2, 3, 4, 5};
+  placed.mesh.triangleMaterials = {0, 0};
+  placed.spheres.push_back(geometry::Sphere{{5, 5, 5}, 2, 0});
+  placed.spheres.push_back(geometry::Sphere{{5, 5, -9}, 2, 0});
+  format::VolumeDescription d;
+  d.dims = {16, 16, 16};
+  d.spacing = {1, 1, 1};
+  d.origin = {0, 0, 0};
+  const SceneBuildEstimate e = estimateSceneBuild(placed, d, 0);
+  EXPECT_DOUBLE_EQ(e.surfaceVoxels, 50.0);
+  EXPECT_DOUBLE_EQ(e.sphereRefs, 1.5 * 4.0 * M_PI * 4.0);
 }
 
 TEST(SceneBuildEstimate, RefusesWhatExceedsTheMemoryInOneLine) {

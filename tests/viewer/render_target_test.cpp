@@ -24,7 +24,7 @@ TEST(RenderTarget, ImageGlCannotAllocateFailsInOneLine) {
   EXPECT_EQ(refused.code(), ErrorCode::kTooLarge);
   EXPECT_EQ(refused.message(),
             "render: GL cannot allocate the 16384x16384 image (RGBA32F, 4294 MB; GL error 0x505, "
-            "out of memory); use a smaller --size");
+            "out of memory); render a smaller image");
   EXPECT_EQ(target.width(), 0u);
   ASSERT_TRUE(target.resize(64, 32));
   EXPECT_EQ(target.read().width, 64u);

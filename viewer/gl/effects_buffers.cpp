@@ -16,8 +16,8 @@ GlStorageBuffer dynamicBuffer(uint64_t bytes) {
 
 Status EffectsBuffers::resize(uint32_t width, uint32_t height) {
   if (width == width_ && height == height_ && counters_.bytes) return Status::ok();
-  while (glGetError() != GL_NO_ERROR) {
-  }
+  for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {
+  }  // earlier errors, so that the check below sees this allocation's
   const uint64_t pixels = uint64_t(width) * height;
   capacity_ = uint32_t(std::min<uint64_t>(2 * pixels + 64, kMaxRayBufferBytes / sizeof(GpuRay)));
   for (GlStorageBuffer& r : rays_) r = dynamicBuffer(uint64_t(capacity_) * sizeof(GpuRay));
@@ -28,7 +28,7 @@ Status EffectsBuffers::resize(uint32_t width, uint32_t height) {
     width_ = height_ = 0;
     return makeError(ErrorCode::kTooLarge, "render: GL cannot allocate the effects buffers for a ",
                      width, "x", height, " image (GL error 0x", std::hex, e,
-                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); use a smaller --size");
+                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); render a smaller image");
   }
   width_ = width;
   height_ = height;

@@ -4,8 +4,8 @@ namespace voxlink::viewer {
 
 Status RenderTarget::resize(uint32_t width, uint32_t height) {
   if (texture_ && width == width_ && height == height_) return Status::ok();
-  while (glGetError() != GL_NO_ERROR) {
-  }
+  for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {
+  }  // earlier errors, so that the check below sees this allocation's
   texture_ = createTexture(GL_TEXTURE_2D);
   glTextureStorage2D(texture_.id(), 1, GL_RGBA32F, GLsizei(width), GLsizei(height));
   if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
@@ -14,7 +14,7 @@ Status RenderTarget::resize(uint32_t width, uint32_t height) {
     return makeError(ErrorCode::kTooLarge, "render: GL cannot allocate the ", width, "x", height,
                      " image (RGBA32F, ", uint64_t{width} * height * 16 / 1000000,
                      " MB; GL error 0x", std::hex, e,
-                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); use a smaller --size");
+                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); render a smaller image");
   }
   glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
