@@ -91,7 +91,8 @@ Status checkPlyFile(const std::string& path) {
   size_t dataStart = end;  // after end_header's line end
   if (dataStart < head.size() && head[dataStart] == '\r') ++dataStart;
   if (dataStart < head.size() && head[dataStart] == '\n') ++dataStart;
-  const uint64_t dataBytes = fileBytes(path) - std::min<uint64_t>(fileBytes(path), dataStart);
+  const uint64_t fileSize = fileBytes(path);
+  const uint64_t dataBytes = fileSize - std::min<uint64_t>(fileSize, dataStart);
   bool ascii = false;
   struct Element {
     std::string name;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "viewer/gl/gl_allocation.h"
+
 namespace voxlink::viewer {
 namespace {
 
@@ -16,19 +18,17 @@ GlStorageBuffer dynamicBuffer(uint64_t bytes) {
 
 Status EffectsBuffers::resize(uint32_t width, uint32_t height) {
   if (width == width_ && height == height_ && counters_.bytes) return Status::ok();
-  for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {
-  }  // earlier errors, so that the check below sees this allocation's
+  discardPendingGlErrors();
   const uint64_t pixels = uint64_t(width) * height;
   capacity_ = uint32_t(std::min<uint64_t>(2 * pixels + 64, kMaxRayBufferBytes / sizeof(GpuRay)));
   for (GlStorageBuffer& r : rays_) r = dynamicBuffer(uint64_t(capacity_) * sizeof(GpuRay));
   accum_ = dynamicBuffer(pixels * 4 * sizeof(uint32_t));
   counters_ = dynamicBuffer(2 * sizeof(uint32_t));
-  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+  if (Status s = checkGlAllocation(cat("the effects buffers for a ", width, "x", height, " image"));
+      !s) {
     counters_ = GlStorageBuffer{};
     width_ = height_ = 0;
-    return makeError(ErrorCode::kTooLarge, "render: GL cannot allocate the effects buffers for a ",
-                     width, "x", height, " image (GL error 0x", std::hex, e,
-                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); render a smaller image");
+    return s;
   }
   width_ = width;
   height_ = height;

@@ -1,20 +1,21 @@
 #include "viewer/gl/render_target.h"
 
+#include "viewer/gl/gl_allocation.h"
+
 namespace voxlink::viewer {
 
 Status RenderTarget::resize(uint32_t width, uint32_t height) {
   if (texture_ && width == width_ && height == height_) return Status::ok();
-  for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {
-  }  // earlier errors, so that the check below sees this allocation's
+  discardPendingGlErrors();
   texture_ = createTexture(GL_TEXTURE_2D);
   glTextureStorage2D(texture_.id(), 1, GL_RGBA32F, GLsizei(width), GLsizei(height));
-  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+  if (Status s =
+          checkGlAllocation(cat("the ", width, "x", height, " image"),
+                            cat("RGBA32F, ", uint64_t{width} * height * 16 / 1000000, " MB; "));
+      !s) {
     texture_ = GlTexture();
     width_ = height_ = 0;
-    return makeError(ErrorCode::kTooLarge, "render: GL cannot allocate the ", width, "x", height,
-                     " image (RGBA32F, ", uint64_t{width} * height * 16 / 1000000,
-                     " MB; GL error 0x", std::hex, e,
-                     e == GL_OUT_OF_MEMORY ? ", out of memory" : "", "); render a smaller image");
+    return s;
   }
   glTextureParameteri(texture_.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
