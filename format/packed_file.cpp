@@ -356,10 +356,10 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     VOXLINK_RETURN_IF_ERROR(validateStructure(file));
     const SectionEntry& e = residual->original;
     const auto codec = static_cast<SectionCodec>(residual->codec);
-    // The file owns these bytes (the buffer above); GRAD is filled in here, before anyone
-    // else sees the file. Its bounds are the ones checked above (the table, which cannot have
-    // been written over, names the same).
-    auto grad = std::span(const_cast<uint8_t*>(file.bytes().data()) + e.offset, e.bytes);
+    // GRAD is filled in here, in the buffer the file was parsed from, before anyone else sees
+    // the file. Its bounds are the ones checked above (the table, which cannot have been
+    // written over, names the same).
+    const std::span<uint8_t> grad = bytes.subspan(e.offset, e.bytes);
     VOXLINK_RETURN_IF_ERROR(decodeSection(residualPayload, e.elementBytes, codec, grad,
                                           name + ": section GRAD", threads));
     const uint64_t count = sampleSlots(file.header());

@@ -1,8 +1,9 @@
 // The ray-traced scene mode (paper, section 5.2.2): one pass of rays. The primary pass
 // (VXL_EFFECTS_PRIMARY 1) traces one ray per pixel from the camera and writes the pixel's
 // accumulator; each later pass traces the rays the pass before spawned into the ray buffer
-// (atomic counter), adds what they see to their pixels and spawns the next generation. The host
-// starts passes until no ray is left or the bounce limit is reached (viewer/gl/effects_pass.cpp).
+// (atomic counter), adds what they see to their pixels and spawns the next generation. The
+// host starts passes until no ray is left or the bounce limit is reached
+// (viewer/gl/volume_renderer_effects.cpp).
 #version 450
 #if VXL_EFFECTS_PRIMARY
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -29,7 +30,7 @@ layout(local_size_x = 64) in;
 // Per pixel: r, g, b and the share that reached the background, in fixed point (kAccumScale
 // per unit) so that rays of one pixel add up in any order to the same sum.
 layout(std430, binding = VXL_ACCUM_BINDING) buffer Accum { uint accum[]; };
-const float kAccumScale = 1048576.0;  // 2^20; viewer/gl/effects_pass.h
+const float kAccumScale = 1048576.0;  // 2^20; viewer/gl/effects_buffers.h
 const float kAccumMax = 4000.0;       // per add, so that no sum of a pixel wraps
 
 uint fixedPoint(float v) { return uint(clamp(v, 0.0, kAccumMax) * kAccumScale + 0.5); }

@@ -63,8 +63,6 @@ class VolumeRenderer {
     uint64_t droppedRays = 0;
   };
   const EffectsStats& lastEffectsStats() const { return effectsStats_; }
-  // GPU memory of the ray-traced mode's buffers (ray buffers, accumulator) for the last size.
-  uint64_t effectsBytes() const { return effects_.bytes(); }
 
  protected:
   explicit VolumeRenderer(const VolumeGeometry& geometry);
