@@ -24,48 +24,15 @@ double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-Result<GLuint> compileStage(GLenum stage, const std::string& file) {
-  VOXLINK_ASSIGN_OR_RETURN(PreprocessedShader source, preprocessShader(file, {}, {}));
-  const GLuint shader = glCreateShader(stage);
-  const char* text = source.text.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0, length = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
-    return makeError(ErrorCode::kInvalidArgument, file, ": GLSL compile error:\n",
-                     mapShaderLog(log.c_str(), source.files));
-  }
-  return shader;
-}
-
-Result<GLuint> linkProgram() {
-  VOXLINK_ASSIGN_OR_RETURN(GLuint vertex, compileStage(GL_VERTEX_SHADER, "gl_voxelize.vert.glsl"));
-  auto fragment = compileStage(GL_FRAGMENT_SHADER, "gl_voxelize.frag.glsl");
+Result<GLuint> linkVoxelizerProgram() {
+  VOXLINK_ASSIGN_OR_RETURN(GLuint vertex,
+                           compileShaderStage(GL_VERTEX_SHADER, "gl_voxelize.vert.glsl"));
+  auto fragment = compileShaderStage(GL_FRAGMENT_SHADER, "gl_voxelize.frag.glsl");
   if (!fragment) {
     glDeleteShader(vertex);
     return fragment.error();
   }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vertex);
-  glAttachShader(program, *fragment);
-  glLinkProgram(program);
-  glDeleteShader(vertex);
-  glDeleteShader(*fragment);
-  GLint ok = 0, length = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program, length, nullptr, log.data());
-    glDeleteProgram(program);
-    return makeError(ErrorCode::kInvalidArgument, "gl_voxelize: GLSL link error:\n", log.c_str());
-  }
-  return program;
+  return linkProgram({vertex, *fragment}, "gl_voxelize");
 }
 
 GLint getInteger(GLenum name) {
@@ -77,7 +44,7 @@ GLint getInteger(GLenum name) {
 }  // namespace
 
 Result<GlSurfaceVoxelizer> GlSurfaceVoxelizer::create() {
-  VOXLINK_ASSIGN_OR_RETURN(GLuint program, linkProgram());
+  VOXLINK_ASSIGN_OR_RETURN(GLuint program, linkVoxelizerProgram());
   GlSurfaceVoxelizer v;
   v.program_ = program;
   glCreateVertexArrays(1, &v.vertexArray_);  // empty: the vertex stage reads storage buffers

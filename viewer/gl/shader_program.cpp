@@ -1,5 +1,6 @@
 #include "viewer/gl/shader_program.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -113,38 +114,69 @@ std::string mapShaderLog(const std::string& log, const std::vector<std::string>&
   return out;
 }
 
+namespace {
+
+// The info log of a shader or program, which GL hands out by length.
+template <typename GetIv, typename GetLog>
+std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
+  GLint length = 0;
+  getIv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  getLog(object, length, nullptr, log.data());
+  return log.c_str();  // up to the terminating zero
+}
+
+Result<GLuint> compileText(GLenum stage, const std::string& file,
+                           const PreprocessedShader& source) {
+  const GLuint shader = glCreateShader(stage);
+  const char* text = source.text.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(shader, glGetShaderiv, glGetShaderInfoLog);
+    glDeleteShader(shader);
+    return makeError(ErrorCode::kInvalidArgument, file, ": GLSL compile error:\n",
+                     mapShaderLog(log, source.files));
+  }
+  return shader;
+}
+
+}  // namespace
+
+Result<GLuint> compileShaderStage(GLenum stage, const std::string& file,
+                                  const std::vector<ShaderDefine>& defines,
+                                  const std::map<std::string, std::string>& generated) {
+  VOXLINK_ASSIGN_OR_RETURN(PreprocessedShader source, preprocessShader(file, defines, generated));
+  return compileText(stage, file, source);
+}
+
+Result<GLuint> linkProgram(const std::vector<GLuint>& stages, const std::string& name,
+                           const std::vector<std::string>& files) {
+  const GLuint program = glCreateProgram();
+  for (GLuint stage : stages) glAttachShader(program, stage);
+  glLinkProgram(program);
+  for (GLuint stage : stages) glDeleteShader(stage);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    const std::string log = infoLog(program, glGetProgramiv, glGetProgramInfoLog);
+    glDeleteProgram(program);
+    return makeError(ErrorCode::kInvalidArgument, name, ": GLSL link error:\n",
+                     mapShaderLog(log, files));
+  }
+  return program;
+}
+
 Result<ComputeProgram> ComputeProgram::build(const std::string& mainFile,
                                              const std::vector<ShaderDefine>& defines,
                                              const std::map<std::string, std::string>& generated) {
   VOXLINK_ASSIGN_OR_RETURN(PreprocessedShader source,
                            preprocessShader(mainFile, defines, generated));
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.text.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0, length = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
-    return makeError(ErrorCode::kInvalidArgument, mainFile, ": GLSL compile error:\n",
-                     mapShaderLog(log.c_str(), source.files));
-  }
+  VOXLINK_ASSIGN_OR_RETURN(GLuint shader, compileText(GL_COMPUTE_SHADER, mainFile, source));
   ComputeProgram program;
-  program.program_ = glCreateProgram();
-  glAttachShader(program.program_, shader);
-  glLinkProgram(program.program_);
-  glDeleteShader(shader);
-  glGetProgramiv(program.program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    glGetProgramiv(program.program_, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program.program_, length, nullptr, log.data());
-    return makeError(ErrorCode::kInvalidArgument, mainFile, ": GLSL link error:\n",
-                     mapShaderLog(log.c_str(), source.files));
-  }
+  VOXLINK_ASSIGN_OR_RETURN(program.program_, linkProgram({shader}, mainFile, source.files));
   return program;
 }
 

@@ -38,6 +38,17 @@ Result<PreprocessedShader> preprocessShader(const std::string& mainFile,
 // Rewrites "3:12(5): error" (Mesa) and "3(12) : error" (NVIDIA) into "file.glsl:12(5): error".
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
 
+// One shader stage compiled from a file; compile errors name file:line. The caller owns the
+// shader (linkProgram deletes it).
+Result<GLuint> compileShaderStage(GLenum stage, const std::string& file,
+                                  const std::vector<ShaderDefine>& defines = {},
+                                  const std::map<std::string, std::string>& generated = {});
+
+// Links the stages into a program and deletes them, linked or not. `name` and `files` (the
+// stages' #line file ids, as compileShaderStage resolved them) name the program in errors.
+Result<GLuint> linkProgram(const std::vector<GLuint>& stages, const std::string& name,
+                           const std::vector<std::string>& files = {});
+
 class ComputeProgram {
  public:
   static Result<ComputeProgram> build(const std::string& mainFile,
