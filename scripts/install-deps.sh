@@ -15,6 +15,7 @@ packages=(
   libimgui-dev xvfb xauth
   python3 time ccache
   pybind11-dev python3-dev python3-numpy python3-pytest
+  python3-pydicom
   python3-openvdb libopenvdb-tools
   paraview python3-paraview
   clang-14 libclang-rt-14-dev clang-format-14

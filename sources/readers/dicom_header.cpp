@@ -7,6 +7,7 @@
 
 #include "format/limits.h"
 #include "sources/readers/dicom_frames.h"
+#include "sources/readers/dicom_pixel_encoding.h"
 #include "sources/readers/dicom_tags.h"
 #include "sources/readers/gdcm_messages.h"
 #include "sources/readers/text_header.h"
@@ -89,18 +90,26 @@ std::string sliceName(const DicomSlice& slice) {
 }
 
 Result<DicomFileHeader> readDicomFileHeader(const std::string& file) {
-  gdcm::Reader reader;
-  reader.SetFileName(file.c_str());
+  gdcm::Reader upToPixels, whole;
+  gdcm::Reader* reader = &upToPixels;
+  upToPixels.SetFileName(file.c_str());
   const gdcm::Tag pixelData(0x7fe0, 0x0010);
   GdcmMessages messages;
-  if (!reader.ReadUpToTag(pixelData, {pixelData}))
-    return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot parse this DICOM file",
-                     messages.reason());
-  const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
-  const size_t pixelDataAt = reader.GetStreamCurrentPosition();
-  const gdcm::TransferSyntax& syntax = reader.GetFile().GetHeader().GetDataSetTransferSyntax();
+  if (!upToPixels.ReadUpToTag(pixelData, {pixelData})) {
+    const std::string uid = transferSyntaxUid(upToPixels.GetFile().GetHeader());
+    VOXLINK_RETURN_IF_ERROR(checkPixelEncoding(gdcm::DataSet(), uid, file));
+    // GDCM cannot always stop inside a deflated stream: read the file whole.
+    whole.SetFileName(file.c_str());
+    if (!isDeflatedSyntax(uid) || !whole.Read())
+      return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot parse this DICOM file",
+                       messages.reason());
+    reader = &whole;
+  }
+  const gdcm::DataSet& ds = reader->GetFile().GetDataSet();
+  const size_t pixelDataAt = reader->GetStreamCurrentPosition();
   DicomFileHeader h;
   h.path = file;
+  h.transferSyntax = transferSyntaxUid(reader->GetFile().GetHeader());
   h.series = stringValue(ds, 0x0020, 0x000e);
   h.modality = stringValue(ds, 0x0008, 0x0060);
   h.description = stringValue(ds, 0x0008, 0x103e);
@@ -112,19 +121,20 @@ Result<DicomFileHeader> readDicomFileHeader(const std::string& file) {
   if (*rows == 0 || *columns == 0)
     return makeError(ErrorCode::kCorrupt, file, ": tag Rows x Columns (0028,0010/0011): ", *columns,
                      "x", *rows);
+  VOXLINK_RETURN_IF_ERROR(checkPixelEncoding(ds, h.transferSyntax, file));
   h.rows = *rows;
   h.columns = *columns;
   h.bitsAllocated = *bitsAllocated;
   h.bitsStored = ushortValue<0x0028, 0x0101>(ds).value_or(*bitsAllocated);
   h.pixelRepresentation = ushortValue<0x0028, 0x0103>(ds).value_or(0);
-  const int samples = ushortValue<0x0028, 0x0002>(ds).value_or(1);
-  if (samples != 1)
-    return makeError(ErrorCode::kUnsupported, file, ": tag SamplesPerPixel (0028,0002): ", samples,
-                     " (only single-channel images)");
+  h.modalityLut = ds.FindDataElement(gdcm::Tag(0x0028, 0x3000));
   VOXLINK_ASSIGN_OR_RETURN(const uint32_t frames, frameCount(ds, file));
   // Uncompressed pixel data must all be there: GDCM reads a file cut inside it without a word.
-  if (!syntax.IsEncapsulated() && *bitsAllocated % 8 == 0) {
-    const uint64_t need = uint64_t{*rows} * *columns * (*bitsAllocated / 8) * frames;
+  // (A deflated file's size says nothing about it: GDCM has inflated the whole file above.)
+  const bool deflated = isDeflatedSyntax(h.transferSyntax);
+  const uint64_t frameBytes = uint64_t{*rows} * *columns * (*bitsAllocated / 8);
+  if (!isEncapsulatedSyntax(h.transferSyntax) && !deflated) {
+    const uint64_t need = frameBytes * frames;
     const uint64_t start = pixelDataAt;  // ReadUpToTag stops after the element's tag and length
     std::error_code ec;
     const uint64_t size = fs::file_size(file, ec);
@@ -142,6 +152,13 @@ Result<DicomFileHeader> readDicomFileHeader(const std::string& file) {
     return makeError(ErrorCode::kCorrupt, file, ": tag ", h.rescaleField, ": slope ", first.slope,
                      ", intercept ", first.intercept, " (expected finite numbers, slope not 0)");
   VOXLINK_RETURN_IF_ERROR(readFrames(ds, first, h));
+  for (DicomSlice& s : h.frames) {
+    if (isBigEndianSyntax(h.transferSyntax))
+      s.bigEndianPixelsAt = pixelDataAt + s.frame * frameBytes;
+    s.inflateWholeFile = deflated && frames > 1;
+    s.extendSign = h.pixelRepresentation == 1 && isEncapsulatedSyntax(h.transferSyntax) &&
+                   h.bitsStored < h.bitsAllocated;
+  }
   return h;
 }
 

@@ -22,6 +22,12 @@ struct DicomSlice {
   int64_t instance = 0;     // InstanceNumber (0 when absent)
   double slope = 1;         // RescaleSlope, or DoseGridScaling
   double intercept = 0;     // RescaleIntercept
+  // Explicit VR Big Endian: where this frame's bytes start in the file. They are read and
+  // swapped here, not by GDCM, whose readers leave 32-bit values unswapped or half-swapped.
+  uint64_t bigEndianPixelsAt = 0;
+  bool inflateWholeFile = false;  // deflated multi-frame: GDCM's frame reader cannot inflate
+  // Signed pixels from a codec (JPEG-LS, JPEG 2000) that may return BitsStored-bit patterns.
+  bool extendSign = false;
 };
 
 // "CTHead7.dcm", or "dose.dcm frame 3" (frames counted from 1) for errors and notes.
@@ -34,6 +40,8 @@ struct DicomFileHeader {
   uint32_t rows = 0, columns = 0;
   int bitsAllocated = 0, bitsStored = 0, pixelRepresentation = 0;
   std::string photometric;
+  std::string transferSyntax;    // TransferSyntaxUID (0002,0010)
+  bool modalityLut = false;      // a Modality LUT Sequence (0028,3000), not applied
   bool hasPosition = false;      // positions came from the file
   bool hasOrientation = false;   // otherwise +x, +y
   bool hasPixelSpacing = false;  // otherwise 1 1
@@ -45,8 +53,9 @@ struct DicomFileHeader {
   std::vector<DicomSlice> frames;  // one per frame, in file order
 };
 
-// Reads the header up to the pixel data. Not an image: `image` false, no error. Errors name the
-// file and the tag: kUnsupported (color, odd bit depths), kCorrupt (malformed values, per-frame
+// Reads the header up to the pixel data (deflated files: the whole file). Not an image: `image`
+// false, no error. Errors name the file and the tag: kUnsupported (color, odd bit depths,
+// transfer syntaxes GDCM cannot decode), kCorrupt (malformed values, per-frame
 // groups that disagree with NumberOfFrames, frames with different orientations), kTruncated
 // (uncompressed pixel data shorter than Rows x Columns x BitsAllocated x NumberOfFrames).
 Result<DicomFileHeader> readDicomFileHeader(const std::string& file);

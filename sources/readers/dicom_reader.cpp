@@ -1,15 +1,17 @@
 #include "sources/readers/dicom_reader.h"
 
 #include <gdcmBoxRegion.h>
-#include <gdcmImageReader.h>
 #include <gdcmImageRegionReader.h>
+#include <gdcmPixmapReader.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <vector>
 
+#include "sources/readers/dicom_pixel_encoding.h"
 #include "sources/readers/dicom_series.h"
 #include "sources/readers/gdcm_messages.h"
 #include "sources/readers/reader_common.h"
@@ -36,8 +38,18 @@ class DicomSource final : public VolumeSource {
       uint8_t* target = out + uint64_t{z - z0} * info_.sliceBytes();
       if (rescale_) scratch_.resize(storedBytes);
       uint8_t* pixels = rescale_ ? scratch_.data() : target;
-      VOXLINK_RETURN_IF_ERROR(slice.fileFrames > 1 ? readFrame(slice, pixels, storedBytes)
-                                                   : readPixels(slice.path, pixels, storedBytes));
+      int decodedBits = series_.bitsStored;
+      if (slice.bigEndianPixelsAt)
+        VOXLINK_RETURN_IF_ERROR(readBigEndian(slice, pixels, storedBytes));
+      else if (slice.inflateWholeFile)
+        VOXLINK_RETURN_IF_ERROR(readInflatedFrame(slice, pixels, storedBytes));
+      else if (slice.fileFrames > 1)
+        VOXLINK_RETURN_IF_ERROR(readFrame(slice, pixels, storedBytes));
+      else
+        VOXLINK_RETURN_IF_ERROR(readPixels(slice.path, pixels, storedBytes, decodedBits));
+      // A codestream holding more bits than BitsStored (GDCM reads its precision) is signed.
+      if (slice.extendSign && decodedBits <= series_.bitsStored)
+        extendSign(pixels, series_.storedType, info_.sliceVoxels(), series_.bitsStored);
       if (rescale_)
         convertRescaled(scratch_.data(), series_.storedType, target, info_.type,
                         info_.sliceVoxels(), slice.slope, slice.intercept);
@@ -46,6 +58,33 @@ class DicomSource final : public VolumeSource {
   }
 
  private:
+  // Native big-endian pixels, straight from the file: each value's bytes reversed.
+  Status readBigEndian(const DicomSlice& slice, uint8_t* dst, uint64_t bytes) {
+    std::ifstream in(slice.path, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(slice.bigEndianPixelsAt));
+    in.read(reinterpret_cast<char*>(dst), static_cast<std::streamsize>(bytes));
+    if (!in || static_cast<uint64_t>(in.gcount()) != bytes)
+      return makeError(ErrorCode::kTruncated, slice.path, ": tag PixelData (7FE0,0010): frame ",
+                       slice.frame + 1, " ends past the end of the file");
+    swapEachValue(dst, scalarSize(series_.storedType), bytes / scalarSize(series_.storedType));
+    return Status::ok();
+  }
+
+  // A frame of a deflated multi-frame file: GDCM inflates the whole file; its pixels are kept
+  // while frames come from the same file (deflated files are small: zlib on the whole data set).
+  Status readInflatedFrame(const DicomSlice& slice, uint8_t* dst, uint64_t bytes) {
+    if (inflatedPath_ != slice.path) {
+      inflatedPath_.clear();
+      int decodedBits = 0;
+      inflated_.resize(bytes * slice.fileFrames);
+      VOXLINK_RETURN_IF_ERROR(
+          readPixels(slice.path, inflated_.data(), inflated_.size(), decodedBits));
+      inflatedPath_ = slice.path;
+    }
+    std::memcpy(dst, inflated_.data() + uint64_t{slice.frame} * bytes, bytes);
+    return Status::ok();
+  }
+
   // One frame of a multi-frame file, decoded alone (GDCM's region reader decodes only the
   // fragments of that frame), so memory stays at the slices asked for. The file's header is
   // parsed once while consecutive frames come from the same file.
@@ -75,14 +114,17 @@ class DicomSource final : public VolumeSource {
     return Status::ok();
   }
 
-  Status readPixels(const std::string& file, uint8_t* dst, uint64_t bytes) {
-    gdcm::ImageReader reader;
+  // The whole pixel data of a file. The pixmap reader, not the image reader: that one also
+  // reads geometry GDCM asserts on (an RT Dose without NumberOfFrames aborts it). `decodedBits`:
+  // the bits per sample GDCM found in the codestream.
+  Status readPixels(const std::string& file, uint8_t* dst, uint64_t bytes, int& decodedBits) {
+    gdcm::PixmapReader reader;
     reader.SetFileName(file.c_str());
     GdcmMessages messages;
     if (!reader.Read())
       return makeError(ErrorCode::kCorrupt, file, ": GDCM cannot read the image",
                        messages.reason());
-    const gdcm::Image& image = reader.GetImage();
+    const gdcm::Pixmap& image = reader.GetPixmap();
     if (image.GetColumns() != info_.dims[0] || image.GetRows() != info_.dims[1])
       return makeError(ErrorCode::kSizeMismatch, file, ": pixel data is ", image.GetColumns(), "x",
                        image.GetRows(), ", the series is ", info_.dims[0], "x", info_.dims[1]);
@@ -93,6 +135,7 @@ class DicomSource final : public VolumeSource {
     if (!image.GetBuffer(reinterpret_cast<char*>(dst)))
       return makeError(ErrorCode::kCorrupt, file,
                        ": tag PixelData (7FE0,0010): GDCM cannot decode it", messages.reason());
+    decodedBits = image.GetPixelFormat().GetBitsStored();
     return Status::ok();
   }
 
@@ -101,6 +144,8 @@ class DicomSource final : public VolumeSource {
   std::vector<uint8_t> scratch_;
   std::unique_ptr<gdcm::ImageRegionReader> frameReader_;
   std::string framePath_;  // the file frameReader_ has read the header of
+  std::vector<uint8_t> inflated_;
+  std::string inflatedPath_;  // the deflated file inflated_ holds the pixels of
 };
 
 bool integral(double v) { return std::isfinite(v) && v == std::floor(v); }

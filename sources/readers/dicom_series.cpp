@@ -6,6 +6,7 @@
 #include <map>
 
 #include "format/limits.h"
+#include "sources/readers/dicom_pixel_encoding.h"
 #include "sources/readers/dicom_probe.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/gdcm_guard.h"
@@ -239,6 +240,14 @@ Result<DicomSeries> buildSeries(const std::vector<DicomFileHeader>& files, const
   if (first.photometric == "MONOCHROME1")
     s.notes.push_back(
         "PhotometricInterpretation MONOCHROME1: values kept as stored (high = dark on display)");
+  if (first.frames.front().extendSign)
+    s.notes.push_back(cat("PixelRepresentation 1 in ", transferSyntaxName(first.transferSyntax),
+                          ": decoded samples sign-extended from BitsStored ", first.bitsStored,
+                          " bits (the codestream may hold them unsigned; DICOM's header decides)"));
+  if (std::any_of(files.begin(), files.end(),
+                  [](const DicomFileHeader& h) { return h.modalityLut; }))
+    s.notes.push_back(
+        "Modality LUT Sequence (0028,3000) not applied: values are the stored pixel values");
   for (const DicomFileHeader& h : files) {
     if (!h.rescaleField.empty()) s.rescaleField = h.rescaleField;
     for (DicomSlice slice : h.frames) {
