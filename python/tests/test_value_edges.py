@@ -9,8 +9,9 @@ import pytest
 
 import voxlink
 
-NRRD_TYPES = {"int32": "<i4", "uint32": "<u4", "float": "<f4", "double": "<f8",
-              "short": "<i2", "int16": "<i2"}
+# The type names voxlink export writes (format/dense_export.cpp).
+NRRD_TYPES = {"uint8": "<u1", "int8": "<i1", "uint16": "<u2", "int16": "<i2", "uint32": "<u4",
+              "int32": "<i4", "float": "<f4", "double": "<f8"}
 
 
 def write_nrrd(path, a):
