@@ -83,6 +83,17 @@ def test_f64_range_wider_than_f32_is_refused_with_the_numbers(tmp_path, cli):
     assert info["value_error"]["max_abs"] <= 1e293
 
 
+def test_variable_is_refused_by_a_format_without_named_variables(tmp_path, cli):
+    write_nrrd(tmp_path / "in.nrrd", np.arange(8, dtype="<i4").reshape(2, 2, 2))
+    r = run(cli, "convert", tmp_path / "in.nrrd", "--keep-all", "--variable", "density",
+            "-o", tmp_path / "out.vxl")
+    assert r.returncode != 0
+    message = r.stderr.strip()
+    assert len(message.splitlines()) == 1, message
+    assert "in.nrrd" in message and "--variable 'density'" in message, message
+    assert not (tmp_path / "out.vxl").exists()
+
+
 @pytest.mark.parametrize("dtype, values", [
     ("<f8", [1e-300, 3e-300, -7.5e-301, 1e-310, 2.5e-299, 0, 1e-305, -1e-300]),
     ("<f8", [1e260, 3e250, -1e300, 1e270, 2e299, 1e280, 5e290, 0]),
