@@ -62,6 +62,15 @@ std::string humanCount(uint64_t v) {
   return out;
 }
 
+// The relative error too when it exceeds f32 rounding (2^-24): an --error-bound that let small
+// values go to 0 has a max abs error that looks small next to the large values (rel 1).
+std::string relativeErrorNote(double maxRelError) {
+  if (!(maxRelError > 0x1p-24)) return "";
+  char text[48];
+  std::snprintf(text, sizeof text, " (max rel error %.3g)", maxRelError);
+  return text;
+}
+
 int runConvert(const ConvertArgs& a) {
   if (Status s = format::checkOutputTarget(a.output, {a.input}); !s) return reportError(s);
   auto open = toOpenOptions(a.source);
@@ -107,17 +116,16 @@ int runConvert(const ConvertArgs& a) {
   const double denseBytes = double(info.voxelCount()) * scalarSize(info.type);
   std::printf(
       "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx "
-      "smaller than "
-      "the dense %s source | values %s, max abs error %g | gradients polar16, error mean %.3f max "
-      "%.3f deg "
-      "(%s sampled) | %.2f s (classify %.2f, write %.2f)\n",
+      "smaller than the dense %s source | values %s, max abs error %g%s | gradients polar16, "
+      "error mean %.3f max %.3f deg (%s sampled) | %.2f s (classify %.2f, write %.2f)\n",
       a.output.c_str(), humanCount(s.voxels).c_str(), humanCount(s.sourceVoxels).c_str(),
       100.0 * s.voxels / double(s.sourceVoxels), humanCount(s.occupiedBricks).c_str(),
       humanCount(s.bricks).c_str(), 100.0 * s.occupiedBricks / double(s.bricks), s.bytes / 1e6,
       s.voxels ? double(s.bytes) / s.voxels : 0.0, denseBytes / s.bytes,
       std::string(scalarName(info.type)).c_str(), std::string(storedName(s.storedType)).c_str(),
-      s.valueMaxAbsError, s.gradientMeanErrorDeg, s.gradientMaxErrorDeg,
-      humanCount(s.gradientSamples).c_str(), s.seconds, s.countSeconds, s.writeSeconds);
+      s.valueMaxAbsError, relativeErrorNote(s.valueMaxRelError).c_str(), s.gradientMeanErrorDeg,
+      s.gradientMaxErrorDeg, humanCount(s.gradientSamples).c_str(), s.seconds, s.countSeconds,
+      s.writeSeconds);
   for (const std::string& note : info.notes)
     std::printf("  note: %s\n", printableMessage(note).c_str());
   return 0;

@@ -14,8 +14,9 @@ void addSourceOptions(CLI::App& cmd, SourceArgs& args) {
       ->expected(3);
   cmd.add_option("--vdb-grid", args.vdbGrid,
                  ".vdb input: the grid to read (default: the first float grid)");
-  cmd.add_option("--variable", args.variable,
-                 "GSLIB/GEO-EAS input: the column to read (default: the first)");
+  cmd.add_option(
+      "--variable", args.variable,
+      "GSLIB/GEO-EAS input: the column to read; .vti: the point data array (default: the first)");
   cmd.add_option("--series", args.dicomSeries,
                  "DICOM folder with several series: SeriesInstanceUID or index from "
                  "`voxlink dicom list`");

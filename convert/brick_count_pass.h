@@ -35,6 +35,8 @@ struct BrickRow {
 struct CountResult {
   double keptMin = std::numeric_limits<double>::infinity();
   double keptMax = -std::numeric_limits<double>::infinity();
+  // f64 sources only: the smallest nonzero |value| kept (the f32 scale must reach down to it).
+  double keptMinMagnitude = std::numeric_limits<double>::infinity();
   bool nonFinite = false;
   uint32_t nonFiniteAt[3] = {0, 0, 0};
   double nonFiniteValue = 0;
@@ -62,6 +64,14 @@ void countBrickRow(const BrickRow& brickRow, const Keep& keep, bool trackRange, 
   uint8_t* __restrict acc8 = perX8.data();
   const Keep test = keep;  // a local copy: stores to acc cannot alias it
   T keptMin = std::numeric_limits<T>::max(), keptMax = std::numeric_limits<T>::lowest();
+  double tiny = std::numeric_limits<double>::infinity();
+  constexpr bool kTrackMagnitude = std::is_same_v<T, double>;
+  auto keepMagnitude = [&]([[maybe_unused]] bool k, [[maybe_unused]] T v) {
+    if constexpr (kTrackMagnitude) {
+      const double a = std::abs(v);
+      tiny = k && a > 0 && a < tiny ? a : tiny;
+    }
+  };
   for (uint32_t z = z0; z < z1; ++z) {
     const T* slice = reinterpret_cast<const T*>(window.slice(z));
     const uint8_t* activeSlice = window.active(z);
@@ -91,6 +101,7 @@ void countBrickRow(const BrickRow& brickRow, const Keep& keep, bool trackRange, 
             acc[x] = static_cast<uint16_t>(acc[x] + (k ? 1 : 0));
           keptMin = k && row[x] < keptMin ? row[x] : keptMin;
           keptMax = k && row[x] > keptMax ? row[x] : keptMax;
+          keepMagnitude(k, row[x]);
         }
         continue;
       }
@@ -110,6 +121,7 @@ void countBrickRow(const BrickRow& brickRow, const Keep& keep, bool trackRange, 
           const bool k = test(row[x]);
           keptMin = k && row[x] < keptMin ? row[x] : keptMin;
           keptMax = k && row[x] > keptMax ? row[x] : keptMax;
+          keepMagnitude(k, row[x]);
         }
       }
     }
@@ -124,6 +136,7 @@ void countBrickRow(const BrickRow& brickRow, const Keep& keep, bool trackRange, 
     if (trackRange && c) {
       result.keptMin = std::min(result.keptMin, static_cast<double>(keptMin));
       result.keptMax = std::max(result.keptMax, static_cast<double>(keptMax));
+      result.keptMinMagnitude = std::min(result.keptMinMagnitude, tiny);
     }
   }
 }

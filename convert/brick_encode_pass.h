@@ -24,6 +24,7 @@
 #include "convert/value_mapping.h"
 #include "format/gradient_codec.h"
 #include "format/layout.h"
+#include "format/source_value.h"
 
 namespace voxlink::convert {
 
@@ -173,7 +174,8 @@ uint32_t encodeBrick(const RowEncoding& shared, const BrickEncoding<T>& job, Enc
         const double exact = static_cast<double>(raw);
         stored = mapping.encode(exact);
         const double decoded = mapping.decode(stored);
-        const double err = std::abs(decoded - exact);
+        // The error an export really gives back: rounded and clamped to the source's type.
+        const double err = std::abs(asSourceValueOf<T>(decoded) - exact);
         stats.maxAbsError = std::max(stats.maxAbsError, err);
         if (exact != 0) stats.maxRelError = std::max(stats.maxRelError, err / std::abs(exact));
         stats.valueMin = std::min(stats.valueMin, decoded);

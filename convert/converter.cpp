@@ -38,6 +38,7 @@ struct BrickCensus {
   uint64_t voxels = 0;
   uint64_t occupied = 0;
   double keptMin = INFINITY, keptMax = -INFINITY;
+  double keptMinMagnitude = INFINITY;  // smallest nonzero |value| kept (f64 sources only)
 };
 
 struct Passes {
@@ -104,6 +105,7 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
   for (const CountResult& r : results) {
     census.keptMin = std::min(census.keptMin, r.keptMin);
     census.keptMax = std::max(census.keptMax, r.keptMax);
+    census.keptMinMagnitude = std::min(census.keptMinMagnitude, r.keptMinMagnitude);
   }
   // Number the occupied bricks and give each its first voxel.
   census.occupancy.assign((bricks + 31) / 32, 0);
@@ -285,9 +287,11 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   VOXLINK_ASSIGN_OR_RETURN(BrickCensus census, passes.template count<T>(keep));
   ConvertSummary& s = passes.summary;
   s.countSeconds = secondsSince(start);
-  VOXLINK_ASSIGN_OR_RETURN(ValueMapping mapping,
-                           chooseValueMapping(info.type, census.keptMin, census.keptMax,
-                                              options.storedType, options.errorBound));
+  Result<ValueMapping> chosen =
+      chooseValueMapping(info.type, census.keptMin, census.keptMax, options.storedType,
+                         options.errorBound, census.keptMinMagnitude);
+  if (!chosen) return makeError(chosen.code(), info.path, ": ", chosen.message());
+  ValueMapping mapping = *chosen;
   if (info.type == ScalarType::kI8 && mapping.type == StoredType::kU8 && !mapping.quantized)
     mapping.offset = -128;  // the whole i8 range, lossless
   format::VolumeDescription d;

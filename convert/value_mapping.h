@@ -23,7 +23,11 @@ struct ValueMapping {
   double offset = 0.0;
   bool quantized = false;   // integer stored type over a scaled range (lossy)
   double errorBound = 0.0;  // guaranteed max abs error of this mapping (0: lossless)
-  std::string reason;       // why this type, for the summary
+  // f32 from f64 only: every nonzero kept value stays a normal float after the scale, so the
+  // relative error is at most 2^-24. False when one power-of-two scale cannot cover the kept
+  // magnitudes (1e300 and 1: the small ones would flush to 0).
+  bool keepsRelativeError = true;
+  std::string reason;  // why this type, for the summary
 
   // Stored bits of a source value (already known to lie in the kept range).
   uint32_t encode(double v) const {
@@ -68,8 +72,11 @@ struct ValueMapping {
 // Picks the mapping for kept values in [keptMin, keptMax] of a `source` volume. `requested`
 // forces a stored type; otherwise a positive `errorBound` picks the smallest type whose
 // guaranteed error is within it, and 0 picks the smallest lossless type (f32 for f64 input,
-// whose rounding error is then measured and reported).
+// whose rounding error is then measured and reported). `keptMinMagnitude` is the smallest
+// nonzero |value| kept (infinity: none or not known); f64 sources whose kept magnitudes f32
+// cannot hold at its relative error are refused unless `errorBound` accepts an absolute error.
 Result<ValueMapping> chooseValueMapping(ScalarType source, double keptMin, double keptMax,
-                                        std::optional<StoredType> requested, double errorBound);
+                                        std::optional<StoredType> requested, double errorBound,
+                                        double keptMinMagnitude = INFINITY);
 
 }  // namespace voxlink::convert

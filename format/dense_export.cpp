@@ -15,6 +15,7 @@
 
 #include "format/file_name.h"
 #include "format/output_file.h"
+#include "format/source_value.h"
 #include "format/voxel_locator.h"
 
 namespace voxlink::format {
@@ -88,28 +89,14 @@ Status checkFill(ScalarType type, double fill, const std::string& where, std::st
 
 namespace {
 
-// Stores v (in range) as the source type at p; integers are rounded, which is exact for files
-// whose stored type is lossless.
+// Stores v as the source type at p, rounded and clamped as asSourceValueOf() does (exact for
+// files whose stored type is lossless; an f32-stored i32 2147483647 decodes to 2^31).
 void store(ScalarType type, double v, uint8_t* p) {
-  auto put = [&](auto t) { std::memcpy(p, &t, sizeof t); };
-  switch (type) {
-    case ScalarType::kU8:
-      return put(static_cast<uint8_t>(std::lround(v)));
-    case ScalarType::kI8:
-      return put(static_cast<int8_t>(std::lround(v)));
-    case ScalarType::kU16:
-      return put(static_cast<uint16_t>(std::lround(v)));
-    case ScalarType::kI16:
-      return put(static_cast<int16_t>(std::lround(v)));
-    case ScalarType::kU32:
-      return put(static_cast<uint32_t>(std::llround(v)));
-    case ScalarType::kI32:
-      return put(static_cast<int32_t>(std::lround(v)));
-    case ScalarType::kF32:
-      return put(static_cast<float>(v));
-    case ScalarType::kF64:
-      return put(v);
-  }
+  dispatchScalar(type, [&](auto t) {
+    using T = decltype(t);
+    const T value = static_cast<T>(asSourceValueOf<T>(v));
+    std::memcpy(p, &value, sizeof value);
+  });
 }
 
 // `dataFile` empty: an attached header (the data follows the blank line); else a detached

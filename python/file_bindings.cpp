@@ -10,6 +10,7 @@
 #include "format/footprint.h"
 #include "format/gradient_codec.h"
 #include "format/packed_file.h"
+#include "format/source_value.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
 #include "python/bindings.h"
@@ -77,9 +78,8 @@ py::array denseOf(const format::VoxLinkFile& f, double fill) {
     py::gil_scoped_release release;
     std::fill(d, d + uint64_t{dims[0]} * dims[1] * dims[2], static_cast<T>(fill));
     format::VoxelLocator(f).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
-      double value = f.value(i);
-      if constexpr (std::is_integral_v<T>) value = std::round(value);
-      d[(uint64_t{z} * dims[1] + y) * dims[0] + x] = static_cast<T>(value);
+      // Rounded and clamped as the dense export does (format/source_value.h).
+      d[(uint64_t{z} * dims[1] + y) * dims[0] + x] = static_cast<T>(asSourceValueOf<T>(f.value(i)));
     });
   }
   return out;

@@ -57,6 +57,24 @@ Result<std::unique_ptr<VolumeSource>> checked(Result<std::unique_ptr<VolumeSourc
   return source;
 }
 
+// --variable names one of several variables; a format with a single unnamed one would
+// silently read that one instead of the variable asked for.
+Status checkVariableTaken(const std::string& reader, const std::string& path,
+                          const OpenOptions& options) {
+  if (options.variable.empty()) return Status::ok();
+  return makeError(ErrorCode::kInvalidArgument, path, ": --variable '", options.variable, "': the ",
+                   reader,
+                   " reader has no named variables (--variable picks a GSLIB/GEO-EAS column or "
+                   "a .vti point data array)");
+}
+
+Result<std::unique_ptr<VolumeSource>> openWith(const ReaderEntry& reader, const std::string& path,
+                                               const OpenOptions& options) {
+  if (!reader.namedVariables)
+    VOXLINK_RETURN_IF_ERROR(checkVariableTaken(reader.name, path, options));
+  return reader.open(path, options);
+}
+
 Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
                                                      const OpenOptions& options) {
   std::error_code ec;
@@ -69,16 +87,19 @@ Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
   const auto& registry = readerRegistry();
   if (!options.format.empty()) {
     for (const ReaderEntry& r : registry)
-      if (r.name == options.format) return r.open(path, options);
+      if (r.name == options.format) return openWith(r, path, options);
     std::string known;
     for (const ReaderEntry& r : registry) known += (known.empty() ? "" : ", ") + r.name;
     return makeError(ErrorCode::kInvalidArgument, path, ": --format ", options.format,
                      " is not one of: ", known);
   }
   for (const ReaderEntry& r : registry)
-    if (r.matches(path)) return r.open(path, options);
+    if (r.matches(path)) return openWith(r, path, options);
   // A file no reader claims is raw when dims and type were given.
-  if (options.dims && options.type) return openRaw(path, options);
+  if (options.dims && options.type) {
+    VOXLINK_RETURN_IF_ERROR(checkVariableTaken("raw", path, options));
+    return openRaw(path, options);
+  }
   return makeError(ErrorCode::kUnsupported, path,
                    ": unknown volume format; give --format, or --dims and --type for a raw file");
 }

@@ -54,7 +54,7 @@ const std::vector<ReaderEntry>& readerRegistry() {
     r.push_back({"nifti", hasExt({".nii", ".nii.gz"}), openNifti});
     r.push_back({"vvd", hasExt({".vvd"}), openVvd});
     r.push_back({"vdb", hasExt({".vdb"}), openVdb});
-    r.push_back({"vti", hasExt({".vti"}), openVti});
+    r.push_back({"vti", hasExt({".vti"}), openVti, true});
     // Folders: DICOM when they hold DICOM files, else a stack of slice images. One DICOM file
     // (multi-frame, or a single image) is a volume too.
     r.push_back(
@@ -72,7 +72,7 @@ const std::vector<ReaderEntry>& readerRegistry() {
                    return lowerExtension(path) == ".npy" || hasNpyMagic(path);
                  },
                  openNpy});
-    r.push_back({"gslib", looksLikeGslib, openGslib});
+    r.push_back({"gslib", looksLikeGslib, openGslib, true});
     return r;
   }();
   return registry;

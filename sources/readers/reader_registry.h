@@ -14,6 +14,7 @@ struct ReaderEntry {
   std::string name;                                 // --format value
   std::function<bool(const std::string&)> matches;  // claims a path by name or content
   std::function<Result<std::unique_ptr<VolumeSource>>(const std::string&, const OpenOptions&)> open;
+  bool namedVariables = false;  // picks one of several named variables (OpenOptions::variable)
 };
 
 const std::vector<ReaderEntry>& readerRegistry();

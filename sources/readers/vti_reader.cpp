@@ -2,12 +2,15 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
+#include <vector>
 
 #include "format/checked_math.h"
 #include "format/limits.h"
 #include "sources/readers/axes.h"
+#include "sources/readers/axis_reorder.h"
 #include "sources/readers/byte_order.h"
 #include "sources/readers/reader_common.h"
 #include "sources/readers/text_header.h"
@@ -180,6 +183,70 @@ const std::string& requireAttribute(const XmlTag& tag, const std::string& key, S
   return *v;
 }
 
+std::string arrayName(const XmlTag& array) {
+  const std::string* n = array.attribute("Name");
+  return n ? *n : std::string();
+}
+
+std::string componentCount(const XmlTag& array) {
+  const std::string* n = array.attribute("NumberOfComponents");
+  return n ? std::string(trim(*n)) : "1";
+}
+
+// The point-data array to read: the one `variable` (--variable) names; without it the scalar
+// array the `Scalars` attribute names, else the first scalar (one-component) array, with a note
+// listing them all. Vector arrays are skipped, not refused, so a scalar array after one is read.
+Result<XmlTag> pickArray(std::string_view xml, const XmlTag& pointData, size_t pointDataEnd,
+                         const std::string& variable, const std::string& path,
+                         std::vector<std::string>& notes) {
+  std::vector<XmlTag> arrays;
+  for (size_t at = pointData.end;;) {
+    VOXLINK_ASSIGN_OR_RETURN(auto tag, findTag(xml, "DataArray", path, at, pointDataEnd));
+    if (!tag) break;
+    at = tag->end;
+    arrays.push_back(std::move(*tag));
+  }
+  if (arrays.empty())
+    return makeError(ErrorCode::kUnsupported, path, ": no <DataArray> in <PointData>");
+  const auto isScalar = [](const XmlTag& a) { return componentCount(a) == "1"; };
+  std::string all, scalars;  // for notes and errors: 'a', 'v' (3 components)
+  for (const XmlTag& a : arrays) {
+    const std::string shown = cat("'", arrayName(a), "'");
+    all += cat(all.empty() ? "" : ", ", shown,
+               isScalar(a) ? "" : cat(" (", componentCount(a), " components)"));
+    if (isScalar(a)) scalars += cat(scalars.empty() ? "" : ", ", shown);
+  }
+  if (scalars.empty()) scalars = "none";
+  if (!variable.empty()) {
+    const auto it = std::find_if(arrays.begin(), arrays.end(),
+                                 [&](const XmlTag& a) { return arrayName(a) == variable; });
+    if (it == arrays.end())
+      return makeError(ErrorCode::kInvalidArgument, path, ": --variable '", variable,
+                       "': no point data array of that name (scalar arrays: ", scalars, ")");
+    if (!isScalar(*it))
+      return makeError(ErrorCode::kUnsupported, path, ": DataArray '", variable,
+                       "' attribute 'NumberOfComponents': ", componentCount(*it),
+                       " (only scalars; scalar arrays: ", scalars, ")");
+    return *it;
+  }
+  const std::string* wanted = pointData.attribute("Scalars");
+  auto chosen = std::find_if(arrays.begin(), arrays.end(), [&](const XmlTag& a) {
+    return wanted && arrayName(a) == *wanted && isScalar(a);
+  });
+  if (chosen == arrays.end()) chosen = std::find_if(arrays.begin(), arrays.end(), isScalar);
+  if (chosen == arrays.end())
+    return makeError(ErrorCode::kUnsupported, path,
+                     ": DataArray attribute 'NumberOfComponents': no scalar point data array "
+                     "(arrays: ",
+                     all, ")");
+  if (arrays.size() > 1)
+    notes.push_back(cat("point data arrays ", all, ": reading '", arrayName(*chosen),
+                        "' (--variable NAME picks another)"));
+  else if (chosen->attribute("Name"))
+    notes.push_back(cat("point data array '", arrayName(*chosen), "'"));
+  return *chosen;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const OpenOptions& options) {
@@ -235,17 +302,36 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
     VOXLINK_RETURN_IF_ERROR(checkOrigin(origin, path, "Origin"));
   }
   std::array<Vec3, 3> axes{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+  // A Direction along the coordinate axes but reversed or permuted: the voxels are reordered
+  // below so that the grid runs along +x, +y, +z and every voxel keeps its world position.
+  std::optional<AxisOrder> reorder;
   if (const std::string* d = image->attribute("Direction")) {
     VOXLINK_ASSIGN_OR_RETURN(std::vector<double> m, parseDoubles(*d, path, "Direction", 9));
     for (int a = 0; a < 3; ++a) axes[a] = {m[a], m[3 + a], m[6 + a]};  // columns are the axes
-    const AxesSummary s = summarizeAxes(axes, "Direction axes");
-    if (!s.note.empty()) info.notes.push_back(s.note);
+    reorder = axisOrderOf(axes);
+    if (reorder && reorder->identity()) reorder.reset();
+    if (reorder) {
+      std::string along;
+      for (int a = 0; a < 3; ++a)
+        along += cat(a ? " " : "", reorder->reversed[a] ? "-" : "+", "xyz"[reorder->worldAxis[a]]);
+      info.notes.push_back(cat("Direction axes run along ", along,
+                               ": voxels reordered to run along +x +y +z (world positions kept)"));
+    } else if (const AxesSummary sum = summarizeAxes(axes, "Direction axes"); !sum.note.empty()) {
+      info.notes.push_back(sum.note);  // oblique: index order, lengths as spacing
+    }
   }
-  // Voxel (0,0,0) is the extent's minimum index: origin + direction * (index * spacing).
+  // Voxel (0,0,0) is the extent's minimum index (its maximum along a reversed axis):
+  // origin + direction * (index * spacing).
   for (int c = 0; c < 3; ++c) {
     info.origin[c] = origin[c];
-    for (int a = 0; a < 3; ++a)
-      info.origin[c] += axes[a][c] * static_cast<double>(extent[2 * a]) * info.spacing[a];
+    for (int a = 0; a < 3; ++a) {
+      const int64_t first = reorder && reorder->reversed[a] ? extent[2 * a + 1] : extent[2 * a];
+      info.origin[c] += axes[a][c] * static_cast<double>(first) * info.spacing[a];
+    }
+  }
+  if (reorder) {  // one step along grid axis a is a step of spacing * |direction| in the world
+    const std::array<double, 3> spacing = info.spacing;
+    for (int a = 0; a < 3; ++a) info.spacing[reorder->worldAxis[a]] = spacing[a] * length(axes[a]);
   }
 
   VOXLINK_ASSIGN_OR_RETURN(auto piece, findTag(xml, "Piece", path, image->end));
@@ -259,27 +345,13 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
   if (!pointData || pointData->selfClosing || pointDataEnd == std::string::npos)
     return makeError(ErrorCode::kUnsupported, path,
                      ": no <PointData> arrays (cell data is not supported)");
-  const std::string* wanted = pointData->attribute("Scalars");
-  std::optional<XmlTag> array;
-  for (size_t at = pointData->end;;) {
-    VOXLINK_ASSIGN_OR_RETURN(auto tag, findTag(xml, "DataArray", path, at, pointDataEnd));
-    if (!tag) break;
-    at = tag->end;
-    const std::string* name = tag->attribute("Name");
-    if (!array || (wanted && name && *name == *wanted &&
-                   (!array->attribute("Name") || *array->attribute("Name") != *wanted)))
-      array = tag;
-  }
-  if (!array) return makeError(ErrorCode::kUnsupported, path, ": no <DataArray> in <PointData>");
+  VOXLINK_ASSIGN_OR_RETURN(const XmlTag chosen, pickArray(xml, *pointData, pointDataEnd,
+                                                          options.variable, path, info.notes));
+  const XmlTag* array = &chosen;
   VOXLINK_ASSIGN_OR_RETURN(info.type,
                            vtkType(requireAttribute(*array, "type", status, path), path));
   VOXLINK_RETURN_IF_ERROR(status);
-  if (const std::string* n = array->attribute("NumberOfComponents"); n && *n != "1")
-    return makeError(ErrorCode::kUnsupported, path,
-                     ": DataArray attribute 'NumberOfComponents': ", *n, " (only scalars)");
   layout.expected = info.voxelCount() * scalarSize(info.type);
-  if (array->attribute("Name"))
-    info.notes.push_back(cat("point data array '", *array->attribute("Name"), "'"));
 
   const std::string format = requireAttribute(*array, "format", status, path);
   VOXLINK_RETURN_IF_ERROR(status);
@@ -341,6 +413,10 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
     return makeError(ErrorCode::kSizeMismatch, path, ": DataArray: ", data.size(),
                      " bytes, the extent needs ", layout.expected);
   if (layout.bigEndian) swapBytesInPlace(data.data(), info.voxelCount(), scalarSize(info.type));
+  if (reorder) {
+    VOXLINK_ASSIGN_OR_RETURN(
+        data, reorderToWorldAxes(data, info.dims, scalarSize(info.type), *reorder, path));
+  }
   info.notes.push_back("VTK XML data is decoded whole at open and served from memory");
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
   return std::unique_ptr<VolumeSource>(new MemorySource(std::move(info), std::move(data)));

@@ -67,6 +67,28 @@ TEST(ReaderRegistry, MagicFormatOptionAndFallbacks) {
   expectError(openVolume(dir.file("empty")), ErrorCode::kCorrupt, {"empty", "no slice images"});
 }
 
+TEST(ReaderRegistry, VariableIsRefusedByFormatsWithoutNamedVariables) {
+  TempDir dir;
+  writeWithHeader(dir.file("volume.nrrd"),
+                  "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n",
+                  patternBytes(8));
+  writeBytes(dir.file("volume.bin"), patternBytes(8));
+  OpenOptions options;
+  options.variable = "density";
+  // It was ignored: the only variable was read as if it were 'density'.
+  expectError(openVolume(dir.file("volume.nrrd"), options), ErrorCode::kInvalidArgument,
+              {"volume.nrrd", "--variable 'density'", "nrrd reader has no named variables"});
+  options.dims = std::array<uint32_t, 3>{2, 2, 2};
+  options.type = ScalarType::kU8;
+  expectError(openVolume(dir.file("volume.bin"), options), ErrorCode::kInvalidArgument,
+              {"volume.bin", "raw reader"});
+  options.format = "raw";
+  expectError(openVolume(dir.file("volume.nrrd"), options), ErrorCode::kInvalidArgument,
+              {"volume.nrrd", "raw reader"});
+  options.variable.clear();
+  EXPECT_TRUE(openOrDie(dir.file("volume.bin"), options));
+}
+
 TEST(ReaderRegistry, LowerExtensionKeepsGz) {
   EXPECT_EQ(lowerExtension("/a/B.NII.GZ"), ".nii.gz");
   EXPECT_EQ(lowerExtension("x.nrrd"), ".nrrd");

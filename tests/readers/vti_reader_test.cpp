@@ -129,5 +129,122 @@ TEST(VtiReader, UncompressedInlineBigEndianAndAppendedRawCompressed) {
               {"bad.vti", "DataArray", "zlib block 0"});
 }
 
+// An uncompressed inline DataArray: UInt32 byte count and data in one base64 run.
+std::string inlineArray(const std::string& name, const std::string& type, int components,
+                        const std::vector<uint8_t>& bytes) {
+  std::vector<uint8_t> run;
+  append(run, uint32_t(bytes.size()));
+  run.insert(run.end(), bytes.begin(), bytes.end());
+  return "<DataArray type=\"" + type + "\" Name=\"" + name + "\" NumberOfComponents=\"" +
+         std::to_string(components) + "\" format=\"binary\">" + base64(run) + "</DataArray>\n";
+}
+
+std::string imageFile(const std::string& extent, const std::string& geometry,
+                      const std::string& arrays) {
+  return "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" byte_order=\"LittleEndian\">\n"
+         "<ImageData WholeExtent=\"" +
+         extent + "\" " + geometry + ">\n<Piece Extent=\"" + extent + "\"><PointData>\n" + arrays +
+         "</PointData></Piece></ImageData></VTKFile>\n";
+}
+
+TEST(VtiReader, VectorArrayFirstIsSkippedAndVariablePicksTheArray) {
+  TempDir dir;
+  const std::vector<uint8_t> velocity = patternBytes(2 * 2 * 2 * 3 * 4, 7);  // 3 x Float32
+  const std::vector<uint8_t> density = patternBytes(2 * 2 * 2 * 2, 11);      // Int16
+  const std::vector<uint8_t> mass = patternBytes(2 * 2 * 2, 13);             // UInt8
+  writeText(dir.file("a.vti"), imageFile("0 1 0 1 0 1", "",
+                                         inlineArray("velocity", "Float32", 3, velocity) +
+                                             inlineArray("density", "Int16", 1, density) +
+                                             inlineArray("mass", "UInt8", 1, mass)));
+  // No --variable: the first scalar array, with a note naming every array.
+  auto source = openOrDie(dir.file("a.vti"));
+  ASSERT_TRUE(source);
+  EXPECT_EQ(source->info().type, ScalarType::kI16);
+  EXPECT_TRUE(hasNote(source->info(), "reading 'density'")) << notesOf(source->info());
+  EXPECT_TRUE(hasNote(source->info(), "'velocity' (3 components)")) << notesOf(source->info());
+  auto data = readAll(*source);
+  ASSERT_TRUE(data) << data.message();
+  EXPECT_TRUE(*data == density);
+  // --variable picks by name.
+  OpenOptions options;
+  options.variable = "mass";
+  source = openOrDie(dir.file("a.vti"), options);
+  ASSERT_TRUE(source);
+  EXPECT_EQ(source->info().type, ScalarType::kU8);
+  data = readAll(*source);
+  ASSERT_TRUE(data) << data.message();
+  EXPECT_TRUE(*data == mass);
+  // An unknown name lists the scalar arrays; a vector array is refused naming the attribute.
+  options.variable = "pressure";
+  expectError(openVolume(dir.file("a.vti"), options), ErrorCode::kInvalidArgument,
+              {"a.vti", "--variable 'pressure'", "'density', 'mass'"});
+  options.variable = "velocity";
+  expectError(openVolume(dir.file("a.vti"), options), ErrorCode::kUnsupported,
+              {"a.vti", "NumberOfComponents", "3", "'density', 'mass'"});
+  // Only vector arrays: refused, listing them.
+  writeText(dir.file("v.vti"),
+            imageFile("0 1 0 1 0 1", "", inlineArray("velocity", "Float32", 3, velocity)));
+  expectError(openVolume(dir.file("v.vti")), ErrorCode::kUnsupported,
+              {"v.vti", "NumberOfComponents", "'velocity' (3 components)"});
+}
+
+// Values i + 10 j + 100 k (Int16) of a 3x4x5 grid, i fastest.
+std::vector<uint8_t> indexValues() {
+  std::vector<uint8_t> out;
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 3; ++i) append(out, int16_t(i + 10 * j + 100 * k));
+  return out;
+}
+
+int16_t valueAt(const std::vector<uint8_t>& data, const std::array<uint32_t, 3>& dims, uint32_t x,
+                uint32_t y, uint32_t z) {
+  int16_t v;
+  std::memcpy(&v, data.data() + 2 * ((size_t{z} * dims[1] + y) * dims[0] + x), 2);
+  return v;
+}
+
+TEST(VtiReader, ReversedAndPermutedDirectionsKeepWorldPositions) {
+  TempDir dir;
+  const std::string arrays = inlineArray("v", "Int16", 1, indexValues());
+  // x and z reversed: grid voxel (i, j, k) lies at (10 - 0.5 (1 + i), 20 + j, 30 - 2 (2 + k)).
+  writeText(dir.file("flip.vti"),
+            imageFile("1 3 0 3 2 6",
+                      "Origin=\"10 20 30\" Spacing=\"0.5 1 2\" Direction=\"-1 0 0 0 1 0 0 0 -1\"",
+                      arrays));
+  auto source = openOrDie(dir.file("flip.vti"));
+  ASSERT_TRUE(source);
+  const VolumeInfo& info = source->info();
+  EXPECT_EQ(info.dims, (std::array<uint32_t, 3>{3, 4, 5}));
+  EXPECT_EQ(info.spacing, (std::array<double, 3>{0.5, 1, 2}));
+  // The stored grid's first voxel is the grid's (2, 0, 4): the smallest x and z.
+  EXPECT_EQ(info.origin, (std::array<double, 3>{10 - 0.5 * 3, 20, 30 - 2 * 6}));
+  EXPECT_TRUE(hasNote(info, "-x +y -z")) << notesOf(info);
+  auto data = readAll(*source);
+  ASSERT_TRUE(data) << data.message();
+  for (uint32_t z = 0; z < 5; ++z)
+    for (uint32_t y = 0; y < 4; ++y)
+      for (uint32_t x = 0; x < 3; ++x)
+        EXPECT_EQ(valueAt(*data, info.dims, x, y, z), (2 - x) + 10 * y + 100 * (4 - z));
+
+  // Grid axis 0 along +y, axis 1 along -x: stored x is the grid's j reversed, stored y its i.
+  writeText(
+      dir.file("swap.vti"),
+      imageFile("0 2 0 3 0 4",
+                "Origin=\"1 2 3\" Spacing=\"0.5 1 2\" Direction=\"0 -1 0 1 0 0 0 0 1\"", arrays));
+  source = openOrDie(dir.file("swap.vti"));
+  ASSERT_TRUE(source);
+  const VolumeInfo& swapped = source->info();
+  EXPECT_EQ(swapped.dims, (std::array<uint32_t, 3>{4, 3, 5}));
+  EXPECT_EQ(swapped.spacing, (std::array<double, 3>{1, 0.5, 2}));
+  EXPECT_EQ(swapped.origin, (std::array<double, 3>{1 - 3, 2, 3}));
+  data = readAll(*source);
+  ASSERT_TRUE(data) << data.message();
+  for (uint32_t z = 0; z < 5; ++z)
+    for (uint32_t y = 0; y < 3; ++y)
+      for (uint32_t x = 0; x < 4; ++x)
+        EXPECT_EQ(valueAt(*data, swapped.dims, x, y, z), y + 10 * (3 - x) + 100 * z);
+}
+
 }  // namespace
 }  // namespace voxlink::convert::testing
