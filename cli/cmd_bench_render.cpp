@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "cli/render_options.h"
 #include "format/validator.h"
 #include "viewer/core/recorded_source.h"
@@ -29,6 +30,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     std::string pictures;
     SourceOptions source;
     RenderOptions render;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench-render",
@@ -47,6 +49,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
                   "Directory for PNGs of each run's first frame and the reference");
   args->source.add(cmd);
   args->render.add(cmd, false);
+  args->out.add(cmd, false);
   return [args] {
     auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
@@ -70,7 +73,9 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     o.camera = *spec;
     o.pictureDir = args->pictures;
     if (!o.pictureDir.empty()) std::filesystem::create_directories(o.pictureDir);
-    o.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    // Each run's line on stderr is this command's progress: shown unless -q.
+    if (!args->out.quiet)
+      o.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     auto tf = args->render.transferFunction(*file);
     if (!tf) return reportError(tf.error());
 
@@ -115,7 +120,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     }
 
     const auto& h = file->header();
-    std::printf(
+    args->out.print(
         "file: %s (%ux%ux%u, brick %u, %llu voxels = %.2f %% of %llu, %llu of %llu bricks "
         "occupied)\n",
         args->path.c_str(), h.dims[0], h.dims[1], h.dims[2], h.brickSize,
@@ -124,9 +129,9 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
         (unsigned long long)(uint64_t{h.dims[0]} * h.dims[1] * h.dims[2]),
         (unsigned long long)h.occupiedBrickCount, (unsigned long long)file->gridBrickCount());
     const char* threads = std::getenv("LP_NUM_THREADS");
-    std::printf("GL: %s%s%s\n", (*context)->description().c_str(),
-                threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
-    std::printf(
+    args->out.print("GL: %s%s%s\n", (*context)->description().c_str(),
+                    threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
+    args->out.print(
         "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; "
         "shadows %s; effects %s (max %d bounces, %zu scene lights)\n\n",
         o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
@@ -135,7 +140,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     auto rows =
         viewer::runRenderBenchmark(renderers, reference, (*voxlink)->geometry().worldBox(), o);
     if (!rows) return reportError(rows.error());
-    std::fputs(viewer::benchmarkTable(*rows).c_str(), stdout);
+    args->out.print("%s", viewer::benchmarkTable(*rows).c_str());
     return 0;
   };
 }

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "cli/printable_message.h"
 #include "cli/progress_bar.h"
 #include "cli/source_options.h"
@@ -30,7 +31,7 @@ struct ConvertArgs {
   double errorBound = 0;
   unsigned threads = 0;
   uint32_t slab = 64;
-  bool quiet = false, progress = false;
+  OutputOptions out;
 };
 
 Result<convert::Classification> classificationFrom(const ConvertArgs& a) {
@@ -83,12 +84,15 @@ int runConvert(const ConvertArgs& a) {
       return reportError(
           makeError(ErrorCode::kInvalidArgument,
                     "--standardize goes with --keep-outside and without --mean/--sigma"));
-    auto moments = convert::measureMoments(**source, a.slab);
+    ProgressBar momentsBar(a.out.showProgress());
+    auto moments = convert::measureMoments(
+        **source, a.slab, [&](double f, const char* stage) { momentsBar.update(f, stage); });
+    momentsBar.finish();
     if (!moments) return reportError(moments.error());
     if (!(moments->sigma > 0))
       return reportError(makeError(ErrorCode::kInvalidArgument, a.input, ": data: every value is ",
                                    moments->mean, "; sigma is 0, nothing to standardize"));
-    std::printf("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n",
+    a.out.print("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n",
                 a.input.c_str(), moments->mean, moments->sigma, (unsigned long long)moments->count,
                 moments->min, moments->max);
     args.mean = moments->mean;
@@ -106,7 +110,7 @@ int runConvert(const ConvertArgs& a) {
   options.errorBound = a.errorBound;
   options.sourceOptions = *open;
   if (!a.valueType.empty()) options.storedType = parseStoredName(a.valueType);
-  ProgressBar bar(!a.quiet && (a.progress || stderrIsTerminal()));
+  ProgressBar bar(a.out.showProgress());
   options.progress = [&bar](double f, const char* stage) { bar.update(f, stage); };
   auto summary = convert::convertVolume(**source, options, a.output);
   bar.finish();
@@ -114,7 +118,7 @@ int runConvert(const ConvertArgs& a) {
   const convert::ConvertSummary& s = *summary;
   const convert::VolumeInfo& info = (*source)->info();
   const double denseBytes = double(info.voxelCount()) * scalarSize(info.type);
-  std::printf(
+  a.out.print(
       "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx "
       "smaller than the dense %s source | values %s, max abs error %g%s | gradients polar16, "
       "error mean %.3f max %.3f deg (%s sampled) | %.2f s (classify %.2f, write %.2f)\n",
@@ -127,7 +131,7 @@ int runConvert(const ConvertArgs& a) {
       s.gradientMaxErrorDeg, humanCount(s.gradientSamples).c_str(), s.seconds, s.countSeconds,
       s.writeSeconds);
   for (const std::string& note : info.notes)
-    std::printf("  note: %s\n", printableMessage(note).c_str());
+    a.out.print("  note: %s\n", printableMessage(note).c_str());
   return 0;
 }
 
@@ -171,12 +175,10 @@ CommandRunner addConvertCommand(CLI::App& app) {
   cmd->add_option("--error-bound", a->errorBound,
                   "Largest absolute value error allowed; picks the smallest type within it")
       ->check(finiteNumber());
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)")
-      ->capture_default_str();
+  addThreadsOption(cmd, a->threads);
   cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")
       ->capture_default_str();
-  cmd->add_flag("-q,--quiet", a->quiet, "No progress bar");
-  cmd->add_flag("--progress", a->progress, "Progress bar even when stderr is not a terminal");
+  a->out.add(cmd, true);
   return [a] { return runConvert(*a); };
 }
 

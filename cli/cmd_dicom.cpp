@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "sources/readers/dicom_reader.h"
 
 namespace voxlink::cli {
@@ -74,11 +75,14 @@ CommandRunner addDicomCommand(CLI::App& app) {
       "list", "Every series under a folder (recursive): modality, dims, spacing, images, size");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
+  auto out = std::make_shared<OutputOptions>();
   list->add_option("path", *path, "Folder (searched recursively) or one DICOM file")->required();
   list->add_flag("--json", *json, "Print JSON instead of a table");
-  return [path, json]() {
+  out->add(list, false);
+  return [path, json, out]() {
     auto listing = convert::listDicomFolder(*path);
     if (!listing) return reportError(listing.error());
+    if (out->quiet) return 0;
     if (*json)
       std::printf("%s\n", listingJson(*listing).c_str());
     else

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "convert/vdb_export.h"
 #include "format/dense_export.h"
 #include "format/file_name.h"
@@ -15,6 +16,7 @@ CommandRunner addExportCommand(CLI::App& app) {
   struct Args {
     std::string path, output;
     double fill = 0;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd =
@@ -27,6 +29,7 @@ CommandRunner addExportCommand(CLI::App& app) {
   cmd->add_option("--fill", args->fill, "Value of removed voxels (must fit the source type)")
       ->check(finiteNumber())
       ->capture_default_str();
+  args->out.add(cmd, false);
   return [args] {
     const std::string& out = args->output;
     const bool vdb = format::hasExtension(out, ".vdb");
@@ -40,16 +43,16 @@ CommandRunner addExportCommand(CLI::App& app) {
     if (vdb) {
       auto written = convert::exportVdb(*file, out);
       if (!written) return reportError(written.error());
-      std::printf("%s: grids 'values' and 'gradient', %llu active voxels each, %.2f MB\n",
-                  out.c_str(), (unsigned long long)written->voxels, written->bytes / 1e6);
+      args->out.print("%s: grids 'values' and 'gradient', %llu active voxels each, %.2f MB\n",
+                      out.c_str(), (unsigned long long)written->voxels, written->bytes / 1e6);
       return 0;
     }
     auto summary = format::exportDenseNrrd(*file, out, args->fill);
     if (!summary) return reportError(summary.error());
-    std::printf("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n", out.c_str(),
-                (unsigned long long)summary->keptVoxels, (unsigned long long)summary->filledVoxels,
-                args->fill, summary->bytes / 1e6,
-                format::hasExtension(out, ".nhdr") ? " (header + .raw)" : "");
+    args->out.print("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n",
+                    out.c_str(), (unsigned long long)summary->keptVoxels,
+                    (unsigned long long)summary->filledVoxels, args->fill, summary->bytes / 1e6,
+                    format::hasExtension(out, ".nhdr") ? " (header + .raw)" : "");
     return 0;
   };
 }

@@ -6,6 +6,8 @@
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
+#include "cli/output_options.h"
+#include "cli/progress_bar.h"
 #include "geostat/field_statistics.h"
 #include "geostat/grf.h"
 #include "geostat/grid_writer.h"
@@ -21,6 +23,7 @@ struct GrfArgs {
   double mean = 0;
   unsigned threads = 0;
   bool stats = false;
+  OutputOptions out;
 };
 
 int runGrf(const GrfArgs& a) {
@@ -53,28 +56,31 @@ int runGrf(const GrfArgs& a) {
   for (uint32_t h = 1; h <= 64; h *= 2) lags.push_back(h);
   FieldStatistics stats(spec.dims, lags, a.mean - 1.96 * std::sqrt(variogram->sill()),
                         a.mean + 1.96 * std::sqrt(variogram->sill()));
+  ProgressBar bar(a.out.showProgress());
   auto report = generateGrf(spec, [&](uint32_t z0, uint32_t count, const double* slab) -> Status {
+    bar.update(double(z0 + count) / spec.dims[2], "field");
     if (a.stats) stats.add(z0, count, slab);
     return writer ? writer->append(count, slab) : Status::ok();
   });
+  bar.finish();
   if (!report) return reportError(report.error());
   if (writer) {
     if (auto st = writer->finish(); !st) return reportError(st);
   }
-  std::printf("field: %u x %u x %u, %s, mean %g, seed %llu\n%s", spec.dims[0], spec.dims[1],
+  a.out.print("field: %u x %u x %u, %s, mean %g, seed %llu\n%s", spec.dims[0], spec.dims[1],
               spec.dims[2], variogram->describe().c_str(), a.mean,
               static_cast<unsigned long long>(a.seed), report->text().c_str());
   if (a.stats) {
-    std::printf(
+    a.out.print(
         "empirical: mean %.5f, sigma %.5f, outside mean +- 1.96 sigma_model: %.4f %% (Gaussian: "
         "5.00 %%)\n",
         stats.mean(), stats.sigma(), 100 * stats.outsideFraction());
-    std::printf("%6s %12s %12s %12s %12s\n", "lag", "model", "gamma_x", "gamma_y", "gamma_z");
+    a.out.print("%6s %12s %12s %12s %12s\n", "lag", "model", "gamma_x", "gamma_y", "gamma_z");
     for (size_t l = 0; l < lags.size(); ++l)
-      std::printf("%6u %12.5f %12.5f %12.5f %12.5f\n", lags[l], variogram->gamma(lags[l]),
+      a.out.print("%6u %12.5f %12.5f %12.5f %12.5f\n", lags[l], variogram->gamma(lags[l]),
                   stats.gamma(0, l), stats.gamma(1, l), stats.gamma(2, l));
   }
-  if (writer) std::printf("wrote: %s\n", a.output.c_str());
+  if (writer) a.out.print("wrote: %s\n", a.output.c_str());
   return 0;
 }
 
@@ -95,7 +101,8 @@ CommandRunner addGrfCommand(CLI::App& app) {
   cmd->add_option("--type", a->type, "Stored value type")
       ->check(CLI::IsMember({"f64", "f32"}))
       ->capture_default_str();
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)");
+  addThreadsOption(cmd, a->threads);
+  a->out.add(cmd, true);
   cmd->add_flag("--stats", a->stats,
                 "Print empirical mean, sigma, 95 % interval exceedance and axis variograms");
   return [a] { return runGrf(*a); };

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "convert/vdb_footprint.h"
 #include "format/footprint.h"
 #include "format/validator.h"
@@ -15,6 +16,7 @@ CommandRunner addInfoCommand(CLI::App& app) {
     std::string path;
     bool json = false;
     bool skipVdb = false;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("info", "Memory footprint report of a VoxLink file");
@@ -22,9 +24,11 @@ CommandRunner addInfoCommand(CLI::App& app) {
   cmd->add_flag("--json", args->json, "Print the report as JSON");
   cmd->add_flag("--no-vdb", args->skipVdb,
                 "Skip building the OpenVDB FloatGrid used for comparison");
+  args->out.add(cmd, false);
   return [args] {
     auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
+    if (args->out.quiet) return 0;  // opened and validated: nothing else to say
     format::FootprintReport report = format::computeFootprint(*file);
     if (!args->skipVdb) {
       auto peer = convert::measureVdbFootprint(*file);

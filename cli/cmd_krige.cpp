@@ -9,6 +9,8 @@
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
+#include "cli/output_options.h"
+#include "cli/progress_bar.h"
 #include "format/output_file.h"
 #include "geostat/cross_validation.h"
 #include "geostat/grid_writer.h"
@@ -30,6 +32,7 @@ struct KrigeArgs {
   size_t neighbours = 0;
   unsigned threads = 0;
   std::string dims, origin, spacing;
+  OutputOptions out;
 };
 
 Result<GridSpec> gridFromArgs(const KrigeArgs& a, const PointSet& points) {
@@ -87,8 +90,8 @@ int runKrige(const KrigeArgs& a) {
   ColumnSelection columns{a.xColumn, a.yColumn, a.zColumn, a.valueColumn};
   auto points = readPoints(a.input, columns);
   if (!points) return reportError(points.error());
-  for (const auto& note : points->notes) std::printf("note: %s\n", note.c_str());
-  std::printf("samples: %zu (%d-D)\n", points->size(), points->dimension);
+  for (const auto& note : points->notes) a.out.print("note: %s\n", note.c_str());
+  a.out.print("samples: %zu (%d-D)\n", points->size(), points->dimension);
 
   VariogramParams params;
   if (!a.variogram.empty()) {
@@ -105,11 +108,11 @@ int runKrige(const KrigeArgs& a) {
     auto fitted = fitVariogram(*bins, {p->type, a.nu, !a.fixNuggetZero});
     if (!fitted) return reportError(fitted.error());
     params = *fitted;
-    std::printf("experimental variogram: %zu bins; fitted by WLS (pairs/lag^2)\n", bins->size());
+    a.out.print("experimental variogram: %zu bins; fitted by WLS (pairs/lag^2)\n", bins->size());
   }
   auto variogram = Variogram::make(params);
   if (!variogram) return reportError(variogram.error());
-  std::printf("variogram: %s\n", variogram->describe().c_str());
+  a.out.print("variogram: %s\n", variogram->describe().c_str());
 
   KrigingOptions options;
   options.kind = a.kind == "sk" ? KrigingKind::kSimple : KrigingKind::kOrdinary;
@@ -121,13 +124,13 @@ int runKrige(const KrigeArgs& a) {
   auto kriger = Kriger::make(*points, *variogram, options);
   if (!kriger) return reportError(kriger.error());
   if (kriger->mergedSamples())
-    std::printf("merged: %zu samples closer than %g to another (largest value spread %g)\n",
+    a.out.print("merged: %zu samples closer than %g to another (largest value spread %g)\n",
                 kriger->mergedSamples(), kriger->options().mergeDistance,
                 kriger->largestMergedSpread());
   if (a.crossValidate) {
     auto cv = leaveOneOut(*kriger);
     if (!cv) return reportError(cv.error());
-    std::printf(
+    a.out.print(
         "leave-one-out: %zu samples, mean error %.6g, RMSE %.6g, mean standardized squared error "
         "%.4f, r %.4f\n",
         cv->evaluated, cv->meanError, cv->rmse, cv->meanStandardizedSquaredError, cv->correlation);
@@ -161,20 +164,23 @@ int runKrige(const KrigeArgs& a) {
   GridKrigingOptions gridOptions;
   gridOptions.threads = a.threads;
   gridOptions.noData = a.noData;
+  ProgressBar bar(a.out.showProgress());
   auto summary = krigeGrid(
       *kriger, *grid,
-      [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
+      [&](uint32_t z0, uint32_t count, const double* v, const double* s) -> Status {
         VOXLINK_RETURN_IF_ERROR((*values)->append(count, v));
+        bar.update(double(z0 + count) / grid->dims[2], "krige");
         return (*variances)->append(count, s);
       },
       gridOptions);
+  bar.finish();
   if (!summary) return reportError(summary.error());
   if (auto st = (*values)->finish(); !st) return reportError(st);
   if (auto st = (*variances)->finish(); !st) return reportError(st);
-  std::printf("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid->dims[0],
+  a.out.print("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid->dims[0],
               grid->dims[1], grid->dims[2], grid->origin[0], grid->origin[1], grid->origin[2],
               grid->spacing[0], grid->spacing[1], grid->spacing[2], summary->text().c_str());
-  std::printf("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
+  a.out.print("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
               varianceFile.c_str());
   return 0;
 }
@@ -231,7 +237,8 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   cmd->add_option("--nodata", a->noData,
                   "Value written where no sample is within --max-distance (default NaN)");
   cmd->add_flag("--cross-validate", a->crossValidate, "Print leave-one-out statistics");
-  cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)");
+  addThreadsOption(cmd, a->threads);
+  a->out.add(cmd, true);
   return [a] { return runKrige(*a); };
 }
 

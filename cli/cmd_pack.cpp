@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "format/output_file.h"
 #include "format/packed_file.h"
 #include "format/validator.h"
@@ -43,7 +44,8 @@ CommandRunner addPackCommand(CLI::App& app) {
     std::string path, output;
     int level = 1;
     unsigned threads = 0;
-    bool sections = false, quiet = false, fast = false;
+    bool sections = false, fast = false;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -56,13 +58,12 @@ CommandRunner addPackCommand(CLI::App& app) {
                   "slower to pack, as fast to load)")
       ->check(CLI::Range(1, 19))
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "Threads (0: every core; at most 1024)")
-      ->capture_default_str();
+  addThreadsOption(cmd, args->threads);
   cmd->add_flag("--fast", args->fast,
                 "Do not predict gradients from the values: on CT twice as fast to load, files "
                 "about 2.4x as large, not reliably faster to pack (docs/benchmarks.md)");
   cmd->add_flag("--sections", args->sections, "Print each section's size before and after");
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
+  args->out.add(cmd, false);
   return [args] {
     const auto start = std::chrono::steady_clock::now();
     auto file = openInputFor(args->path, args->output);
@@ -74,7 +75,7 @@ CommandRunner addPackCommand(CLI::App& app) {
                                    ": already packed (voxlink unpack gives the original)"));
     auto report = format::packFile(*file, args->output, {args->level, args->threads, !args->fast});
     if (!report) return reportError(report.error());
-    if (args->quiet) return 0;
+    if (args->out.quiet) return 0;
     if (args->sections) {
       std::printf("%-6s %-15s %14s %14s %8s\n", "section", "codec", "bytes", "packed", "ratio");
       for (const auto& s : report->sections)
@@ -98,7 +99,7 @@ CommandRunner addPackCommand(CLI::App& app) {
 CommandRunner addUnpackCommand(CLI::App& app) {
   struct Args {
     std::string path, output;
-    bool quiet = false;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("unpack", "Write the original of a packed VoxLink file");
@@ -106,7 +107,7 @@ CommandRunner addUnpackCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Unpacked output (.vxl)")->required();
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
+  args->out.add(cmd, false);
   return [args] {
     const auto start = std::chrono::steady_clock::now();
     auto file = openInputFor(args->path, args->output);
@@ -117,10 +118,9 @@ CommandRunner addUnpackCommand(CLI::App& app) {
     if (Status s = format::writeWholeFile(args->output, file->bytes()); !s) return reportError(s);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!args->quiet)
-      std::printf("%s: %.2f MB from %.2f MB packed, unpacked, validated and written in %.2f s\n",
-                  args->output.c_str(), file->fileBytes() / 1e6, file->packedBytes() / 1e6,
-                  seconds);
+    args->out.print("%s: %.2f MB from %.2f MB packed, unpacked, validated and written in %.2f s\n",
+                    args->output.c_str(), file->fileBytes() / 1e6, file->packedBytes() / 1e6,
+                    seconds);
     return 0;
   };
 }

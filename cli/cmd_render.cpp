@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "cli/render_options.h"
 #include "format/output_file.h"
 #include "format/validator.h"
@@ -23,6 +24,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
     bool reference = false;
     SourceOptions source;
     RenderOptions render;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("render", "Render a VoxLink file to PNG or EXR (headless, EGL)");
@@ -37,6 +39,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--reference-output", args->referenceOut,
                   "Write the reference image here (implies --reference)");
   args->source.add(cmd);
+  args->out.add(cmd, false);
   return [args] {
     // -o is required; --reference-output is optional (empty: not asked for).
     std::vector<std::string> outputs = {args->output};
@@ -66,15 +69,17 @@ CommandRunner addRenderCommand(CLI::App& app) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (Status s = viewer::writeImage(image, args->output); !s) return reportError(s);
-    std::printf("%s: %ux%u, %s sampling, %.3f s (first frame, includes shader compilation) on %s\n",
-                args->output.c_str(), settings->width, settings->height,
-                std::string(viewer::samplingName(settings->sampling)).c_str(), seconds,
-                (*context)->description().c_str());
+    args->out.print(
+        "%s: %ux%u, %s sampling, %.3f s (first frame, includes shader compilation) on %s\n",
+        args->output.c_str(), settings->width, settings->height,
+        std::string(viewer::samplingName(settings->sampling)).c_str(), seconds,
+        (*context)->description().c_str());
     if (settings->effects.any()) {
       const auto& stats = (*renderer)->lastEffectsStats();
-      std::printf("ray traced (%s): %d passes, %llu secondary rays, %llu dropped\n",
-                  viewer::effectsName(settings->effects).c_str(), stats.passes,
-                  (unsigned long long)stats.secondaryRays, (unsigned long long)stats.droppedRays);
+      args->out.print("ray traced (%s): %d passes, %llu secondary rays, %llu dropped\n",
+                      viewer::effectsName(settings->effects).c_str(), stats.passes,
+                      (unsigned long long)stats.secondaryRays,
+                      (unsigned long long)stats.droppedRays);
     }
     if (!args->reference && args->referenceOut.empty()) return 0;
     viewer::Image truth;
@@ -93,7 +98,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
       if (Status s = viewer::writeImage(truth, args->referenceOut); !s) return reportError(s);
     auto error = viewer::compareImages(image, truth);
     if (!error) return reportError(error.error());
-    std::printf(
+    args->out.print(
         "against the float64 reference: PSNR %.2f dB, max error %.4f, %llu pixels off by more than "
         "1/255, %llu non-finite\n",
         error->psnr, error->maxError, (unsigned long long)error->pixelsOver,

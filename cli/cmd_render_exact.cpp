@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "exact/edge_error.h"
 #include "exact/exact_scene_walker.h"
 #include "exact/scene_view.h"
@@ -51,6 +52,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     int maxBounces = 4;
     int repeat = 1;
     bool noShading = false;
+    OutputOptions out;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -80,6 +82,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
   cmd->add_option("--repeat", args->repeat, "Renders per tracer; the median time is printed")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
+  args->out.add(cmd, false);
   return [args] {
     // -o is required; --voxel-output is optional (empty: not asked for).
     std::vector<std::string> outputs = {args->output};
@@ -150,7 +153,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     const double exactSeconds =
         timeRenders(args->repeat, exactImage, [&] { return exactTracer.render(camera, settings); });
     if (Status s = viewer::writeImage(exactImage, args->output); !s) return reportError(s);
-    std::printf(
+    args->out.print(
         "%s: %ux%u, effects %s, exact (Embree 3, %zu triangles, %zu spheres; scene loaded and "
         "built in %.3f s): %.4f s\n",
         args->output.c_str(), settings.width, settings.height,
@@ -170,10 +173,10 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     const auto voxelHits = exact::firstHits(*voxels, camera, settings.width, settings.height);
     auto edges = exact::compareEdges(voxelImage, exactImage, voxelHits, exactHits);
     if (!edges) return reportError(edges.error());
-    std::printf("voxel scene %s (%u x %u x %u): float64 tracer %.4f s\n", args->compare.c_str(),
-                file->header().dims[0], file->header().dims[1], file->header().dims[2],
-                voxelSeconds);
-    std::printf(
+    args->out.print("voxel scene %s (%u x %u x %u): float64 tracer %.4f s\n", args->compare.c_str(),
+                    file->header().dims[0], file->header().dims[1], file->header().dims[2],
+                    voxelSeconds);
+    args->out.print(
         "voxel vs exact: PSNR %.2f dB; first hit differs %.3f %% of pixels (coverage %.3f %%); "
         "edge mask %.3f %% of pixels: PSNR %.2f dB there, %.2f dB elsewhere\n",
         whole->psnr, 100 * edges->firstHitMismatch, 100 * edges->coverageMismatch,

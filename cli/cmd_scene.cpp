@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "cli/progress_bar.h"
 #include "format/file_writer.h"
 #include "format/output_file.h"
@@ -26,7 +27,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
   struct Options {
     std::string input, output;
     uint32_t resolution = 0, brick = 0;
-    bool progress = false;
+    OutputOptions out;
     std::string voxelizer = "exact";
   };
   auto o = std::make_shared<Options>();
@@ -44,8 +45,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
                    "mesh voxelizer: exact (CPU, every overlapped voxel) or gl (the paper's "
                    "rasterization, headless; may miss sliver voxels, docs/geometry.md)")
       ->check(CLI::IsMember({"exact", "gl"}));
-  build->add_flag("--progress", o->progress,
-                  "draw the progress bar even when stderr is not a terminal");
+  o->out.add(build, true);
   return [o, build] {
     if (!build->parsed()) return 2;
     auto description = scene::readSceneDescription(o->input);
@@ -80,7 +80,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
       return reportError(makeError(ErrorCode::kUnsupported,
                                    "--voxelizer gl: this voxlink was built without the viewer"));
 #endif
-    ProgressBar bar(o->progress || stderrIsTerminal());
+    ProgressBar bar(o->out.showProgress());
     auto built = scene::buildScene(
         *description, [&](const char* stage, double f) { bar.update(f, stage); }, voxelizer);
     if (!built) return reportError(built.error());
@@ -89,7 +89,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
     bar.finish();
     if (!written) return reportError(written.error());
     const scene::SceneBuildReport& r = built->report;
-    std::printf(
+    o->out.print(
         "%s: %ux%ux%u [%u], %llu voxels (%llu surface from %llu triangles, %llu sphere from %llu "
         "spheres, "
         "%llu volume), %llu materials; normal error mean %.2f / p95 %.2f / max %.2f deg; "

@@ -3,7 +3,9 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "cli/printable_message.h"
+#include "cli/progress_bar.h"
 #include "cli/source_options.h"
 #include "convert/histogram.h"
 #include "format/limits.h"
@@ -15,6 +17,7 @@ CommandRunner addStatsCommand(CLI::App& app) {
     std::string input;
     SourceArgs source;
     uint32_t bins = 32;
+    OutputOptions out;
   };
   auto a = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -24,14 +27,19 @@ CommandRunner addStatsCommand(CLI::App& app) {
   cmd->add_option("--bins", a->bins, "Histogram bins")
       ->check(CLI::Range(uint32_t{1}, limits::kMaxHistogramBins))
       ->capture_default_str();
+  a->out.add(cmd, true);
   return [a] {
     auto open = toOpenOptions(a->source);
     if (!open) return reportError(open.error());
     auto source = convert::openVolume(a->input, *open);
     if (!source) return reportError(source.error());
     const convert::VolumeInfo& info = (*source)->info();
-    auto h = convert::measureHistogram(**source, a->bins);
+    ProgressBar bar(a->out.showProgress());
+    auto h = convert::measureHistogram(**source, a->bins, 64,
+                                       [&](double f, const char* stage) { bar.update(f, stage); });
+    bar.finish();
     if (!h) return reportError(h.error());
+    if (a->out.quiet) return 0;
     std::printf("%s: %s, %ux%ux%u %s, spacing %g %g %g\n", a->input.c_str(), info.format.c_str(),
                 info.dims[0], info.dims[1], info.dims[2],
                 std::string(scalarName(info.type)).c_str(), info.spacing[0], info.spacing[1],

@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
 
@@ -11,8 +12,10 @@ CommandRunner addValidateCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("validate",
                                  "Check every checksum and structural invariant of VoxLink files");
   auto files = std::make_shared<std::vector<std::string>>();
+  auto out = std::make_shared<OutputOptions>();
   cmd->add_option("files", *files, "VoxLink files (.vxl)")->required()->check(CLI::ExistingFile);
-  return [files] {
+  out->add(cmd, false);
+  return [files, out] {
     int status = 0;
     for (const std::string& path : *files) {
       auto file = format::VoxLinkFile::open(path);
@@ -25,10 +28,10 @@ CommandRunner addValidateCommand(CLI::App& app) {
         status = reportError(report.error());
         continue;
       }
-      std::printf("%s: ok (%llu bytes checksummed, %llu bricks, %llu voxels)\n", path.c_str(),
-                  (unsigned long long)report->bytesChecked,
-                  (unsigned long long)report->bricksChecked,
-                  (unsigned long long)report->voxelsChecked);
+      out->print("%s: ok (%llu bytes checksummed, %llu bricks, %llu voxels)\n", path.c_str(),
+                 (unsigned long long)report->bytesChecked,
+                 (unsigned long long)report->bricksChecked,
+                 (unsigned long long)report->voxelsChecked);
     }
     return status;
   };

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/output_options.h"
 #include "cli/render_options.h"
 #include "format/validator.h"
 #include "viewer/app/viewer_app.h"
@@ -16,6 +17,7 @@ CommandRunner addViewCommand(CLI::App& app) {
     int frames = 0;
     std::string screenshot, capture;
     RenderOptions render;
+    OutputOptions out;  // -q for the shared vocabulary: the viewer prints nothing but errors
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("view", "Interactive viewer with the transfer function editor");
@@ -27,6 +29,7 @@ CommandRunner addViewCommand(CLI::App& app) {
   cmd->add_option("--capture-window-on-exit", args->capture,
                   "With --frames: write the whole window (panels included)");
   args->render.add(cmd, false);
+  args->out.add(cmd, false);
   return [args] {
     auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());

@@ -20,10 +20,13 @@ double Histogram::quantile(double fraction) const {
   return hi;
 }
 
-Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins, uint32_t slabSlices) {
+Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins, uint32_t slabSlices,
+                                   const PassProgress& progress) {
   const VolumeInfo& info = source.info();
   Histogram h;
-  VOXLINK_ASSIGN_OR_RETURN(h.moments, measureMoments(source, slabSlices));
+  PassProgress firstHalf;
+  if (progress) firstHalf = [&](double f, const char* stage) { progress(0.5 * f, stage); };
+  VOXLINK_ASSIGN_OR_RETURN(h.moments, measureMoments(source, slabSlices, firstHalf));
   bins = std::max(1u, bins);
   h.lo = h.moments.min;
   h.hi = h.moments.max;
@@ -54,6 +57,7 @@ Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins, uint32_t
       });
     }
     window.release();
+    if (progress) progress(0.5 + 0.5 * double(z1) / info.dims[2], "histogram");
   }
   return h;
 }

@@ -20,7 +20,8 @@ struct Histogram {
 
 // Two streamed passes: moments (range), then counts in `bins` bins over [min, max]; integer
 // sources with a small range get one bin per value when `bins` allows.
+// `progress` hears both passes as one: moments up to 0.5, counting up to 1.
 Result<Histogram> measureHistogram(VolumeSource& source, uint32_t bins = 64,
-                                   uint32_t slabSlices = 64);
+                                   uint32_t slabSlices = 64, const PassProgress& progress = {});
 
 }  // namespace voxlink::convert

@@ -52,7 +52,8 @@ Status accumulateSlice(const T* v, const uint8_t* active, uint64_t count, uint32
 
 }  // namespace
 
-Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices) {
+Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices,
+                               const PassProgress& progress) {
   const VolumeInfo& info = source.info();
   SlabWindow window(source, 0);
   VOXLINK_RETURN_IF_ERROR(window.rewind());
@@ -71,6 +72,7 @@ Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices) {
       VOXLINK_RETURN_IF_ERROR(s);
     }
     window.release();
+    if (progress) progress(double(z1) / info.dims[2], "moments");
   }
   Moments m;
   m.count = static_cast<uint64_t>(acc.n);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "sources/volume_source.h"
 
@@ -17,6 +18,9 @@ struct Moments {
 
 // Per-slice sums in double merged with Chan et al.'s pairwise update, in slice order: stable
 // for large offsets (UTM-like means) and deterministic. Fails on NaN/Inf, naming the voxel.
-Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices = 64);
+// `progress` (may be empty) hears the fraction of the pass done after each slab, for a CLI's bar.
+using PassProgress = std::function<void(double fraction, const char* stage)>;
+Result<Moments> measureMoments(VolumeSource& source, uint32_t slabSlices = 64,
+                               const PassProgress& progress = {});
 
 }  // namespace voxlink::convert

@@ -1,5 +1,6 @@
 #include "format/footprint.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -63,6 +64,19 @@ std::optional<ReaderRescale> readerRescale(const VoxLinkFile& f) {
                        j["intercept"][0].get<double>(), j["intercept"][1].get<double>()};
 }
 
+GridPlacement gridPlacement(const FileHeader& h) {
+  GridPlacement g;
+  for (int a = 0; a < 3; ++a) {
+    g.origin[a] = h.origin[a];
+    g.spacing[a] = h.spacing[a];
+    g.worldMin[a] = h.origin[a] - 0.5 * h.spacing[a];
+    g.worldMax[a] = h.origin[a] + (double(h.dims[a]) - 0.5) * h.spacing[a];
+    g.brickGrid[a] = h.brickGrid[a];
+  }
+  g.axis = static_cast<char>('x' + std::min<int>(h.predominantAxis, 2));
+  return g;
+}
+
 }  // namespace
 
 FootprintReport computeFootprint(const VoxLinkFile& f) {
@@ -71,6 +85,7 @@ FootprintReport computeFootprint(const VoxLinkFile& f) {
   r.path = f.path();
   for (int a = 0; a < 3; ++a) r.dims[a] = h.dims[a];
   r.brickSize = h.brickSize;
+  r.grid = gridPlacement(h);
   r.voxels = h.voxelCount;
   const double gridVoxels = double(h.dims[0]) * h.dims[1] * h.dims[2];
   r.occupancy = r.voxels / gridVoxels;
@@ -117,6 +132,13 @@ std::string footprintTable(const FootprintReport& r) {
   std::snprintf(res, sizeof(res), "%ux%ux%u [%u]", r.dims[0], r.dims[1], r.dims[2], r.brickSize);
   add("  %-22s %-16llu %-12.3f %-12.2f %-11.2f %-10.3f\n", res, (unsigned long long)r.voxels,
       100.0 * r.occupancy, 100.0 * r.bricksNonemptyFraction, r.bytesTotal / 1e6, r.bytesPerVoxel);
+  const GridPlacement& g = r.grid;
+  add("  grid: origin (%g, %g, %g), spacing (%g, %g, %g); world bounds (%g, %g, %g) to (%g, %g, "
+      "%g)\n",
+      g.origin[0], g.origin[1], g.origin[2], g.spacing[0], g.spacing[1], g.spacing[2],
+      g.worldMin[0], g.worldMin[1], g.worldMin[2], g.worldMax[0], g.worldMax[1], g.worldMax[2]);
+  add("  rows along %c, bricks of %u^3 voxels, %ux%ux%u bricks\n", g.axis, r.brickSize,
+      g.brickGrid[0], g.brickGrid[1], g.brickGrid[2]);
   if (r.valueErrorBound == 0 && r.valueMaxAbsError == 0) {
     add("  values %s (source %s), lossless: source = stored * %g + %g\n", r.valueType.c_str(),
         r.sourceType.c_str(), r.valueScale, r.valueOffset);
@@ -176,6 +198,13 @@ std::string footprintJson(const FootprintReport& r) {
   j["path"] = r.path;
   j["dims"] = {r.dims[0], r.dims[1], r.dims[2]};
   j["brick_size"] = r.brickSize;
+  const GridPlacement& g = r.grid;
+  j["origin"] = {g.origin[0], g.origin[1], g.origin[2]};
+  j["spacing"] = {g.spacing[0], g.spacing[1], g.spacing[2]};
+  j["world_bounds"] = {{"min", {g.worldMin[0], g.worldMin[1], g.worldMin[2]}},
+                       {"max", {g.worldMax[0], g.worldMax[1], g.worldMax[2]}}};
+  j["axis"] = std::string(1, g.axis);
+  j["brick_grid"] = {g.brickGrid[0], g.brickGrid[1], g.brickGrid[2]};
   j["voxels"] = r.voxels;
   j["occupancy"] = r.occupancy;
   j["bricks"] = r.bricks;

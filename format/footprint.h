@@ -48,10 +48,22 @@ struct ReaderRescale {
   double minSlope = 1, maxSlope = 1, minIntercept = 0, maxIntercept = 0;
 };
 
+// Where the grid lies in world units: voxel (i, j, k)'s centre is origin + (i, j, k) * spacing,
+// and the bounds are the outer faces of the corner voxels (the box the renderer frames).
+struct GridPlacement {
+  double origin[3] = {0, 0, 0};
+  double spacing[3] = {1, 1, 1};
+  double worldMin[3] = {0, 0, 0};
+  double worldMax[3] = {0, 0, 0};
+  char axis = 'z';                    // the slicing axis: rows of voxels run along it
+  uint32_t brickGrid[3] = {0, 0, 0};  // bricks along x, y, z
+};
+
 struct FootprintReport {
   std::string path;
   uint32_t dims[3] = {0, 0, 0};
   uint32_t brickSize = 0;
+  GridPlacement grid;
   uint64_t voxels = 0;
   double occupancy = 0;  // stored voxels / grid voxels
   uint64_t bricks = 0;

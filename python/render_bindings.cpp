@@ -4,6 +4,8 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <optional>
+#include <string>
 
 #include "cli/render_options.h"
 #include "python/bindings.h"
@@ -27,7 +29,31 @@ Result<viewer::Image> renderFrame(const format::VoxLinkFile& file,
   return target.read();
 }
 
-py::array_t<float> render(const py::object& fileOrPath, const std::string& size,
+// size="WxH" as the CLI's --size, or (width, height) as a tuple or list of two ints.
+std::string sizeArgument(const py::object& size) {
+  if (py::isinstance<py::str>(size)) return size.cast<std::string>();
+  if (py::isinstance<py::tuple>(size) || py::isinstance<py::list>(size)) {
+    const py::sequence pair = size.cast<py::sequence>();
+    // An integer is what operator.index takes (int, NumPy integers), not a bool or a float.
+    const auto integer = [](const py::handle& h) -> std::optional<std::string> {
+      if (py::isinstance<py::bool_>(h)) return std::nullopt;
+      PyObject* index = PyNumber_Index(h.ptr());
+      if (!index) {
+        PyErr_Clear();
+        return std::nullopt;
+      }
+      return py::str(py::reinterpret_steal<py::object>(index)).cast<std::string>();
+    };
+    if (pair.size() == 2) {
+      const auto w = integer(pair[0]), h = integer(pair[1]);
+      if (w && h) return *w + "x" + *h;
+    }
+  }
+  throw py::type_error("size must be (width, height) as two ints, or a 'WxH' string; got " +
+                       py::repr(size).cast<std::string>());
+}
+
+py::array_t<float> render(const py::object& fileOrPath, const py::object& size,
                           const std::string& camera, const std::string& sampling,
                           const py::object& tf, const std::string& tfPreset) {
   const PyFile file = py::isinstance<PyFile>(fileOrPath) ? fileOrPath.cast<PyFile>()
@@ -35,7 +61,7 @@ py::array_t<float> render(const py::object& fileOrPath, const std::string& size,
   if (!viewer::parseSampling(sampling))  // the CLI checks this in its option parser
     throw py::value_error("sampling must be voxel or trilinear, not '" + sampling + "'");
   cli::RenderOptions options;
-  options.size = size;
+  options.size = sizeArgument(size);
   options.camera = camera;
   options.sampling = sampling;
   if (!tf.is_none()) options.tfPath = pathArgument(tf);
@@ -59,8 +85,9 @@ void bindRender(py::module_& m) {
         R"doc(Renders one frame headless (EGL) like `voxlink render`; returns HxWx4 float32
 linear RGBA in the renderer's row order (row 0 is the image's first row as the CLI writes it).
 
-file: a voxlink.File or a .vxl path. size "WxH"; camera "AZ,EL[,DIST[,FOV]]" (empty: the
-default view); sampling "voxel" or "trilinear"; tf: a transfer function JSON path, or
+file: a voxlink.File or a .vxl path (str, bytes or os.PathLike). size: (width, height) or
+"WxH"; camera "AZ,EL[,DIST[,FOV]]" (empty: the
+default view); sampling "voxel" or "trilinear"; tf: a transfer function JSON path (os.PathLike too), or
 tf_preset: a preset name (as --tf-preset); neither: the file's default.)doc");
 }
 

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "tests/convert/volume_fixtures.h"
 
@@ -93,6 +96,27 @@ TEST(MomentsAndHistogram, InactiveVoxelsAreLeftOut) {
   uint64_t total = 0;
   for (uint64_t c : h->counts) total += c;
   EXPECT_EQ(total, m->count);
+}
+
+TEST(MomentsAndHistogram, ProgressRisesSlabBySlabToOne) {
+  // 10 slices in slabs of 3: 4 slabs per pass; the histogram's two passes share 0..1.
+  auto v = testing::makeVolume<uint8_t>({4, 4, 10},
+                                        [](uint32_t x, uint32_t, uint32_t z) { return x + z; });
+  std::vector<std::pair<double, std::string>> heard;
+  const PassProgress listen = [&](double f, const char* stage) { heard.emplace_back(f, stage); };
+  ASSERT_TRUE(measureMoments(*v, 3, listen));
+  ASSERT_EQ(heard.size(), 4u);
+  EXPECT_DOUBLE_EQ(heard[0].first, 0.3);
+  EXPECT_DOUBLE_EQ(heard.back().first, 1.0);
+  EXPECT_EQ(heard.back().second, "moments");
+  heard.clear();
+  ASSERT_TRUE(measureHistogram(*v, 8, 3, listen));
+  ASSERT_EQ(heard.size(), 8u);
+  for (size_t i = 1; i < heard.size(); ++i) EXPECT_GT(heard[i].first, heard[i - 1].first);
+  EXPECT_DOUBLE_EQ(heard[3].first, 0.5);
+  EXPECT_EQ(heard[3].second, "moments");
+  EXPECT_DOUBLE_EQ(heard.back().first, 1.0);
+  EXPECT_EQ(heard.back().second, "histogram");
 }
 
 }  // namespace
