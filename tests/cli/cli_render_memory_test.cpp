@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "format/file_writer.h"
@@ -73,6 +74,39 @@ TEST(CliRenderMemory, TablesThatCannotFitAreRefusedUpFront) {
             std::string::npos)
       << r.err;
   EXPECT_EQ(listDir(dir.path()), std::vector<std::string>{"corners.vxl"});
+}
+
+// render --reference loads the dense source in float64: 16384 x 16384 u8 needs 2.4 GB with its
+// bytes, refused under 2 GiB before it is read or a frame rendered, naming the source. (Under
+// 1 GiB llvmpipe cannot start its threads.)
+TEST(CliRenderMemory, ReferenceThatCannotFitIsRefusedUpFront) {
+  if (!addressSpaceLimitsWork()) GTEST_SKIP() << "AddressSanitizer cannot run under ulimit -v";
+  if (!viewerBuilt()) GTEST_SKIP() << "built without the viewer";
+  TempDir dir;
+  {
+    std::ofstream raw(dir.file("slice.raw"), std::ios::binary);
+    raw.seekp(6 * 16384 + 5);
+    raw.put(char(200));
+    raw.seekp(int64_t{16384} * 16384 - 1);
+    raw.put(0);  // the rest is a hole: no disk blocks
+  }
+  auto r = runVoxlink({"convert", dir.file("slice.raw"), "--dims", "16384,16384,1", "--type", "u8",
+                       "--threshold", "100", "--brick", "4", "-o", dir.file("slice.vxl"), "-q"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  RunOptions limited;
+  limited.addressSpaceBytes = uint64_t{2} << 30;
+  limited.timeoutSeconds = 120;
+  r = runVoxlink(
+      {"render", dir.file("slice.vxl"), "-o", dir.file("s.png"), "--size", "32x32", "--reference"},
+      limited);
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find(dir.file("slice.raw") +
+                       ": the dense volume needs 2415919104 bytes (16384 x 16384 x 1 voxels as "
+                       "u8 and float64), more than the 2147483648 bytes this process may use"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.png")));
 }
 
 // A one-slice volume exports with a one-slice layer: 16384 x 16384 u8 is 256 MiB a slice, and
