@@ -3,6 +3,7 @@
 // scene, the same voxel scene) and prints the image error.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <vector>
 
 #include "cli/command.h"
@@ -55,6 +56,17 @@ CommandRunner addRenderCommand(CLI::App& app) {
     if (!spec) return reportError(spec.error());
     auto tf = args->render.transferFunction(*file);
     if (!tf) return reportError(tf.error());
+    // The reference's dense source is loaded first: one that cannot fit is refused before a
+    // frame is rendered or an image written.
+    const bool reference = args->reference || !args->referenceOut.empty();
+    std::optional<viewer::DenseVolume> dense;
+    if (reference && !file->isScene()) {
+      auto sourceOptions = args->source.openOptions();
+      if (!sourceOptions) return reportError(sourceOptions.error());
+      auto loaded = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
+      if (!loaded) return reportError(loaded.error());
+      dense = std::move(*loaded);
+    }
     auto context = viewer::createHeadlessContext();
     if (!context) return reportError(context.error());
     auto renderer = viewer::VoxLinkRenderer::create(*file);
@@ -81,19 +93,12 @@ CommandRunner addRenderCommand(CLI::App& app) {
                       (unsigned long long)stats.secondaryRays,
                       (unsigned long long)stats.droppedRays);
     }
-    if (!args->reference && args->referenceOut.empty()) return 0;
-    viewer::Image truth;
-    if (file->isScene()) {
-      // A scene's reference traces the same voxel scene in float64 (its geometry has no dense
-      // source).
-      truth = viewer::SceneReferenceRenderer(*file, *tf).render(camera, *settings);
-    } else {
-      auto sourceOptions = args->source.openOptions();
-      if (!sourceOptions) return reportError(sourceOptions.error());
-      auto dense = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
-      if (!dense) return reportError(dense.error());
-      truth = viewer::ReferenceRenderer(*dense, *tf).render(camera, *settings);
-    }
+    if (!reference) return 0;
+    // A scene's reference traces the same voxel scene in float64 (its geometry has no dense
+    // source).
+    const viewer::Image truth =
+        file->isScene() ? viewer::SceneReferenceRenderer(*file, *tf).render(camera, *settings)
+                        : viewer::ReferenceRenderer(*dense, *tf).render(camera, *settings);
     if (!args->referenceOut.empty())
       if (Status s = viewer::writeImage(truth, args->referenceOut); !s) return reportError(s);
     auto error = viewer::compareImages(image, truth);

@@ -16,6 +16,7 @@
 #include "format/file_name.h"
 #include "format/output_file.h"
 #include "format/source_value.h"
+#include "format/process_memory.h"
 #include "format/voxel_locator.h"
 
 namespace voxlink::format {
@@ -165,15 +166,24 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
   Status status = [&]() -> Status {
     if (!detached)
       VOXLINK_RETURN_IF_ERROR(writeAll(temp.fd, header.data(), header.size(), dataPath));
-    // One brick layer of slices: the locator visits bricks z-layer by z-layer. A valid file can
-    // be wide enough that this does not fit (65536^2 float64 voxels, 8-voxel bricks: 256 GiB).
+    // One brick layer of slices: the locator visits bricks z-layer by z-layer. The layer is
+    // never deeper than the volume (a one-slice volume with 4-voxel bricks took 4 slices). A
+    // valid file can be wide enough that it does not fit (65536^2 float64 voxels, 8-voxel
+    // bricks: 256 GiB): refused before allocating, as filling it would touch every page.
+    const uint32_t layerSlices = std::min(n, h.dims[2]);
+    const uint64_t layerBytes = sliceBytes * layerSlices;
+    auto tooLarge = [&] {
+      return makeError(ErrorCode::kTooLarge, file.path(), ": a layer of bricks (", h.dims[0], " x ",
+                       h.dims[1], " x ", layerSlices, " ", scalarName(type), " voxels, ",
+                       layerBytes, " bytes) does not fit in memory for the dense export (",
+                       memoryForThisProcess(), " bytes this process may use)");
+    };
+    if (layerBytes > memoryForThisProcess()) return tooLarge();
     std::vector<uint8_t> layer;
     try {
-      layer.resize(sliceBytes * n);
+      layer.resize(layerBytes);
     } catch (const std::bad_alloc&) {
-      return makeError(ErrorCode::kTooLarge, file.path(), ": a layer of bricks (", h.dims[0], " x ",
-                       h.dims[1], " x ", n, " ", scalarName(type), " voxels, ", sliceBytes * n,
-                       " bytes) does not fit in memory for the dense export");
+      return tooLarge();
     }
     std::vector<uint8_t> fillValue(elem);
     store(type, fill, fillValue.data());

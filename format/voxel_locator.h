@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "format/brick_rows.h"
+#include "format/occupied_bricks.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::format {
@@ -20,7 +21,8 @@ class VoxelLocator {
   // Index of the stored voxel at source coordinates (x, y, z), or -1 when none is stored.
   int64_t find(uint32_t x, uint32_t y, uint32_t z) const;
 
-  // Calls fn(x, y, z, voxelIndex) for every stored voxel, in file order.
+  // Calls fn(x, y, z, voxelIndex) for every stored voxel, in file order; its cost follows the
+  // occupied bricks (format/occupied_bricks.h).
   template <class F>
   void forEachVoxel(F&& fn) const;
 
@@ -39,11 +41,8 @@ class VoxelLocator {
 
 template <class F>
 void VoxelLocator::forEachVoxel(F&& fn) const {
-  const uint64_t bricks = uint64_t{grid_[0]} * grid_[1] * grid_[2];
   const uint32_t maskWords = maskWordsPerBrick(n_);
-  uint64_t k = 0;
-  for (uint64_t b = 0; b < bricks; ++b) {
-    if (((occupancy_[b >> 5] >> (b & 31)) & 1u) == 0) continue;
+  forEachOccupiedBrick(file_.occupancyWords(), file_.gridBrickCount(), [&](uint64_t b, uint64_t k) {
     const uint32_t origin[3] = {static_cast<uint32_t>(b % grid_[0]) * n_,
                                 static_cast<uint32_t>(b / grid_[0] % grid_[1]) * n_,
                                 static_cast<uint32_t>(b / (uint64_t{grid_[0]} * grid_[1])) * n_};
@@ -61,8 +60,7 @@ void VoxelLocator::forEachVoxel(F&& fn) const {
         fn(p[0], p[1], p[2], voxel++);
       }
     }
-    ++k;
-  }
+  });
 }
 
 }  // namespace voxlink::format

@@ -4,6 +4,8 @@
 #include <pybind11/stl.h>
 #include <stdlib.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -13,6 +15,7 @@
 #include "format/transfer_function.h"
 #include "python/array_source.h"
 #include "python/bindings.h"
+#include "sources/readers/reader_common.h"
 
 namespace voxlink::python {
 namespace {
@@ -85,6 +88,12 @@ std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
   if (a.ndim() != 3)
     throw py::value_error("convert: the array has " + std::to_string(a.ndim()) +
                           " dimensions; expected 3 (a[z][y][x])");
+  // The limits `voxlink convert` applies to any input, before anything else: a memmap of
+  // (512, 65536, 65536) ran for hours where the command line refuses the same dims at once.
+  std::array<uint64_t, 3> dims{};
+  for (int axis = 0; axis < 3; ++axis)
+    dims[axis] = uint64_t(std::max<py::ssize_t>(a.shape(2 - axis), 0));
+  raiseIfError(convert::checkDims(dims, "numpy array", "shape"));
   if (!(a.flags() & py::array::c_style))
     throw py::value_error(
         "convert: the array is not C-contiguous; pass numpy.ascontiguousarray(a)");
@@ -93,13 +102,7 @@ std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
     throw py::type_error("convert: dtype " + py::str(a.dtype()).cast<std::string>() +
                          " is not supported (uint8/16/32, int8/16/32, float32/64, native order)");
   convert::VolumeInfo info;
-  for (int axis = 0; axis < 3; ++axis) {
-    const py::ssize_t n = a.shape(2 - axis);
-    if (n <= 0 || n > py::ssize_t{UINT32_MAX})
-      throw py::value_error("convert: array axis " + std::to_string(2 - axis) + " has size " +
-                            std::to_string(n));
-    info.dims[axis] = static_cast<uint32_t>(n);
-  }
+  for (int axis = 0; axis < 3; ++axis) info.dims[axis] = static_cast<uint32_t>(dims[axis]);
   info.type = *type;
   info.spacing = spacing;
   info.origin = origin;
@@ -107,6 +110,38 @@ std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
   info.format = "numpy-array";
   return std::make_unique<ArraySource>(std::move(info), a.data());
 }
+
+// A Python exception taken out of the interpreter while C++ code finishes (the GIL released in
+// between), then raised again. Every method must be called with the GIL held.
+class PendingPythonError {
+ public:
+  PendingPythonError() = default;
+  PendingPythonError(const PendingPythonError&) = delete;
+  PendingPythonError& operator=(const PendingPythonError&) = delete;
+  ~PendingPythonError() {
+    if (type_) {
+      py::gil_scoped_acquire gil;
+      Py_XDECREF(type_);
+      Py_XDECREF(value_);
+      Py_XDECREF(traceback_);
+    }
+  }
+  void fetch() {
+    if (!type_) PyErr_Fetch(&type_, &value_, &traceback_);
+    PyErr_Clear();
+  }
+  void raiseIfAny() {
+    if (!type_) return;
+    PyErr_Restore(type_, value_, traceback_);
+    type_ = value_ = traceback_ = nullptr;
+    throw py::error_already_set();
+  }
+
+ private:
+  PyObject* type_ = nullptr;
+  PyObject* value_ = nullptr;
+  PyObject* traceback_ = nullptr;
+};
 
 // A fresh private folder for a file nobody named; removed once the file is read.
 struct ScratchDir {
@@ -170,10 +205,24 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
   }
   raiseIfError(format::checkOutputTarget(outPath, inputs));
   {
+    // Ctrl-C: the converter reports after every slab; the report takes the GIL back for a
+    // moment and runs Python's signal handlers. One that raises (KeyboardInterrupt) cancels the
+    // conversion at the next slab, and its exception is raised here, with nothing written.
+    std::atomic<bool> cancel{false};
+    PendingPythonError interrupt;
+    options.cancel = &cancel;
+    options.progress = [&](double, const char*) {
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        interrupt.fetch();
+        cancel.store(true);
+      }
+    };
     Result<convert::ConvertSummary> summary = [&] {
       py::gil_scoped_release release;
       return convert::convertVolume(*source, options, outPath);
     }();
+    interrupt.raiseIfAny();
     if (!summary) raise(summary.error());
   }
   return openFile(outPath);  // read into memory: the scratch folder may go

@@ -26,7 +26,7 @@ void main() {
   if (voxel >= 0) {
     ivec3 b = p / VXL_N;
     ivec3 local = p - b * VXL_N;
-    Row row = fetchRow(uint(occupiedIndex(brickId(b))), rowOfLocal(local));
+    Row row = fetchRow(uint(occupiedIndex(b)), rowOfLocal(local));
     uint later = row.bits & ~((2u << uint(local[VXL_W])) - 1u);
     if (local[VXL_W] == 31) later = 0u;
     if (later != 0u) next = voxelInRow(row, uint(findLSB(later)));

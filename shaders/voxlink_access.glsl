@@ -10,14 +10,15 @@
 
 uniform ivec3 uBrickGrid;
 
-uint brickId(ivec3 b) {
-  return (uint(b.z) * uint(uBrickGrid.y) + uint(b.y)) * uint(uBrickGrid.x) + uint(b.x);
+// Index of the brick at cell b among the occupied bricks, or -1 when it is empty
+// (viewer/core/brick_lookup.h). The table covers the box of the occupied bricks
+// (kVxlIndexLo/kVxlIndexSize, generated): outside it every brick is empty, without a read.
+int occupiedIndex(ivec3 b) {
+  ivec3 r = b - kVxlIndexLo;
+  if (any(lessThan(r, ivec3(0))) || any(greaterThanEqual(r, kVxlIndexSize))) return -1;
+  return int(brickIndexWord((uint(r.z) * uint(kVxlIndexSize.y) + uint(r.y)) * uint(kVxlIndexSize.x) +
+                            uint(r.x)));
 }
-
-// Index of brick b among the occupied bricks, or -1 when b is empty (viewer/core/brick_lookup.h).
-int occupiedIndex(uint b) { return int(brickIndexWord(b)); }
-
-bool brickOccupied(uint b) { return occupiedIndex(b) >= 0; }
 
 // First voxel (BVOX) of occupied brick k.
 uint firstVoxel(uint k) { return brickEntry(k).y; }
@@ -68,7 +69,7 @@ uint rowOfLocal(ivec3 local) { return uint(local[VXL_V]) * uint(VXL_N) + uint(lo
 int findVoxel(ivec3 p) {
   if (!insideGrid(p, uDims)) return -1;
   ivec3 b = p / VXL_N;
-  int k = occupiedIndex(brickId(b));
+  int k = occupiedIndex(b);
   if (k < 0) return -1;
   ivec3 local = p - b * VXL_N;
   return voxelInRow(fetchRow(uint(k), rowOfLocal(local)), uint(local[VXL_W]));

@@ -16,7 +16,7 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
   for (int i = 0; i < limit && t < t1; ++i) {
     int axis = minAxis(bricks.tMax);
     float tb = min(max(bricks.tMax[axis], t), t1);
-    int k = occupiedIndex(brickId(bricks.cell));
+    int k = occupiedIndex(bricks.cell);
     float tIn = t, tOut = tb;
     ivec3 lo, hi;
     uint base;

@@ -31,8 +31,7 @@ int dualBrickIndex(ivec3 dual, int m, vec3 o, vec3 d, float t0, float t1, out ve
   reach = vec2(kBig, -kBig);
   base = 0u;
   ivec3 b = dual + cornerOffset(m);
-  if (!insideGrid(b, uBrickGrid)) return -1;
-  int k = occupiedIndex(brickId(b));
+  int k = occupiedIndex(b);  // -1 outside the grid too: it holds the occupied bricks' box
   if (k < 0) return -1;
   uvec2 entry = brickEntry(uint(k));
   base = entry.y;
@@ -150,8 +149,11 @@ void loadCorners(ivec3 cell) {
 // Whether the ray's samples in [t0, t1) can meet a stored voxel in the dual brick at cell c of
 // the dual grid (dual brick c - 1): one word of the table derived at load time
 // (viewer/core/brick_lookup.h), the box of the dual brick's cells that can.
-bool dualBrickHit(vec3 o, vec3 d, ivec3 c, ivec3 dualGrid, float t0, float t1) {
-  uint i = (uint(c.z) * uint(dualGrid.y) + uint(c.y)) * uint(dualGrid.x) + uint(c.x);
+bool dualBrickHit(vec3 o, vec3 d, ivec3 c, float t0, float t1) {
+  // The table covers the dual cells around the occupied bricks (kVxlDualLo/kVxlDualSize).
+  ivec3 r = c - kVxlDualLo;
+  if (any(lessThan(r, ivec3(0))) || any(greaterThanEqual(r, kVxlDualSize))) return false;
+  uint i = (uint(r.z) * uint(kVxlDualSize.y) + uint(r.y)) * uint(kVxlDualSize.x) + uint(r.x);
   uint box = dualBoxWord(i);
   if (box == 0xFFFFFFFFu) return false;
   ivec3 lo, hi;
@@ -217,7 +219,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
         }
         axis = minAxis(bricks.tMax);
         tb = min(max(bricks.tMax[axis], t), t1);
-        if (dualBrickHit(o, d, bricks.cell, dualGrid, t, tb)) break;
+        if (dualBrickHit(o, d, bricks.cell, t, tb)) break;
       }
       if (outside) return;
       tIn = t;

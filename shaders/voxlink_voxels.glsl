@@ -21,9 +21,9 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
     // Runs of empty bricks are crossed here, one occupancy bit each: llvmpipe executes the
     // whole body of this loop for all 8 lanes of a SIMD vector whenever one of them needs it,
     // so an empty brick taking a pass of its own costs as much as an occupied one.
-    uint id = brickId(bricks.cell);
+    int k = occupiedIndex(bricks.cell);
     bool outside = false;  // (a return from inside this loop gave wrong images on Mesa 22.3 llvmpipe)
-    for (int j = 0; j < limit && !brickOccupied(id); ++j) {
+    for (int j = 0; j < limit && k < 0; ++j) {
       t = min(max(bricks.tMax[axis], t), t1);
       ddaAdvance(bricks, axis);
       if (t >= t1 || bricks.cell[axis] < 0 || bricks.cell[axis] >= uBrickGrid[axis]) {
@@ -31,11 +31,10 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
         break;
       }
       axis = minAxis(bricks.tMax);
-      id = brickId(bricks.cell);
+      k = occupiedIndex(bricks.cell);
     }
     if (outside) break;
     float tb = min(max(bricks.tMax[axis], t), t1);
-    int k = occupiedIndex(id);
     float tIn = t, tOut = tb;
     ivec3 lo, hi;
     uint base;

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 
+#include "format/file_writer.h"
 #include "format/voxel_locator.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
@@ -47,11 +48,38 @@ TEST(BrickLookup, TablesMatchBruteForce) {
             if (locator.find(x, y, z) >= 0)
               occupied[(uint64_t{z / n} * g[1] + y / n) * g[0] + x / n] = true;
 
-      const std::vector<uint32_t> index = occupiedIndexByBrick(*file);
-      ASSERT_EQ(index.size(), occupied.size());
+      // The index covers the smallest box of bricks holding every occupied one.
+      const BrickRange range = occupiedBrickRange(*file);
+      std::array<int64_t, 3> first{g[0], g[1], g[2]}, last{-1, -1, -1};
+      for (int64_t bz = 0, b = 0; bz < g[2]; ++bz)
+        for (int64_t by = 0; by < g[1]; ++by)
+          for (int64_t bx = 0; bx < g[0]; ++bx, ++b) {
+            if (!occupied[b]) continue;
+            const int64_t c[3] = {bx, by, bz};
+            for (int a = 0; a < 3; ++a) {
+              first[a] = std::min(first[a], c[a]);
+              last[a] = std::max(last[a], c[a]);
+            }
+          }
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(range.lo[a], uint32_t(first[a])) << "axis " << a;
+        EXPECT_EQ(range.size[a], uint32_t(last[a] - first[a] + 1)) << "axis " << a;
+      }
+      const std::vector<uint32_t> index = occupiedIndexByBrick(*file, range);
+      ASSERT_EQ(index.size(), range.count());
       uint32_t k = 0;
-      for (size_t b = 0; b < occupied.size(); ++b)
-        EXPECT_EQ(index[b], occupied[b] ? k++ : kEmptyBrick) << "brick " << b;
+      for (int64_t bz = 0, b = 0; bz < g[2]; ++bz)
+        for (int64_t by = 0; by < g[1]; ++by)
+          for (int64_t bx = 0; bx < g[0]; ++bx, ++b) {
+            const bool inside = bx >= first[0] && bx <= last[0] && by >= first[1] &&
+                                by <= last[1] && bz >= first[2] && bz <= last[2];
+            if (!inside) {
+              EXPECT_FALSE(occupied[b]) << "brick " << b << " outside the range";
+              continue;
+            }
+            EXPECT_EQ(index[range.local(bx, by, bz)], occupied[b] ? k++ : kEmptyBrick)
+                << "brick " << b;
+          }
       EXPECT_EQ(k, file->occupiedBrickCount());
 
       // Dual brick D reads bricks D and D + 1 per axis. Its box, by definition: the union over
@@ -71,8 +99,19 @@ TEST(BrickLookup, TablesMatchBruteForce) {
             }
           }
       const auto dual = dualBrickGrid(h);
-      const std::vector<uint32_t> boxes = dualBrickBoxes(h, index, brickBounds(*file));
-      ASSERT_EQ(boxes.size(), uint64_t{dual[0]} * dual[1] * dual[2]);
+      const BrickRange dualRange = dualBrickRange(range);
+      const std::vector<uint32_t> table = dualBrickBoxes(*file, range, brickBounds(*file));
+      ASSERT_EQ(table.size(), dualRange.count());
+      // The table over the whole dual grid: what a lookup outside the range gives is empty.
+      std::vector<uint32_t> boxes(uint64_t{dual[0]} * dual[1] * dual[2], kEmptyDualBrick);
+      for (uint64_t z = 0; z < dual[2]; ++z)
+        for (uint64_t y = 0; y < dual[1]; ++y)
+          for (uint64_t x = 0; x < dual[0]; ++x) {
+            const bool inside = x >= dualRange.lo[0] && x < dualRange.lo[0] + dualRange.size[0] &&
+                                y >= dualRange.lo[1] && y < dualRange.lo[1] + dualRange.size[1] &&
+                                z >= dualRange.lo[2] && z < dualRange.lo[2] + dualRange.size[2];
+            if (inside) boxes[(z * dual[1] + y) * dual[0] + x] = table[dualRange.local(x, y, z)];
+          }
       uint64_t nonEmpty = 0;
       for (int64_t dz = -1; dz < g[2]; ++dz)
         for (int64_t dy = -1; dy < g[1]; ++dy)
@@ -153,9 +192,48 @@ TEST(BrickLookup, EmptyFileHasNoOccupiedBrick) {
   voxlink::testing::TempDir dir;
   auto file = testing::writeAndOpen(*sparse, dir.file("e.vxl"));
   ASSERT_TRUE(file) << file.message();
-  for (uint32_t i : occupiedIndexByBrick(*file)) EXPECT_EQ(i, kEmptyBrick);
-  for (uint32_t w : dualBrickBoxes(file->header(), occupiedIndexByBrick(*file), brickBounds(*file)))
-    EXPECT_EQ(w, kEmptyDualBrick);
+  const BrickRange range = occupiedBrickRange(*file);
+  EXPECT_EQ(range.count(), 0u);
+  EXPECT_EQ(dualBrickRange(range).count(), 0u);
+  EXPECT_TRUE(occupiedIndexByBrick(*file, range).empty());
+  EXPECT_TRUE(dualBrickBoxes(*file, range, brickBounds(*file)).empty());
+}
+
+// The file: one voxel in a 65536 x 32768 x 1 grid of 4-voxel bricks (134 million
+// bricks). The tables cover the one occupied brick and the 8 dual cells around it; covering
+// the grid, they took 14 GB.
+TEST(BrickLookup, TablesFollowTheOccupiedBricksNotTheGrid) {
+  format::VolumeDescription d;
+  d.dims = {65536, 32768, 1};
+  d.brickSize = 4;
+  d.valueType = StoredType::kU8;
+  d.sourceType = ScalarType::kU8;
+  format::BrickedVolumeBuilder builder(d);
+  builder.add(40001, 20002, 0, 7, 0);
+  auto volume = builder.build();
+  ASSERT_TRUE(volume) << volume.message();
+  voxlink::testing::TempDir dir;
+  ASSERT_TRUE(format::writeBrickedVolume(dir.file("one.vxl"), *volume).isOk());
+  auto file = format::VoxLinkFile::open(dir.file("one.vxl"));
+  ASSERT_TRUE(file) << file.message();
+  const BrickRange range = occupiedBrickRange(*file);
+  EXPECT_EQ(range.lo, (std::array<uint32_t, 3>{10000, 5000, 0}));
+  EXPECT_EQ(range.size, (std::array<uint32_t, 3>{1, 1, 1}));
+  EXPECT_EQ(occupiedIndexByBrick(*file, range), std::vector<uint32_t>{0});
+  const std::vector<uint32_t> boxes = dualBrickBoxes(*file, range, brickBounds(*file));
+  ASSERT_EQ(boxes.size(), 8u);
+  // Voxel (40001, 20002, 0) is cell (1, 2, 0) of its brick; a sample blends it from cells
+  // (0..1, 1..2, -1..0): in dual brick (10000, 5000, 0) (dual cell + 1) those are x 0-1, y 1-2,
+  // z 0; the dual bricks before it along x and y reach nothing, the one before along z reaches
+  // its last cell (z = -1 = 3 of dual brick -1).
+  auto cells = [](uint32_t word) {
+    const BrickBox b = unpackBrickBox(word);
+    return std::array<uint32_t, 6>{b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
+  };
+  const BrickRange dual = dualBrickRange(range);
+  EXPECT_EQ(cells(boxes[dual.local(10001, 5001, 1)]), (std::array<uint32_t, 6>{0, 1, 0, 1, 2, 0}));
+  EXPECT_EQ(cells(boxes[dual.local(10001, 5001, 0)]), (std::array<uint32_t, 6>{0, 1, 3, 1, 2, 3}));
+  EXPECT_EQ(boxes[dual.local(10000, 5001, 1)], kEmptyDualBrick);
 }
 
 }  // namespace

@@ -2,16 +2,51 @@
 
 #include <algorithm>
 
+#include "format/occupied_bricks.h"
 #include "viewer/core/brick_bounds.h"
 
 namespace voxlink::viewer {
+namespace {
 
-std::vector<uint32_t> occupiedIndexByBrick(const format::VoxLinkFile& file) {
-  const auto occupancy = file.occupancyWords();
-  std::vector<uint32_t> out(file.gridBrickCount(), kEmptyBrick);
-  uint32_t k = 0;
-  for (uint64_t b = 0; b < out.size(); ++b)
-    if ((occupancy[b >> 5] >> (b & 31)) & 1u) out[b] = k++;
+// Brick coordinates of source-order brick id b.
+std::array<uint32_t, 3> brickCell(const format::FileHeader& h, uint64_t b) {
+  const uint64_t gx = h.brickGrid[0], gxy = gx * h.brickGrid[1];
+  return {uint32_t(b % gx), uint32_t(b / gx % h.brickGrid[1]), uint32_t(b / gxy)};
+}
+
+}  // namespace
+
+BrickRange occupiedBrickRange(const format::VoxLinkFile& file) {
+  const format::FileHeader& h = file.header();
+  std::array<uint32_t, 3> lo{UINT32_MAX, UINT32_MAX, UINT32_MAX}, hi{0, 0, 0};
+  bool any = false;
+  format::forEachOccupiedBrick(file.occupancyWords(), file.gridBrickCount(),
+                               [&](uint64_t b, uint64_t) {
+                                 const auto c = brickCell(h, b);
+                                 for (int a = 0; a < 3; ++a) {
+                                   lo[a] = std::min(lo[a], c[a]);
+                                   hi[a] = std::max(hi[a], c[a]);
+                                 }
+                                 any = true;
+                               });
+  BrickRange range;
+  if (!any) return range;
+  for (int a = 0; a < 3; ++a) {
+    range.lo[a] = lo[a];
+    range.size[a] = hi[a] - lo[a] + 1;
+  }
+  return range;
+}
+
+std::vector<uint32_t> occupiedIndexByBrick(const format::VoxLinkFile& file,
+                                           const BrickRange& range) {
+  const format::FileHeader& h = file.header();
+  std::vector<uint32_t> out(range.count(), kEmptyBrick);
+  format::forEachOccupiedBrick(file.occupancyWords(), file.gridBrickCount(),
+                               [&](uint64_t b, uint64_t k) {
+                                 const auto c = brickCell(h, b);
+                                 out[range.local(c[0], c[1], c[2])] = uint32_t(k);
+                               });
   return out;
 }
 
@@ -19,52 +54,52 @@ std::array<uint32_t, 3> dualBrickGrid(const format::FileHeader& h) {
   return {h.brickGrid[0] + 1, h.brickGrid[1] + 1, h.brickGrid[2] + 1};
 }
 
-std::vector<uint32_t> dualBrickBoxes(const format::FileHeader& h, std::span<const uint32_t> index,
+BrickRange dualBrickRange(const BrickRange& occupied) {
+  BrickRange dual = occupied;
+  if (occupied.count() > 0)
+    for (uint32_t& s : dual.size) ++s;
+  return dual;
+}
+
+std::vector<uint32_t> dualBrickBoxes(const format::VoxLinkFile& file, const BrickRange& occupied,
                                      std::span<const uint32_t> brickBoxes) {
+  const format::FileHeader& h = file.header();
   const int64_t n = h.brickSize;
-  const std::array<uint32_t, 3> dual = dualBrickGrid(h);
-  struct Cells {
-    int64_t lo[3], hi[3];
-  };
-  std::vector<Cells> boxes(uint64_t{dual[0]} * dual[1] * dual[2], Cells{{n, n, n}, {-1, -1, -1}});
+  const BrickRange dual = dualBrickRange(occupied);
+  // Merged in place, packed: 4 bytes per dual cell (unpacked boxes of int64 took 48).
+  std::vector<uint32_t> out(dual.count(), kEmptyDualBrick);
   // An occupied brick b is read by the dual bricks b - 1 and b per axis (dual cells b, b + 1).
-  for (uint64_t z = 0, b = 0; z < h.brickGrid[2]; ++z)
-    for (uint64_t y = 0; y < h.brickGrid[1]; ++y)
-      for (uint64_t x = 0; x < h.brickGrid[0]; ++x, ++b) {
-        if (index[b] == kEmptyBrick) continue;
-        const BrickBox box = unpackBrickBox(brickBoxes[index[b]]);
-        const uint64_t brick[3] = {x, y, z};
-        for (uint64_t m = 0; m < 8; ++m) {
-          const uint64_t c[3] = {x + (m & 1), y + ((m >> 1) & 1), z + (m >> 2)};  // dual cell
+  format::forEachOccupiedBrick(
+      file.occupancyWords(), file.gridBrickCount(), [&](uint64_t b, uint64_t k) {
+        const auto brick = brickCell(h, b);
+        const BrickBox box = unpackBrickBox(brickBoxes[k]);
+        for (uint32_t m = 0; m < 8; ++m) {
+          const uint64_t c[3] = {brick[0] + (m & 1u), brick[1] + ((m >> 1) & 1u),
+                                 brick[2] + (m >> 2)};  // dual cell
           // Cells reached, global: [b n + lo - 1, b n + hi]; the dual brick's: [(c - 1) n, c n -
           // 1].
-          Cells reached;
+          BrickBox reached;
           bool any = true;
           for (int a = 0; a < 3; ++a) {
             const int64_t origin = (int64_t(c[a]) - 1) * n;
-            reached.lo[a] = std::max(int64_t(brick[a]) * n + box.lo[a] - 1 - origin, int64_t{0});
-            reached.hi[a] = std::min(int64_t(brick[a]) * n + box.hi[a] - origin, n - 1);
-            any = any && reached.lo[a] <= reached.hi[a];
+            const int64_t lo = std::max(int64_t(brick[a]) * n + box.lo[a] - 1 - origin, int64_t{0});
+            const int64_t hi = std::min(int64_t(brick[a]) * n + box.hi[a] - origin, n - 1);
+            any = any && lo <= hi;
+            reached.lo[a] = uint32_t(std::max<int64_t>(lo, 0));
+            reached.hi[a] = uint32_t(std::max<int64_t>(hi, 0));
           }
           if (!any) continue;
-          Cells& cells = boxes[(c[2] * dual[1] + c[1]) * dual[0] + c[0]];
-          for (int a = 0; a < 3; ++a) {
-            cells.lo[a] = std::min(cells.lo[a], reached.lo[a]);
-            cells.hi[a] = std::max(cells.hi[a], reached.hi[a]);
+          uint32_t& word = out[dual.local(c[0], c[1], c[2])];
+          if (word != kEmptyDualBrick) {
+            const BrickBox had = unpackBrickBox(word);
+            for (int a = 0; a < 3; ++a) {
+              reached.lo[a] = std::min(reached.lo[a], had.lo[a]);
+              reached.hi[a] = std::max(reached.hi[a], had.hi[a]);
+            }
           }
+          word = packBrickBox(reached);
         }
-      }
-  std::vector<uint32_t> out(boxes.size(), kEmptyDualBrick);
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    const Cells& c = boxes[i];
-    if (c.hi[0] < c.lo[0] || c.hi[1] < c.lo[1] || c.hi[2] < c.lo[2]) continue;
-    BrickBox box;
-    for (int a = 0; a < 3; ++a) {
-      box.lo[a] = uint32_t(c.lo[a]);
-      box.hi[a] = uint32_t(c.hi[a]);
-    }
-    out[i] = packBrickBox(box);
-  }
+      });
   return out;
 }
 

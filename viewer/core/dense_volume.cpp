@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "format/process_memory.h"
+
 namespace voxlink::viewer {
 namespace {
 
@@ -36,6 +38,15 @@ double DenseVolume::minSpacing() const { return std::min({spacing[0], spacing[1]
 
 Result<DenseVolume> loadDenseVolume(convert::VolumeSource& source) {
   const convert::VolumeInfo& info = source.info();
+  // The source's bytes and a float64 per voxel at once. Refused before reading: Linux
+  // overcommits, so an allocation beyond memory succeeds and the OOM killer ends the process
+  // once the values are written.
+  const uint64_t needed = info.voxelCount() * (scalarSize(info.type) + sizeof(double));
+  if (needed > format::memoryForThisProcess())
+    return makeError(ErrorCode::kTooLarge, info.path, ": the dense volume needs ", needed,
+                     " bytes (", info.dims[0], " x ", info.dims[1], " x ", info.dims[2],
+                     " voxels as ", scalarName(info.type), " and float64), more than the ",
+                     format::memoryForThisProcess(), " bytes this process may use");
   VOXLINK_ASSIGN_OR_RETURN(std::vector<uint8_t> bytes, convert::readAll(source));
   DenseVolume v;
   v.dims = info.dims;
