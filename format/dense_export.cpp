@@ -15,8 +15,8 @@
 
 #include "format/file_name.h"
 #include "format/output_file.h"
-#include "format/source_value.h"
 #include "format/process_memory.h"
+#include "format/source_value.h"
 #include "format/voxel_locator.h"
 
 namespace voxlink::format {
