@@ -169,6 +169,8 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     source = valueOrRaise(std::move(opened));
   }
   raiseIfError(format::checkOutputTarget(outPath, inputs));
+  if (!inputs.empty())
+    raiseIfError(format::checkOutputTarget(outPath, inputs.back(), source->info().files));
   {
     Result<convert::ConvertSummary> summary = [&] {
       py::gil_scoped_release release;
