@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -208,9 +207,11 @@ bool plyHasTriangleStrips(const std::string& path) {
 }
 
 Result<TriangleMesh> loadPlyWithStrips(const std::string& path, uint64_t maxTriangles) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.eof()) return makeError(ErrorCode::kIo, path, ": cannot read");
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  std::string data(in ? static_cast<size_t>(in.tellg()) : 0, '\0');
+  in.seekg(0);
+  if (!in || !in.read(data.data(), static_cast<std::streamsize>(data.size())))
+    return makeError(ErrorCode::kIo, path, ": cannot read");
   VOXLINK_ASSIGN_OR_RETURN(PlyHeader header, parseHeader(path, data));
   ValueReader reader(data, header.dataStart, header.encoding);
   TriangleMesh mesh;
