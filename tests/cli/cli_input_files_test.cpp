@@ -50,7 +50,7 @@ TEST(CliInputFiles, ConvertSparesTheNrrdDataFiles) {
   writeBytes(dir.file("part2.raw"), half);
   writeText(dir.file("list.nhdr"),
             "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 20 20 20\nencoding: raw\n"
-            "data file: part%d.raw 1 2 1 2\n\n");
+            "data file: part%d.raw 1 2 1\n\n");
   expectRefused(convertTo(dir.file("list.nhdr"), dir.file("part2.raw")), dir.file("part2.raw"),
                 dir.file("part2.raw"), dir.file("list.nhdr"));
   EXPECT_EQ(readBytes(dir.file("part2.raw")), half);
