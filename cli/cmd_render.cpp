@@ -9,6 +9,7 @@
 #include "cli/render_options.h"
 #include "format/output_file.h"
 #include "format/validator.h"
+#include "sources/volume_source.h"
 #include "viewer/core/recorded_source.h"
 #include "viewer/core/reference_renderer.h"
 #include "viewer/core/scene_reference_renderer.h"
@@ -46,6 +47,20 @@ CommandRunner addRenderCommand(CLI::App& app) {
         return reportError(s);
     auto file = format::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
+    const bool wantsReference = args->reference || !args->referenceOut.empty();
+    if (wantsReference && !file->isScene()) {
+      // The images are written before the reference reads its source: none may be one of the
+      // source's files (an image stack's slice, a header's data file).
+      auto sourceOptions = args->source.openOptions();
+      if (!sourceOptions) return reportError(sourceOptions.error());
+      auto chosen = viewer::chosenSource(*file, args->source.path, *sourceOptions);
+      if (!chosen) return reportError(chosen.error());
+      auto source = convert::openVolume(chosen->path, chosen->options);
+      if (!source) return reportError(source.error());
+      for (const std::string& out : outputs)
+        if (Status s = format::checkOutputTarget(out, chosen->path, (*source)->info().files); !s)
+          return reportError(s);
+    }
     auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
     auto spec = args->render.cameraSpec(*file);
@@ -76,7 +91,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   viewer::effectsName(settings->effects).c_str(), stats.passes,
                   (unsigned long long)stats.secondaryRays, (unsigned long long)stats.droppedRays);
     }
-    if (!args->reference && args->referenceOut.empty()) return 0;
+    if (!wantsReference) return 0;
     viewer::Image truth;
     if (file->isScene()) {
       // A scene's reference traces the same voxel scene in float64 (its geometry has no dense

@@ -1,6 +1,7 @@
 // -o may not name any file an input reads, not only the path on the command line: a detached
 // NRRD's or MetaImage's data files (one or a list), a DICOM folder's slices, the data file of a
-// scene's volume object. Each was overwritten with exit status 0 before.
+// scene's volume object, an image of a stack, a VVD's raw file, the source `render --reference`
+// reads. Each was overwritten with exit status 0 before.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -90,6 +91,74 @@ TEST(CliInputFiles, ConvertSparesTheSlicesOfADicomFolder) {
   const std::vector<uint8_t> before = readBytes(slice);
   expectRefused(convertTo(folder, slice), slice, slice, folder);
   EXPECT_EQ(readBytes(slice), before);
+}
+
+// A folder of 8x8 PGM slices, each a ramp offset by its slice number.
+std::vector<std::string> writePgmStack(const std::string& folder, int slices) {
+  fs::create_directories(folder);
+  std::vector<std::string> files;
+  for (int z = 0; z < slices; ++z) {
+    std::vector<uint8_t> bytes = {'P', '5', '\n', '8', ' ', '8', '\n', '2', '5', '5', '\n'};
+    for (int i = 0; i < 64; ++i) bytes.push_back(static_cast<uint8_t>(i + z));
+    files.push_back(folder + "/s" + std::to_string(z + 1) + ".pgm");
+    writeBytes(files.back(), bytes);
+  }
+  return files;
+}
+
+TEST(CliInputFiles, ConvertSparesTheImagesOfAStack) {
+  TempDir dir;
+  const std::string folder = dir.file("stack");
+  const std::vector<std::string> slices = writePgmStack(folder, 4);
+  const std::vector<uint8_t> before = readBytes(slices[1]);
+  expectRefused(convertTo(folder, slices[1]), slices[1], slices[1], folder);
+  EXPECT_EQ(readBytes(slices[1]), before);
+  EXPECT_EQ(convertTo(folder, dir.file("ok.vxl")).status, 0);
+}
+
+TEST(CliInputFiles, ConvertSparesTheRawFileOfAVvd) {
+  TempDir dir;
+  const std::vector<uint8_t> data = ramp(8000);
+  writeBytes(dir.file("v.raw"), data);
+  writeText(dir.file("v.vvd"), R"(<?xml version="1.0" ?><VoreenData version="1"><Volumes><Volume>)"
+                               R"(<RawData filename="v.raw" format="uint8" x="20" y="20" z="20" />)"
+                               R"(</Volume></Volumes></VoreenData>)");
+  expectRefused(convertTo(dir.file("v.vvd"), dir.file("v.raw")), dir.file("v.raw"),
+                dir.file("v.raw"), dir.file("v.vvd"));
+  EXPECT_EQ(readBytes(dir.file("v.raw")), data);
+  EXPECT_EQ(convertTo(dir.file("v.vvd"), dir.file("ok.vxl")).status, 0);
+}
+
+// render writes its image before the reference reads the dense source: an image of a PNG stack
+// was replaced by the render of the volume made from that stack.
+TEST(CliInputFiles, RenderReferenceSparesTheImagesOfItsSource) {
+  if (runVoxlink({"render", "--help"}).status != 0) GTEST_SKIP() << "built without the viewer";
+  TempDir dir;
+  writeBytes(dir.file("v.raw"), ramp(8000));
+  ASSERT_EQ(runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,20,20", "--type", "u8",
+                        "--keep-all", "-q", "-o", dir.file("v.vxl")})
+                .status,
+            0);
+  // The stack's slices are renders (RGBA PNGs; a stack reads channel 0).
+  const std::string folder = dir.file("stack");
+  fs::create_directories(folder);
+  for (const char* name : {"s1.png", "s2.png", "s3.png"}) {
+    auto r = runVoxlink({"render", dir.file("v.vxl"), "-o", folder + "/" + name, "--size", "8x8"});
+    if (r.status != 0) GTEST_SKIP() << "no headless GL here: " << r.err;
+  }
+  ASSERT_EQ(convertTo(folder, dir.file("st.vxl")).status, 0);
+  const std::string slice = folder + "/s2.png";
+  const std::vector<uint8_t> before = readBytes(slice);
+  for (const std::vector<std::string>& target :
+       {std::vector<std::string>{"-o", slice},
+        {"-o", dir.file("ok.png"), "--reference-output", slice}}) {
+    std::vector<std::string> args = {"render", dir.file("st.vxl"), "--reference", "--source",
+                                     folder,   "--size",           "8x8"};
+    args.insert(args.end(), target.begin(), target.end());
+    expectRefused(runVoxlink(args), slice, slice, folder);
+    EXPECT_EQ(readBytes(slice), before);
+  }
+  EXPECT_FALSE(fs::exists(dir.file("ok.png")));
 }
 
 TEST(CliInputFiles, SceneBuildSparesTheDataFileOfItsVolume) {
