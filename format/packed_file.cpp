@@ -274,6 +274,11 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   original.sectionTableOffset = preamble.originalTableOffset;
   original.sectionCount = preamble.entryCount;
   original.headerCrc = preamble.originalHeaderCrc;
+  // Before the checksum: a set reserved byte (with the packed header's CRC made right) was
+  // reported as "the restored header does not match" its checksum.
+  for (size_t i = 0; i < sizeof original.reserved; ++i)
+    if (original.reserved[i] != 0)
+      return makeError(ErrorCode::kCorrupt, name, ": header.reserved: byte ", i, " is not zero");
   if (kCheckPackedChecksums && headerChecksum(original) != original.headerCrc)
     return makeError(ErrorCode::kCorrupt, name,
                      ": section PACK.originalHeaderCrc: the restored header does not match it");

@@ -154,15 +154,16 @@ Status addStrip(const std::vector<double>& indices, uint64_t vertices, const std
   int64_t a = -1, b = -1;
   bool flip = false;
   for (double value : indices) {
-    const int64_t i = static_cast<int64_t>(value);
-    if (i == -1) {
+    if (value == -1) {
       a = b = -1;
       flip = false;
       continue;
     }
-    if (i < 0 || uint64_t(i) >= vertices || double(i) != value)
+    // Checked as a double first: casting 1e30 or NaN to an integer is undefined.
+    if (!(value >= 0 && value < double(vertices)) || value != std::floor(value))
       return makeError(ErrorCode::kCorrupt, where, ": vertex index ", value, " outside the ",
                        vertices, " vertices");
+    const int64_t i = static_cast<int64_t>(value);
     if (a >= 0 && b >= 0 && a != b && b != i && a != i) {
       const uint32_t u = uint32_t(a), v = uint32_t(b), w = uint32_t(i);
       if (flip)

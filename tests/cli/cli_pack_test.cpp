@@ -8,6 +8,7 @@
 
 #include "format/crc32c.h"
 #include "format/layout.h"
+#include "format/voxlink_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -122,8 +123,9 @@ TEST(CliPack, MisuseAndDamageEndWithOneLineAndNoOutput) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("u.vxl")));
 }
 
-// A wiped section table was reported as "section PACK: missing", and a non-zero reserved word
-// of a PACK entry as an unknown codec. Each now names its own cause.
+// A wiped section table was reported as "section PACK: missing", a non-zero reserved word of a
+// PACK entry as an unknown codec, a reserved header byte as a checksum mismatch. Each now names
+// its own cause.
 TEST(CliPack, DamagedTableAndReservedWordsNameTheirCause) {
   TempDir dir;
   std::vector<uint8_t> ramp(8000);
@@ -187,6 +189,17 @@ TEST(CliPack, DamagedTableAndReservedWordsNameTheirCause) {
             "voxlink: " + dir.file("reserved_pack.vxl") + ": section PACK: entry of " +
                 std::string(format::sectionName(static_cast<format::SectionId>(original.id))) +
                 ": reserved word 5 (must be 0)\n");
+
+  // A reserved header byte, the packed header's checksum made right: it was reported as "the
+  // restored header does not match" PACK's checksum of it.
+  std::vector<uint8_t> reservedHeader = packed;
+  format::FileHeader changed = header;
+  changed.reserved[3] = 1;
+  changed.headerCrc = format::headerChecksum(changed);
+  std::memcpy(reservedHeader.data(), &changed, sizeof changed);
+  EXPECT_EQ(
+      unpackMessage(reservedHeader, "reserved_header.vxl"),
+      "voxlink: " + dir.file("reserved_header.vxl") + ": header.reserved: byte 3 is not zero\n");
 }
 
 }  // namespace

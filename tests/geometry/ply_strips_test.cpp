@@ -149,6 +149,14 @@ TEST(PlyStrips, BadStripsNameTheFileAndItem) {
   EXPECT_EQ(mesh.message(), path +
                                 ": element tristrips 0: vertex index 169 outside the 169 "
                                 "vertices");
+  // Beyond any integer: checked before it is cast (the cast was undefined).
+  const std::string huge = text + "4 0 1 2 1e30\n";
+  testing::writeBytes(path, std::vector<uint8_t>(huge.begin(), huge.end()));
+  mesh = loadMesh(path);
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.message(), path +
+                                ": element tristrips 0: vertex index 1e+30 outside the 169 "
+                                "vertices");
   const std::string shortList = text + "4 0 1 2\n";
   testing::writeBytes(path, std::vector<uint8_t>(shortList.begin(), shortList.end()));
   mesh = loadMesh(path);
