@@ -78,6 +78,8 @@ int runConvert(const ConvertArgs& a) {
   if (!open) return reportError(open.error());
   auto source = convert::openVolume(a.input, *open);
   if (!source) return reportError(source.error());
+  if (Status s = format::checkOutputTarget(a.output, a.input, (*source)->info().files); !s)
+    return reportError(s);
   ConvertArgs args = a;
   if (a.standardize) {
     if (a.keepOutside.empty() || a.mean || a.sigma)

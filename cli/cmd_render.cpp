@@ -11,6 +11,7 @@
 #include "cli/render_options.h"
 #include "format/output_file.h"
 #include "format/validator.h"
+#include "sources/volume_source.h"
 #include "viewer/core/recorded_source.h"
 #include "viewer/core/reference_renderer.h"
 #include "viewer/core/scene_reference_renderer.h"
@@ -63,6 +64,15 @@ CommandRunner addRenderCommand(CLI::App& app) {
     if (reference && !file->isScene()) {
       auto sourceOptions = args->source.openOptions();
       if (!sourceOptions) return reportError(sourceOptions.error());
+      // No image may be one of the source's files (an image stack's slice, a header's data
+      // file).
+      auto chosen = viewer::chosenSource(*file, args->source.path, *sourceOptions);
+      if (!chosen) return reportError(chosen.error());
+      auto source = convert::openVolume(chosen->path, chosen->options);
+      if (!source) return reportError(source.error());
+      for (const std::string& out : outputs)
+        if (Status s = format::checkOutputTarget(out, chosen->path, (*source)->info().files); !s)
+          return reportError(s);
       auto loaded = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
       if (!loaded) return reportError(loaded.error());
       dense = std::move(*loaded);

@@ -11,6 +11,7 @@
 #include "format/output_file.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
+#include "scene/scene_input_files.h"
 #ifdef VOXLINK_WITH_VIEWER
 #include "viewer/gl/gl_context.h"
 #include "viewer/gl/gl_voxelizer.h"
@@ -50,10 +51,10 @@ CommandRunner addSceneCommand(CLI::App& app) {
     if (!build->parsed()) return 2;
     auto description = scene::readSceneDescription(o->input);
     if (!description) return reportError(description.error());
-    std::vector<std::string> inputs = {o->input};
-    for (const scene::SceneObject& object : description->objects)
-      if (!object.path.empty()) inputs.push_back(object.path);
-    if (Status s = format::checkOutputTarget(o->output, inputs); !s) return reportError(s);
+    if (Status s =
+            format::checkOutputTarget(o->output, o->input, scene::sceneInputFiles(*description));
+        !s)
+      return reportError(s);
     if (o->resolution) description->grid.resolution = o->resolution;
     if (o->brick) description->grid.brickSize = o->brick;
     scene::SurfaceVoxelizer voxelizer;  // empty: the exact CPU path

@@ -59,6 +59,12 @@ const char* kindOf(mode_t mode) {
   return "not a regular file";
 }
 
+// Whether `path` is the file `out` describes (device and inode: hard links and other names too).
+bool isFile(const struct stat& out, const std::string& path) {
+  struct stat in {};
+  return ::stat(path.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino;
+}
+
 }  // namespace
 
 Status checkOutputTarget(const std::string& target, const std::vector<std::string>& inputs) {
@@ -70,12 +76,22 @@ Status checkOutputTarget(const std::string& target, const std::vector<std::strin
   if (!S_ISREG(out.st_mode))
     return makeError(ErrorCode::kInvalidArgument, target, ": output exists and is ",
                      kindOf(out.st_mode), "; give a file name to write");
-  for (const std::string& input : inputs) {
-    struct stat in {};
-    if (::stat(input.c_str(), &in) == 0 && in.st_dev == out.st_dev && in.st_ino == out.st_ino)
+  for (const std::string& input : inputs)
+    if (isFile(out, input))
       return makeError(ErrorCode::kInvalidArgument, target, ": output is the input file ", input,
                        "; give another output name");
-  }
+  return Status::ok();
+}
+
+Status checkOutputTarget(const std::string& target, const std::string& input,
+                         const std::vector<std::string>& files) {
+  VOXLINK_RETURN_IF_ERROR(checkOutputTarget(target, {input}));
+  struct stat out {};
+  if (::stat(target.c_str(), &out) != 0) return Status::ok();
+  for (const std::string& file : files)
+    if (isFile(out, file))
+      return makeError(ErrorCode::kInvalidArgument, target, ": output is ", file,
+                       ", a file the input ", input, " reads; give another output name");
   return Status::ok();
 }
 

@@ -19,6 +19,11 @@ namespace voxlink::format {
 // kInvalidArgument when `target` is empty, exists and is not a regular file, or is the same file
 // (device and inode) as one of `inputs`.
 Status checkOutputTarget(const std::string& target, const std::vector<std::string>& inputs = {});
+// checkOutputTarget, and `target` must be none of `files`, the files `input` reads beside
+// itself (a header's data files, a DICOM folder's slices, a scene's meshes): kInvalidArgument
+// naming the file and the input.
+Status checkOutputTarget(const std::string& target, const std::string& input,
+                         const std::vector<std::string>& files);
 
 // An open, empty temporary file in the target's directory: "<dir>/.vl-XXXXXX<suffix>", mode
 // 0644, registered for removal on signals. The caller owns fd and path.

@@ -225,7 +225,17 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   std::memcpy(table.data(), packed.data() + header.sectionTableOffset,
               table.size() * sizeof(SectionEntry));
   const SectionEntry* packEntry = nullptr;
-  for (const SectionEntry& e : table) {
+  for (size_t i = 0; i < table.size(); ++i) {
+    const SectionEntry& e = table[i];
+    // Named before anything else: a wiped table passed the checks below (empty payloads have
+    // CRC 0) and was reported as "section PACK: missing".
+    if (e.id == 0 && e.offset == 0 && e.bytes == 0 && e.crc == 0)
+      return makeError(ErrorCode::kCorrupt, name, ": section table entry ", i, " (at byte ",
+                       header.sectionTableOffset + i * sizeof(SectionEntry),
+                       ") is all zeros: the section table is damaged");
+    if (e.reserved != 0)
+      return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(e.id),
+                       ".reserved: ", e.reserved, " (must be 0)");
     if (e.offset > packed.size() || e.bytes > packed.size() - e.offset)
       return makeError(ErrorCode::kTruncated, name, ": section ", nameOf(e.id),
                        ": packed payload lies beyond the end of the file");
@@ -264,6 +274,11 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   original.sectionTableOffset = preamble.originalTableOffset;
   original.sectionCount = preamble.entryCount;
   original.headerCrc = preamble.originalHeaderCrc;
+  // Before the checksum: a set reserved byte (with the packed header's CRC made right) was
+  // reported as "the restored header does not match" its checksum.
+  for (size_t i = 0; i < sizeof original.reserved; ++i)
+    if (original.reserved[i] != 0)
+      return makeError(ErrorCode::kCorrupt, name, ": header.reserved: byte ", i, " is not zero");
   if (kCheckPackedChecksums && headerChecksum(original) != original.headerCrc)
     return makeError(ErrorCode::kCorrupt, name,
                      ": section PACK.originalHeaderCrc: the restored header does not match it");
@@ -309,7 +324,10 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
       return makeError(ErrorCode::kCorrupt, where, ": original bytes [", e.offset, ", ",
                        e.offset + e.bytes, ") overlap the section table [", tableBegin, ", ",
                        tableEnd, ")");
-    if (!isKnownSectionCodec(p.codec) || p.reserved != 0)
+    if (p.reserved != 0)
+      return makeError(ErrorCode::kCorrupt, name, ": section PACK: entry of ", nameOf(e.id),
+                       ": reserved word ", p.reserved, " (must be 0)");
+    if (!isKnownSectionCodec(p.codec))
       return makeError(ErrorCode::kUnsupported, where, ": codec ", p.codec, " is not known");
     const SectionEntry* source = nullptr;
     for (const SectionEntry& t : table)

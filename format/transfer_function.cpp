@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "format/limits.h"
+#include "format/number_text.h"
 #include "format/output_file.h"
 #include "format/regular_file.h"
 
@@ -114,11 +115,12 @@ Result<TransferFunction> parseTransferFunction(const std::string& text, const st
     const double v = p[0].get<double>(), a = p[1].get<double>();
     if (!std::isfinite(v) || !(a >= 0 && a <= 1))
       return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i,
-                       "]': value must be finite and alpha in [0, 1], got [", v, ", ", a, "]");
+                       "]': value must be finite and alpha in [0, 1], got [", exactNumber(v), ", ",
+                       exactNumber(a), "]");
     if (!tf.opacity.empty() && v < tf.opacity.back().value)
       return makeError(ErrorCode::kInvalidArgument, where, ": field 'opacity[", i,
-                       "]': values must not decrease (", v, " after ", tf.opacity.back().value,
-                       ")");
+                       "]': values must not decrease (", exactNumber(v), " after ",
+                       exactNumber(tf.opacity.back().value), ")");
     tf.opacity.push_back({v, a});
   }
   if (j.contains("color")) {
@@ -147,7 +149,8 @@ Result<TransferFunction> parseTransferFunction(const std::string& text, const st
       }
       if (!tf.color.empty() && c.value < tf.color.back().value)
         return makeError(ErrorCode::kInvalidArgument, where, ": field 'color[", i,
-                         "]': values must not decrease");
+                         "]': values must not decrease (", exactNumber(c.value), " after ",
+                         exactNumber(tf.color.back().value), ")");
       tf.color.push_back(c);
     }
   }

@@ -189,4 +189,32 @@ Status checkOffFile(const std::string& path) {
   return Status::ok();
 }
 
+uint64_t declaredFaceCount(const std::string& path) {
+  if (looksLikePly(path)) {
+    std::istringstream header(readHead(path, limits::kMaxTextHeaderBytes));
+    std::string line;
+    while (std::getline(header, line)) {
+      std::istringstream words(line);
+      std::string keyword, name;
+      uint64_t count = 0;
+      words >> keyword >> name;
+      if (keyword == "end_header") break;
+      if (keyword == "element" && name == "face" && words >> count) return count;
+    }
+    return 0;
+  }
+  if (!looksLikeOff(path)) return 0;
+  std::ifstream in(path, std::ios::binary);
+  std::string line, token;
+  uint64_t number = 0, vertices = 0, faces = 0;
+  if (!nextDataLine(in, line, number)) return 0;
+  std::istringstream first(line);
+  first >> token;
+  if (token.find('n') != std::string::npos) return 0;  // nOFF: a dimension first
+  if (first >> vertices >> faces) return faces;
+  if (!nextDataLine(in, line, number)) return 0;
+  std::istringstream counts(line);
+  return counts >> vertices >> faces ? faces : 0;
+}
+
 }  // namespace voxlink::geometry

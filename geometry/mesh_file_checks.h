@@ -5,6 +5,7 @@
 // mesh). Each error names the file and the field.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "format/error.h"
@@ -16,5 +17,9 @@ bool looksLikeOff(const std::string& path);  // starts with [ST][C][N][4][n]OFF
 
 Status checkPlyFile(const std::string& path);
 Status checkOffFile(const std::string& path);
+
+// The faces a PLY (`element face N`) or OFF header declares; 0 when it says none or is neither.
+// loadMesh compares it with the triangles it got: far fewer means faces were lost.
+uint64_t declaredFaceCount(const std::string& path);
 
 }  // namespace voxlink::geometry

@@ -20,6 +20,7 @@
 
 #include "format/limits.h"
 #include "geometry/mesh_file_checks.h"
+#include "geometry/ply_strips.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -213,7 +214,10 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   }
   importer.SetIOHandler(new MtlFallbackIo(fallbackMtl));  // the importer owns it
   // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
-  if (extension == ".ply" || looksLikePly(path)) VOXLINK_RETURN_IF_ERROR(checkPlyFile(path));
+  if (extension == ".ply" || looksLikePly(path)) {
+    VOXLINK_RETURN_IF_ERROR(checkPlyFile(path));
+    if (plyHasTriangleStrips(path)) return loadPlyWithStrips(path, options.maxTriangles);
+  }
   if (extension == ".off" || looksLikeOff(path)) VOXLINK_RETURN_IF_ERROR(checkOffFile(path));
   assimpAssertion.clear();
   const aiScene* scene =
@@ -240,6 +244,12 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   collector.visit(*scene->mRootNode, aiMatrix4x4());
   if (!collector.allHaveNormals) mesh.normals.clear();
   if (mesh.triangleCount() == 0) return makeError(ErrorCode::kCorrupt, path, ": no triangles");
+  // A polygon gives at least one triangle: far fewer than the header's faces means faces were
+  // lost (points and lines, or a layout assimp misreads), not a smaller mesh.
+  if (const uint64_t declared = declaredFaceCount(path); mesh.triangleCount() < declared / 2)
+    return makeError(ErrorCode::kCorrupt, path, ": the header declares ", declared,
+                     " faces but only ", mesh.triangleCount(),
+                     " triangles loaded; refusing a mesh that lost faces");
   if (mesh.triangleCount() > options.maxTriangles) {
     return makeError(ErrorCode::kTooLarge, path, ": ", mesh.triangleCount(),
                      " triangles, more than the limit of ", options.maxTriangles);

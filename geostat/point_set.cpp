@@ -12,6 +12,10 @@ namespace voxlink::kriging {
 namespace {
 
 constexpr double kSgemsNoData = -9966699.0;
+// Coordinates beyond this make squared distances overflow: (2 x 1e150)^2 x 3 axes is 1.2e301,
+// still finite. Near 1e308 the bounding box's diagonal was inf ("merged ... closer than inf")
+// and predictions were not finite.
+constexpr double kMaxCoordinate = 1e150;
 
 std::string trim(const std::string& s) {
   size_t b = 0, e = s.size();
@@ -96,6 +100,10 @@ Status addRow(const std::string& path, size_t line, const std::vector<std::strin
     if (!parseNumber(fields[col[a]], p[a]))
       return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": coordinate column '",
                        names[col[a]], "': '", fields[col[a]], "' is not a finite number");
+    if (std::abs(p[a]) > kMaxCoordinate)
+      return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": coordinate column '",
+                       names[col[a]], "': ", fields[col[a]], " is outside [-1e150, 1e150]",
+                       " (distances between samples would overflow)");
   }
   out.coords.push_back(p);
   out.values.push_back(v);

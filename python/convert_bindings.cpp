@@ -204,6 +204,8 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     source = valueOrRaise(std::move(opened));
   }
   raiseIfError(format::checkOutputTarget(outPath, inputs));
+  if (!inputs.empty())
+    raiseIfError(format::checkOutputTarget(outPath, inputs.back(), source->info().files));
   {
     // Ctrl-C: the converter reports after every slab; the report takes the GIL back for a
     // moment and runs Python's signal handlers. One that raises (KeyboardInterrupt) cancels the

@@ -23,6 +23,13 @@ Status VolumeSource::readActive(uint32_t z0, uint32_t count, uint8_t* dst) {
   return Status::ok();
 }
 
+void VolumeSource::recordFileRead(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return;
+  if (std::find(info_.files.begin(), info_.files.end(), path) == info_.files.end())
+    info_.files.push_back(path);
+}
+
 Result<std::vector<uint8_t>> readAll(VolumeSource& source) {
   const VolumeInfo& info = source.info();
   const uint64_t bytes = info.voxelCount() * scalarSize(info.type);
@@ -47,8 +54,10 @@ namespace {
 
 // Every reader checks its header before allocating; this repeats the shape limits on whatever a
 // reader returns, so no command (convert, stats, ...) sees a volume beyond them.
-Result<std::unique_ptr<VolumeSource>> checked(Result<std::unique_ptr<VolumeSource>> source) {
+Result<std::unique_ptr<VolumeSource>> checked(const std::string& path,
+                                              Result<std::unique_ptr<VolumeSource>> source) {
   if (!source) return source;
+  (*source)->recordFileRead(path);  // the header, or the only file; a folder is no file
   const VolumeInfo& info = (*source)->info();
   VOXLINK_RETURN_IF_ERROR(checkVolumeShape(info, "dims"));
   // Readers name the field when they check; this catches any reader that does not.
@@ -108,7 +117,7 @@ Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
 
 Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path,
                                                  const OpenOptions& options) {
-  return checked(openWithReader(path, options));
+  return checked(path, openWithReader(path, options));
 }
 
 }  // namespace voxlink::convert

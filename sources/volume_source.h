@@ -34,6 +34,9 @@ struct VolumeInfo {
   // slice position", "oblique space directions: only their lengths are used as spacing").
   std::vector<std::string> notes;
   std::optional<SourceRescale> rescale;  // set by readers that rescale and record it
+  // Every file the source reads: the header, the data files it names, a DICOM series' or an
+  // image stack's files. Commands refuse to write their output over any of them.
+  std::vector<std::string> files;
 
   uint64_t sliceVoxels() const { return uint64_t{dims[0]} * dims[1]; }
   uint64_t voxelCount() const { return sliceVoxels() * dims[2]; }
@@ -44,6 +47,8 @@ class VolumeSource {
  public:
   virtual ~VolumeSource() = default;
   const VolumeInfo& info() const { return info_; }
+  // Adds `path` to info().files unless it is there already or is no regular file.
+  void recordFileRead(const std::string& path);
 
   // Copies slices [z0, z0 + count) into dst as native-endian values of info().type.
   // Sequential sources (compressed streams) need z0 >= the end of the previous read;

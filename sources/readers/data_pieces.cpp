@@ -190,6 +190,10 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
     return makeError(ErrorCode::kSizeMismatch, layout.label, ": ", layout.pieces.size(),
                      " data files hold ", slices, " slices, the header says ", info.dims[2]);
 
+  for (const DataPiece& p : layout.pieces)
+    if (std::find(info.files.begin(), info.files.end(), p.path) == info.files.end())
+      info.files.push_back(p.path);
+
   std::vector<ResolvedPiece> resolved;
   uint32_t first = 0;
   for (const DataPiece& p : layout.pieces) {

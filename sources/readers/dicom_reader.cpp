@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <vector>
 
 #include "sources/readers/dicom_pixel_encoding.h"
@@ -165,6 +166,9 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& d
   info.spacing = {series.columnSpacing, series.rowSpacing, series.sliceSpacing};
   info.origin = series.origin;
   info.notes = series.notes;
+  std::set<std::string> seen;  // a multi-frame file holds several slices
+  for (const DicomSlice& slice : series.slices)
+    if (seen.insert(slice.path).second) info.files.push_back(slice.path);
   const AxesSummary axes = summarizeAxes(
       {series.rowDirection, series.columnDirection, series.normal}, "ImageOrientationPatient axes");
   if (!axes.note.empty()) info.notes.push_back(axes.note);

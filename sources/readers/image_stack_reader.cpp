@@ -171,6 +171,7 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
   VolumeInfo info;
   info.path = path;
   info.format = "image-stack";
+  info.files = files;
   const imageio::ImageSpec& first = shape.spec;
   info.type = first.type;
   const bool halfFloat = first.halfFloat;

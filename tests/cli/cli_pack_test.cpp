@@ -3,8 +3,12 @@
 // damage or misuse ends with one line, a non-zero exit and no output file.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 
+#include "format/crc32c.h"
+#include "format/layout.h"
+#include "format/voxlink_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -117,6 +121,85 @@ TEST(CliPack, MisuseAndDamageEndWithOneLineAndNoOutput) {
     EXPECT_NE(r.err.find("checksum mismatch"), std::string::npos) << command << ": " << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("u.vxl")));
+}
+
+// A wiped section table was reported as "section PACK: missing", a non-zero reserved word of a
+// PACK entry as an unknown codec, a reserved header byte as a checksum mismatch. Each now names
+// its own cause.
+TEST(CliPack, DamagedTableAndReservedWordsNameTheirCause) {
+  TempDir dir;
+  std::vector<uint8_t> ramp(8000);
+  for (size_t i = 0; i < ramp.size(); ++i) ramp[i] = static_cast<uint8_t>(i % 251);
+  writeBytes(dir.file("v.raw"), ramp);
+  ASSERT_EQ(runVoxlink({"convert", dir.file("v.raw"), "--dims", "20,20,20", "--type", "u8",
+                        "--keep-all", "-q", "-o", dir.file("v.vxl")})
+                .status,
+            0);
+  ASSERT_EQ(runVoxlink({"pack", dir.file("v.vxl"), "-o", dir.file("p.vxl"), "-q"}).status, 0);
+  const std::vector<uint8_t> packed = readBytes(dir.file("p.vxl"));
+  format::FileHeader header;
+  std::memcpy(&header, packed.data(), sizeof header);
+  const uint64_t tableBytes = uint64_t{header.sectionCount} * sizeof(format::SectionEntry);
+  ASSERT_LE(header.sectionTableOffset + tableBytes, packed.size());
+  auto entryAt = [&](const std::vector<uint8_t>& bytes, size_t i) {
+    format::SectionEntry e;
+    std::memcpy(&e, bytes.data() + header.sectionTableOffset + i * sizeof e, sizeof e);
+    return e;
+  };
+  auto unpackMessage = [&](const std::vector<uint8_t>& bytes, const std::string& name) {
+    writeBytes(dir.file(name), bytes);
+    auto r = runVoxlink({"unpack", dir.file(name), "-o", dir.file("u.vxl")});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("u.vxl")));
+    return r.err;
+  };
+
+  std::vector<uint8_t> wiped = packed;
+  std::fill_n(wiped.begin() + std::ptrdiff_t(header.sectionTableOffset), tableBytes, 0);
+  EXPECT_EQ(unpackMessage(wiped, "wiped.vxl"),
+            "voxlink: " + dir.file("wiped.vxl") + ": section table entry 0 (at byte " +
+                std::to_string(header.sectionTableOffset) +
+                ") is all zeros: the section table is damaged\n");
+
+  // The reserved word of the packed table's first entry.
+  std::vector<uint8_t> reservedEntry = packed;
+  const format::SectionEntry first = entryAt(packed, 0);
+  const uint32_t five = 5;
+  std::memcpy(reservedEntry.data() + header.sectionTableOffset + 28, &five, 4);
+  const std::string firstName(format::sectionName(static_cast<format::SectionId>(first.id)));
+  EXPECT_EQ(unpackMessage(reservedEntry, "reserved_entry.vxl"),
+            "voxlink: " + dir.file("reserved_entry.vxl") + ": section " + firstName +
+                ".reserved: 5 (must be 0)\n");
+
+  // The reserved word of PACK's first entry, its checksum made right again.
+  std::vector<uint8_t> reservedPack = packed;
+  size_t packIndex = header.sectionCount;
+  for (size_t i = 0; i < header.sectionCount; ++i)
+    if (entryAt(packed, i).id == static_cast<uint32_t>(format::SectionId::kPack)) packIndex = i;
+  ASSERT_LT(packIndex, header.sectionCount);
+  format::SectionEntry pack = entryAt(packed, packIndex);
+  const uint64_t firstPackEntry = pack.offset + 32;  // after the preamble
+  format::SectionEntry original;
+  std::memcpy(&original, packed.data() + firstPackEntry, sizeof original);
+  std::memcpy(reservedPack.data() + firstPackEntry + 36, &five, 4);  // codec at 32, reserved 36
+  pack.crc = format::crc32c(reservedPack.data() + pack.offset, pack.bytes);
+  std::memcpy(reservedPack.data() + header.sectionTableOffset + packIndex * sizeof pack, &pack,
+              sizeof pack);
+  EXPECT_EQ(unpackMessage(reservedPack, "reserved_pack.vxl"),
+            "voxlink: " + dir.file("reserved_pack.vxl") + ": section PACK: entry of " +
+                std::string(format::sectionName(static_cast<format::SectionId>(original.id))) +
+                ": reserved word 5 (must be 0)\n");
+
+  // A reserved header byte, the packed header's checksum made right: it was reported as "the
+  // restored header does not match" PACK's checksum of it.
+  std::vector<uint8_t> reservedHeader = packed;
+  format::FileHeader changed = header;
+  changed.reserved[3] = 1;
+  changed.headerCrc = format::headerChecksum(changed);
+  std::memcpy(reservedHeader.data(), &changed, sizeof changed);
+  EXPECT_EQ(
+      unpackMessage(reservedHeader, "reserved_header.vxl"),
+      "voxlink: " + dir.file("reserved_header.vxl") + ": header.reserved: byte 3 is not zero\n");
 }
 
 }  // namespace

@@ -94,6 +94,19 @@ TEST(TransferFunction, BadFilesNameTheField) {
       "{\"format\":\"voxlink-transfer-function\",\"version\":1," + points + "}", "ok.json"));
 }
 
+// Points that differ past the sixth significant digit were reported as "1000 after 1000".
+TEST(TransferFunction, OrderErrorsPrintTheValuesExactly) {
+  auto r = parseTransferFunction(R"({"opacity":[[0,0],[1000.0001,0],[1000,1]]})", "tf.json");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.message(),
+            "tf.json: field 'opacity[2]': values must not decrease (1000 after 1000.0001)");
+  r = parseTransferFunction(
+      R"({"opacity":[[0,0],[1,1]],"color":[[0.30000000000000004,0,0,0],[0.3,1,1,1]]})", "tf.json");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.message(),
+            "tf.json: field 'color[1]': values must not decrease (0.3 after 0.30000000000000004)");
+}
+
 TEST(TransferFunction, JsonRoundTrip) {
   const TransferFunction tf =
       parse(R"({"name":"bone","opacity":[[0,0],[100,0.5]],"color":[[0,1,0,0],[100,0,0,1]]})");

@@ -62,5 +62,20 @@ TEST(PointSet, BadTablesNameTheLineAndColumn) {
   EXPECT_FALSE(readPoints(dir.file("unused.csv"), {"x", "y", "", "v"}));
 }
 
+// Near 1e308 the samples' bounding box was inf wide: "merged ... closer than inf", then
+// non-finite predictions.
+TEST(PointSet, CoordinatesWhoseDistancesOverflowAreRefused) {
+  testing::TempDir dir;
+  const std::string path = dir.file("far.csv");
+  std::ofstream(path) << "x,y,v\n0,0,1\n1,1e150,2\n-1e308,1,3\n";
+  auto r = readPoints(path, {"x", "y", "", "v"});
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.message(), path +
+                             ": line 4: coordinate column 'x': -1e308 is outside "
+                             "[-1e150, 1e150] (distances between samples would overflow)");
+  std::ofstream(dir.file("edge.csv")) << "x,y,v\n0,0,1\n1,1e150,2\n-1e150,1,3\n";
+  EXPECT_TRUE(readPoints(dir.file("edge.csv"), {"x", "y", "", "v"}));
+}
+
 }  // namespace
 }  // namespace voxlink::kriging

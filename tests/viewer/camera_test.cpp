@@ -92,6 +92,22 @@ TEST(Camera, ParseSpec) {
   EXPECT_EQ(parseCameraSpec("1,2,3,4,5").code(), ErrorCode::kInvalidArgument);
 }
 
+// 1e-308 is below the normal doubles: stod threw and the message said "not a number".
+TEST(Camera, ParseSpecNumbersAtTheEdgesOfDouble) {
+  auto s = parseCameraSpec("30,20,1e-308");
+  ASSERT_TRUE(s) << s.message();
+  EXPECT_EQ(s->distanceScale, 1e-308);
+  auto r = parseCameraSpec("30,20,1e-400");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.message(), "--camera: '1e-400' is too close to 0 for a double (rounds to 0)");
+  r = parseCameraSpec("30,20,1e400");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.message(), "--camera: '1e400' is beyond the largest double");
+  r = parseCameraSpec("30,2x");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.message(), "--camera: '2x' is not a number (expected AZ,EL[,DIST[,FOV]] in degrees)");
+}
+
 TEST(CameraController, DragOrbitsWheelZoomsResetReturnsHome) {
   const Camera home = Camera::framing(kBox, {});
   CameraController cc(home);

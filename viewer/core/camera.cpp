@@ -1,7 +1,9 @@
 #include "viewer/core/camera.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <sstream>
 #include <vector>
@@ -27,14 +29,22 @@ Result<CameraSpec> parseCameraSpec(const std::string& text, CameraSpec spec) {
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    try {
-      size_t used = 0;
-      parts.push_back(std::stod(item, &used));
-      if (used != item.size()) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
+    // strtod, not stod: stod throws on a number below the normal doubles (1e-308), which was
+    // then reported as no number at all.
+    const char* begin = item.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(begin, &end);
+    if (end == begin || *end != '\0')
       return makeError(ErrorCode::kInvalidArgument, "--camera: '", item,
                        "' is not a number (expected AZ,EL[,DIST[,FOV]] in degrees)");
-    }
+    if (errno == ERANGE && std::isinf(value))
+      return makeError(ErrorCode::kInvalidArgument, "--camera: '", item,
+                       "' is beyond the largest double");
+    if (errno == ERANGE && value == 0 && item.find_first_not_of("+-0.eE") != std::string::npos)
+      return makeError(ErrorCode::kInvalidArgument, "--camera: '", item,
+                       "' is too close to 0 for a double (rounds to 0)");
+    parts.push_back(value);
   }
   if (parts.size() < 2 || parts.size() > 4)
     return makeError(ErrorCode::kInvalidArgument, "--camera: expected AZ,EL[,DIST[,FOV]], got '",

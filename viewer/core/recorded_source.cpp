@@ -74,17 +74,19 @@ Result<RecordedSource> recordedSource(const format::VoxLinkFile& file) {
   return r;
 }
 
+Result<RecordedSource> chosenSource(const format::VoxLinkFile& file,
+                                    const std::string& overridePath,
+                                    const convert::OpenOptions& options) {
+  if (overridePath.empty()) return recordedSource(file);
+  return RecordedSource{overridePath, options};
+}
+
 Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file,
                                      const std::string& overridePath,
                                      const convert::OpenOptions& options) {
-  std::string path = overridePath;
-  convert::OpenOptions opts = options;
-  if (path.empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(RecordedSource r, recordedSource(file));
-    path = r.path;
-    opts = r.options;
-  }
-  VOXLINK_ASSIGN_OR_RETURN(DenseVolume v, loadDenseVolume(path, opts));
+  VOXLINK_ASSIGN_OR_RETURN(RecordedSource source, chosenSource(file, overridePath, options));
+  const std::string& path = source.path;
+  VOXLINK_ASSIGN_OR_RETURN(DenseVolume v, loadDenseVolume(path, source.options));
   const auto& h = file.header();
   if (v.dims[0] != h.dims[0] || v.dims[1] != h.dims[1] || v.dims[2] != h.dims[2])
     return makeError(ErrorCode::kSizeMismatch, path, ": source dims ", v.dims[0], "x", v.dims[1],

@@ -19,6 +19,11 @@ struct RecordedSource {
 // Fails when META names no source or the file it names cannot be found.
 Result<RecordedSource> recordedSource(const format::VoxLinkFile& file);
 
+// `overridePath` with `options` when given, else the recorded source.
+Result<RecordedSource> chosenSource(const format::VoxLinkFile& file,
+                                    const std::string& overridePath,
+                                    const convert::OpenOptions& options);
+
 // Opens `overridePath` (with `options`) when given, else the recorded source, and checks that its
 // dims match the file's.
 Result<DenseVolume> loadSourceVolume(const format::VoxLinkFile& file,
