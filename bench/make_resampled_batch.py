@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Makes a batch of CT volumes for `voxlink convert --batch` (docs/scale.md): every CT in
 ../shared/data listed below, resampled (nearest neighbour) to COUNT different sizes between
-0.4x and 1.6x per axis, written as raw-encoded NRRD files, plus the list file.
+0.25x and 1x per axis, written as raw-encoded NRRD files, plus the list file.
 
     python3 bench/make_resampled_batch.py DATA_DIR OUT_DIR COUNT_PER_VOLUME
 """
@@ -63,7 +63,7 @@ def main():
             volume = np.fromfile(path, dtype).reshape(dims[::-1])
         stem = os.path.basename(rel).split(".")[0]
         for i in range(count):
-            scale = 0.4 + 1.2 * i / max(1, count - 1)
+            scale = 0.25 + 0.75 * i / max(1, count - 1)
             index = [np.minimum((np.arange(max(1, round(n * scale))) / scale).astype(int), n - 1)
                      for n in volume.shape]
             resampled = volume[np.ix_(*index)]

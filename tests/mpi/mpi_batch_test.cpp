@@ -31,7 +31,8 @@ TEST(MpiBatch, EveryFileOnceAndTheSameBytesAsOneProcess) {
   TempDir dir;
   std::ofstream list(dir.file("list.txt"));
   for (int i = 0; i < 12; ++i) {
-    writeNrrd(dir.file("v" + std::to_string(i) + ".nrrd"), 8 + 6 * i, static_cast<uint8_t>(i));
+    writeNrrd(dir.file(std::string("v") + std::to_string(i) + ".nrrd"), 8 + 6 * i,
+              static_cast<uint8_t>(i));
     list << "v" << i << ".nrrd\n";
   }
   std::ofstream(dir.file("bad.nrrd")) << "not a volume";
@@ -67,7 +68,7 @@ TEST(MpiBatch, EveryFileOnceAndTheSameBytesAsOneProcess) {
   const Launch single = runPlain(one);
   EXPECT_EQ(single.status, 1) << single.err;
   for (int i = 0; i < 12; ++i) {
-    const std::string name = "/v" + std::to_string(i) + ".vxl";
+    const std::string name = std::string("/v") + std::to_string(i) + ".vxl";
     EXPECT_EQ(readBytes(dir.file("one") + name), readBytes(dir.file("many") + name)) << name;
   }
 }

@@ -14,8 +14,14 @@ namespace {
 
 std::string quote(const std::string& s) {
   std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
+  for (char c : s) {
+    if (c == '\'')
+      q += "'\\''";
+    else
+      q += c;
+  }
+  q += '\'';
+  return q;
 }
 
 std::string readText(const std::string& path) {
@@ -38,14 +44,18 @@ Launch runShell(const std::string& command) {
 
 std::string joined(const std::vector<std::string>& args) {
   std::string s = quote(VOXLINK_EXECUTABLE);
-  for (const std::string& a : args) s += " " + quote(a);
+  for (const std::string& a : args) {
+    s += ' ';
+    s += quote(a);
+  }
   return s;
 }
 
 }  // namespace
 
-std::string launcherPrefix() {
-  std::string prefix = quote(VOXLINK_MPIEXEC) + " --oversubscribe";
+std::string launcherPrefix(bool quiet) {
+  // -q: without it Open MPI adds its own notice of a rank's non-zero exit to voxlink's line.
+  std::string prefix = quote(VOXLINK_MPIEXEC) + (quiet ? " -q" : "") + " --oversubscribe";
   if (geteuid() == 0) prefix += " --allow-run-as-root";
   return prefix;
 }
@@ -56,11 +66,11 @@ Launch runRanks(int ranks, const std::vector<std::string>& args) {
   return runShell(launcherPrefix() + " -n " + std::to_string(ranks) + " " + joined(args));
 }
 
-Launch runLauncher(const std::string& tail) {
+Launch runLauncher(const std::string& tail, bool quiet) {
   std::string expanded = tail;
   for (size_t at; (at = expanded.find("VOXLINK")) != std::string::npos;)
     expanded.replace(at, 7, quote(VOXLINK_EXECUTABLE));
-  return runShell(launcherPrefix() + " " + expanded);
+  return runShell(launcherPrefix(quiet) + " " + expanded);
 }
 
 }  // namespace voxlink::testing
