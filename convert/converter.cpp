@@ -289,9 +289,10 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   VOXLINK_RETURN_IF_ERROR(agree(ranks, committed));
   s.writeSeconds = secondsSince(writeStart);
   s.seconds = secondsSince(start);
-  std::error_code ec;  // other ranks may not see the file (another node's view of the disk)
-  s.bytes =
-      root ? std::filesystem::file_size(outputPath) : std::filesystem::file_size(outputPath, ec);
+  std::error_code ec;  // other ranks may not see the file yet (another node's view of the disk)
+  const uintmax_t bytes = std::filesystem::file_size(outputPath, ec);
+  if (ec && root) return makeError(ErrorCode::kIo, outputPath, ": ", ec.message());
+  s.bytes = ec ? 0 : bytes;
   passes.report(1.0, "done");
   return s;
 }
