@@ -2,6 +2,7 @@
 
 #include <memory>
 
+#include "format/temp_janitor.h"
 #ifdef VOXLINK_WITH_MPI
 #include "mpi/mpi_rank_group.h"
 #endif
@@ -13,7 +14,12 @@ std::unique_ptr<convert::RankGroup> mpiRanks;
 
 bool startProcessRanks([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv) {
 #ifdef VOXLINK_WITH_MPI
-  if (mpi::launchedByMpi()) mpiRanks = mpi::startMpi(argc, argv);
+  if (mpi::launchedByMpi()) {
+    // Before MPI_Init (no threads yet): Open MPI may end this rank with _exit() when another
+    // dies, and only a helper outside it can then remove rank 0's shared temporary.
+    format::startTempJanitor();
+    mpiRanks = mpi::startMpi(argc, argv);
+  }
 #endif
   return mpiRanks != nullptr;
 }
