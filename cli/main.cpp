@@ -59,7 +59,8 @@ int reportParseError(CLI::App& app, const CLI::ParseError& e) {
   std::string what = e.what();
   for (char& c : what)
     if (c == '\n') c = ' ';
-  std::fprintf(stderr, "voxlink: %s (see voxlink --help)\n", printableMessage(what).c_str());
+  if (processRanks().rank() == 0)  // every rank parsed the same line: one says it
+    std::fprintf(stderr, "voxlink: %s (see voxlink --help)\n", printableMessage(what).c_str());
   return 2;
 }
 

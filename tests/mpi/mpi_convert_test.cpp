@@ -119,6 +119,9 @@ TEST(MpiConvert, OtherCommandsRefuseSeveralRanks) {
   EXPECT_EQ(r.status, 2);
   EXPECT_EQ(r.err.rfind("voxlink: voxlink info runs in one process", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // rank 0 alone says it
+  const Launch parse = runRanks(2, {"convert", "--brick", "7"});        // an option error: once too
+  EXPECT_EQ(parse.status, 2);
+  EXPECT_EQ(std::count(parse.err.begin(), parse.err.end(), '\n'), 1) << parse.err;
 }
 
 }  // namespace
