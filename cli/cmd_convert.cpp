@@ -1,11 +1,14 @@
 // voxlink convert INPUT -o OUT.vxl --threshold 60: pre-classify a dense volume and write a
-// VoxLink file, with a progress bar and a one-line summary of size, speed and error.
+// VoxLink file, with a progress bar and a one-line summary of size, speed and error. Under
+// mpirun/srun the ranks share the volume; --batch LIST --out-dir DIR converts many files.
 #include <cstdio>
 #include <thread>
 
 #include "cli/command.h"
+#include "cli/convert_batch.h"
 #include "cli/output_options.h"
 #include "cli/printable_message.h"
+#include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "cli/source_options.h"
 #include "convert/converter.h"
@@ -32,6 +35,8 @@ struct ConvertArgs {
   unsigned threads = 0;
   uint32_t slab = 64;
   OutputOptions out;
+  std::string batch, outDir;  // --batch LIST --out-dir DIR
+  bool resume = false;
 };
 
 Result<convert::Classification> classificationFrom(const ConvertArgs& a) {
@@ -72,53 +77,84 @@ std::string relativeErrorNote(double maxRelError) {
   return text;
 }
 
-int runConvert(const ConvertArgs& a) {
-  if (Status s = format::checkOutputTarget(a.output, {a.input}); !s) return reportError(s);
-  auto open = toOpenOptions(a.source);
-  if (!open) return reportError(open.error());
-  auto source = convert::openVolume(a.input, *open);
-  if (!source) return reportError(source.error());
-  if (Status s = format::checkOutputTarget(a.output, a.input, (*source)->info().files); !s)
-    return reportError(s);
+// An input opened and the options of its conversion, printing nothing but --standardize's
+// measurement (when `announce`). `ranks` null: this process alone (every file of a batch); else
+// the ranks that share the volume.
+struct Prepared {
+  std::unique_ptr<convert::VolumeSource> source;
+  convert::ConvertOptions options;
+};
+Result<Prepared> prepareFile(const ConvertArgs& a, const std::string& input,
+                             const std::string& output, convert::RankGroup* ranks, ProgressBar* bar,
+                             bool announce) {
+  VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, {input}));
+  VOXLINK_ASSIGN_OR_RETURN(convert::OpenOptions open, toOpenOptions(a.source));
+  VOXLINK_ASSIGN_OR_RETURN(std::unique_ptr<convert::VolumeSource> source,
+                           convert::openVolume(input, open));
+  VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, input, source->info().files));
   ConvertArgs args = a;
   if (a.standardize) {
     if (a.keepOutside.empty() || a.mean || a.sigma)
-      return reportError(
-          makeError(ErrorCode::kInvalidArgument,
-                    "--standardize goes with --keep-outside and without --mean/--sigma"));
-    ProgressBar momentsBar(a.out.showProgress());
-    auto moments = convert::measureMoments(
-        **source, a.slab, [&](double f, const char* stage) { momentsBar.update(f, stage); });
-    momentsBar.finish();
-    if (!moments) return reportError(moments.error());
-    if (!(moments->sigma > 0))
-      return reportError(makeError(ErrorCode::kInvalidArgument, a.input, ": data: every value is ",
-                                   moments->mean, "; sigma is 0, nothing to standardize"));
-    a.out.print("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n",
-                a.input.c_str(), moments->mean, moments->sigma, (unsigned long long)moments->count,
-                moments->min, moments->max);
-    args.mean = moments->mean;
-    args.sigma = moments->sigma;
+      return makeError(ErrorCode::kInvalidArgument,
+                       "--standardize goes with --keep-outside and without --mean/--sigma");
+    convert::PassProgress momentsProgress;
+    if (bar) momentsProgress = [bar](double f, const char* stage) { bar->update(f, stage); };
+    VOXLINK_ASSIGN_OR_RETURN(convert::Moments moments,
+                             convert::measureMoments(*source, a.slab, momentsProgress));
+    if (!(moments.sigma > 0))
+      return makeError(ErrorCode::kInvalidArgument, input, ": data: every value is ", moments.mean,
+                       "; sigma is 0, nothing to standardize");
+    if (announce)
+      a.out.print("%s: measured mean %.9g, sigma %.9g over %llu voxels (range [%g, %g])\n",
+                  input.c_str(), moments.mean, moments.sigma, (unsigned long long)moments.count,
+                  moments.min, moments.max);
+    args.mean = moments.mean;
+    args.sigma = moments.sigma;
   }
-  auto classification = classificationFrom(args);
-  if (!classification) return reportError(classification.error());
-
+  VOXLINK_ASSIGN_OR_RETURN(convert::Classification classification, classificationFrom(args));
   convert::ConvertOptions options;
   options.brickSize = a.brick;
   options.axis = static_cast<format::Axis>(a.axis[0] - 'x');
-  options.classification = *classification;
+  options.classification = classification;
   options.threads = a.threads;
   options.slabSlices = a.slab;
   options.errorBound = a.errorBound;
-  options.sourceOptions = *open;
+  options.sourceOptions = open;
+  options.ranks = ranks;
   if (!a.valueType.empty()) options.storedType = parseStoredName(a.valueType);
-  ProgressBar bar(a.out.showProgress());
-  options.progress = [&bar](double f, const char* stage) { bar.update(f, stage); };
-  auto summary = convert::convertVolume(**source, options, a.output);
+  if (bar) options.progress = [bar](double f, const char* stage) { bar->update(f, stage); };
+  return Prepared{std::move(source), std::move(options)};
+}
+
+int runConvert(const ConvertArgs& a) {
+  const bool batch = !a.batch.empty();
+  if (batch == !a.input.empty() || batch == !a.output.empty() || batch == a.outDir.empty() ||
+      (a.resume && !batch))
+    return reportOnRankZero(
+        makeError(ErrorCode::kInvalidArgument,
+                  "give either INPUT -o OUTPUT, or --batch LIST --out-dir DIR [--resume]"));
+  if (batch)
+    return runBatch(a.batch, a.outDir, a.resume,
+                    [&a](const std::string& input,
+                         const std::string& output) -> Result<convert::ConvertSummary> {
+                      VOXLINK_ASSIGN_OR_RETURN(
+                          Prepared p, prepareFile(a, input, output, nullptr, nullptr, false));
+                      return convert::convertVolume(*p.source, p.options, output);
+                    });
+  // Errors before the conversion are agreed too: a rank that cannot open the input must not
+  // leave the others waiting for it.
+  convert::RankGroup& ranks = processRanks();
+  const bool root = ranks.rank() == 0;
+  ProgressBar bar(root && a.out.showProgress());
+  auto prepared = prepareFile(a, a.input, a.output, &ranks, &bar, root);
+  if (Status all = convert::agree(ranks, prepared.status()); !all) return reportOnRankZero(all);
+  // convertVolume agrees on its errors itself.
+  auto summary = convert::convertVolume(*prepared->source, prepared->options, a.output);
   bar.finish();
-  if (!summary) return reportError(summary.error());
+  if (!summary) return reportOnRankZero(summary.status());
+  if (!root) return 0;
   const convert::ConvertSummary& s = *summary;
-  const convert::VolumeInfo& info = (*source)->info();
+  const convert::VolumeInfo& info = prepared->source->info();
   const double denseBytes = double(info.voxelCount()) * scalarSize(info.type);
   a.out.print(
       "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx "
@@ -143,9 +179,12 @@ CommandRunner addConvertCommand(CLI::App& app) {
   auto a = std::make_shared<ConvertArgs>();
   auto* cmd = app.add_subcommand("convert", "Pre-classify a dense volume and write a VoxLink file");
   cmd->add_option("input", a->input,
-                  "Dense volume: NRRD, MetaImage, NIfTI, DICOM folder, image stack, VDB, raw, ...")
-      ->required();
-  cmd->add_option("-o,--output", a->output, "Output VoxLink file (.vxl)")->required();
+                  "Dense volume: NRRD, MetaImage, NIfTI, DICOM folder, image stack, VDB, raw, ...");
+  cmd->add_option("-o,--output", a->output, "Output VoxLink file (.vxl)");
+  cmd->add_option("--batch", a->batch,
+                  "Convert every input listed in this file (one a line; relative to its folder)");
+  cmd->add_option("--out-dir", a->outDir, "With --batch: folder for the outputs (NAME.vxl)");
+  cmd->add_flag("--resume", a->resume, "With --batch: skip outputs that exist and validate");
   addSourceOptions(*cmd, a->source);
   auto* keep = cmd->add_option_group("classification", "What to keep (exactly one)");
   keep->add_option("--threshold", a->thresholds,

@@ -20,6 +20,11 @@ using CommandFactory = CommandRunner (*)(CLI::App& app);
 // Prints "voxlink: <message>" on stderr and returns the exit status for the error's kind.
 int reportError(const Error& error);
 int reportError(const Status& status);
+// The exit status reportError gives, without printing.
+int exitStatusFor(const Error& error);
+// With several MPI ranks that agreed on `status` (convert::agree): only rank 0 prints it; every
+// rank returns the same exit status.
+int reportOnRankZero(const Status& status);
 
 // Option check for numbers that must be finite: CLI11 itself reads "nan" and "inf" as doubles.
 // Each comma-separated element is checked, so it also guards list options like --keep-outside.

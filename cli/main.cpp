@@ -10,12 +10,17 @@
 
 #include "cli/command.h"
 #include "cli/printable_message.h"
+#include "cli/process_ranks.h"
 #include "format/output_file.h"
 
 namespace voxlink::cli {
 
 int reportError(const Error& error) {
   std::fprintf(stderr, "voxlink: %s\n", printableMessage(error.message).c_str());
+  return exitStatusFor(error);
+}
+
+int exitStatusFor(const Error& error) {
   switch (error.code) {
     case ErrorCode::kInvalidArgument:
       return 2;
@@ -27,6 +32,11 @@ int reportError(const Error& error) {
 }
 
 int reportError(const Status& status) { return status ? 0 : reportError(status.error()); }
+
+int reportOnRankZero(const Status& status) {
+  if (status) return 0;
+  return processRanks().rank() == 0 ? reportError(status) : exitStatusFor(status.error());
+}
 
 namespace {
 
@@ -49,7 +59,8 @@ int reportParseError(CLI::App& app, const CLI::ParseError& e) {
   std::string what = e.what();
   for (char& c : what)
     if (c == '\n') c = ' ';
-  std::fprintf(stderr, "voxlink: %s (see voxlink --help)\n", printableMessage(what).c_str());
+  if (processRanks().rank() == 0)  // every rank parsed the same line: one says it
+    std::fprintf(stderr, "voxlink: %s (see voxlink --help)\n", printableMessage(what).c_str());
   return 2;
 }
 
@@ -75,6 +86,11 @@ int runCommand(const CommandRunner& run) {
 
 int main(int argc, char** argv) {
   using namespace voxlink::cli;
+  // MPI first (it may edit argv); MPI_Finalize when main returns, on every path.
+  startProcessRanks(&argc, &argv);
+  struct EndRanks {
+    ~EndRanks() { endProcessRanks(); }
+  } endRanks;
   CLI::App app{"VoxLink: sparse volumes as bricked per-voxel linked lists (Kauker et al. 2016)",
                "voxlink"};
   app.require_subcommand(1);
@@ -99,7 +115,15 @@ int main(int argc, char** argv) {
     return reportParseError(app, e);
   }
   voxlink::format::removeTempsOnSignals();
-  for (auto& [sub, run] : commands)
-    if (sub->parsed()) return finishStandardOutput(voxlink::cli::runCommand(run));
+  for (auto& [sub, run] : commands) {
+    if (!sub->parsed()) continue;
+    // Only convert divides its work among MPI ranks; N copies of another command would each do
+    // all of it.
+    if (processRanks().size() > 1 && sub->get_name() != "convert")
+      return reportOnRankZero(voxlink::makeError(
+          voxlink::ErrorCode::kInvalidArgument, "voxlink ", sub->get_name(),
+          " runs in one process; of the commands only convert splits its work across MPI ranks"));
+    return finishStandardOutput(voxlink::cli::runCommand(run));
+  }
   return 2;
 }

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <filesystem>
 #include <future>
-#include <nlohmann/json.hpp>
-#include <system_error>
 #include <vector>
 
 #include "convert/brick_count_pass.h"
 #include "convert/brick_encode_pass.h"
+#include "convert/converter_meta.h"
 #include "convert/keep_rule.h"
+#include "convert/rank_exchange.h"
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
 #include "convert/worker_pool.h"
@@ -26,33 +26,24 @@ double secondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-constexpr const char* kGradientMethod =
-    "central differences of source values per world unit, one-sided at the volume border";
-
-// What pass 1 learns: counts per brick, occupied-brick numbering, voxel bases, kept range.
-struct BrickCensus {
-  std::vector<uint16_t> counts;         // per grid brick
-  std::vector<uint32_t> occupancy;      // BOCC
-  std::vector<uint32_t> voxelBase;      // BVOX, K + 1 entries
-  std::vector<uint64_t> firstOccupied;  // per row of bricks (bz*gy + by): occupied bricks before
-  uint64_t voxels = 0;
-  uint64_t occupied = 0;
-  double keptMin = INFINITY, keptMax = -INFINITY;
-  double keptMinMagnitude = INFINITY;  // smallest nonzero |value| kept (f64 sources only)
-};
-
 struct Passes {
   VolumeSource& source;
   const ConvertOptions& options;
+  RankGroup& ranks;
   GridShape shape{};
   uint32_t slabLayers = 1;  // brick layers per slab
+  LayerShare share;         // this rank's brick layers
   WorkerPool pool;
   ConvertSummary summary;
 
-  Passes(VolumeSource& s, const ConvertOptions& o) : source(s), options(o), pool(o.threads) {}
+  Passes(VolumeSource& s, const ConvertOptions& o)
+      : source(s), options(o), ranks(o.ranks ? *o.ranks : singleProcess()), pool(o.threads) {}
 
-  uint32_t layers() const { return shape.grid[2]; }
   uint64_t rowsPerLayer() const { return shape.grid[1]; }
+  uint64_t brickBegin() const { return uint64_t{share.begin} * shape.grid[1] * shape.grid[0]; }
+  double done(uint32_t bz1) const {
+    return share.end > share.begin ? double(bz1 - share.begin) / (share.end - share.begin) : 1.0;
+  }
 
   Status checkCancel() const {
     if (options.cancel && options.cancel->load())
@@ -75,20 +66,21 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
   const VolumeInfo& info = source.info();
   const uint32_t n = shape.n;
   BrickCensus census;
-  const uint64_t bricks = uint64_t{shape.grid[0]} * shape.grid[1] * shape.grid[2];
+  const uint64_t bricks = uint64_t{shape.grid[0]} * shape.grid[1] * (share.end - share.begin);
   census.counts.assign(bricks, 0);
   const bool trackRange = sizeof(T) > 1;
   SlabWindow window(source, 0);
   VOXLINK_RETURN_IF_ERROR(window.rewind());
   std::vector<CountResult> results(pool.size());
-  for (uint32_t bz0 = 0; bz0 < layers(); bz0 += slabLayers) {
+  for (uint32_t bz0 = share.begin; bz0 < share.end; bz0 += slabLayers) {
     VOXLINK_RETURN_IF_ERROR(checkCancel());
-    const uint32_t bz1 = std::min(layers(), bz0 + slabLayers);
+    const uint32_t bz1 = std::min(share.end, bz0 + slabLayers);
     VOXLINK_RETURN_IF_ERROR(window.load(bz0 * n, std::min(info.dims[2], bz1 * n)));
     pool.run(uint64_t{bz1 - bz0} * rowsPerLayer(), [&](size_t job, unsigned worker) {
       const uint32_t bz = bz0 + static_cast<uint32_t>(job / rowsPerLayer());
       const uint32_t by = static_cast<uint32_t>(job % rowsPerLayer());
-      uint16_t* counts = census.counts.data() + (uint64_t{bz} * shape.grid[1] + by) * shape.grid[0];
+      uint16_t* counts =
+          census.counts.data() + (uint64_t{bz - share.begin} * shape.grid[1] + by) * shape.grid[0];
       countBrickRow<T>(BrickRow{window, shape, bz, by}, keep, trackRange, counts, results[worker]);
     });
     window.release();
@@ -100,34 +92,16 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
                          ") is not finite; VoxLink files hold finite values only (mask or replace "
                          "NaN/Inf first)");
     }
-    report(0.25 * bz1 / layers(), "classifying");
+    report(0.25 * done(bz1), "classifying");
   }
   for (const CountResult& r : results) {
     census.keptMin = std::min(census.keptMin, r.keptMin);
     census.keptMax = std::max(census.keptMax, r.keptMax);
     census.keptMinMagnitude = std::min(census.keptMinMagnitude, r.keptMinMagnitude);
   }
-  // Number the occupied bricks and give each its first voxel.
-  census.occupancy.assign((bricks + 31) / 32, 0);
-  census.firstOccupied.resize(uint64_t{shape.grid[1]} * shape.grid[2]);
-  census.voxelBase.reserve(bricks / 8 + 2);
-  for (uint64_t b = 0; b < bricks; ++b) {
-    if (b % shape.grid[0] == 0) census.firstOccupied[b / shape.grid[0]] = census.occupied;
-    if (census.counts[b] == 0) continue;
-    census.occupancy[b >> 5] |= 1u << (b & 31);
-    if (census.voxels > format::kMaxVoxels) break;
-    census.voxelBase.push_back(static_cast<uint32_t>(census.voxels));
-    census.voxels += census.counts[b];
-    ++census.occupied;
-  }
-  if (census.voxels > format::kMaxVoxels)
-    return makeError(ErrorCode::kTooLarge, info.path, ": classification keeps more than ",
-                     format::kMaxVoxels,
-                     " voxels, the format's limit; keep fewer values or split the volume");
-  census.voxelBase.push_back(static_cast<uint32_t>(census.voxels));
-  if (sizeof(T) == 1 && census.voxels > 0) {  // 8-bit sources: range not tracked, not needed
-    census.keptMin = std::numeric_limits<T>::min();
-    census.keptMax = std::numeric_limits<T>::max();
+  for (uint16_t c : census.counts) {
+    census.voxels += c;
+    census.occupied += c != 0;
   }
   return census;
 }
@@ -149,14 +123,15 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     std::vector<uint32_t> masks;
     std::vector<uint8_t> values;
     std::vector<uint16_t> gradients;
-    uint64_t k0 = 0, v0 = 0;
+    uint64_t k0 = 0, v0 = 0;  // this rank's first brick of the slab, the file's first voxel
+    uint64_t brick0 = 0;      // the file's number of brick k0
   };
   SlabBuffers buffers[2];
   std::future<Status> pendingWrite;  // declared after buffers: joined before they go
   auto writeSlab = [&writer, n, maskWords, valueSize](const SlabBuffers& b) -> Status {
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowStart, b.k0 * n * n * 2,
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowStart, b.brick0 * n * n * 2,
                                          b.rows.data(), b.rows.size() * 2));
-    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowMask, b.k0 * maskWords * 4,
+    VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kRowMask, b.brick0 * maskWords * 4,
                                          b.masks.data(), b.masks.size() * 4));
     VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kValues, b.v0 * valueSize,
                                          b.values.data(), b.values.size()));
@@ -165,16 +140,17 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
   };
   unsigned slabsWritten = 0;
   const uint32_t stride = std::max(1u, options.errorSampleStride);
-  for (uint32_t bz0 = 0; bz0 < layers(); bz0 += slabLayers) {
+  for (uint32_t bz0 = share.begin; bz0 < share.end; bz0 += slabLayers) {
     VOXLINK_RETURN_IF_ERROR(checkCancel());
-    const uint32_t bz1 = std::min(layers(), bz0 + slabLayers);
-    const uint64_t rowBegin = uint64_t{bz0} * shape.grid[1];
-    const uint64_t rowEnd = uint64_t{bz1} * shape.grid[1];
+    const uint32_t bz1 = std::min(share.end, bz0 + slabLayers);
+    // Rows of bricks counted from this rank's first layer.
+    const uint64_t rowBegin = uint64_t{bz0 - share.begin} * shape.grid[1];
+    const uint64_t rowEnd = uint64_t{bz1 - share.begin} * shape.grid[1];
     const uint64_t k0 = census.firstOccupied[rowBegin];
     const uint64_t k1 =
         rowEnd < census.firstOccupied.size() ? census.firstOccupied[rowEnd] : census.occupied;
     if (k1 == k0) {
-      report(0.25 + 0.75 * bz1 / layers(), "writing");
+      report(0.25 + 0.75 * done(bz1), "writing");
       continue;
     }
     VOXLINK_RETURN_IF_ERROR(window.load(bz0 * n, std::min(info.dims[2], bz1 * n)));
@@ -182,6 +158,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     SlabBuffers& b = buffers[slabsWritten++ % 2];  // its last write was waited for below
     b.k0 = k0;
     b.v0 = v0;
+    b.brick0 = census.firstBrick + k0;
     b.rows.assign((k1 - k0) * n * n, 0);
     b.masks.assign((k1 - k0) * maskWords, 0);
     b.values.resize((v1 - v0) * valueSize);
@@ -190,7 +167,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
         k0, v0, b.rows.data(), b.masks.data(), b.values.data(), b.gradients.data()};
     pool.run(rowEnd - rowBegin, [&](size_t job, unsigned worker) {
       const uint64_t rowOfBricks = rowBegin + job;
-      const uint32_t bz = static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
+      const uint32_t bz = share.begin + static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
       const uint32_t by = static_cast<uint32_t>(rowOfBricks % shape.grid[1]);
       const uint16_t* counts = census.counts.data() + rowOfBricks * shape.grid[0];
       encodeBrickRow<T>(
@@ -209,7 +186,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     } catch (const std::system_error&) {  // no thread to spare (task or address-space limits)
       VOXLINK_RETURN_IF_ERROR(writeSlab(b));
     }
-    report(0.25 + 0.75 * bz1 / layers(), "writing");
+    report(0.25 + 0.75 * done(bz1), "writing");
   }
   if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
   for (const EncodeStats& s : stats) {
@@ -225,66 +202,29 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
   return Status::ok();
 }
 
-nlohmann::ordered_json sourceJson(const VolumeInfo& info, const OpenOptions& open) {
-  std::error_code ec;
-  const auto absolute = std::filesystem::absolute(info.path, ec);
-  nlohmann::ordered_json j;
-  j["path"] = ec ? info.path : absolute.lexically_normal().string();
-  j["format"] = info.format;
-  j["type"] = std::string(scalarName(info.type));
-  j["dims"] = info.dims;
-  j["spacing"] = info.spacing;
-  j["origin"] = info.origin;
-  j["notes"] = info.notes;
-  if (const auto& r = info.rescale)  // only rescaling readers: other files' META is unchanged
-    j["rescale"] = {{"field", r->field},
-                    {"stored_type", r->storedType},
-                    {"slope", {r->minSlope, r->maxSlope}},
-                    {"intercept", {r->minIntercept, r->maxIntercept}}};
-  nlohmann::ordered_json o;
-  if (!open.format.empty()) o["format"] = open.format;
-  if (open.dims) o["dims"] = *open.dims;
-  if (open.type) o["type"] = std::string(scalarName(*open.type));
-  if (open.type || open.dims) o["endian"] = open.endian == Endian::kLittle ? "little" : "big";
-  if (open.headerBytes) o["header_bytes"] = open.headerBytes;
-  if (open.spacing) o["spacing"] = *open.spacing;
-  j["open_options"] = o.empty() ? nlohmann::ordered_json::object() : o;
-  return j;
-}
-
-std::string metaJson(const VolumeInfo& info, const ConvertOptions& options,
-                     const ValueMapping& mapping, const ConvertSummary& s) {
-  nlohmann::ordered_json j;
-  j["generator"] = "voxlink 0.1.0";
-  j["source"] = sourceJson(info, options.sourceOptions);
-  j["classification"] = classificationToJson(options.classification);
-  j["bricks"] = {{"size", options.brickSize},
-                 {"predominant_axis", std::string(1, "xyz"[static_cast<int>(options.axis)])}};
-  j["values"] = {{"stored_type", std::string(storedName(mapping.type))},
-                 {"scale", mapping.scale},
-                 {"offset", mapping.offset},
-                 {"choice", mapping.reason},
-                 {"error_bound", mapping.errorBound},
-                 {"max_abs_error", s.valueMaxAbsError},
-                 {"max_rel_error", s.valueMaxRelError}};
-  j["gradients"] = {{"method", kGradientMethod},
-                    {"codec", "polar16"},
-                    {"zero", s.zeroGradients},
-                    {"error_deg",
-                     {{"mean", s.gradientMeanErrorDeg},
-                      {"max", s.gradientMaxErrorDeg},
-                      {"samples", s.gradientSamples},
-                      {"sample_stride", options.errorSampleStride}}}};
-  return j.dump(2);
-}
-
-// Runs both passes for source element type T with the fastest keep test that fits.
+// Runs both passes for source element type T with the fastest keep test that fits. With
+// several ranks every step that needs the others is collective and preceded by agree(), so a
+// rank that fails makes every rank stop there with its error.
 template <class T, class Keep>
 Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& outputPath) {
   const VolumeInfo& info = passes.source.info();
   const ConvertOptions& options = passes.options;
+  RankGroup& ranks = passes.ranks;
+  const bool root = ranks.rank() == 0;
   const auto start = Clock::now();
-  VOXLINK_ASSIGN_OR_RETURN(BrickCensus census, passes.template count<T>(keep));
+  Result<BrickCensus> counted = passes.template count<T>(keep);
+  VOXLINK_RETURN_IF_ERROR(agree(ranks, counted.status()));
+  BrickCensus census = std::move(counted).value();
+  exchangeCounts(ranks, census);
+  if (census.totalVoxels > format::kMaxVoxels)
+    return makeError(ErrorCode::kTooLarge, info.path, ": classification keeps more than ",
+                     format::kMaxVoxels,
+                     " voxels, the format's limit; keep fewer values or split the volume");
+  numberBricks(census, passes.shape, passes.brickBegin());
+  if (sizeof(T) == 1 && census.totalVoxels > 0) {  // 8-bit sources: range not tracked, not needed
+    census.keptMin = std::numeric_limits<T>::min();
+    census.keptMax = std::numeric_limits<T>::max();
+  }
   ConvertSummary& s = passes.summary;
   s.countSeconds = secondsSince(start);
   Result<ValueMapping> chosen =
@@ -306,22 +246,26 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   d.valueOffset = mapping.offset;
   d.valueErrorBound = mapping.errorBound;
   VOXLINK_RETURN_IF_ERROR(format::checkDescription(d));
-  const format::FileHeader header = format::makeHeader(d, census.voxels, census.occupied);
-  VOXLINK_ASSIGN_OR_RETURN(format::FileWriter writer,
-                           format::FileWriter::create(outputPath, header));
-  const std::vector<uint32_t> rank = format::rankFromOccupancy(census.occupancy);
-  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickOccupancy, 0,
-                                       census.occupancy.data(), census.occupancy.size() * 4));
-  VOXLINK_RETURN_IF_ERROR(
-      writer.write(format::SectionId::kBrickRank, 0, rank.data(), rank.size() * 4));
-  VOXLINK_RETURN_IF_ERROR(writer.write(format::SectionId::kBrickVoxelBase, 0,
-                                       census.voxelBase.data(), census.voxelBase.size() * 4));
+  const format::FileHeader header = format::makeHeader(d, census.totalVoxels, census.totalOccupied);
+  VOXLINK_ASSIGN_OR_RETURN(format::FileWriter writer, openSharedWriter(ranks, outputPath, header));
 
+  // Each rank writes the voxel bases of its bricks (the last rank also the end of the last one)
+  // and encodes its layers.
   const auto writeStart = Clock::now();
-  EncodeStats stats;
-  VOXLINK_RETURN_IF_ERROR(passes.template encode<T>(keep, census, mapping, writer, stats));
-  s.voxels = census.voxels;
-  s.occupiedBricks = census.occupied;
+  const bool last = ranks.rank() == ranks.size() - 1;
+  Status wrote = writer.write(format::SectionId::kBrickVoxelBase, census.firstBrick * 4,
+                              census.voxelBase.data(), (census.occupied + last) * 4);
+  EncodeStats local;
+  if (wrote) wrote = passes.template encode<T>(keep, census, mapping, writer, local);
+  if (wrote && !root) wrote = writer.close();
+  VOXLINK_RETURN_IF_ERROR(agree(ranks, wrote));
+  const uint64_t totalBricks =
+      uint64_t{passes.shape.grid[0]} * passes.shape.grid[1] * passes.shape.grid[2];
+  const std::vector<uint32_t> occupancy = gatherOccupancy(ranks, census, (totalBricks + 31) / 32);
+  const EncodeStats stats = reduceStats(ranks, local);
+  const std::vector<format::FileWriter::SectionPart> otherParts = gatherSectionParts(ranks, writer);
+  s.voxels = census.totalVoxels;
+  s.occupiedBricks = census.totalOccupied;
   s.storedType = mapping.type;
   s.valueMaxAbsError = stats.maxAbsError;
   s.valueMaxRelError = stats.maxRelError;
@@ -330,15 +274,28 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
       stats.gradientSamples ? stats.gradientErrorNanoDeg * 1e-9 / stats.gradientSamples : 0.0;
   s.gradientMaxErrorDeg = stats.gradientMaxErrorDeg;
   s.zeroGradients = stats.zeroGradients;
-  format::FileHeader& h = writer.header();
-  h.valueMin = census.voxels ? stats.valueMin : 0.0;
-  h.valueMax = census.voxels ? stats.valueMax : 0.0;
-  h.valueMaxAbsError = stats.maxAbsError;
-  h.valueMaxRelError = stats.maxRelError;
-  VOXLINK_RETURN_IF_ERROR(writer.commit(metaJson(info, options, mapping, s)));
+  // Rank 0 writes what spans every rank, checksums, and renames the file into place.
+  Status committed;
+  if (root) {
+    const std::vector<uint32_t> rank = format::rankFromOccupancy(occupancy);
+    committed =
+        writer.write(format::SectionId::kBrickOccupancy, 0, occupancy.data(), occupancy.size() * 4);
+    if (committed)
+      committed = writer.write(format::SectionId::kBrickRank, 0, rank.data(), rank.size() * 4);
+    format::FileHeader& h = writer.header();
+    h.valueMin = census.totalVoxels ? stats.valueMin : 0.0;
+    h.valueMax = census.totalVoxels ? stats.valueMax : 0.0;
+    h.valueMaxAbsError = stats.maxAbsError;
+    h.valueMaxRelError = stats.maxRelError;
+    if (committed) committed = writer.commit(metaJson(info, options, mapping, s), otherParts);
+  }
+  VOXLINK_RETURN_IF_ERROR(agree(ranks, committed));
   s.writeSeconds = secondsSince(writeStart);
   s.seconds = secondsSince(start);
-  s.bytes = std::filesystem::file_size(outputPath);
+  std::error_code ec;  // other ranks may not see the file yet (another node's view of the disk)
+  const uintmax_t bytes = std::filesystem::file_size(outputPath, ec);
+  if (ec && root) return makeError(ErrorCode::kIo, outputPath, ": ", ec.message());
+  s.bytes = ec ? 0 : bytes;
   passes.report(1.0, "done");
   return s;
 }
@@ -393,6 +350,7 @@ Result<ConvertSummary> convertVolume(VolumeSource& source, const ConvertOptions&
   }
   g.frame = format::axisFrame(options.axis);
   passes.slabLayers = std::max(1u, (std::max(options.slabSlices, 1u) + g.n - 1) / g.n);
+  passes.share = layerShare(g.grid[2], passes.ranks.rank(), passes.ranks.size());
   passes.summary.sourceVoxels = info.voxelCount();
   passes.summary.bricks = uint64_t{g.grid[0]} * g.grid[1] * g.grid[2];
   return dispatchScalar(info.type, [&](auto t) {

@@ -2,7 +2,7 @@
 //   1. classify every voxel, count kept voxels per brick, find the kept value range;
 //   2. classify again, compute central-difference gradients, encode them, write each brick's
 //      rows, masks, values and gradients straight to their final place in the file.
-// The output is byte-identical for any slab size and thread count.
+// The output is byte-identical for any slab size, thread count and rank count.
 #pragma once
 
 #include <atomic>
@@ -12,6 +12,7 @@
 #include <string>
 
 #include "convert/classification.h"
+#include "convert/rank_group.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
 #include "sources/volume_source.h"
@@ -33,6 +34,10 @@ struct ConvertOptions {
   std::function<void(double fraction, const char* stage)> progress;  // may be empty
   // Sampling rate of the gradient-error measurement (1 in N kept voxels is decoded and compared).
   uint32_t errorSampleStride = 64;
+  // The processes converting this volume together (docs/scale.md): each classifies and encodes
+  // a share of the brick layers, reading only those slices and the ghost slices around them,
+  // and all write one file, byte for byte the file one process writes. Null: this one alone.
+  RankGroup* ranks = nullptr;
 };
 
 struct ConvertSummary {

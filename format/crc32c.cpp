@@ -125,4 +125,40 @@ uint32_t crc32c(const void* data, size_t size, uint32_t crc) {
   return crc32cPortable(data, size, crc);
 }
 
+// zlib's crc32_combine for the Castagnoli polynomial: the register run through lengthB zero
+// bytes is linear in its start value; the operator for 2^k zero bits is squared k times.
+namespace {
+
+uint32_t gf2Times(const uint32_t* matrix, uint32_t vector) {
+  uint32_t sum = 0;
+  for (int i = 0; vector; vector >>= 1, ++i)
+    if (vector & 1) sum ^= matrix[i];
+  return sum;
+}
+
+void gf2Square(uint32_t* square, const uint32_t* matrix) {
+  for (int i = 0; i < 32; ++i) square[i] = gf2Times(matrix, matrix[i]);
+}
+
+}  // namespace
+
+uint32_t crc32cCombine(uint32_t crcA, uint32_t crcB, uint64_t lengthB) {
+  if (lengthB == 0) return crcA;
+  uint32_t even[32], odd[32];
+  odd[0] = kPolynomial;  // the operator for one zero bit
+  for (int i = 1; i < 32; ++i) odd[i] = 1u << (i - 1);
+  gf2Square(even, odd);  // two zero bits
+  gf2Square(odd, even);  // four zero bits
+  do {
+    gf2Square(even, odd);  // first pass: one zero byte
+    if (lengthB & 1) crcA = gf2Times(even, crcA);
+    lengthB >>= 1;
+    if (lengthB == 0) break;
+    gf2Square(odd, even);
+    if (lengthB & 1) crcA = gf2Times(odd, crcA);
+    lengthB >>= 1;
+  } while (lengthB != 0);
+  return crcA ^ crcB;
+}
+
 }  // namespace voxlink::format

@@ -11,6 +11,10 @@ namespace voxlink::format {
 // Extends `crc` (0 for a fresh checksum) over `size` bytes.
 uint32_t crc32c(const void* data, size_t size, uint32_t crc = 0);
 
+// The checksum of A followed by B from crc32c(A), crc32c(B) and B's length (O(log length)):
+// what processes that each checksummed their part of a section use to checksum the whole.
+uint32_t crc32cCombine(uint32_t crcA, uint32_t crcB, uint64_t lengthB);
+
 // The portable table-driven path, exposed so tests can check the two paths agree.
 uint32_t crc32cPortable(const void* data, size_t size, uint32_t crc = 0);
 

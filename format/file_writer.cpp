@@ -129,11 +129,59 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
   return w;
 }
 
+Result<FileWriter> FileWriter::createShared(const std::string& path, const FileHeader& header) {
+  FileWriter w;
+  w.path_ = path;
+  w.header_ = header;
+  w.layout_ = planSections(header, 0);
+  w.crcs_.resize(w.layout_.entries.size());
+  VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path));
+  w.fd_ = temp.fd;
+  w.tempPath_ = temp.path;
+  const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
+  if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
+    return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd,
+                     " bytes: ", std::strerror(errno));
+  return w;
+}
+
+Result<FileWriter> FileWriter::attach(const std::string& path, const std::string& tempPath,
+                                      const FileHeader& header) {
+  FileWriter w;
+  w.path_ = path;
+  w.header_ = header;
+  w.layout_ = planSections(header, 0);
+  w.crcs_.resize(w.layout_.entries.size());
+  w.attached_ = true;
+  w.fd_ = ::open(tempPath.c_str(), O_WRONLY | O_CLOEXEC);
+  if (w.fd_ < 0)
+    return makeError(ErrorCode::kIo, path, ": cannot open the shared temporary ", tempPath, ": ",
+                     std::strerror(errno));
+  w.tempPath_ = tempPath;
+  return w;
+}
+
+std::vector<FileWriter::SectionPart> FileWriter::sectionParts() const {
+  std::vector<SectionPart> parts;
+  for (const RunningCrc& c : crcs_)
+    parts.push_back(SectionPart{c.begin, c.covered, c.crc, c.inOrder ? 1u : 0u});
+  return parts;
+}
+
+Status FileWriter::close() {
+  const int fd = std::exchange(fd_, -1);
+  tempPath_.clear();
+  if (fd >= 0 && ::close(fd) != 0)
+    return makeError(ErrorCode::kIo, path_, ": write failed at close: ", std::strerror(errno));
+  return Status::ok();
+}
+
 FileWriter::FileWriter(FileWriter&& other) noexcept
     : path_(std::move(other.path_)),
       tempPath_(std::move(other.tempPath_)),
       fd_(std::exchange(other.fd_, -1)),
       unnamedTemp_(other.unnamedTemp_),
+      attached_(other.attached_),
       header_(other.header_),
       layout_(std::move(other.layout_)),
       crcs_(std::move(other.crcs_)),
@@ -146,7 +194,7 @@ FileWriter::~FileWriter() { discard(); }
 void FileWriter::discard() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
-  if (!tempPath_.empty() && !unnamedTemp_) discardTemp(tempPath_);
+  if (!tempPath_.empty() && !unnamedTemp_ && !attached_) discardTemp(tempPath_);
   tempPath_.clear();
 }
 
@@ -174,6 +222,7 @@ Status FileWriter::write(SectionId id, uint64_t offset, const void* data, size_t
   VOXLINK_RETURN_IF_ERROR(writeRaw(e.offset + offset, data, bytes));
   std::lock_guard lock(*crcMutex_);
   RunningCrc& c = crcs_[static_cast<size_t>(&e - layout_.entries.data())];
+  if (!c.started) c.started = true, c.begin = c.covered = offset;
   if (c.inOrder && offset == c.covered) {
     c.crc = crc32c(data, bytes, c.crc);
     c.covered += bytes;
@@ -183,7 +232,36 @@ Status FileWriter::write(SectionId id, uint64_t offset, const void* data, size_t
   return Status::ok();
 }
 
-Status FileWriter::commit(const std::string& metaJson) {
+namespace {
+
+// The checksum of section `index` from the parts of every writer, when they tile it.
+std::optional<uint32_t> combinedCrc(const std::vector<FileWriter::SectionPart>& all, size_t index,
+                                    size_t sections, uint64_t bytes) {
+  std::vector<FileWriter::SectionPart> parts;
+  for (size_t at = index; at < all.size(); at += sections)
+    if (all[at].end > all[at].begin || !all[at].inOrder) parts.push_back(all[at]);
+  std::sort(parts.begin(), parts.end(),
+            [](const auto& a, const auto& b) { return a.begin < b.begin; });
+  uint32_t crc = 0;
+  uint64_t covered = 0;
+  for (const FileWriter::SectionPart& p : parts) {
+    if (!p.inOrder || p.begin != covered) return std::nullopt;
+    crc = crc32cCombine(crc, p.crc, p.end - p.begin);
+    covered = p.end;
+  }
+  // The padding after the data (VALU, GRAD and ROWS to 4 bytes, META) is never written: zeros
+  // from ftruncate. Checksummed here, an odd voxel count no longer reads GRAD back from disk.
+  constexpr uint8_t kZeros[kSectionAlignment] = {};
+  if (bytes > covered && bytes - covered < 4)
+    crc = crc32cCombine(crc, crc32c(kZeros, bytes - covered), bytes - covered);
+  else if (covered != bytes)
+    return std::nullopt;
+  return crc;
+}
+
+}  // namespace
+
+Status FileWriter::commit(const std::string& metaJson, const std::vector<SectionPart>& otherParts) {
   if (fd_ < 0) return makeError(ErrorCode::kInvalidArgument, path_, ": writer already finished");
   layout_ = planSections(header_, metaJson.size());  // data offsets do not depend on META
   if (ftruncate(fd_, static_cast<off_t>(layout_.fileBytes)) != 0)
@@ -193,10 +271,12 @@ Status FileWriter::commit(const std::string& metaJson) {
   {
     // Sections written out of order or with gaps (left as zeros) are read back.
     std::optional<MappedFile> mapped;
+    std::vector<SectionPart> parts = sectionParts();
+    parts.insert(parts.end(), otherParts.begin(), otherParts.end());
     for (size_t i = 0; i < layout_.entries.size(); ++i) {
       SectionEntry& e = layout_.entries[i];
-      if (crcs_[i].inOrder && crcs_[i].covered == e.bytes) {
-        e.crc = crcs_[i].crc;
+      if (auto crc = combinedCrc(parts, i, layout_.entries.size(), e.bytes)) {
+        e.crc = *crc;
         continue;
       }
       if (!mapped) {

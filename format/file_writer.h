@@ -56,6 +56,12 @@ class FileWriter {
   // `header` must come from makeHeader(). Data sections may be written right away; the META
   // section (placed last) is given to commit().
   static Result<FileWriter> create(const std::string& path, const FileHeader& header);
+  // Several processes writing one file (docs/scale.md): one creates it with createShared (a
+  // named temporary beside `path`, since the others must open it: tempPath()) and commits it;
+  // the others attach() to that temporary, write their parts and close().
+  static Result<FileWriter> createShared(const std::string& path, const FileHeader& header);
+  static Result<FileWriter> attach(const std::string& path, const std::string& tempPath,
+                                   const FileHeader& header);
   FileWriter(FileWriter&& other) noexcept;
   FileWriter& operator=(FileWriter&&) = delete;
   FileWriter(const FileWriter&) = delete;
@@ -64,14 +70,28 @@ class FileWriter {
   const SectionLayout& layout() const { return layout_; }
   FileHeader& header() { return header_; }  // fields like valueMin may be set before commit()
   const std::string& path() const { return path_; }
+  const std::string& tempPath() const { return tempPath_; }
+
+  // What this writer checksummed of one section: bytes [begin, end) written front to back.
+  struct SectionPart {
+    uint64_t begin = 0, end = 0;
+    uint32_t crc = 0;
+    uint32_t inOrder = 1;  // 0: written out of order, no usable checksum
+  };
+  // One per section, in layout().entries order.
+  std::vector<SectionPart> sectionParts() const;
 
   // Writes bytes at `offset` inside a section; thread-safe for disjoint ranges. A section
   // written front to back in order is checksummed on the way; any other order makes commit()
   // read that section back from the file instead.
   Status write(SectionId id, uint64_t offset, const void* data, size_t bytes);
   // Writes META, checksums every section, writes the table and the header, and renames the
-  // file into place.
-  Status commit(const std::string& metaJson);
+  // file into place. `otherParts` are the sectionParts() of the writers attached to this one
+  // (each one's list after the other): a section they and this writer cover front to back
+  // without gaps gets its checksum combined from theirs; any other is read back.
+  Status commit(const std::string& metaJson, const std::vector<SectionPart>& otherParts = {});
+  // An attached writer's end: closes the file (checked); the creator commits it.
+  Status close();
 
  private:
   FileWriter() = default;
@@ -82,12 +102,14 @@ class FileWriter {
   std::string tempPath_;
   int fd_ = -1;
   bool unnamedTemp_ = false;  // O_TMPFILE: closing it is all a discard needs
+  bool attached_ = false;     // another writer owns the temporary: never removed from here
   FileHeader header_{};
   SectionLayout layout_;
   // The checksum of a section's prefix [0, covered), while writes arrive in order.
   struct RunningCrc {
-    uint64_t covered = 0;
+    uint64_t begin = 0, covered = 0;
     uint32_t crc = 0;
+    bool started = false;
     bool inOrder = true;
   };
   std::vector<RunningCrc> crcs_;  // parallel to layout_.entries

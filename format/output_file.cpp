@@ -18,6 +18,8 @@
 #include <filesystem>
 #include <string>
 
+#include "format/temp_janitor.h"
+
 namespace voxlink::format {
 namespace {
 
@@ -215,6 +217,7 @@ void registerTempForCleanup(const std::string& path) {
     if (!slotState[i].compare_exchange_strong(expected, 1)) continue;
     std::memcpy(slotPath[i].data(), path.c_str(), path.size() + 1);
     slotState[i].store(2);
+    tellTempJanitor('+', path);
     return;
   }
 }
@@ -225,6 +228,7 @@ void unregisterTempForCleanup(const std::string& path) {
     if (!slotState[i].compare_exchange_strong(expected, 1)) continue;
     if (path == slotPath[i].data()) {
       slotState[i].store(0);
+      tellTempJanitor('-', path);
       return;
     }
     slotState[i].store(2);

@@ -14,6 +14,7 @@ packages=(
   libglfw3-dev libglm-dev libepoxy-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0
   libimgui-dev xvfb xauth
   python3 time ccache
+  libopenmpi-dev openmpi-bin
   pybind11-dev python3-dev python3-numpy python3-pytest
   python3-pydicom
   python3-openvdb libopenvdb-tools

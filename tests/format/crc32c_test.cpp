@@ -38,5 +38,21 @@ TEST(Crc32c, HardwareAndPortableAgreeAndChain) {
   }
 }
 
+// Ranks checksum their parts of a section; the writer joins them (format/file_writer.cpp).
+TEST(Crc32c, CombineEqualsChecksumOfTheJoinedBytes) {
+  std::vector<uint8_t> bytes(100000);
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<uint8_t>(i * 2654435761u >> 13);
+  const uint32_t whole = crc32c(bytes.data(), bytes.size());
+  for (size_t cut : {size_t{0}, size_t{1}, size_t{7}, size_t{4096}, size_t{65537}, bytes.size()}) {
+    const uint32_t a = crc32c(bytes.data(), cut);
+    const uint32_t b = crc32c(bytes.data() + cut, bytes.size() - cut);
+    EXPECT_EQ(crc32cCombine(a, b, bytes.size() - cut), whole) << "cut at " << cut;
+  }
+  // Three parts joined left to right.
+  const uint32_t p0 = crc32c(bytes.data(), 1000), p1 = crc32c(bytes.data() + 1000, 30000),
+                 p2 = crc32c(bytes.data() + 31000, bytes.size() - 31000);
+  EXPECT_EQ(crc32cCombine(crc32cCombine(p0, p1, 30000), p2, bytes.size() - 31000), whole);
+}
+
 }  // namespace
 }  // namespace voxlink::format

@@ -1,0 +1,31 @@
+#include "cli/process_ranks.h"
+
+#include <memory>
+
+#include "format/temp_janitor.h"
+#ifdef VOXLINK_WITH_MPI
+#include "mpi/mpi_rank_group.h"
+#endif
+
+namespace voxlink::cli {
+namespace {
+std::unique_ptr<convert::RankGroup> mpiRanks;
+}
+
+bool startProcessRanks([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv) {
+#ifdef VOXLINK_WITH_MPI
+  if (mpi::launchedByMpi()) {
+    // Before MPI_Init (no threads yet): Open MPI may end this rank with _exit() when another
+    // dies, and only a helper outside it can then remove rank 0's shared temporary.
+    format::startTempJanitor();
+    mpiRanks = mpi::startMpi(argc, argv);
+  }
+#endif
+  return mpiRanks != nullptr;
+}
+
+void endProcessRanks() { mpiRanks.reset(); }
+
+convert::RankGroup& processRanks() { return mpiRanks ? *mpiRanks : convert::singleProcess(); }
+
+}  // namespace voxlink::cli

@@ -1,0 +1,144 @@
+// One rank failing under mpirun (docs/scale.md): a bad value in its slab, a slab it cannot read,
+// a full disk (a file size limit on that rank), the rank killed. Every rank ends, the exit
+// status is non-zero, stderr names the rank and the cause, and the output folder stays empty:
+// no output, no temporary.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "tests/mpi/mpi_launch.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+size_t lineCount(const std::string& text) {
+  return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+std::vector<uint8_t> noise(size_t bytes) {
+  std::vector<uint8_t> v(bytes);
+  uint32_t x = 99;
+  for (uint8_t& b : v) b = static_cast<uint8_t>((x = x * 1664525u + 1013904223u) >> 24);
+  return v;
+}
+
+// 37x29x53 f32 with one NaN at z = 50: brick layer 6 of 7, which rank 2 of 3 converts.
+TEST(MpiFaults, BadValueOnOneRank) {
+  TempDir in, out;
+  std::vector<float> values(37 * 29 * 53, 1.0f);
+  values[(50 * 29 + 3) * 37 + 4] = NAN;
+  std::vector<uint8_t> bytes(values.size() * 4);
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  writeBytes(in.file("v.raw"), bytes);
+  const Launch r = runRanks(3, {"convert", in.file("v.raw"), "--dims", "37,29,53", "--type", "f32",
+                                "--threshold", "0.5", "-q", "-o", out.file("v.vxl")});
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("voxlink: rank 2: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("(4, 3, 50) is not finite"), std::string::npos) << r.err;
+  EXPECT_TRUE(listDir(out.path()).empty());
+}
+
+// A detached NRRD with one gzip file per slice; the slice rank 1 of 2 reads is corrupt (what
+// a reader cannot know before it decompresses it).
+TEST(MpiFaults, UnreadableSlabOnOneRank) {
+  TempDir in, out;
+  for (int z = 0; z < 32; ++z) {
+    const std::string name = in.file(std::string("s") + std::to_string(z) + ".raw");
+    writeBytes(name, noise(24 * 24));
+    ASSERT_EQ(std::system(("gzip -n " + name).c_str()), 0);
+  }
+  writeBytes(in.file("s27.raw.gz"), noise(100));
+  std::ofstream(in.file("v.nhdr")) << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 24 24 32\n"
+                                      "encoding: gzip\ndata file: s%d.raw.gz 0 31 1\n";
+  const Launch r = runRanks(
+      2, {"convert", in.file("v.nhdr"), "--threshold", "100", "-q", "-o", out.file("v.vxl")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("voxlink: rank 1: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("s27.raw.gz"), std::string::npos) << r.err;
+  EXPECT_TRUE(listDir(out.path()).empty());
+}
+
+// Rank 1 of 3 may not write past 1 MiB (RLIMIT_FSIZE, SIGXFSZ ignored: EFBIG, as a full disk
+// gives ENOSPC) into a 3.5 MB output. TCP between the ranks: the limit would also stop Open
+// MPI's shared-memory transport from sizing its segment.
+TEST(MpiFaults, DiskFullOnOneRank) {
+  TempDir in, out;
+  writeBytes(in.file("n.raw"), noise(96 * 96 * 96));
+  const std::string args = "convert " + in.file("n.raw") +
+                           " --dims 96,96,96 --type u8 --keep-all -q -o " + out.file("n.vxl");
+  const Launch r = runLauncher("--mca btl self,tcp -n 1 VOXLINK " + args +
+                               " : -n 1 sh -c \"trap '' XFSZ; ulimit -f 2048; exec \\$0 " + args +
+                               "\" VOXLINK : -n 1 VOXLINK " + args);
+  EXPECT_EQ(r.status, 3) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("voxlink: rank 1: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("write failed: File too large"), std::string::npos) << r.err;
+  EXPECT_TRUE(listDir(out.path()).empty());
+}
+
+// Rank `victim` of 3 killed with SIGKILL `delayMs` after the output's temporary appears: mpirun
+// ends the others (SIGTERM; or Open MPI's own _exit() in a rank waiting inside MPI) and reports
+// the rank and the signal; the temporary is removed by rank 0's signal handler or, when rank 0
+// cannot run one, by its helper process (format/temp_janitor.h).
+void expectKilledRankLeavesNothing(int victim, int delayMs) {
+  TempDir in, out;
+  writeBytes(in.file("n.raw"), noise(256 * 256 * 256));
+  const std::string args = "convert " + in.file("n.raw") +
+                           " --dims 256,256,256 --type u8 --keep-all --threads 1 -q -o " +
+                           out.file("n.vxl");
+  const std::string pidFile = in.file("victim.pid");
+  const std::string victimApp =
+      "-n 1 sh -c \"echo \\$\\$ > " + pidFile + "; exec \\$0 " + args + "\" VOXLINK";
+  const std::string plainApp = "-n 1 VOXLINK " + args;
+  std::string apps;
+  for (int rank = 0; rank < 3; ++rank)
+    apps += (rank ? " : " : "") + (rank == victim ? victimApp : plainApp);
+  Launch r;
+  std::thread launch([&] { r = runLauncher(apps, false); });
+  pid_t pid = 0;
+  for (int i = 0; i < 3000 && pid == 0; ++i) {
+    std::ifstream(pidFile) >> pid;
+    if (pid == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  for (int i = 0; i < 3000 && listDir(out.path()).empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_GT(pid, 0);
+  EXPECT_FALSE(listDir(out.path()).empty()) << "the conversion never opened its output";
+  std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
+  kill(pid, SIGKILL);
+  launch.join();
+  EXPECT_EQ(r.status, 128 + SIGKILL);
+  EXPECT_NE(r.err.find("process rank " + std::to_string(victim) + " with PID"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("exited on signal 9 (Killed)"), std::string::npos) << r.err;
+  std::vector<std::string> left = listDir(out.path());
+  for (int i = 0; i < 200 && !left.empty(); ++i) {  // the helper runs once rank 0 is gone
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    left = listDir(out.path());
+  }
+  EXPECT_TRUE(left.empty()) << left.front();
+}
+
+TEST(MpiFaults, KilledRankInsideTheEncoding) { expectKilledRankLeavesNothing(1, 300); }
+
+// Rank 0 waits inside MPI for rank 1 right after creating the temporary: Open MPI ends it with
+// _exit(), no handler runs.
+TEST(MpiFaults, KilledRankWhileRankZeroWaitsInMpi) { expectKilledRankLeavesNothing(1, 0); }
+
+// Rank 0, which created the temporary, killed outright.
+TEST(MpiFaults, KilledRankZero) { expectKilledRankLeavesNothing(0, 100); }
+
+}  // namespace
+}  // namespace voxlink::testing

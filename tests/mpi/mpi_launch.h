@@ -1,0 +1,27 @@
+// Runs `voxlink` under mpirun (Open MPI, quiet, oversubscribed: this machine may have fewer cores
+// than ranks; as root when the tests run as root) and without it, capturing status and output.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace voxlink::testing {
+
+struct Launch {
+  int status = -1;  // exit status of mpirun (or of voxlink), 128 + signal if killed
+  std::string out, err;
+};
+
+// voxlink ARGS, no launcher.
+Launch runPlain(const std::vector<std::string>& args);
+// mpirun -n RANKS voxlink ARGS.
+Launch runRanks(int ranks, const std::vector<std::string>& args);
+// mpirun with a command line of its own after the launcher's options (MPMD `A : B` forms);
+// "VOXLINK" in it stands for the executable. Runs through /bin/sh.
+// quiet = false: without -q, so that mpirun reports a rank that died of a signal.
+Launch runLauncher(const std::string& tail, bool quiet = true);
+
+// The launcher's options used by the calls above.
+std::string launcherPrefix(bool quiet = true);
+
+}  // namespace voxlink::testing
