@@ -4,7 +4,8 @@
 #   bash scripts/install-deps.sh sample tests  # everything: build all, run every test
 # `sample` is what building the `voxlink` executable (CMake finds every library at configure
 # time) and running it on samples/headsq need: the OpenVDB plugin for `info`'s peer, the
-# OpenImageIO plugin for the PNG, EGL on Mesa for the headless render. `tests` adds the test
+# OpenImageIO plugin for the PNG (OpenImageIO's CMake config also wants its tools' binaries),
+# EGL on Mesa for the headless render. `tests` adds the test
 # frameworks, tools the tests call, Python, ParaView, clang and R.
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
@@ -12,10 +13,11 @@ sample=(
   build-essential cmake ninja-build pkg-config ccache
   zlib1g-dev nlohmann-json3-dev libcli11-dev
   libopenvdb-dev libboost-iostreams-dev libtbb-dev libblosc-dev
-  libopenimageio-dev
+  libopenimageio-dev openimageio-tools
   libgdcm-dev
   libnifti2-dev
-  libglfw3-dev libglm-dev libepoxy-dev libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0
+  libglfw3-dev libglm-dev libepoxy-dev libegl-dev libgl-dev libopengl-dev libgl1-mesa-dri
+  libegl-mesa0
   libimgui-dev
   libfftw3-dev libzip-dev libzstd-dev
   libassimp-dev libembree-dev
@@ -23,7 +25,7 @@ sample=(
 tests=(
   git ca-certificates time file
   libgtest-dev libgmock-dev libbenchmark-dev
-  openimageio-tools libgdcm-tools
+  libgdcm-tools
   xvfb xauth
   python3 pybind11-dev python3-dev python3-numpy python3-pytest
   python3-venv python3-pip python3-setuptools python3-wheel
