@@ -7,6 +7,10 @@ find_package(CLI11 REQUIRED)
 # OpenVDB: Debian ships only a Find module.
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
+# FindOpenVDB sets BUILD_SHARED_LIBS ON in our scope, which made every later add_library without
+# a type (voxlink_geostat) a shared library that `cmake --install` did not install: our
+# libraries are static, linked into the executable, the module and the plugins.
+set(BUILD_SHARED_LIBS OFF)
 
 # OpenImageIO's config lists /usr/include/opencv4 as an include directory although OpenCV is
 # not a dependency of ours; drop directories that do not exist so configuring does not fail.

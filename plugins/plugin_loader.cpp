@@ -19,9 +19,23 @@ struct Loaded {
 std::mutex mutex;
 std::map<std::string, Loaded> loaded;
 
+// The folder of the executable or shared object (the Python module) this code is linked into:
+// a module installed by pip lives in a venv while /proc/self/exe names the system python3.
+std::filesystem::path folderOfThisBinary() {
+  Dl_info info{};
+  if (!dladdr(reinterpret_cast<void*>(&folderOfThisBinary), &info) || !info.dli_fname ||
+      !*info.dli_fname)
+    return {};
+  std::error_code ec;
+  const auto path = std::filesystem::canonical(info.dli_fname, ec);
+  return ec ? std::filesystem::path() : path.parent_path();
+}
+
 std::vector<std::filesystem::path> searchDirs() {
   std::vector<std::filesystem::path> dirs;
   if (const char* env = std::getenv("VOXLINK_PLUGIN_DIR")) dirs.emplace_back(env);
+  if (const auto binary = folderOfThisBinary(); !binary.empty())
+    dirs.push_back(binary / kPipPluginFolder);
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {

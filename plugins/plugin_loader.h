@@ -9,9 +9,13 @@
 
 namespace voxlink::plugins {
 
+// The folder beside the Python module where `pip install` puts the plugins (setup.py).
+inline constexpr const char* kPipPluginFolder = "voxlink.plugins";
+
 // Loads `fileName` (e.g. "libvoxlink_vdb.so") once per process and returns the address of its
-// `entry` symbol. Looks in $VOXLINK_PLUGIN_DIR, next to the executable, in <exe>/../lib/voxlink,
-// in the build tree and in the install prefix, in that order.
+// `entry` symbol. Looks in $VOXLINK_PLUGIN_DIR, in voxlink.plugins beside the executable or
+// Python module holding this code (a pip install), next to the executable, in
+// <exe>/../lib/voxlink, in the build tree and in the install prefix, in that order.
 Result<void*> pluginEntry(const std::string& fileName, const char* entry);
 
 // A plugin's entry is a function returning a pointer to its table of functions (`Api`, a struct

@@ -5,8 +5,12 @@
 # measuring it against the float64 reference renderer. Results go to ./out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh
+# Only what this job needs (scripts/run-tests.sh installs and builds the rest): the packages to
+# build the executable, which builds with the plugins it loads (OpenVDB for info's peer, GDCM
+# for DICOM inputs, OpenImageIO for the PNG); no tests, benchmarks or Python module.
+bash scripts/install-deps.sh sample
+VOXLINK_TARGETS=voxlink bash scripts/build.sh \
+  -DVOXLINK_BUILD_TESTS=OFF -DVOXLINK_BUILD_BENCH=OFF -DVOXLINK_BUILD_PYTHON=OFF
 mkdir -p out
 voxlink=build/cli/voxlink
 $voxlink convert samples/headsq/headsq.nrrd --tf samples/headsq/skin-bone.tf.json -o out/headsq.vxl
