@@ -4,6 +4,7 @@
 
 #include "cli/command.h"
 #include "cli/output_options.h"
+#include "cli/progress_bar.h"
 #include "convert/vdb_export.h"
 #include "format/dense_export.h"
 #include "format/file_name.h"
@@ -29,7 +30,7 @@ CommandRunner addExportCommand(CLI::App& app) {
   cmd->add_option("--fill", args->fill, "Value of removed voxels (must fit the source type)")
       ->check(finiteNumber())
       ->capture_default_str();
-  args->out.add(cmd, false);
+  args->out.add(cmd, true);
   return [args] {
     const std::string& out = args->output;
     const bool vdb = format::hasExtension(out, ".vdb");
@@ -38,16 +39,30 @@ CommandRunner addExportCommand(CLI::App& app) {
           ErrorCode::kInvalidArgument, out,
           ": unknown export format; the output name must end in .nrrd, .nhdr (+ .raw) or .vdb"));
     if (Status s = format::checkOutputTarget(out, {args->path}); !s) return reportError(s);
-    auto file = format::openValidatedFile(args->path);
-    if (!file) return reportError(file.error());
+    // Validating a quarter of the bar, exporting the rest.
+    ProgressBar bar(args->out.showProgress());
+    const format::ProgressCallback progress = [&](double fraction, const char* stage) {
+      bar.update(fraction, stage);
+    };
+    auto fail = [&](const Error& error) {  // the message on a line of its own
+      bar.finish();
+      return reportError(error);
+    };
+    auto file = format::VoxLinkFile::open(args->path);
+    if (!file) return fail(file.error());
+    if (auto valid = format::validateFile(*file, format::progressPart(progress, 0, 0.25)); !valid)
+      return fail(valid.error());
+    const format::ProgressCallback exportProgress = format::progressPart(progress, 0.25, 1);
     if (vdb) {
-      auto written = convert::exportVdb(*file, out);
+      auto written = convert::exportVdb(*file, out, exportProgress);
+      bar.finish();
       if (!written) return reportError(written.error());
       args->out.print("%s: grids 'values' and 'gradient', %llu active voxels each, %.2f MB\n",
                       out.c_str(), (unsigned long long)written->voxels, written->bytes / 1e6);
       return 0;
     }
-    auto summary = format::exportDenseNrrd(*file, out, args->fill);
+    auto summary = format::exportDenseNrrd(*file, out, args->fill, exportProgress);
+    bar.finish();
     if (!summary) return reportError(summary.error());
     args->out.print("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n",
                     out.c_str(), (unsigned long long)summary->keptVoxels,

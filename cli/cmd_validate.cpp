@@ -3,6 +3,7 @@
 
 #include "cli/command.h"
 #include "cli/output_options.h"
+#include "cli/progress_bar.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
 
@@ -14,7 +15,7 @@ CommandRunner addValidateCommand(CLI::App& app) {
   auto files = std::make_shared<std::vector<std::string>>();
   auto out = std::make_shared<OutputOptions>();
   cmd->add_option("files", *files, "VoxLink files (.vxl)")->required()->check(CLI::ExistingFile);
-  out->add(cmd, false);
+  out->add(cmd, true);
   return [files, out] {
     int status = 0;
     for (const std::string& path : *files) {
@@ -23,7 +24,10 @@ CommandRunner addValidateCommand(CLI::App& app) {
         status = reportError(file.error());
         continue;
       }
-      auto report = format::validateFile(*file);
+      ProgressBar bar(out->showProgress());
+      auto report = format::validateFile(
+          *file, [&](double fraction, const char* stage) { bar.update(fraction, stage); });
+      bar.finish();
       if (!report) {
         status = reportError(report.error());
         continue;

@@ -4,6 +4,7 @@
 #include <openvdb/openvdb.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -15,7 +16,8 @@
 
 namespace voxlink::convert {
 
-Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path) {
+Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path,
+                                         const format::ProgressCallback& progress) {
   if (file.isScene())
     return makeError(
         ErrorCode::kUnsupported, file.path(),
@@ -39,7 +41,15 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
     auto v = values->getAccessor();
     auto g = gradients->getAccessor();
     const std::span<const uint16_t> codes = file.gradientCodes();
+    // Setting the voxels is 80 % of the bar, writing the file the rest.
+    const uint64_t voxels = std::max<uint64_t>(1, file.voxelCount());
+    const uint64_t reportEvery = std::max<uint64_t>(1, voxels / 32);
+    uint64_t nextReport = 0;
     format::VoxelLocator(file).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
+      if (i >= nextReport) {
+        format::reportProgress(progress, 0.8 * double(i) / double(voxels), "grids");
+        nextReport = i + reportEvery;
+      }
       const openvdb::Coord ijk{int(x), int(y), int(z)};
       v.setValue(ijk, static_cast<float>(file.value(i)));
       const std::array<float, 3> d = format::decodeGradient(codes[i]);
@@ -55,6 +65,7 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
     grid->insertMeta("voxlink_gradient_codec", openvdb::StringMetadata("polar16, decoded"));
   }
 
+  format::reportProgress(progress, 0.8, "writing");
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, ".vdb"));
   ::close(temp.fd);
   // Through a stream of our own: openvdb::io::File does not check its stream, so a full disk
@@ -74,6 +85,7 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
     return makeError(ErrorCode::kIo, path, ": OpenVDB could not write: ", e.what());
   }
   VOXLINK_RETURN_IF_ERROR(format::commitTemp(temp.path, path));
+  format::reportProgress(progress, 1.0, "exported");
   VdbExportSummary summary;
   summary.voxels = values->activeVoxelCount();
   std::error_code ec;

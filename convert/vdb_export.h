@@ -8,6 +8,7 @@
 #include <string>
 
 #include "format/error.h"
+#include "format/progress.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::convert {
@@ -18,8 +19,12 @@ struct VdbExportSummary {
 };
 
 // Validates the file first; writes a temporary file beside `path`, renamed when complete.
-Result<VdbExportSummary> exportVdb(const format::VoxLinkFile& file, const std::string& path);
+// `progress` (may be empty) hears the validation, every 32nd of the voxels set in the grids,
+// and the writing.
+Result<VdbExportSummary> exportVdb(const format::VoxLinkFile& file, const std::string& path,
+                                   const format::ProgressCallback& progress = {});
 // The plugin's side (links OpenVDB); the file must be valid.
-Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path);
+Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path,
+                                         const format::ProgressCallback& progress = {});
 
 }  // namespace voxlink::convert

@@ -141,7 +141,7 @@ Status writeAll(int fd, const void* data, size_t bytes, const std::string& path)
 }  // namespace
 
 Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::string& path,
-                                           double fill) {
+                                           double fill, const ProgressCallback& progress) {
   if (file.isScene())
     return makeError(ErrorCode::kUnsupported, file.path(),
                      ": dense export reads volume files (version 1); this is a scene (version 2)");
@@ -192,6 +192,7 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
         std::memcpy(&layer[i], fillValue.data(), elem);
     };
     reset();
+    reportProgress(progress, 0, "exporting");
     uint32_t current = 0;  // brick layer held in `layer`
     Status writeStatus;
     auto flush = [&] {
@@ -199,6 +200,7 @@ Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::s
       if (writeStatus) writeStatus = writeAll(temp.fd, layer.data(), slices * sliceBytes, dataPath);
       reset();
       ++current;
+      reportProgress(progress, double(current) / h.brickGrid[2], "exporting");
     };
     VoxelLocator(file).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
       while (z / n > current) flush();

@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "format/error.h"
+#include "format/progress.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::format {
@@ -28,8 +29,9 @@ Status checkFill(ScalarType type, double fill, const std::string& where,
                  std::string_view option = "--fill");
 
 // Fails as checkFill does (naming `path`); kUnsupported for a scene (version 2) file, whose
-// VALU is not indexed by voxel.
+// VALU is not indexed by voxel. `progress` (may be empty) hears the fraction of brick layers
+// written after each one.
 Result<DenseExportSummary> exportDenseNrrd(const VoxLinkFile& file, const std::string& path,
-                                           double fill);
+                                           double fill, const ProgressCallback& progress = {});
 
 }  // namespace voxlink::format

@@ -105,6 +105,10 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   std::vector<std::vector<uint8_t>> payloads(table.size());
   std::vector<PackEntry> entries(table.size());
   const std::span<const uint8_t> masks = file.sectionBytes(SectionId::kRowMask);
+  // Sections share 95 % of the bar by their bytes; writing the file is the rest.
+  uint64_t totalBytes = 0, doneBytes = 0;
+  for (const SectionEntry& e : table) totalBytes += e.bytes;
+  reportProgress(options.progress, 0, "packing");
   for (size_t i = 0; i < table.size(); ++i) {
     const SectionEntry& e = table[i];
     const auto id = static_cast<SectionId>(e.id);
@@ -156,6 +160,9 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
     }
     entries[i] = PackEntry{e, static_cast<uint32_t>(codec), 0};
     report.sections.push_back({id, codec, e.bytes, payloads[i].size()});
+    doneBytes += e.bytes;
+    reportProgress(options.progress,
+                   0.95 * double(doneBytes) / double(std::max<uint64_t>(1, totalBytes)), "packing");
   }
   // Layout: header, payloads (64-byte aligned), PACK, table.
   const FileHeader& original = file.header();
@@ -197,13 +204,16 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
   append(tableOffset, std::span(reinterpret_cast<const uint8_t*>(packedTable.data()),
                                 packedTable.size() * sizeof(SectionEntry)));
   report.outputBytes = written;
+  reportProgress(options.progress, 0.95, "writing");
   VOXLINK_RETURN_IF_ERROR(writeWholeFile(path, pieces));
+  reportProgress(options.progress, 1.0, "packed");
   report.packSeconds = secondsSince(start);
   return report;
 }
 
 Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::string& name,
-                               uint64_t maxBytes, unsigned threads) {
+                               uint64_t maxBytes, unsigned threads,
+                               const ProgressCallback& progress) {
   if (packed.size() < sizeof(FileHeader))
     return makeError(ErrorCode::kTruncated, name, ": header: packed file has ", packed.size(),
                      " bytes, a header needs ", sizeof(FileHeader));
@@ -307,6 +317,15 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
   const uint64_t tableEnd = tableBegin + originalTable.size() * sizeof(SectionEntry);
   std::memcpy(bytes.data() + tableBegin, originalTable.data(), tableEnd - tableBegin);
 
+  // Sections share 90 % of the bar by their bytes; checking the checksums is the rest.
+  uint64_t totalBytes = 0, doneBytes = 0;
+  for (const PackEntry& p : entries) totalBytes += p.original.bytes;
+  auto decoded = [&](uint64_t sectionBytes) {
+    doneBytes += sectionBytes;
+    reportProgress(progress, 0.9 * double(doneBytes) / double(std::max<uint64_t>(1, totalBytes)),
+                   "unpacking");
+  };
+  reportProgress(progress, 0, "unpacking");
   const PackEntry* residual = nullptr;
   std::span<const uint8_t> residualPayload;
   std::vector<const PackEntry*> derived;
@@ -357,6 +376,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     if (e.id == static_cast<uint32_t>(SectionId::kRowMask)) masks = &e;
     VOXLINK_RETURN_IF_ERROR(decodeSection(payload, e.elementBytes, codec,
                                           bytes.subspan(e.offset, e.bytes), where, threads));
+    decoded(e.bytes);
   }
   for (const PackEntry* p : derived) {
     const SectionEntry& e = p->original;
@@ -365,6 +385,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     VOXLINK_RETURN_IF_ERROR(derive(static_cast<SectionId>(e.id),
                                    bytes.subspan(masks->offset, masks->bytes), original.brickSize,
                                    bytes.subspan(e.offset, e.bytes), where, threads));
+    decoded(e.bytes);
   }
   VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file,
                            VoxLinkFile::parse(std::shared_ptr<const void>(buffer, buffer.get()),
@@ -388,6 +409,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     // the file was parsed).
     addPredictedGradientCodes(file, std::span(reinterpret_cast<uint16_t*>(grad.data()), count),
                               predictionOf(codec), threads);
+    decoded(e.bytes);
   }
   // Every section must be what was packed.
   const auto& sections = file.sectionTable();
@@ -396,6 +418,7 @@ Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::strin
     if (crcs[i] != sections[i].crc)
       return makeError(ErrorCode::kCorrupt, name, ": section ", nameOf(sections[i].id),
                        ": unpacked bytes do not match the original checksum");
+  reportProgress(progress, 1.0, "unpacked");
   file.packedBytes_ = packed.size();
   return file;
 }

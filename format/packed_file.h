@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "format/error.h"
+#include "format/progress.h"
 #include "format/section_codec.h"
 #include "format/voxlink_file.h"
 
@@ -32,6 +33,9 @@ struct PackOptions {
   // about 7x smaller than the codes, but the prediction costs most of the packing and
   // unpacking time); false: delta-coded like the other sections.
   bool predictGradients = true;
+  // May be empty: hears the fraction done after each section (weighted by its bytes) and once
+  // the file is written.
+  ProgressCallback progress;
 };
 
 struct PackedSection {
@@ -56,8 +60,10 @@ Result<PackReport> packFile(const VoxLinkFile& file, const std::string& path,
                             const PackOptions& options = {});
 
 // The file a packed one was made from, in memory. `name` is used in messages; the unpacked file
-// may not exceed `maxBytes`.
+// may not exceed `maxBytes`. `progress` (may be empty) hears the fraction done after each
+// section is decoded (weighted by its bytes) and once the checksums are checked.
 Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::string& name,
-                               uint64_t maxBytes, unsigned threads = 0);
+                               uint64_t maxBytes, unsigned threads = 0,
+                               const ProgressCallback& progress = {});
 
 }  // namespace voxlink::format

@@ -65,7 +65,8 @@ Status checkBrickLevel(const VoxLinkFile& f) {
   return Status::ok();
 }
 
-Status checkBricks(const VoxLinkFile& f, ValidationReport& report) {
+Status checkBricks(const VoxLinkFile& f, ValidationReport& report,
+                   const ProgressCallback& progress = {}) {
   const FileHeader& h = f.header();
   const uint32_t n = h.brickSize;
   const uint32_t maskWords = maskWordsPerBrick(n);
@@ -82,7 +83,13 @@ Status checkBricks(const VoxLinkFile& f, ValidationReport& report) {
                      base[f.occupiedBrickCount()], ", header.voxelCount is ", f.voxelCount());
   std::vector<uint16_t> expectedRows(uint64_t{n} * n);
   uint64_t k = 0;
+  const uint64_t reportEvery = std::max<uint64_t>(1, f.gridBrickCount() / 16);
+  uint64_t nextReport = reportEvery;
   for (uint64_t b = 0; b < f.gridBrickCount(); ++b) {
+    if (b >= nextReport) {
+      reportProgress(progress, double(b) / double(f.gridBrickCount()), "bricks");
+      nextReport = b + reportEvery;
+    }
     if (occupancy[b >> 5] == 0) {  // 32 empty bricks: a sparse grid costs a read per 32
       b |= 31;
       continue;
@@ -157,7 +164,9 @@ bool integerValuesWithin(const uint8_t* bytes, uint64_t count, const FileHeader&
   return true;
 }
 
-Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
+// `progress` hears GRAD checked at `gradientsDone` of this stage.
+Status checkVoxels(const VoxLinkFile& f, ValidationReport& report,
+                   const ProgressCallback& progress = {}, double gradientsDone = 0) {
   const FileHeader& h = f.header();
   const auto grads = f.gradientCodes();
   if (!allCanonical(grads))
@@ -165,6 +174,7 @@ Status checkVoxels(const VoxLinkFile& f, ValidationReport& report) {
       if (!isCanonicalGradientCode(grads[i]))
         return makeError(ErrorCode::kCorrupt, f.path(), ": section GRAD: voxel ", i,
                          " has the reserved or non-canonical code 0x", std::hex, grads[i]);
+  reportProgress(progress, gradientsDone, "values");
   const double slack = 1e-9 * std::max(1.0, std::max(std::abs(h.valueMin), std::abs(h.valueMax)));
   const uint64_t slots = sampleSlots(h);
   const double lo = h.valueMin - slack, hi = h.valueMax + slack;
@@ -348,9 +358,21 @@ Result<VoxLinkFile> readValidatedFile(const std::string& path) {
   return file;
 }
 
-Result<ValidationReport> validateFile(const VoxLinkFile& f) {
+Result<ValidationReport> validateFile(const VoxLinkFile& f, const ProgressCallback& progress) {
+  // Each stage's share of the bar is the bytes it reads: every byte for the checksums, MASK
+  // and ROWS for the bricks, GRAD and VALU for the voxels.
+  const double checksumBytes = double(f.fileBytes());
+  const double brickBytes = double(f.sectionBytes(SectionId::kRowMask).size() +
+                                   f.sectionBytes(SectionId::kRowStart).size());
+  const double gradientBytes = double(f.sectionBytes(SectionId::kGradients).size());
+  const double voxelBytes = gradientBytes + double(f.sectionBytes(SectionId::kValues).size());
+  const double total = std::max(1.0, checksumBytes + brickBytes + voxelBytes);
+  const double bricksBegin = checksumBytes / total;
+  const double voxelsBegin = (checksumBytes + brickBytes) / total;
   ValidationReport report;
+  reportProgress(progress, 0, "checksums");
   VOXLINK_RETURN_IF_ERROR(checkChecksums(f, report));
+  reportProgress(progress, bricksBegin, "bricks");
   for (size_t i = 0; i < sizeof(f.header().reserved); ++i)
     if (f.header().reserved[i] != 0)
       return makeError(ErrorCode::kCorrupt, f.path(), ": header.reserved: byte ", i,
@@ -359,13 +381,16 @@ Result<ValidationReport> validateFile(const VoxLinkFile& f) {
     return makeError(ErrorCode::kCorrupt, f.path(), ": header.valueMin/valueMax: [",
                      f.header().valueMin, ", ", f.header().valueMax, "] is not a range");
   VOXLINK_RETURN_IF_ERROR(checkBrickLevel(f));
-  VOXLINK_RETURN_IF_ERROR(checkBricks(f, report));
+  VOXLINK_RETURN_IF_ERROR(checkBricks(f, report, progressPart(progress, bricksBegin, voxelsBegin)));
   VOXLINK_RETURN_IF_ERROR(checkScene(f));
-  VOXLINK_RETURN_IF_ERROR(checkVoxels(f, report));
+  reportProgress(progress, voxelsBegin, "gradients");
+  VOXLINK_RETURN_IF_ERROR(checkVoxels(f, report, progressPart(progress, voxelsBegin, 1.0),
+                                      voxelBytes > 0 ? gradientBytes / voxelBytes : 0));
   const nlohmann::json meta =
       nlohmann::json::parse(f.metaJson(), nullptr, /*allow_exceptions=*/false);
   if (!meta.is_object())
     return makeError(ErrorCode::kCorrupt, f.path(), ": section META: not a JSON object");
+  reportProgress(progress, 1.0, "validated");
   return report;
 }
 

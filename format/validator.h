@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "format/error.h"
+#include "format/progress.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::format {
@@ -17,7 +18,10 @@ struct ValidationReport {
   uint64_t bricksChecked = 0;
 };
 
-Result<ValidationReport> validateFile(const VoxLinkFile& file);
+// `progress` (may be empty) hears the fraction done after each stage and every sixteenth of the
+// brick grid, weighted by the bytes each stage reads.
+Result<ValidationReport> validateFile(const VoxLinkFile& file,
+                                      const ProgressCallback& progress = {});
 
 // The brick level, the bricks' rows and masks, and a scene's masks, materials and sphere
 // references (no checksums, values or gradients): what code that walks the structure must know

@@ -14,6 +14,7 @@
 #include "format/half.h"
 #include "format/layout.h"
 #include "format/mapped_file.h"
+#include "format/progress.h"
 #include "format/scalar_type.h"
 
 namespace voxlink::format {
@@ -87,7 +88,8 @@ class VoxLinkFile {
   std::span<const uint32_t> words32(SectionId id) const;
 
   friend Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::string& name,
-                                        uint64_t maxBytes, unsigned threads);
+                                        uint64_t maxBytes, unsigned threads,
+                                        const ProgressCallback& progress);
 
   std::shared_ptr<const void> owner_;  // keeps the mapping or the byte vector alive
   const uint8_t* data_ = nullptr;

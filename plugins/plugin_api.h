@@ -32,7 +32,8 @@ struct VdbPluginApi {
                                                          const convert::OpenOptions& options);
   Result<format::PeerFootprint> (*measureFootprint)(const format::VoxLinkFile& file);
   Result<convert::VdbExportSummary> (*exportVdb)(const format::VoxLinkFile& file,
-                                                 const std::string& path);
+                                                 const std::string& path,
+                                                 const format::ProgressCallback& progress);
 };
 inline constexpr const char* kVdbPlugin = "libvoxlink_vdb.so";
 inline constexpr const char* kVdbPluginEntry = "voxlink_vdb_plugin";
