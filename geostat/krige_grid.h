@@ -26,9 +26,13 @@ struct KrigingSummary {
   uint64_t nodes = 0;
   uint64_t nodesWithoutData = 0;  // no sample within --max-distance (written as the no-data value)
   uint64_t systemsFactored = 0;   // distinct neighbour sets factored
-  uint64_t systemsReused = 0;     // nodes whose neighbour set equalled the previous node's
+  uint64_t systemsReused = 0;     // nodes whose neighbour set had been factored already
   uint64_t regularizedNodes = 0;  // nodes whose system needed a diagonal jitter
   double worstCondition = 0;      // largest 1-norm condition estimate of any system
+  // Systems whose condition the nugget bounds below --max-condition are not estimated:
+  // how many, and the largest bound.
+  uint64_t systemsBounded = 0;
+  double worstConditionBound = 0;
   double largestJitter = 0;
   double meanNeighbours = 0;
   double seconds = 0;

@@ -6,9 +6,9 @@
 namespace voxlink::kriging {
 namespace {
 
-constexpr double kFirstJitter = 1e-12;
-constexpr double kLastJitter = 1e-4;
-constexpr size_t kMaxSystemSize = 4096;  // 128 MiB of matrix per thread, O(n^3) per system
+// Kriger::predict factors one dense system per call: 128 MiB per thread, O(n^3) each. Grids
+// krige globally with one factorization whatever the size (global_kriging.cpp).
+constexpr size_t kMaxSystemSize = 4096;
 
 double distance(const Point3& a, const Point3& b) {
   const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
@@ -17,18 +17,22 @@ double distance(const Point3& a, const Point3& b) {
 
 }  // namespace
 
+Error singularSystemError(size_t n, double maxCondition) {
+  return makeError(ErrorCode::kInvalidArgument, "kriging: the covariance matrix of ", n,
+                   " samples stays singular (condition > ", maxCondition,
+                   ") even with a diagonal jitter of ", kLastJitter,
+                   " x sill; merge near-duplicate samples (--merge-distance) or add a nugget");
+}
+
 Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
                             const KrigingOptions& options) {
   if (points.size() == 0) return makeError(ErrorCode::kInvalidArgument, "kriging: no samples");
   if (options.kind == KrigingKind::kSimple && !std::isfinite(options.simpleMean))
     return makeError(ErrorCode::kInvalidArgument, "kriging: simple kriging needs a finite --mean");
-  const size_t systemSize =
-      options.maxNeighbours == 0 ? points.size() : std::min(options.maxNeighbours, points.size());
-  if (systemSize > kMaxSystemSize)
-    return makeError(ErrorCode::kTooLarge, "kriging: ",
-                     options.maxNeighbours == 0 ? "global kriging of " : "neighbourhoods of ",
-                     systemSize, " samples need a dense ", systemSize, " x ", systemSize,
-                     " system (limit ", kMaxSystemSize, "); use --neighbours 16..256");
+  if (options.maxNeighbours > kMaxSystemSize && options.maxNeighbours < points.size())
+    return makeError(ErrorCode::kTooLarge, "kriging: neighbourhoods of ", options.maxNeighbours,
+                     " samples need a dense system per node (limit ", kMaxSystemSize,
+                     "); use --neighbours 16..256");
   if (!(options.maxDistance > 0))
     return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ",
                      options.maxDistance);
@@ -116,10 +120,7 @@ Status Kriger::solveSystem(KrigingWorkspace& ws, size_t n) const {
     }
     jitter = jitter == 0 ? kFirstJitter * sill : jitter * 10;
     if (jitter > kLastJitter * sill * 1.0000001)
-      return makeError(ErrorCode::kInvalidArgument, "kriging: the covariance matrix of ", n,
-                       " samples stays singular (condition > ", options_.maxCondition,
-                       ") even with a diagonal jitter of ", kLastJitter,
-                       " x sill; merge near-duplicate samples (--merge-distance) or add a nugget");
+      return singularSystemError(n, options_.maxCondition);
   }
   ws.onesSolved.assign(n, 1.0);
   ws.factor.solve(ws.onesSolved.data());
@@ -132,7 +133,15 @@ Status Kriger::solveSystem(KrigingWorkspace& ws, size_t n) const {
 
 Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude) const {
   const Point3 q{p[0] - centre_[0], p[1] - centre_[1], p[2] - centre_[2]};
-  const bool global = options_.maxNeighbours == 0 || options_.maxNeighbours >= coords_.size();
+  const bool global = isGlobal();
+  if (global && coords_.size() > kMaxSystemSize)
+    return makeError(ErrorCode::kTooLarge,
+                     "kriging: point by point (cross-validation), global "
+                     "kriging of ",
+                     coords_.size(),
+                     " samples needs a dense system per point "
+                     "(limit ",
+                     kMaxSystemSize, "); use --neighbours 16..256");
   const size_t k = global ? coords_.size() : options_.maxNeighbours + 1 + (exclude >= 0 ? 1 : 0);
   tree_->nearest(q, k, options_.maxDistance, ws.neighbours);
   if (exclude >= 0)

@@ -26,6 +26,13 @@ namespace voxlink::kriging {
 
 enum class KrigingKind { kOrdinary, kSimple };
 
+// The diagonal jitter ladder every solver climbs when a system is singular or too badly
+// conditioned: sill * kFirstJitter, growing tenfold up to sill * kLastJitter.
+inline constexpr double kFirstJitter = 1e-12;
+inline constexpr double kLastJitter = 1e-4;
+// The refusal once the ladder is exhausted.
+Error singularSystemError(size_t n, double maxCondition);
+
 struct KrigingOptions {
   KrigingKind kind = KrigingKind::kOrdinary;
   double simpleMean = 0.0;   // known mean for simple kriging
@@ -79,6 +86,16 @@ class Kriger {
   const Variogram& variogram() const { return variogram_; }
   const KrigingOptions& options() const { return options_; }
   Point3 centre() const { return centre_; }
+  // What the grid solvers (global_kriging.cpp, local_kriging.cpp) work on: the samples centred
+  // on centre(), their values, the mean the values are kriged around, the search tree.
+  const std::vector<Point3>& centredSamples() const { return coords_; }
+  const std::vector<double>& values() const { return values_; }
+  double dataMean() const { return dataMean_; }
+  const KdTree& tree() const { return *tree_; }
+  // All samples in every system (no --neighbours, or more neighbours than samples).
+  bool isGlobal() const {
+    return options_.maxNeighbours == 0 || options_.maxNeighbours >= coords_.size();
+  }
 
  private:
   Kriger(const Variogram& v) : variogram_(v) {}

@@ -19,6 +19,7 @@ packages=(
   paraview python3-paraview
   clang-14 libclang-rt-14-dev clang-format-14
   libfftw3-dev libzip-dev libzstd-dev
+  libopenblas-dev liblapacke-dev
   libassimp-dev libembree-dev
   r-cran-gstat
 )
