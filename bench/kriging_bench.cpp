@@ -1,9 +1,11 @@
-// voxlink_kriging_bench [DATA_DIR]: speed against error for kriging and random fields.
+// voxlink_kriging_bench [DATA_DIR [--blas-only]]: speed against error for kriging and random
+// fields, after the BLAS rates global kriging can reach.
 //  1. Walker Lake (470 samples -> 260 x 300 grid): neighbourhood size against time, deviation
 //     from global kriging, and error against the exhaustive truth.
 //  2. Scaling: 10^4 and 10^5 samples of a random field kriged onto a 512 x 512 grid.
 //  3. Random fields of 256^3 and 512^3 voxels: time, throughput, peak memory, against the
 //     white noise alone (the floor every voxel pays).
+#include <cblas.h>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -63,6 +65,44 @@ std::vector<double> krigeToVector(const Kriger& k, const GridSpec& grid, Kriging
         return Status::ok();
       }));
   return out;
+}
+
+// What global kriging's blocks can reach on this machine: OpenBLAS's DGEMM rate, and its
+// triangular solve (dtrsm) and multiply (dtrmm) on global kriging's shape (470 samples, blocks
+// of 256 nodes), one thread each, as global_kriging.cpp calls them.
+void blasRates() {
+  const int saved = openblas_get_num_threads();
+  std::printf("OpenBLAS (%s), GFlop/s\n", openblas_get_config());
+  for (int threads : {1, saved}) {
+    openblas_set_num_threads(threads);
+    const int n = 1500;
+    std::vector<double> a(size_t(n) * n, 1.0 / n), b(size_t(n) * n, 0.5), c(size_t(n) * n);
+    double t0 = now();
+    for (int r = 0; r < 3; ++r)
+      cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1, a.data(), n, b.data(), n,
+                  0, c.data(), n);
+    std::printf("  dgemm %d^3, %d thread(s): %.1f\n", n, threads,
+                3 * 2.0 * n * n * n / (now() - t0) / 1e9);
+  }
+  openblas_set_num_threads(1);
+  const int m = 470, block = 256, repeats = 100;
+  std::vector<double> l(size_t(m) * m, 0.0), k(size_t(m) * block, 1.0);
+  for (int j = 0; j < m; ++j)
+    for (int i = j; i < m; ++i) l[size_t(j) * m + i] = i == j ? 2.0 : 1.0 / m;
+  double t0 = now();
+  for (int r = 0; r < repeats; ++r)
+    cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, m, block, 1.0,
+                l.data(), m, k.data(), m);
+  const double trsm = now() - t0;
+  t0 = now();
+  for (int r = 0; r < repeats; ++r)
+    cblas_dtrmm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, m, block, 0.5,
+                l.data(), m, k.data(), m);
+  const double trmm = now() - t0;
+  const double flops = double(repeats) * m * m * block;  // n^2 per right-hand side
+  std::printf("  dtrsm %dx%d, 1 thread: %.1f\n  dtrmm %dx%d, 1 thread: %.1f\n\n", m, block,
+              flops / trsm / 1e9, m, block, flops / trmm / 1e9);
+  openblas_set_num_threads(saved);
 }
 
 void walkerLake(const std::string& dataDir) {
@@ -208,6 +248,8 @@ void randomFields() {
 
 int main(int argc, char** argv) {
   const std::string dataDir = argc > 1 ? argv[1] : VOXLINK_BENCH_DATA_DIR;
+  blasRates();
+  if (argc > 2 && std::string(argv[2]) == "--blas-only") return 0;
   walkerLake(dataDir);
   scaling();
   randomFields();

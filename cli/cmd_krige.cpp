@@ -1,6 +1,8 @@
 // voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary or simple kriging of scattered samples
 // (CSV or GEO-EAS) onto a regular grid, with the kriging variance as a second grid, the
 // variogram given or fitted, and a summary of the solver's numerical health.
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +11,7 @@
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
+#include "cli/progress_bar.h"
 #include "format/output_file.h"
 #include "geostat/cross_validation.h"
 #include "geostat/grid_writer.h"
@@ -26,7 +29,7 @@ struct KrigeArgs {
   std::string variogram, fit, kind = "ok", type = "f64";
   double nu = 0.5, mean = NAN, maxDistance = INFINITY, mergeDistance = -1, noData = NAN,
          maxCondition = 1e12;
-  bool fixNuggetZero = false, crossValidate = false;
+  bool fixNuggetZero = false, crossValidate = false, progress = false;
   size_t neighbours = 0;
   unsigned threads = 0;
   std::string dims, origin, spacing;
@@ -161,19 +164,25 @@ int runKrige(const KrigeArgs& a) {
   GridKrigingOptions gridOptions;
   gridOptions.threads = a.threads;
   gridOptions.noData = a.noData;
+  ProgressBar bar(a.progress || stderrIsTerminal());
   auto summary = krigeGrid(
       *kriger, *grid,
-      [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
+      [&](uint32_t z0, uint32_t count, const double* v, const double* s) -> Status {
         VOXLINK_RETURN_IF_ERROR((*values)->append(count, v));
+        bar.update(double(z0 + count) / grid->dims[2], "kriging");
         return (*variances)->append(count, s);
       },
       gridOptions);
+  bar.finish();
   if (!summary) return reportError(summary.error());
   if (auto st = (*values)->finish(); !st) return reportError(st);
   if (auto st = (*variances)->finish(); !st) return reportError(st);
   std::printf("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid->dims[0],
               grid->dims[1], grid->dims[2], grid->origin[0], grid->origin[1], grid->origin[2],
               grid->spacing[0], grid->spacing[1], grid->spacing[2], summary->text().c_str());
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);  // ru_maxrss: KiB on Linux
+  std::printf("peak memory: %.0f MiB (resident)\n", usage.ru_maxrss / 1024.0);
   std::printf("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
               varianceFile.c_str());
   return 0;
@@ -232,6 +241,8 @@ CommandRunner addKrigeCommand(CLI::App& app) {
                   "Value written where no sample is within --max-distance (default NaN)");
   cmd->add_flag("--cross-validate", a->crossValidate, "Print leave-one-out statistics");
   cmd->add_option("--threads", a->threads, "Worker threads (0: all cores; at most 1024)");
+  cmd->add_flag("--progress", a->progress,
+                "Draw the progress bar (by slab of z slices) even when stderr is not a terminal");
   return [a] { return runKrige(*a); };
 }
 

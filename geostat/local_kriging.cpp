@@ -109,6 +109,9 @@ class BrickSolver {
       // d_k+1(c) + 2 h of c. The margin covers rounding in the distances.
       tree.nearest(c, k_ + 1, INFINITY, ts.nearest);
       const double kth = ts.nearest.size() > k_ ? ts.nearest.back().distance : INFINITY;
+      // A brick far wider than a neighbourhood (samples denser than nodes) would split level
+      // by level, a tree query each: cut it at once into pieces of half-diagonal ~0.3 d_k+1.
+      if (halfDiagonal > 1.0 * kth) return cut(box, 0.3 * kth, ts);
       const double reach = std::min(kth + 2 * halfDiagonal, maxDistance_ + halfDiagonal);
       if (!tree.within(c, reach * (1 + 1e-9), kCandidateFactor * (k_ + 1), ts.candidates))
         return split(box, ts);
@@ -129,6 +132,30 @@ class BrickSolver {
     const Point3 p = grid_.node(i, j, k);
     const Point3 c = kriger_.centre();
     return {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+  }
+
+  Status cut(const Box& box, double halfDiagonal, ThreadState& ts) const {
+    std::array<uint32_t, 3> pieces{1, 1, 1};
+    const double edge = 2 * halfDiagonal / std::sqrt(3.0);
+    for (int a = 0; a < 3; ++a) {
+      const uint32_t nodes = box.hi[a] - box.lo[a];
+      const double extent = nodes * grid_.spacing[a];
+      pieces[a] = static_cast<uint32_t>(
+          std::clamp(std::ceil(extent / std::max(edge, 1e-300)), 1.0, double(nodes)));
+    }
+    for (uint32_t pz = 0; pz < pieces[2]; ++pz)
+      for (uint32_t py = 0; py < pieces[1]; ++py)
+        for (uint32_t px = 0; px < pieces[0]; ++px) {
+          Box part = box;
+          const std::array<uint32_t, 3> p{px, py, pz};
+          for (int a = 0; a < 3; ++a) {
+            const uint64_t nodes = box.hi[a] - box.lo[a];
+            part.lo[a] = box.lo[a] + static_cast<uint32_t>(nodes * p[a] / pieces[a]);
+            part.hi[a] = box.lo[a] + static_cast<uint32_t>(nodes * (p[a] + 1) / pieces[a]);
+          }
+          VOXLINK_RETURN_IF_ERROR(solve(part, ts));
+        }
+    return Status::ok();
   }
 
   Status split(const Box& box, ThreadState& ts) const {
@@ -160,16 +187,22 @@ class BrickSolver {
       ts.cy[i] = p[1];
       ts.cz[i] = p[2];
     }
-    ts.pair.resize(m * m);
-    const Variogram& v = kriger_.variogram();
-    for (size_t i = 0; i < m; ++i) {
-      ts.pair[i * m + i] = sill_;
-      for (size_t j = 0; j < i; ++j) {
-        const double dx = ts.cx[i] - ts.cx[j], dy = ts.cy[i] - ts.cy[j], dz = ts.cz[i] - ts.cz[j];
-        const double c = v.covariance(std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300));
-        ts.pair[i * m + j] = ts.pair[j * m + i] = c;
-      }
+    // Filled on first use (NaN: not yet): in 3-D most nodes have their own neighbour set,
+    // and all pairs of a crowded brick cost more exp() calls than its nodes ever read.
+    ts.pair.assign(m * m, NAN);
+  }
+
+  double pairCovariance(ThreadState& ts, uint32_t i, uint32_t j) const {
+    const size_t m = ts.candidates.size();
+    double& c = ts.pair[i * m + j];
+    if (std::isnan(c)) {
+      const double dx = ts.cx[i] - ts.cx[j], dy = ts.cy[i] - ts.cy[j], dz = ts.cz[i] - ts.cz[j];
+      c = i == j ? sill_
+                 : kriger_.variogram().covariance(
+                       std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300));
+      ts.pair[j * m + i] = c;
     }
+    return c;
   }
 
   // The node's k nearest candidates, ascending, in ts.picked; false when none is in reach.
@@ -234,16 +267,15 @@ class BrickSolver {
   // The covariances among the picked candidates (lower triangle, column-major) plus jitter on
   // the diagonal, into f.l; returns the 1-norm of that matrix.
   double gather(ThreadState& ts, double jitter, Factorization& f) const {
-    const size_t n = ts.picked.size(), m = ts.candidates.size(), ld = spd::paddedSize(n);
+    const size_t n = ts.picked.size(), ld = spd::paddedSize(n);
     f.l.resize(ld * n);
     ts.work.assign(n, 0.0);  // column sums of |A|
     for (size_t j = 0; j < n; ++j) {
-      const double* row = &ts.pair[ts.picked[j] * m];
       double* column = &f.l[j * ld];
-      column[j] = row[ts.picked[j]] + jitter;
+      column[j] = sill_ + jitter;
       double sum = column[j];
       for (size_t i = j + 1; i < n; ++i) {  // the upper part is never read
-        const double a = row[ts.picked[i]];
+        const double a = pairCovariance(ts, ts.picked[j], ts.picked[i]);
         column[i] = a;
         sum += std::fabs(a);
         ts.work[i] += std::fabs(a);
