@@ -1,5 +1,5 @@
-// voxlink_kriging_bench [DATA_DIR [--blas-only]]: speed against error for kriging and random
-// fields, after the BLAS rates global kriging can reach.
+// voxlink_kriging_bench [DATA_DIR [--blas-only|--kriging-only]]: speed against error for
+// kriging and random fields, after the BLAS rates global kriging can reach.
 //  1. Walker Lake (470 samples -> 260 x 300 grid): neighbourhood size against time, deviation
 //     from global kriging, and error against the exhaustive truth.
 //  2. Scaling: 10^4 and 10^5 samples of a random field kriged onto a 512 x 512 grid.
@@ -248,10 +248,12 @@ void randomFields() {
 
 int main(int argc, char** argv) {
   const std::string dataDir = argc > 1 ? argv[1] : VOXLINK_BENCH_DATA_DIR;
+  const std::string only = argc > 2 ? argv[2] : "";
   blasRates();
-  if (argc > 2 && std::string(argv[2]) == "--blas-only") return 0;
+  if (only == "--blas-only") return 0;
   walkerLake(dataDir);
   scaling();
+  if (only == "--kriging-only") return 0;
   randomFields();
   return 0;
 }
