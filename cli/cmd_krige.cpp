@@ -32,7 +32,7 @@ struct KrigeArgs {
   bool fixNuggetZero = false, crossValidate = false, progress = false;
   size_t neighbours = 0;
   unsigned threads = 0;
-  std::string dims, origin, spacing;
+  std::string dims, origin, spacing, anisotropy;
 };
 
 Result<GridSpec> gridFromArgs(const KrigeArgs& a, const PointSet& points) {
@@ -121,6 +121,12 @@ int runKrige(const KrigeArgs& a) {
   options.maxDistance = a.maxDistance;
   options.mergeDistance = a.mergeDistance;
   options.maxCondition = a.maxCondition;
+  if (!a.anisotropy.empty()) {
+    auto anis = parseNumberList("--anisotropy", a.anisotropy, 2, 2);
+    if (!anis) return reportError(anis.error());
+    options.anisotropyAngle = (*anis)[0];
+    options.anisotropyRatio = (*anis)[1];
+  }
   auto kriger = Kriger::make(*points, *variogram, options);
   if (!kriger) return reportError(kriger.error());
   if (kriger->mergedSamples())
@@ -226,6 +232,9 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   cmd->add_option("--merge-distance", a->mergeDistance,
                   "Merge samples closer than this (default 1e-9 x bounding-box diagonal)")
       ->check(finiteNumber());
+  cmd->add_option("--anisotropy", a->anisotropy,
+                  "ANGLE,RATIO: the range holds along ANGLE degrees clockwise from +y, RATIO "
+                  "(0..1] times it across (gstat's anis); --max-distance is along the range");
   cmd->add_option("--max-condition", a->maxCondition,
                   "Regularize systems whose condition estimate exceeds this")
       ->capture_default_str();

@@ -107,14 +107,13 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f, uin
   const auto& p = kriger.centredSamples();
   const size_t n = p.size();
   const Variogram& v = kriger.variogram();
-  const Point3 centre = kriger.centre();
   for (size_t c = 0; c < count; ++c) {
     const uint64_t at = first + c;
     const uint64_t slice = at / grid.sliceNodes(), inSlice = at % grid.sliceNodes();
     const Point3 node =
         grid.node(static_cast<uint32_t>(inSlice % grid.dims[0]),
                   static_cast<uint32_t>(inSlice / grid.dims[0]), z0 + static_cast<uint32_t>(slice));
-    const Point3 q{node[0] - centre[0], node[1] - centre[1], node[2] - centre[2]};
+    const Point3 q = kriger.modelCoordinates(node);
     double* column = &k[c * n];
     for (size_t i = 0; i < n; ++i) {
       const double dx = p[i][0] - q[0], dy = p[i][1] - q[1], dz = p[i][2] - q[2];

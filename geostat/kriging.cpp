@@ -24,6 +24,24 @@ Error singularSystemError(size_t n, double maxCondition) {
                    " x sill; merge near-duplicate samples (--merge-distance) or add a nugget");
 }
 
+Point3 Kriger::modelCoordinates(const Point3& p) const {
+  const Point3 c{p[0] - centre_[0], p[1] - centre_[1], p[2] - centre_[2]};
+  if (!anisotropic_) return c;
+  // Along the long range (angle clockwise from +y) and across it, stretched by 1 / ratio.
+  return {c[0] * sine_ + c[1] * cosine_, (c[0] * cosine_ - c[1] * sine_) / options_.anisotropyRatio,
+          c[2]};
+}
+
+Point3 Kriger::sample(size_t i) const {
+  Point3 c = coords_[i];
+  if (anisotropic_) {
+    const double along = c[0], across = c[1] * options_.anisotropyRatio;
+    c[0] = along * sine_ + across * cosine_;
+    c[1] = along * cosine_ - across * sine_;
+  }
+  return {c[0] + centre_[0], c[1] + centre_[1], c[2] + centre_[2]};
+}
+
 Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
                             const KrigingOptions& options) {
   if (points.size() == 0) return makeError(ErrorCode::kInvalidArgument, "kriging: no samples");
@@ -33,6 +51,11 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
     return makeError(ErrorCode::kTooLarge, "kriging: neighbourhoods of ", options.maxNeighbours,
                      " samples need a dense system per node (limit ", kMaxSystemSize,
                      "); use --neighbours 16..256");
+  if (!(options.anisotropyRatio > 0 && options.anisotropyRatio <= 1) ||
+      !std::isfinite(options.anisotropyAngle))
+    return makeError(ErrorCode::kInvalidArgument,
+                     "kriging: --anisotropy needs a finite angle and a ratio in (0, 1], got ",
+                     options.anisotropyAngle, ",", options.anisotropyRatio);
   if (!(options.maxDistance > 0))
     return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ",
                      options.maxDistance);
@@ -51,12 +74,14 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
   Kriger k(variogram);
   k.options_ = options;
   for (int a = 0; a < 3; ++a) k.centre_[a] = 0.5 * (lo[a] + hi[a]);
+  k.anisotropic_ = options.anisotropyRatio < 1;
+  k.cosine_ = std::cos(options.anisotropyAngle * M_PI / 180);
+  k.sine_ = std::sin(options.anisotropyAngle * M_PI / 180);
   const double diagonal = distance(lo, hi);
   if (k.options_.mergeDistance < 0) k.options_.mergeDistance = 1e-9 * diagonal;
 
   std::vector<Point3> centred(points.size());
-  for (size_t i = 0; i < points.size(); ++i)
-    for (int a = 0; a < 3; ++a) centred[i][a] = points.coords[i][a] - k.centre_[a];
+  for (size_t i = 0; i < points.size(); ++i) centred[i] = k.modelCoordinates(points.coords[i]);
 
   // Merge samples closer than mergeDistance into their average (values and positions).
   const KdTree all(centred);
@@ -132,7 +157,7 @@ Status Kriger::solveSystem(KrigingWorkspace& ws, size_t n) const {
 }
 
 Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude) const {
-  const Point3 q{p[0] - centre_[0], p[1] - centre_[1], p[2] - centre_[2]};
+  const Point3 q = modelCoordinates(p);
   const bool global = isGlobal();
   if (global && coords_.size() > kMaxSystemSize)
     return makeError(ErrorCode::kTooLarge,

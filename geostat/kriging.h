@@ -40,6 +40,12 @@ struct KrigingOptions {
   double maxDistance = INFINITY;
   double mergeDistance = -1.0;  // < 0: 1e-9 times the bounding-box diagonal
   double maxCondition = 1e12;
+  // Geometric anisotropy in the x-y plane (gstat's anis = c(angle, ratio)): the variogram's
+  // range holds along the direction `anisotropyAngle` degrees clockwise from +y, and
+  // anisotropyRatio (0 < r <= 1) times it across. Distances are measured after rotating that
+  // direction onto an axis and stretching the other by 1 / ratio; z is left alone.
+  double anisotropyAngle = 0;
+  double anisotropyRatio = 1;
 };
 
 struct Prediction {
@@ -77,9 +83,7 @@ class Kriger {
 
   size_t sampleCount() const { return values_.size(); }
   // Sample i after merging, in the input's coordinates, and its value.
-  Point3 sample(size_t i) const {
-    return {coords_[i][0] + centre_[0], coords_[i][1] + centre_[1], coords_[i][2] + centre_[2]};
-  }
+  Point3 sample(size_t i) const;
   double sampleValue(size_t i) const { return values_[i]; }
   size_t mergedSamples() const { return merged_; }
   double largestMergedSpread() const { return mergedSpread_; }
@@ -88,7 +92,10 @@ class Kriger {
   Point3 centre() const { return centre_; }
   // What the grid solvers (global_kriging.cpp, local_kriging.cpp) work on: the samples centred
   // on centre(), their values, the mean the values are kriged around, the search tree.
+  // Samples and nodes in model space: centred on centre(), and with anisotropy rotated and
+  // stretched so the variogram is isotropic there.
   const std::vector<Point3>& centredSamples() const { return coords_; }
+  Point3 modelCoordinates(const Point3& p) const;
   const std::vector<double>& values() const { return values_; }
   double dataMean() const { return dataMean_; }
   const KdTree& tree() const { return *tree_; }
@@ -104,7 +111,9 @@ class Kriger {
   Variogram variogram_;
   KrigingOptions options_;
   Point3 centre_{0, 0, 0};
-  std::vector<Point3> coords_;  // centred
+  bool anisotropic_ = false;
+  double cosine_ = 1, sine_ = 0;  // of the anisotropy angle
+  std::vector<Point3> coords_;    // centred
   std::vector<double> values_;
   double dataMean_ = 0;  // values are kriged as residuals from it for precision
   size_t merged_ = 0;

@@ -93,12 +93,20 @@ class BrickSolver {
         maxDistance_(kriger.options().maxDistance) {}
 
   Status solve(const Box& box, ThreadState& ts) const {
+    // Centre and half-diagonal in model space (a box there only without anisotropy): the
+    // farthest corner from the centre bounds every node's distance to it.
     const Point3 a = centred(box.lo[0], box.lo[1], box.lo[2]);
     const Point3 b = centred(box.hi[0] - 1, box.hi[1] - 1, box.hi[2] - 1);
     const Point3 c{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
-    const double halfDiagonal =
-        0.5 * std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) +
-                        (b[2] - a[2]) * (b[2] - a[2]));
+    double halfDiagonal = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Point3 p =
+          centred(corner & 1 ? box.hi[0] - 1 : box.lo[0], corner & 2 ? box.hi[1] - 1 : box.lo[1],
+                  corner & 4 ? box.hi[2] - 1 : box.lo[2]);
+      halfDiagonal = std::max(
+          halfDiagonal, std::sqrt((p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
+                                  (p[2] - c[2]) * (p[2] - c[2])));
+    }
     const KdTree& tree = kriger_.tree();
     ts.candidates.clear();
     if (box.nodes() == 1) {  // the node's own neighbours, straight from the tree
@@ -129,20 +137,27 @@ class BrickSolver {
 
  private:
   Point3 centred(uint32_t i, uint32_t j, uint32_t k) const {
-    const Point3 p = grid_.node(i, j, k);
-    const Point3 c = kriger_.centre();
-    return {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+    return kriger_.modelCoordinates(grid_.node(i, j, k));
   }
 
   Status cut(const Box& box, double halfDiagonal, ThreadState& ts) const {
     std::array<uint32_t, 3> pieces{1, 1, 1};
     const double edge = 2 * halfDiagonal / std::sqrt(3.0);
+    const Point3 origin = centred(box.lo[0], box.lo[1], box.lo[2]);
     for (int a = 0; a < 3; ++a) {
       const uint32_t nodes = box.hi[a] - box.lo[a];
-      const double extent = nodes * grid_.spacing[a];
+      if (nodes < 2) continue;
+      // One node step along axis a, in model space (anisotropy stretches it).
+      std::array<uint32_t, 3> next = box.lo;
+      ++next[a];
+      const Point3 p = centred(next[0], next[1], next[2]);
+      const double step = std::sqrt((p[0] - origin[0]) * (p[0] - origin[0]) +
+                                    (p[1] - origin[1]) * (p[1] - origin[1]) +
+                                    (p[2] - origin[2]) * (p[2] - origin[2]));
       pieces[a] = static_cast<uint32_t>(
-          std::clamp(std::ceil(extent / std::max(edge, 1e-300)), 1.0, double(nodes)));
+          std::clamp(std::ceil(nodes * step / std::max(edge, 1e-300)), 1.0, double(nodes)));
     }
+    if (pieces[0] * pieces[1] * pieces[2] == 1) return split(box, ts);  // always progresses
     for (uint32_t pz = 0; pz < pieces[2]; ++pz)
       for (uint32_t py = 0; py < pieces[1]; ++py)
         for (uint32_t px = 0; px < pieces[0]; ++px) {

@@ -135,3 +135,44 @@ TEST(KrigingHardCases, AMillionSamplesInATinyAreaFarFromTheOrigin) {
 
 }  // namespace
 }  // namespace voxlink::kriging
+
+namespace voxlink::kriging {
+namespace {
+
+TEST(KrigingHardCases, AnisotropyOf1000To1IsIsotropicKrigingInRotatedStretchedSpace) {
+  // The range holds along 30 degrees clockwise from +y and is 1000 times shorter across it:
+  // the same as isotropic kriging of coordinates rotated onto that direction and stretched.
+  const PointSet s = randomPoints(2000, 24, 1000);
+  const double angle = 30, ratio = 1e-3;
+  const double c = std::cos(angle * M_PI / 180), sn = std::sin(angle * M_PI / 180);
+  auto toModel = [&](const Point3& p) {  // any centre will do: distances are the same
+    return Point3{p[0] * sn + p[1] * c, (p[0] * c - p[1] * sn) / ratio, 0};
+  };
+  PointSet stretched = s;
+  for (Point3& p : stretched.coords) p = toModel(p);
+  const Variogram v = test::model(VariogramType::kExponential, 0.01, 1, 400);
+  const GridSpec grid{{25, 20, 1}, {10, 20, 0}, {40, 45, 1}};
+  for (size_t neighbours : {size_t{32}, size_t{0}}) {
+    const Kriger anis = kriger(
+        s, v, {.maxNeighbours = neighbours, .anisotropyAngle = angle, .anisotropyRatio = ratio});
+    const Kriger iso = kriger(stretched, v, {.maxNeighbours = neighbours});
+    const Grid g = krige(anis, grid);
+    EXPECT_GT(g.summary.worstCondition + g.summary.worstConditionBound, 0.0);
+    KrigingWorkspace ws;
+    for (uint32_t y = 0; y < grid.dims[1]; ++y)
+      for (uint32_t x = 0; x < grid.dims[0]; ++x) {
+        const size_t at = size_t{y} * grid.dims[0] + x;
+        auto p = iso.predict(toModel(grid.node(x, y, 0)), ws);
+        ASSERT_TRUE(p) << p.message();
+        ASSERT_TRUE(std::isfinite(g.values[at]) && std::isfinite(g.variances[at])) << at;
+        EXPECT_NEAR(g.values[at], p->value, 1e-6 * 3) << at;
+        EXPECT_NEAR(g.variances[at], p->variance, 1e-6) << at;
+      }
+  }
+  auto bad = Kriger::make(s, v, {.anisotropyRatio = 0});
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.message().find("--anisotropy"), std::string::npos) << bad.message();
+}
+
+}  // namespace
+}  // namespace voxlink::kriging
