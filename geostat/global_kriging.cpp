@@ -11,6 +11,7 @@
 
 #include "format/parallel_for.h"
 #include "format/process_memory.h"
+#include "geostat/drift.h"
 #include "geostat/spd_kernels.h"
 
 namespace voxlink::kriging {
@@ -52,8 +53,10 @@ double fillCovariance(const Kriger& kriger, double jitter, std::vector<double>& 
 }
 
 struct Factor {
-  std::vector<double> linv, u, r;  // L, then L^-1 (lower, column-major); L^-1 1, L^-1 (z - m)
-  double uu = 0, ur = 0, condition = 0, jitter = 0;
+  std::vector<double> linv, u, r;  // L, then L^-1 (lower, column-major); L^-1 F, L^-1 (z - m)
+  std::vector<double> ur;          // U^T r, one per drift term
+  DriftSystem drift;               // G = U^T U
+  double condition = 0, jitter = 0;
   bool inverted = false;  // linv holds L^-1 (else L)
 };
 
@@ -84,14 +87,23 @@ Result<Factor> factorSamples(const Kriger& kriger, bool invert) {
     jitter = jitter == 0 ? kFirstJitter * sill : jitter * 10;
     if (jitter > kLastJitter * sill * 1.0000001) return singularSystemError(n, maxCondition);
   }
-  f.u.assign(n, 1.0);
+  const size_t p = kriger.driftBasis().terms();
+  f.u.resize(n * p);
+  std::vector<double> terms(p);
+  for (size_t i = 0; i < n; ++i) {
+    kriger.sampleDriftTerms(i, terms.data());
+    for (size_t j = 0; j < p; ++j) f.u[j * n + i] = terms[j];
+  }
   f.r.resize(n);
   for (size_t i = 0; i < n; ++i) f.r[i] = kriger.values()[i] - kriger.dataMean();
-  for (std::vector<double>* v : {&f.u, &f.r})
-    cblas_dtrsv(CblasColMajor, CblasLower, CblasNoTrans, CblasNonUnit, ni, f.linv.data(), ni,
-                v->data(), 1);
-  f.uu = spd::dot(f.u.data(), f.u.data(), n);
-  f.ur = spd::dot(f.u.data(), f.r.data(), n);
+  cblas_dtrsv(CblasColMajor, CblasLower, CblasNoTrans, CblasNonUnit, ni, f.linv.data(), ni,
+              f.r.data(), 1);
+  if (p > 0)
+    cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, ni,
+                static_cast<int>(p), 1.0, f.linv.data(), ni, f.u.data(), ni);
+  f.drift.factor(f.u.data(), n, n, p);
+  f.ur.resize(p);
+  for (size_t j = 0; j < p; ++j) f.ur[j] = spd::dot(&f.u[j * n], f.r.data(), n);
   // OpenBLAS multiplies by a triangle (dtrmm) nearly three times as fast as it solves with one
   // (dtrsm; docs/kriging.md has the measurement), so the blocks use L^-1 itself.
   f.inverted = invert;
@@ -101,9 +113,12 @@ Result<Factor> factorSamples(const Kriger& kriger, bool invert) {
 }
 
 // Estimates and variances of nodes [first, first + count) of the batch starting at slice z0.
-void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f, uint32_t z0,
-                uint64_t first, size_t count, std::vector<double>& k, double* values,
+void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
+                const double* externalDrift, uint32_t z0, uint64_t first, size_t count,
+                std::vector<double>& k, std::vector<double>& f0, double* values,
                 double* variances) {
+  const size_t terms = f.ur.size();
+  f0.resize((count + 2) * terms);  // the nodes' drift terms, then a and mu
   const auto& p = kriger.centredSamples();
   const size_t n = p.size();
   const Variogram& v = kriger.variogram();
@@ -114,6 +129,9 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f, uin
         grid.node(static_cast<uint32_t>(inSlice % grid.dims[0]),
                   static_cast<uint32_t>(inSlice / grid.dims[0]), z0 + static_cast<uint32_t>(slice));
     const Point3 q = kriger.modelCoordinates(node);
+    kriger.driftBasis().at(
+        q, externalDrift ? externalDrift[uint64_t{z0} * grid.sliceNodes() + at] : NAN,
+        &f0[c * terms]);
     double* column = &k[c * n];
     for (size_t i = 0; i < n; ++i) {
       const double dx = p[i][0] - q[0], dy = p[i][1] - q[1], dz = p[i][2] - q[2];
@@ -127,17 +145,19 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f, uin
   else
     cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, ni,
                 static_cast<int>(count), 1.0, f.linv.data(), ni, k.data(), ni);
-  const bool ordinary = kriger.options().kind == KrigingKind::kOrdinary;
   const double sill = v.sill(), mean = kriger.dataMean();
+  double* a = &f0[count * terms];
+  double* mu = a + terms;
   for (size_t c = 0; c < count; ++c) {
     const double* y = &k[c * n];
     double value = mean + spd::dot(f.r.data(), y, n);
     double variance = sill - spd::dot(y, y, n);
-    if (ordinary) {
-      const double uy = spd::dot(f.u.data(), y, n);
-      const double mu = (uy - 1.0) / f.uu;
-      value -= mu * f.ur;
-      variance += mu * (uy - 1.0);
+    for (size_t j = 0; j < terms; ++j)
+      mu[j] = a[j] = spd::dot(&f.u[j * n], y, n) - f0[c * terms + j];
+    f.drift.solve(mu);
+    for (size_t j = 0; j < terms; ++j) {
+      value -= mu[j] * f.ur[j];
+      variance += mu[j] * a[j];
     }
     values[first + c] = value;
     variances[first + c] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
@@ -147,7 +167,7 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f, uin
 }  // namespace
 
 uint64_t globalKrigingBytes(size_t samples, unsigned threads) {
-  return 8ull * samples * (samples + kBlockNodes * format::threadCount(threads) + 4);
+  return 8ull * samples * (samples + kBlockNodes * format::threadCount(threads) + 14);
 }
 
 Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& grid,
@@ -181,11 +201,12 @@ Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& gri
     const uint64_t blocks = (nodes + kBlockNodes - 1) / kBlockNodes;
     std::atomic<uint64_t> next{0};
     format::runOnThreads(threads, [&](unsigned) {
-      std::vector<double> k(n * kBlockNodes);
+      std::vector<double> k(n * kBlockNodes), drift;
       for (uint64_t b; (b = next.fetch_add(1)) < blocks;) {
         const uint64_t first = b * kBlockNodes;
-        solveBlock(kriger, grid, f, z0, first, std::min<uint64_t>(kBlockNodes, nodes - first), k,
-                   values.data(), variances.data());
+        solveBlock(kriger, grid, f, options.externalDrift, z0, first,
+                   std::min<uint64_t>(kBlockNodes, nodes - first), k, drift, values.data(),
+                   variances.data());
       }
     });
     for (uint64_t i = 0; i < nodes; ++i)
@@ -201,6 +222,7 @@ Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& gri
   summary.worstCondition = f.condition;
   summary.regularizedNodes = f.jitter > 0 ? summary.nodes : 0;
   summary.largestJitter = f.jitter;
+  summary.driftReducedNodes = f.drift.dropped() > 0 ? summary.nodes : 0;
   summary.meanNeighbours = static_cast<double>(n);
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

@@ -21,8 +21,11 @@ std::string KrigingSummary::text() const {
         << worstConditionBound << ")";
   out << "\n"
       << "regularized nodes: " << regularizedNodes << " (largest diagonal jitter " << largestJitter
-      << ")\n"
-      << "time: " << seconds << " s\n";
+      << ")\n";
+  if (driftReducedNodes > 0)
+    out << "drift: " << driftReducedNodes
+        << " nodes kriged without drift terms that were dependent over their samples\n";
+  out << "time: " << seconds << " s\n";
   return out.str();
 }
 
@@ -32,6 +35,9 @@ Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, con
   for (int a = 0; a < 3; ++a)
     if (grid.dims[a] == 0)
       return makeError(ErrorCode::kInvalidArgument, "kriging grid: axis ", a, " has size 0");
+  if (kriger.options().externalDrift && options.externalDrift == nullptr)
+    return makeError(ErrorCode::kInvalidArgument,
+                     "kriging grid: external drift without its values at the nodes");
   // Global kriging within a search radius has a neighbour set per node: the local path.
   if (kriger.isGlobal() && !std::isfinite(kriger.options().maxDistance))
     return krigeGridGlobal(kriger, grid, sink, options);

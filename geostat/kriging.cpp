@@ -56,6 +56,14 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
     return makeError(ErrorCode::kInvalidArgument,
                      "kriging: --anisotropy needs a finite angle and a ratio in (0, 1], got ",
                      options.anisotropyAngle, ",", options.anisotropyRatio);
+  const bool drifts = options.drift != DriftKind::kNone || options.externalDrift;
+  if (drifts && options.kind == KrigingKind::kSimple)
+    return makeError(ErrorCode::kInvalidArgument,
+                     "kriging: simple kriging has a known mean; --drift and --external-drift need "
+                     "--kind ok");
+  if (options.externalDrift && points.drift.size() != points.size())
+    return makeError(ErrorCode::kInvalidArgument,
+                     "kriging: external drift asked for but the samples have no drift column");
   if (!(options.maxDistance > 0))
     return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ",
                      options.maxDistance);
@@ -91,13 +99,14 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
     if (taken[i]) continue;
     all.nearest(centred[i], 64, k.options_.mergeDistance, close);
     Point3 sum{0, 0, 0};
-    double valueSum = 0, vmin = INFINITY, vmax = -INFINITY;
+    double valueSum = 0, driftSum = 0, vmin = INFINITY, vmax = -INFINITY;
     size_t count = 0;
     for (const Neighbour& n : close) {
       if (taken[n.index]) continue;
       taken[n.index] = 1;
       for (int a = 0; a < 3; ++a) sum[a] += centred[n.index][a];
       valueSum += points.values[n.index];
+      if (options.externalDrift) driftSum += points.drift[n.index];
       vmin = std::min(vmin, points.values[n.index]);
       vmax = std::max(vmax, points.values[n.index]);
       ++count;
@@ -106,6 +115,7 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
       taken[i] = 1;
       k.coords_.push_back(centred[i]);
       k.values_.push_back(points.values[i]);
+      if (options.externalDrift) k.externalDrift_.push_back(points.drift[i]);
       continue;
     }
     k.merged_ += count - 1;
@@ -113,11 +123,33 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
     for (int a = 0; a < 3; ++a) sum[a] /= static_cast<double>(count);
     k.coords_.push_back(sum);
     k.values_.push_back(valueSum / static_cast<double>(count));
+    if (options.externalDrift) k.externalDrift_.push_back(driftSum / static_cast<double>(count));
   }
   k.dataMean_ = std::accumulate(k.values_.begin(), k.values_.end(), 0.0) /
                 static_cast<double>(k.values_.size());
   if (options.kind == KrigingKind::kSimple) k.dataMean_ = options.simpleMean;
   k.tree_ = std::make_shared<KdTree>(k.coords_);
+  // Drift terms of order 1 whatever the coordinates and the external variable (drift.h).
+  k.basis_.kind = options.drift;
+  k.basis_.dimension = points.dimension;
+  k.basis_.constant = options.kind == KrigingKind::kOrdinary;
+  k.basis_.external = options.externalDrift;
+  double extent = 0;
+  for (const Point3& c : k.coords_)
+    for (int a = 0; a < points.dimension; ++a) extent = std::max(extent, std::fabs(c[a]));
+  k.basis_.coordinateScale = extent > 0 ? extent : 1.0;
+  if (options.externalDrift) {
+    const double n = static_cast<double>(k.externalDrift_.size());
+    double mean = 0, variance = 0;
+    for (double e : k.externalDrift_) {
+      if (!std::isfinite(e))
+        return makeError(ErrorCode::kNonFinite, "kriging: a sample's external drift is not finite");
+      mean += e / n;
+    }
+    for (double e : k.externalDrift_) variance += (e - mean) * (e - mean) / n;
+    k.basis_.externalMean = mean;
+    k.basis_.externalScale = variance > 0 ? std::sqrt(variance) : 1.0;
+  }
   return k;
 }
 
@@ -147,16 +179,26 @@ Status Kriger::solveSystem(KrigingWorkspace& ws, size_t n) const {
     if (jitter > kLastJitter * sill * 1.0000001)
       return singularSystemError(n, options_.maxCondition);
   }
-  ws.onesSolved.assign(n, 1.0);
-  ws.factor.solve(ws.onesSolved.data());
-  ws.onesSum = std::accumulate(ws.onesSolved.begin(), ws.onesSolved.end(), 0.0);
+  // C^-1 F and the drift's system G = F^T C^-1 F, once per neighbour set.
+  const size_t p = basis_.terms();
+  ws.driftSolved.resize(n * p);
+  ws.driftRhs.resize(p);
+  for (size_t i = 0; i < n; ++i) {
+    sampleDriftTerms(ws.key[i], ws.driftRhs.data());
+    for (size_t j = 0; j < p; ++j) ws.driftSolved[j * n + i] = ws.driftRhs[j];
+  }
+  // G = (L^-1 F)^T (L^-1 F) from L^-1 F; the solve then finishes to C^-1 F.
+  for (size_t j = 0; j < p; ++j) ws.factor.solveLower(&ws.driftSolved[j * n]);
+  ws.drift.factor(ws.driftSolved.data(), n, n, p);
+  for (size_t j = 0; j < p; ++j) ws.factor.solveUpper(&ws.driftSolved[j * n]);
   ws.cachedKey = ws.key;
   ws.cacheValid = true;
   ++ws.systemsFactored;
   return Status::ok();
 }
 
-Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude) const {
+Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude,
+                                   double externalDrift) const {
   const Point3 q = modelCoordinates(p);
   const bool global = isGlobal();
   if (global && coords_.size() > kMaxSystemSize)
@@ -201,25 +243,29 @@ Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_
   std::vector<double>& a = ws.matrix;  // reused as scratch: the factor keeps its own copy
   a.assign(ws.rhs.begin(), ws.rhs.end());
   ws.factor.solve(a.data());
+  // Weights C^-1 (c - F mu) with G mu = F^T C^-1 c - f0; variance sill - w.c - mu.f0.
+  const size_t terms = basis_.terms();
+  std::vector<double>& mu = ws.driftRhs;
+  std::vector<double> f0(terms);
+  basis_.at(q, externalDrift, f0.data());
+  mu.resize(terms);
+  for (size_t j = 0; j < terms; ++j) {
+    double s = -f0[j];
+    for (size_t i = 0; i < n; ++i) s += ws.driftSolved[j * n + i] * ws.rhs[i];
+    mu[j] = s;
+  }
+  ws.drift.solve(mu.data());
   double estimate = dataMean_, variance = variogram_.sill();
   ws.weights.resize(n);
-  if (options_.kind == KrigingKind::kOrdinary) {
-    const double mu =
-        (std::accumulate(a.begin(), a.begin() + static_cast<long>(n), 0.0) - 1.0) / ws.onesSum;
-    for (size_t i = 0; i < n; ++i) {
-      const double w = a[i] - mu * ws.onesSolved[i];
-      ws.weights[i] = w;
-      estimate += w * (values_[ws.key[i]] - dataMean_);
-      variance -= w * ws.rhs[i];
-    }
-    variance -= mu;
-  } else {
-    for (size_t i = 0; i < n; ++i) {
-      ws.weights[i] = a[i];
-      estimate += a[i] * (values_[ws.key[i]] - dataMean_);
-      variance -= a[i] * ws.rhs[i];
-    }
+  for (size_t i = 0; i < n; ++i) {
+    double w = a[i];
+    for (size_t j = 0; j < terms; ++j) w -= mu[j] * ws.driftSolved[j * n + i];
+    ws.weights[i] = w;
+    estimate += w * (values_[ws.key[i]] - dataMean_);
+    variance -= w * ws.rhs[i];
   }
+  for (size_t j = 0; j < terms; ++j) variance -= mu[j] * f0[j];
+  out.driftTermsDropped = static_cast<uint32_t>(ws.drift.dropped());
   // Rounding can leave -1e-16 * sill where the variance is 0 (at a sample).
   out.value = estimate;
   out.variance = std::max(variance, 0.0);

@@ -1,5 +1,6 @@
-// Ordinary and simple kriging of scattered samples: one prediction and its kriging variance per
-// location, from all samples (global) or the k nearest within a radius (local).
+// Ordinary, simple and universal kriging (drift.h) of scattered samples: one prediction and its
+// kriging variance per location, from all samples (global) or the k nearest within a radius
+// (local).
 //
 // Numerical safeguards, each reported rather than hidden:
 //  - coordinates are centred on the data's bounding box, so UTM-sized coordinates (1e6) lose
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "geostat/cholesky.h"
+#include "geostat/drift.h"
 #include "geostat/kd_tree.h"
 #include "geostat/point_set.h"
 #include "geostat/variogram.h"
@@ -46,6 +48,10 @@ struct KrigingOptions {
   // direction onto an axis and stretching the other by 1 / ratio; z is left alone.
   double anisotropyAngle = 0;
   double anisotropyRatio = 1;
+  // Universal kriging (drift.h): a polynomial trend in the coordinates, and/or an external
+  // drift taken from PointSet::drift at the samples (and given per node at prediction).
+  DriftKind drift = DriftKind::kNone;
+  bool externalDrift = false;
 };
 
 struct Prediction {
@@ -58,16 +64,20 @@ struct Prediction {
   // Local search only: the k-th and (k+1)-th nearest samples are equally far, so another
   // implementation may legitimately pick a different neighbour set.
   bool tieAtCutoff = false;
+  uint32_t driftTermsDropped = 0;  // dependent drift terms left out of this system (drift.h)
 };
 
 // Per-thread scratch space and the cached factorization of the last neighbour set.
 struct KrigingWorkspace {
   std::vector<Neighbour> neighbours;
   std::vector<uint32_t> key, cachedKey;
-  std::vector<double> matrix, rhs, onesSolved;
+  std::vector<double> matrix, rhs;
+  std::vector<double> driftSolved;  // C^-1 F, column-major n x p
+  std::vector<double> driftRhs;     // F^T C^-1 c - f0, then the Lagrange multipliers
+  DriftSystem drift;
   std::vector<double> weights;  // of the last prediction, in the order of `key`
   Cholesky factor;
-  double cachedCondition = 0, cachedJitter = 0, onesSum = 0;
+  double cachedCondition = 0, cachedJitter = 0;
   bool cacheValid = false;
   uint64_t systemsFactored = 0, systemsReused = 0;
 };
@@ -78,13 +88,24 @@ class Kriger {
                              const KrigingOptions& options);
 
   // Prediction at p (in the input's coordinates). `exclude` leaves one sample out
-  // (cross-validation).
-  Result<Prediction> predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude = -1) const;
+  // (cross-validation). `externalDrift`: the external drift's value at p (with
+  // options().externalDrift).
+  Result<Prediction> predict(const Point3& p, KrigingWorkspace& ws, int64_t exclude = -1,
+                             double externalDrift = NAN) const;
 
   size_t sampleCount() const { return values_.size(); }
   // Sample i after merging, in the input's coordinates, and its value.
   Point3 sample(size_t i) const;
   double sampleValue(size_t i) const { return values_[i]; }
+  // Sample i's external drift value (NaN without an external drift).
+  double sampleExternalDrift(size_t i) const {
+    return externalDrift_.empty() ? NAN : externalDrift_[i];
+  }
+  // The drift terms (1 for ordinary, 0 for simple kriging) and their values at sample i.
+  const DriftBasis& driftBasis() const { return basis_; }
+  void sampleDriftTerms(size_t i, double* f) const {
+    basis_.at(coords_[i], sampleExternalDrift(i), f);
+  }
   size_t mergedSamples() const { return merged_; }
   double largestMergedSpread() const { return mergedSpread_; }
   const Variogram& variogram() const { return variogram_; }
@@ -115,6 +136,8 @@ class Kriger {
   double cosine_ = 1, sine_ = 0;  // of the anisotropy angle
   std::vector<Point3> coords_;    // centred
   std::vector<double> values_;
+  std::vector<double> externalDrift_;  // per sample, raw (empty without an external drift)
+  DriftBasis basis_;
   double dataMean_ = 0;  // values are kriged as residuals from it for precision
   size_t merged_ = 0;
   double mergedSpread_ = 0;

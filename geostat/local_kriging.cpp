@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "format/parallel_for.h"
+#include "geostat/drift.h"
 #include "geostat/spd_kernels.h"
 
 namespace voxlink::kriging {
@@ -26,8 +27,10 @@ struct Box {
 struct Factorization {
   std::vector<uint32_t> key;  // sample indices, ascending
   std::vector<double> l;      // column-major lower factor, leading dimension paddedSize(n)
-  std::vector<double> u, r;   // L^-1 1 and L^-1 (z - mean)
-  double uu = 0, ur = 0, condition = 0, jitter = 0;
+  std::vector<double> u, r;   // L^-1 F (n x p, column-major) and L^-1 (z - mean)
+  std::vector<double> ur;     // U^T r, one per drift term
+  DriftSystem drift;          // G = U^T U
+  double condition = 0, jitter = 0;
   bool bounded = false;  // condition is the nugget's bound, not an estimate
 };
 
@@ -63,7 +66,7 @@ struct ThreadState {
   std::vector<Neighbour> nearest;
   std::vector<uint32_t> candidates;      // sample indices, ascending
   std::vector<double> cx, cy, cz, pair;  // their coordinates and covariances (m x m)
-  std::vector<double> d2, rhs, work, nth;
+  std::vector<double> d2, rhs, work, nth, drift;
   double cut = 0;  // squared distance between the last node's k-th and (k+1)-th (0: none)
   std::vector<uint32_t> picked, lastPicked, key;
   FactorizationCache cache;
@@ -81,13 +84,15 @@ uint64_t hashKey(const std::vector<uint32_t>& key) {
 class BrickSolver {
  public:
   BrickSolver(const Kriger& kriger, const GridSpec& grid, uint32_t z0, double* values,
-              double* variances, double noData)
+              double* variances, double noData, const double* externalDrift)
       : kriger_(kriger),
         grid_(grid),
         z0_(z0),
         values_(values),
         variances_(variances),
         noData_(noData),
+        externalDrift_(externalDrift),
+        terms_(kriger.driftBasis().terms()),
         k_(kriger.isGlobal() ? kriger.sampleCount() : kriger.options().maxNeighbours),
         sill_(kriger.variogram().sill()),
         maxDistance_(kriger.options().maxDistance) {}
@@ -323,12 +328,23 @@ class BrickSolver {
     }
     f.jitter = jitter;
     const double mean = kriger_.dataMean();
-    f.u.assign(n, 1.0);
+    const size_t p = terms_;
+    f.u.resize(n * p);
+    ts.drift.resize(p);
+    for (size_t i = 0; i < n; ++i) {
+      kriger_.sampleDriftTerms(ts.key[i], ts.drift.data());
+      for (size_t j = 0; j < p; ++j) f.u[j * n + i] = ts.drift[j];
+    }
     f.r.resize(n);
     for (size_t i = 0; i < n; ++i) f.r[i] = kriger_.values()[ts.key[i]] - mean;
-    spd::solveLower(f.l.data(), n, ld, f.u.data(), f.r.data());
-    f.uu = spd::dot(f.u.data(), f.u.data(), n);
-    f.ur = spd::dot(f.u.data(), f.r.data(), n);
+    if (p > 0)
+      spd::solveLower(f.l.data(), n, ld, f.u.data(), f.r.data());
+    else
+      spd::solveLower(f.l.data(), n, ld, f.r.data());
+    for (size_t j = 1; j < p; ++j) spd::solveLower(f.l.data(), n, ld, &f.u[j * n]);
+    f.drift.factor(f.u.data(), n, n, p);
+    f.ur.resize(p);
+    for (size_t j = 0; j < p; ++j) f.ur[j] = spd::dot(&f.u[j * n], f.r.data(), n);
     f.key = ts.key;
     return Status::ok();
   }
@@ -369,11 +385,20 @@ class BrickSolver {
     const double yy = spd::dot(ts.rhs.data(), ts.rhs.data(), n);
     const double ry = spd::dot(f->r.data(), ts.rhs.data(), n);
     double value = kriger_.dataMean() + ry, variance = sill_ - yy;
-    if (kriger_.options().kind == KrigingKind::kOrdinary) {
-      const double uy = spd::dot(f->u.data(), ts.rhs.data(), n);
-      const double mu = (uy - 1.0) / f->uu;
-      value -= mu * f->ur;
-      variance += mu * (uy - 1.0);
+    if (terms_ > 0) {  // a = U^T y - f0, mu = G^-1 a (drift.h)
+      const uint64_t node = (uint64_t{z} * grid_.dims[1] + y) * grid_.dims[0] + x;
+      ts.drift.resize(3 * terms_);
+      double* a = ts.drift.data() + terms_;
+      double* mu = a + terms_;
+      kriger_.driftBasis().at(q, externalDrift_ ? externalDrift_[node] : NAN, ts.drift.data());
+      for (size_t j = 0; j < terms_; ++j)
+        mu[j] = a[j] = spd::dot(&f->u[j * n], ts.rhs.data(), n) - ts.drift[j];
+      f->drift.solve(mu);
+      for (size_t j = 0; j < terms_; ++j) {
+        value -= mu[j] * f->ur[j];
+        variance += mu[j] * a[j];
+      }
+      if (f->drift.dropped() > 0) ++ts.summary.driftReducedNodes;
     }
     if (!std::isfinite(value) || !std::isfinite(variance)) {
       const Point3 p = grid_.node(x, y, z);
@@ -398,6 +423,8 @@ class BrickSolver {
   double* values_;
   double* variances_;
   double noData_;
+  const double* externalDrift_;  // per node of the whole grid, or null
+  size_t terms_;
   size_t k_;
   double sill_, maxDistance_;
 };
@@ -420,7 +447,8 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
   }
   const unsigned threads = format::threadCount(options.threads);
   const size_t n = kriger.isGlobal() ? kriger.sampleCount() : kriger.options().maxNeighbours;
-  const size_t cacheEntries = kCacheBytes / (8 * (spd::paddedSize(n) * n + 4 * n) + 64);
+  const size_t cacheEntries =
+      kCacheBytes / (8 * (spd::paddedSize(n) * n + (3 + kriger.driftBasis().terms()) * n) + 64);
   std::vector<ThreadState> states;
   states.reserve(threads);
   for (unsigned t = 0; t < threads; ++t) states.emplace_back(cacheEntries);
@@ -430,7 +458,8 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
   std::optional<Error> failure;
   for (uint32_t z0 = 0; z0 < grid.dims[2]; z0 += depth) {
     const uint32_t count = std::min(depth, grid.dims[2] - z0);
-    const BrickSolver solver(kriger, grid, z0, values.data(), variances.data(), options.noData);
+    const BrickSolver solver(kriger, grid, z0, values.data(), variances.data(), options.noData,
+                             options.externalDrift);
     std::atomic<uint64_t> next{0};
     std::atomic<bool> stop{false};
     format::runOnThreads(threads, [&](unsigned t) {
@@ -458,6 +487,7 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
     summary.systemsFactored += ts.summary.systemsFactored;
     summary.systemsReused += ts.summary.systemsReused;
     summary.regularizedNodes += ts.summary.regularizedNodes;
+    summary.driftReducedNodes += ts.summary.driftReducedNodes;
     summary.systemsBounded += ts.summary.systemsBounded;
     summary.worstCondition = std::max(summary.worstCondition, ts.summary.worstCondition);
     summary.worstConditionBound =

@@ -5,9 +5,11 @@
 //    so the neighbour sets are exactly the ones Kriger::predict would use;
 //  - the covariances among the candidates are evaluated once per brick;
 //  - nodes whose neighbour sets agree share one factorization, kept in a per-thread cache;
-//  - each node then costs one triangular solve: with L L^T = C, y = L^-1 c, u = L^-1 1 and
-//    r = L^-1 (z - m) (u and r per factorization), the ordinary kriging estimate is
-//    m + r.y - mu u.r and its variance sill - y.y + mu (u.y - 1), mu = (u.y - 1) / u.u.
+//  - each node then costs one triangular solve: with L L^T = C, y = L^-1 c, U = L^-1 F (F: the
+//    drift terms at the samples, the column of ones for ordinary kriging) and r = L^-1 (z - m)
+//    (U, r and the small G = U^T U per factorization), the estimate is m + r.y - mu.(U^T r) and
+//    the variance sill - y.y + mu.a, a = U^T y - f0, mu = G^-1 a (drift.h). Ordinary kriging:
+//    mu = (u.y - 1) / u.u.
 // No approximation: the results equal Kriger::predict's to rounding (tested).
 #pragma once
 
