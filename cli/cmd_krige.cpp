@@ -1,4 +1,5 @@
-// voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary or simple kriging of scattered samples
+// voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary, simple or universal kriging (with a
+// coordinate or external drift) of scattered samples
 // (CSV or GEO-EAS) onto a regular grid, with the kriging variance as a second grid, the
 // variogram given or fitted, and a summary of the solver's numerical health.
 #include <sys/resource.h>
@@ -170,10 +171,13 @@ int runKrige(const KrigeArgs& a) {
   }
   auto kriger = Kriger::make(*points, *variogram, options);
   if (!kriger) return reportError(kriger.error());
-  if (kriger->driftBasis().terms() > 1)
-    std::printf("drift: %s%s (%zu terms, constant included)\n", a.drift.c_str(),
-                a.externalDrift.empty() ? "" : cat(" + external '", a.externalDrift, "'").c_str(),
+  if (kriger->driftBasis().terms() > 1) {
+    std::string what = a.drift == "none" ? "" : a.drift;
+    if (!a.externalDrift.empty())
+      what += cat(what.empty() ? "" : " + ", "external '", a.externalDrift, "'");
+    std::printf("drift: %s (%zu terms, constant included)\n", what.c_str(),
                 kriger->driftBasis().terms());
+  }
   if (kriger->mergedSamples())
     std::printf("merged: %zu samples closer than %g to another (largest value spread %g)\n",
                 kriger->mergedSamples(), kriger->options().mergeDistance,
