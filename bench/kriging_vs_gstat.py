@@ -10,7 +10,11 @@ medians of several runs. Then compares every node's estimate and variance with g
 standard deviation for estimates; nodes whose k-th and (k+1)-th nearest samples are equally
 far are left out (either neighbour set is right) and counted.
 
+--drift linear|quadratic runs universal kriging instead (gstat's V ~ X + Y, or with
+I(X^2) + I(X*Y) + I(Y^2)).
+
 Usage: kriging_vs_gstat.py VOXLINK [DATA_DIR] [--runs N] [--gstat-runs N] [--threads N]
+                           [--drift none|linear|quadratic]
 """
 import argparse
 import os
@@ -26,21 +30,23 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_timing import run  # noqa: E402
 
 NUGGET, PSILL, RANGE = 22144.0, 70207.9, 35.085
+TRENDS = {"none": "1", "linear": "X + Y", "quadratic": "X + Y + I(X^2) + I(X*Y) + I(Y^2)"}
 
 
-def gstat(script, samples, nmax, runs, out):
+def gstat(script, samples, nmax, runs, out, drift):
     cmd = ["Rscript", script, samples, "V", "Sph", repr(NUGGET), repr(PSILL), repr(RANGE),
-           str(nmax), str(runs), out]
+           str(nmax), str(runs), out, TRENDS[drift]]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         sys.exit(f"gstat failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
     return [float(s) for s in re.findall(r"seconds ([\d.]+)", p.stdout)]
 
 
-def voxlink(exe, samples, k, threads, out):
+def voxlink(exe, samples, k, threads, out, drift):
     cmd = [exe, "krige", samples, "--value", "V", "--variogram",
            f"sph:nugget={NUGGET},psill={PSILL},range={RANGE}", "-k", str(k), "--dims", "260,300",
-           "--origin", "1,1", "--spacing", "1,1", "--threads", str(threads), "-o", out]
+           "--origin", "1,1", "--spacing", "1,1", "--threads", str(threads), "--drift", drift,
+           "-o", out]
     stdout, wall, rss = run(cmd)
     return float(re.search(r"^time: ([\d.e+-]+) s", stdout, re.M).group(1)), wall, rss, stdout
 
@@ -65,6 +71,7 @@ def main():
     ap.add_argument("--runs", type=int, default=7)
     ap.add_argument("--gstat-runs", type=int, default=3)
     ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--drift", choices=sorted(TRENDS), default="none")
     a = ap.parse_args()
     samples = os.path.join(a.data, "geostat/gstat_csv/walker.csv")
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "gstat_krige_timed.R")
@@ -74,7 +81,8 @@ def main():
     sd = float(np.std(table["V"]))
     sill = NUGGET + PSILL
     print(f"Walker Lake: {len(xy)} samples -> 260 x 300 = 78000 nodes, spherical(nugget={NUGGET},"
-          f" psill={PSILL}, range={RANGE}), ordinary kriging; voxlink --threads {a.threads} "
+          f" psill={PSILL}, range={RANGE}), "
+          f"{'ordinary kriging' if a.drift == 'none' else 'universal kriging, gstat V ~ ' + TRENDS[a.drift]}; voxlink --threads {a.threads} "
           f"(0: all {os.cpu_count()} cores), gstat one R process")
     print(f"{'neighbours':>10} {'gstat_s':>8} {'voxlink_s':>9} {'ratio':>7} {'process_s':>9} "
           f"{'ratio':>7} {'max_rel_pred':>12} {'max_rel_var':>11} {'compared':>8} {'ties':>5}"
@@ -82,9 +90,9 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for k in (32, 0):
             gcsv = os.path.join(tmp, f"gstat_{k}.csv")
-            g_times = gstat(script, samples, k, a.gstat_runs, gcsv)
+            g_times = gstat(script, samples, k, a.gstat_runs, gcsv, a.drift)
             out = os.path.join(tmp, f"v{k}.nhdr")
-            runs = [voxlink(a.voxlink, samples, k, a.threads, out) for _ in range(a.runs)]
+            runs = [voxlink(a.voxlink, samples, k, a.threads, out, a.drift) for _ in range(a.runs)]
             solve = statistics.median(r[0] for r in runs)
             wall = statistics.median(r[1] for r in runs)
             g = np.genfromtxt(gcsv, delimiter=",", names=True)
