@@ -84,4 +84,17 @@ void DriftSystem::solve(double* a) const {
   }
 }
 
+void DriftSystem::correct(const double* u, size_t n, const double* y, const double* f0,
+                          const double* ur, double* scratch, double& value,
+                          double& variance) const {
+  double* a = scratch;
+  double* mu = scratch + p_;
+  for (size_t j = 0; j < p_; ++j) mu[j] = a[j] = spd::dot(u + j * n, y, n) - f0[j];
+  solve(mu);
+  for (size_t j = 0; j < p_; ++j) {
+    value -= mu[j] * ur[j];
+    variance += mu[j] * a[j];
+  }
+}
+
 }  // namespace voxlink::kriging

@@ -47,6 +47,10 @@ class DriftSystem {
   void factor(const double* u, size_t n, size_t ld, size_t p);
   // a <- G^-1 a over the kept terms; dropped terms get 0.
   void solve(double* a) const;
+  // A node's correction: with y = L^-1 c and its drift terms f0, a = U^T y - f0 and
+  // mu = G^-1 a; value -= mu.ur (ur = U^T r), variance += mu.a. `scratch` holds 2 p doubles.
+  void correct(const double* u, size_t n, const double* y, const double* f0, const double* ur,
+               double* scratch, double& value, double& variance) const;
   size_t dropped() const { return dropped_; }
   size_t size() const { return p_; }
 

@@ -146,19 +146,12 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
     cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, ni,
                 static_cast<int>(count), 1.0, f.linv.data(), ni, k.data(), ni);
   const double sill = v.sill(), mean = kriger.dataMean();
-  double* a = &f0[count * terms];
-  double* mu = a + terms;
   for (size_t c = 0; c < count; ++c) {
     const double* y = &k[c * n];
     double value = mean + spd::dot(f.r.data(), y, n);
     double variance = sill - spd::dot(y, y, n);
-    for (size_t j = 0; j < terms; ++j)
-      mu[j] = a[j] = spd::dot(&f.u[j * n], y, n) - f0[c * terms + j];
-    f.drift.solve(mu);
-    for (size_t j = 0; j < terms; ++j) {
-      value -= mu[j] * f.ur[j];
-      variance += mu[j] * a[j];
-    }
+    f.drift.correct(f.u.data(), n, y, &f0[c * terms], f.ur.data(), &f0[count * terms], value,
+                    variance);
     values[first + c] = value;
     variances[first + c] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
   }

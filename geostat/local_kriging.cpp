@@ -385,19 +385,12 @@ class BrickSolver {
     const double yy = spd::dot(ts.rhs.data(), ts.rhs.data(), n);
     const double ry = spd::dot(f->r.data(), ts.rhs.data(), n);
     double value = kriger_.dataMean() + ry, variance = sill_ - yy;
-    if (terms_ > 0) {  // a = U^T y - f0, mu = G^-1 a (drift.h)
+    if (terms_ > 0) {  // the drift's Lagrange multipliers (drift.h)
       const uint64_t node = (uint64_t{z} * grid_.dims[1] + y) * grid_.dims[0] + x;
       ts.drift.resize(3 * terms_);
-      double* a = ts.drift.data() + terms_;
-      double* mu = a + terms_;
       kriger_.driftBasis().at(q, externalDrift_ ? externalDrift_[node] : NAN, ts.drift.data());
-      for (size_t j = 0; j < terms_; ++j)
-        mu[j] = a[j] = spd::dot(&f->u[j * n], ts.rhs.data(), n) - ts.drift[j];
-      f->drift.solve(mu);
-      for (size_t j = 0; j < terms_; ++j) {
-        value -= mu[j] * f->ur[j];
-        variance += mu[j] * a[j];
-      }
+      f->drift.correct(f->u.data(), n, ts.rhs.data(), ts.drift.data(), f->ur.data(),
+                       ts.drift.data() + terms_, value, variance);
       if (f->drift.dropped() > 0) ++ts.summary.driftReducedNodes;
     }
     if (!std::isfinite(value) || !std::isfinite(variance)) {
