@@ -1,9 +1,11 @@
-// voxlink_kriging_bench [DATA_DIR]: speed against error for kriging and random fields.
+// voxlink_kriging_bench [DATA_DIR [--blas-only|--kriging-only]]: speed against error for
+// kriging and random fields, after the BLAS rates global kriging can reach.
 //  1. Walker Lake (470 samples -> 260 x 300 grid): neighbourhood size against time, deviation
 //     from global kriging, and error against the exhaustive truth.
 //  2. Scaling: 10^4 and 10^5 samples of a random field kriged onto a 512 x 512 grid.
 //  3. Random fields of 256^3 and 512^3 voxels: time, throughput, peak memory, against the
 //     white noise alone (the floor every voxel pays).
+#include <cblas.h>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -44,6 +46,16 @@ T orDie(Result<T> r) {
   return std::move(r).value();
 }
 
+// The worst condition estimate, or "<=B" when only the nugget's bound B is known.
+std::string condition(const KrigingSummary& s) {
+  char text[32];
+  if (s.worstCondition >= s.worstConditionBound)
+    std::snprintf(text, sizeof text, "%.3g", s.worstCondition);
+  else
+    std::snprintf(text, sizeof text, "<=%.3g", s.worstConditionBound);
+  return text;
+}
+
 std::vector<double> krigeToVector(const Kriger& k, const GridSpec& grid, KrigingSummary& summary) {
   std::vector<double> out;
   out.reserve(grid.nodeCount());
@@ -53,6 +65,44 @@ std::vector<double> krigeToVector(const Kriger& k, const GridSpec& grid, Kriging
         return Status::ok();
       }));
   return out;
+}
+
+// What global kriging's blocks can reach on this machine: OpenBLAS's DGEMM rate, and its
+// triangular solve (dtrsm) and multiply (dtrmm) on global kriging's shape (470 samples, blocks
+// of 256 nodes), one thread each, as global_kriging.cpp calls them.
+void blasRates() {
+  const int saved = openblas_get_num_threads();
+  std::printf("OpenBLAS (%s), GFlop/s\n", openblas_get_config());
+  for (int threads : {1, saved}) {
+    openblas_set_num_threads(threads);
+    const int n = 1500;
+    std::vector<double> a(size_t(n) * n, 1.0 / n), b(size_t(n) * n, 0.5), c(size_t(n) * n);
+    double t0 = now();
+    for (int r = 0; r < 3; ++r)
+      cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, n, n, 1, a.data(), n, b.data(), n,
+                  0, c.data(), n);
+    std::printf("  dgemm %d^3, %d thread(s): %.1f\n", n, threads,
+                3 * 2.0 * n * n * n / (now() - t0) / 1e9);
+  }
+  openblas_set_num_threads(1);
+  const int m = 470, block = 256, repeats = 100;
+  std::vector<double> l(size_t(m) * m, 0.0), k(size_t(m) * block, 1.0);
+  for (int j = 0; j < m; ++j)
+    for (int i = j; i < m; ++i) l[size_t(j) * m + i] = i == j ? 2.0 : 1.0 / m;
+  double t0 = now();
+  for (int r = 0; r < repeats; ++r)
+    cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, m, block, 1.0,
+                l.data(), m, k.data(), m);
+  const double trsm = now() - t0;
+  t0 = now();
+  for (int r = 0; r < repeats; ++r)
+    cblas_dtrmm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, m, block, 0.5,
+                l.data(), m, k.data(), m);
+  const double trmm = now() - t0;
+  const double flops = double(repeats) * m * m * block;  // n^2 per right-hand side
+  std::printf("  dtrsm %dx%d, 1 thread: %.1f\n  dtrmm %dx%d, 1 thread: %.1f\n\n", m, block,
+              flops / trsm / 1e9, m, block, flops / trmm / 1e9);
+  openblas_set_num_threads(saved);
 }
 
 void walkerLake(const std::string& dataDir) {
@@ -100,9 +150,10 @@ void walkerLake(const std::string& dataDir) {
       errSq += (pred[i] - truth[i]) * (pred[i] - truth[i]);
     }
     const double n = double(pred.size());
-    std::printf("%6s %9.3f %8.2f %13.3e %13.3e %10.2f %10.2f %10.3g\n",
+    std::printf("%6s %9.3f %8.2f %13.3e %13.3e %10.2f %10.2f %10s\n",
                 k ? std::to_string(k).c_str() : "all", t, t / globalTime, maxDiff / sd,
-                std::sqrt(sumSq / n) / sd, std::sqrt(errSq / n), err / n, summary.worstCondition);
+                std::sqrt(sumSq / n) / sd, std::sqrt(errSq / n), err / n,
+                condition(summary).c_str());
   }
   std::printf("\n");
 }
@@ -152,8 +203,8 @@ void scaling() {
               values[size_t(std::lround(1.5 + 4 * j)) * 2048 + size_t(std::lround(1.5 + 4 * i))];
           errSq += (pred[j * 512 + i] - truth) * (pred[j * 512 + i] - truth);
         }
-      std::printf("%8zu %4zu %9.3f %12.0f %12.4f %10.3g\n", n, k, t, 512.0 * 512 / t,
-                  std::sqrt(errSq / (512.0 * 512)), summary.worstCondition);
+      std::printf("%8zu %4zu %9.3f %12.0f %12.4f %10s\n", n, k, t, 512.0 * 512 / t,
+                  std::sqrt(errSq / (512.0 * 512)), condition(summary).c_str());
     }
   }
   std::printf("\n");
@@ -197,8 +248,12 @@ void randomFields() {
 
 int main(int argc, char** argv) {
   const std::string dataDir = argc > 1 ? argv[1] : VOXLINK_BENCH_DATA_DIR;
+  const std::string only = argc > 2 ? argv[2] : "";
+  blasRates();
+  if (only == "--blas-only") return 0;
   walkerLake(dataDir);
   scaling();
+  if (only == "--kriging-only") return 0;
   randomFields();
   return 0;
 }

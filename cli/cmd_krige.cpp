@@ -1,8 +1,12 @@
-// voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary or simple kriging of scattered samples
+// voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary, simple or universal kriging (with a
+// coordinate or external drift) of scattered samples
 // (CSV or GEO-EAS) onto a regular grid, with the kriging variance as a second grid, the
 // variogram given or fitted, and a summary of the solver's numerical health.
+#include <sys/resource.h>
+
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <vector>
@@ -16,6 +20,7 @@
 #include "geostat/grid_writer.h"
 #include "geostat/krige_grid.h"
 #include "geostat/variogram_fit.h"
+#include "sources/volume_source.h"
 
 namespace voxlink::cli {
 namespace {
@@ -31,9 +36,37 @@ struct KrigeArgs {
   bool fixNuggetZero = false, crossValidate = false;
   size_t neighbours = 0;
   unsigned threads = 0;
-  std::string dims, origin, spacing;
+  std::string dims, origin, spacing, anisotropy;
+  std::string drift = "none", externalDrift, externalDriftGrid;
   OutputOptions out;
 };
+
+// The external drift at every node: a dense grid file (any format `convert` reads) with the
+// krige grid's dims, read as doubles, x fastest; every value finite.
+Result<std::vector<double>> readDriftGrid(const std::string& path, const GridSpec& grid) {
+  VOXLINK_ASSIGN_OR_RETURN(auto source, convert::openVolume(path));
+  const auto& dims = source->info().dims;
+  if (dims != grid.dims)
+    return makeError(ErrorCode::kInvalidArgument, path, ": --external-drift-grid is ", dims[0],
+                     " x ", dims[1], " x ", dims[2], ", the krige grid ", grid.dims[0], " x ",
+                     grid.dims[1], " x ", grid.dims[2]);
+  VOXLINK_ASSIGN_OR_RETURN(const std::vector<uint8_t> bytes, convert::readAll(*source));
+  std::vector<double> out(grid.nodeCount());
+  dispatchScalar(source->info().type, [&](auto zero) {
+    using T = decltype(zero);
+    for (size_t i = 0; i < out.size(); ++i) {
+      T v;
+      std::memcpy(&v, bytes.data() + i * sizeof(T), sizeof(T));
+      out[i] = static_cast<double>(v);
+    }
+  });
+  for (size_t i = 0; i < out.size(); ++i)
+    if (!std::isfinite(out[i]))
+      return makeError(ErrorCode::kNonFinite, path, ": --external-drift-grid value at node ", i,
+                       " (x ", i % grid.dims[0], ", y ", i / grid.dims[0] % grid.dims[1], ", z ",
+                       i / grid.sliceNodes(), ") is not finite");
+  return out;
+}
 
 Result<GridSpec> gridFromArgs(const KrigeArgs& a, const PointSet& points) {
   const size_t axes = points.dimension;
@@ -87,7 +120,14 @@ std::string variancePath(const std::string& out) {
 }
 
 int runKrige(const KrigeArgs& a) {
-  ColumnSelection columns{a.xColumn, a.yColumn, a.zColumn, a.valueColumn};
+  if (a.externalDrift.empty() != a.externalDriftGrid.empty() && !a.output.empty())
+    return reportError(makeError(ErrorCode::kInvalidArgument,
+                                 "krige: --external-drift COLUMN and --external-drift-grid FILE "
+                                 "go together"));
+  if (!a.externalDriftGrid.empty() && a.externalDrift.empty())
+    return reportError(makeError(ErrorCode::kInvalidArgument,
+                                 "krige: --external-drift-grid needs --external-drift COLUMN"));
+  ColumnSelection columns{a.xColumn, a.yColumn, a.zColumn, a.valueColumn, a.externalDrift};
   auto points = readPoints(a.input, columns);
   if (!points) return reportError(points.error());
   for (const auto& note : points->notes) a.out.print("note: %s\n", note.c_str());
@@ -121,8 +161,25 @@ int runKrige(const KrigeArgs& a) {
   options.maxDistance = a.maxDistance;
   options.mergeDistance = a.mergeDistance;
   options.maxCondition = a.maxCondition;
+  options.drift = a.drift == "linear"      ? DriftKind::kLinear
+                  : a.drift == "quadratic" ? DriftKind::kQuadratic
+                                           : DriftKind::kNone;
+  options.externalDrift = !a.externalDrift.empty();
+  if (!a.anisotropy.empty()) {
+    auto anis = parseNumberList("--anisotropy", a.anisotropy, 2, 2);
+    if (!anis) return reportError(anis.error());
+    options.anisotropyAngle = (*anis)[0];
+    options.anisotropyRatio = (*anis)[1];
+  }
   auto kriger = Kriger::make(*points, *variogram, options);
   if (!kriger) return reportError(kriger.error());
+  if (kriger->driftBasis().terms() > 1) {
+    std::string what = a.drift == "none" ? "" : a.drift;
+    if (!a.externalDrift.empty())
+      what += cat(what.empty() ? "" : " + ", "external '", a.externalDrift, "'");
+    a.out.print("drift: %s (%zu terms, constant included)\n", what.c_str(),
+                kriger->driftBasis().terms());
+  }
   if (kriger->mergedSamples())
     a.out.print("merged: %zu samples closer than %g to another (largest value spread %g)\n",
                 kriger->mergedSamples(), kriger->options().mergeDistance,
@@ -157,6 +214,12 @@ int runKrige(const KrigeArgs& a) {
   if (!grid) return reportError(grid.error());
   GridFileInfo info{grid->dims, grid->origin, grid->spacing,
                     a.type == "f32" ? ScalarType::kF32 : ScalarType::kF64};
+  std::vector<double> nodeDrift;
+  if (options.externalDrift) {
+    auto read = readDriftGrid(a.externalDriftGrid, *grid);
+    if (!read) return reportError(read.error());
+    nodeDrift = std::move(*read);
+  }
   auto values = GridWriter::create(a.output, info);
   if (!values) return reportError(values.error());
   auto variances = GridWriter::create(varianceFile, info);
@@ -164,6 +227,7 @@ int runKrige(const KrigeArgs& a) {
   GridKrigingOptions gridOptions;
   gridOptions.threads = a.threads;
   gridOptions.noData = a.noData;
+  gridOptions.externalDrift = nodeDrift.empty() ? nullptr : nodeDrift.data();
   ProgressBar bar(a.out.showProgress());
   auto summary = krigeGrid(
       *kriger, *grid,
@@ -180,6 +244,9 @@ int runKrige(const KrigeArgs& a) {
   a.out.print("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid->dims[0],
               grid->dims[1], grid->dims[2], grid->origin[0], grid->origin[1], grid->origin[2],
               grid->spacing[0], grid->spacing[1], grid->spacing[2], summary->text().c_str());
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);  // ru_maxrss: KiB on Linux
+  a.out.print("peak memory: %.0f MiB (resident)\n", usage.ru_maxrss / 1024.0);
   a.out.print("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
               varianceFile.c_str());
   return 0;
@@ -223,6 +290,21 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   cmd->add_option("--merge-distance", a->mergeDistance,
                   "Merge samples closer than this (default 1e-9 x bounding-box diagonal)")
       ->check(finiteNumber());
+  cmd->add_option("--anisotropy", a->anisotropy,
+                  "ANGLE,RATIO: the range holds along ANGLE degrees clockwise from +y, RATIO "
+                  "(0..1] times it across (gstat's anis); --max-distance is along the range");
+  cmd->add_option("--drift", a->drift,
+                  "Universal kriging: a trend in the coordinates, none|linear|quadratic (gstat's "
+                  "V ~ x + y and V ~ x + y + I(x^2) + I(x*y) + I(y^2)); needs --kind ok")
+      ->check(CLI::IsMember({"none", "linear", "quadratic"}))
+      ->capture_default_str();
+  cmd->add_option("--external-drift", a->externalDrift,
+                  "Kriging with external drift: this sample column is a drift term (gstat's "
+                  "V ~ U); rows missing it are skipped. Needs --external-drift-grid");
+  cmd->add_option("--external-drift-grid", a->externalDriftGrid,
+                  "The external drift at every node: a grid file (.nhdr, .npy, ...) with the "
+                  "krige grid's dims, x fastest")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--max-condition", a->maxCondition,
                   "Regularize systems whose condition estimate exceeds this")
       ->capture_default_str();

@@ -43,6 +43,18 @@ if(ZNZ_LIBRARY)
   target_link_libraries(voxlink_nifti INTERFACE ${ZNZ_LIBRARY})
 endif()
 
+# Dense linear algebra for global kriging: OpenBLAS (BLAS + LAPACK with run-time CPU dispatch,
+# libopenblas-dev) through LAPACKE (liblapacke-dev). OpenBLAS is linked directly so its LAPACK,
+# not the reference one, serves LAPACKE whatever the system's alternatives say.
+find_path(OPENBLAS_INCLUDE_DIR cblas.h PATH_SUFFIXES openblas-pthread openblas REQUIRED)
+find_library(OPENBLAS_LIBRARY openblas REQUIRED)
+find_path(LAPACKE_INCLUDE_DIR lapacke.h REQUIRED)
+find_library(LAPACKE_LIBRARY lapacke REQUIRED)
+add_library(voxlink_blas INTERFACE)
+target_include_directories(voxlink_blas SYSTEM INTERFACE ${OPENBLAS_INCLUDE_DIR}
+                                                          ${LAPACKE_INCLUDE_DIR})
+target_link_libraries(voxlink_blas INTERFACE ${OPENBLAS_LIBRARY} ${LAPACKE_LIBRARY})
+
 if(VOXLINK_BUILD_VIEWER)
   find_package(glfw3 3.3 REQUIRED)
   find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)

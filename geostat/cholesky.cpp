@@ -34,7 +34,7 @@ bool Cholesky::factor(const std::vector<double>& a, size_t n, double jitter) {
   return true;
 }
 
-void Cholesky::solve(double* b) const {
+void Cholesky::solveLower(double* b) const {
   const size_t n = n_;
   for (size_t i = 0; i < n; ++i) {  // L y = b
     const double* li = &l_[i * n];
@@ -42,12 +42,21 @@ void Cholesky::solve(double* b) const {
     for (size_t k = 0; k < i; ++k) s -= li[k] * b[k];
     b[i] = s / li[i];
   }
+}
+
+void Cholesky::solveUpper(double* b) const {
+  const size_t n = n_;
   for (size_t i = n; i-- > 0;) {  // L^T x = y, by rows of L (contiguous) rather than columns
     const double* li = &l_[i * n];
     const double xi = b[i] / li[i];
     b[i] = xi;
     for (size_t k = 0; k < i; ++k) b[k] -= li[k] * xi;
   }
+}
+
+void Cholesky::solve(double* b) const {
+  solveLower(b);
+  solveUpper(b);
 }
 
 double Cholesky::conditionEstimate() const {

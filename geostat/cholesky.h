@@ -15,6 +15,9 @@ class Cholesky {
   bool factor(const std::vector<double>& a, size_t n, double jitter);
   // Solves (A + jitter I) x = b in place.
   void solve(double* b) const;
+  // The two halves of solve(): b <- L^-1 b, and b <- L^-T b.
+  void solveLower(double* b) const;
+  void solveUpper(double* b) const;
   // Estimate of the 1-norm condition number ||A|| ||A^-1|| of the factored matrix (a lower
   // bound that is almost always within a factor of 3 of the truth).
   double conditionEstimate() const;

@@ -14,7 +14,8 @@ Result<CrossValidation> leaveOneOut(const Kriger& kriger) {
   size_t withVariance = 0;
   for (size_t i = 0; i < n; ++i) {
     const Point3 p = kriger.sample(i);
-    VOXLINK_ASSIGN_OR_RETURN(const Prediction pred, kriger.predict(p, ws, static_cast<int64_t>(i)));
+    VOXLINK_ASSIGN_OR_RETURN(const Prediction pred, kriger.predict(p, ws, static_cast<int64_t>(i),
+                                                                   kriger.sampleExternalDrift(i)));
     if (!pred.hasData) continue;
     const double observed = kriger.sampleValue(i);
     const double err = pred.value - observed;

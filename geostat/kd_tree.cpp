@@ -83,6 +83,30 @@ void KdTree::search(int32_t nodeId, const Point3& q, size_t k, double& worst2,
   if (diff * diff <= worst2) search(farSide, q, k, worst2, heap);
 }
 
+bool KdTree::collect(int32_t nodeId, const Point3& q, double radius2, size_t maxCount,
+                     std::vector<uint32_t>& out) const {
+  const Node& node = nodes_[nodeId];
+  if (node.left < 0) {
+    for (uint32_t i = node.begin; i < node.end; ++i)
+      if (distance2(points_[order_[i]], q) <= radius2) {
+        if (out.size() >= maxCount) return false;
+        out.push_back(order_[i]);
+      }
+    return true;
+  }
+  const double diff = q[node.axis] - node.split;
+  const int32_t nearSide = diff < 0 ? node.left : node.right;
+  const int32_t farSide = diff < 0 ? node.right : node.left;
+  if (!collect(nearSide, q, radius2, maxCount, out)) return false;
+  return diff * diff > radius2 || collect(farSide, q, radius2, maxCount, out);
+}
+
+bool KdTree::within(const Point3& q, double radius, size_t maxCount,
+                    std::vector<uint32_t>& out) const {
+  if (nodes_.empty()) return true;
+  return collect(0, q, radius * radius, maxCount, out);
+}
+
 void KdTree::nearest(const Point3& q, size_t k, double maxDistance,
                      std::vector<Neighbour>& out) const {
   out.clear();

@@ -21,6 +21,9 @@ class KdTree {
   // The up to `k` points nearest to `q` with distance <= maxDistance, nearest first; ties at
   // equal distance are ordered by point index so results never depend on tree shape.
   void nearest(const Point3& q, size_t k, double maxDistance, std::vector<Neighbour>& out) const;
+  // Appends the indices of the points within `radius` of q (any order) to `out`; stops and
+  // returns false once more than maxCount were found, so a crowded ball costs little.
+  bool within(const Point3& q, double radius, size_t maxCount, std::vector<uint32_t>& out) const;
 
  private:
   struct Node {
@@ -32,6 +35,8 @@ class KdTree {
   int32_t build(uint32_t begin, uint32_t end, int depth);
   void search(int32_t node, const Point3& q, size_t k, double& worst2,
               std::vector<Neighbour>& heap) const;
+  bool collect(int32_t node, const Point3& q, double radius2, size_t maxCount,
+               std::vector<uint32_t>& out) const;
 
   std::vector<Point3> points_;  // own copy: the tree outlives moves of its creator
   std::vector<uint32_t> order_;

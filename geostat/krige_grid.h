@@ -24,11 +24,16 @@ struct GridSpec {
 
 struct KrigingSummary {
   uint64_t nodes = 0;
-  uint64_t nodesWithoutData = 0;  // no sample within --max-distance (written as the no-data value)
-  uint64_t systemsFactored = 0;   // distinct neighbour sets factored
-  uint64_t systemsReused = 0;     // nodes whose neighbour set equalled the previous node's
-  uint64_t regularizedNodes = 0;  // nodes whose system needed a diagonal jitter
-  double worstCondition = 0;      // largest 1-norm condition estimate of any system
+  uint64_t nodesWithoutData = 0;   // no sample within --max-distance (written as the no-data value)
+  uint64_t systemsFactored = 0;    // distinct neighbour sets factored
+  uint64_t systemsReused = 0;      // nodes whose neighbour set had been factored already
+  uint64_t regularizedNodes = 0;   // nodes whose system needed a diagonal jitter
+  uint64_t driftReducedNodes = 0;  // nodes kriged with dependent drift terms dropped (drift.h)
+  double worstCondition = 0;       // largest 1-norm condition estimate of any system
+  // Systems whose condition the nugget bounds below --max-condition are not estimated:
+  // how many, and the largest bound.
+  uint64_t systemsBounded = 0;
+  double worstConditionBound = 0;
   double largestJitter = 0;
   double meanNeighbours = 0;
   double seconds = 0;
@@ -44,6 +49,9 @@ struct GridKrigingOptions {
   unsigned threads = 0;         // 0: hardware concurrency
   double noData = NAN;          // value (and variance) where ordinary kriging has no sample
   uint32_t slicesPerBatch = 1;  // slices computed before each call of the sink
+  // With KrigingOptions::externalDrift: the drift's value at every node of the grid, x fastest
+  // (nodeCount() values, finite).
+  const double* externalDrift = nullptr;
 };
 
 Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,

@@ -45,7 +45,7 @@ bool parseNumber(const std::string& field, double& out) {
 }
 
 // Indices of the selected columns in `names`; z is -1 for 2-D data.
-Result<std::array<int, 4>> findColumns(const std::string& path,
+Result<std::array<int, 5>> findColumns(const std::string& path,
                                        const std::vector<std::string>& names,
                                        const ColumnSelection& columns) {
   if (columns.value.empty())
@@ -57,10 +57,10 @@ Result<std::array<int, 4>> findColumns(const std::string& path,
           return all;
         }(),
         ")");
-  std::array<int, 4> index{-1, -1, -1, -1};
-  const std::string wanted[4] = {columns.x, columns.y, columns.z, columns.value};
-  const char* role[4] = {"x", "y", "z", "value"};
-  for (int r = 0; r < 4; ++r) {
+  std::array<int, 5> index{-1, -1, -1, -1, -1};
+  const std::string wanted[5] = {columns.x, columns.y, columns.z, columns.value, columns.drift};
+  const char* role[5] = {"x", "y", "z", "value", "external drift"};
+  for (int r = 0; r < 5; ++r) {
     if (wanted[r].empty()) continue;
     for (size_t i = 0; i < names.size(); ++i)
       if (lower(names[i]) == lower(wanted[r])) index[r] = static_cast<int>(i);
@@ -76,7 +76,7 @@ Result<std::array<int, 4>> findColumns(const std::string& path,
 
 // Adds one row's fields; returns an error for bad coordinates, skips missing values.
 Status addRow(const std::string& path, size_t line, const std::vector<std::string>& fields,
-              const std::array<int, 4>& col, const std::vector<std::string>& names, bool geoEas,
+              const std::array<int, 5>& col, const std::vector<std::string>& names, bool geoEas,
               PointSet& out, size_t& skipped) {
   // Every row holds every column (an empty field is a missing value): a row with a field too
   // many or too few has its columns shifted, and was read as long as the used ones were there.
@@ -104,6 +104,22 @@ Status addRow(const std::string& path, size_t line, const std::vector<std::strin
       return makeError(ErrorCode::kInvalidArgument, path, ": line ", line, ": coordinate column '",
                        names[col[a]], "': ", fields[col[a]], " is outside [-1e150, 1e150]",
                        " (distances between samples would overflow)");
+  }
+  double drift = 0;
+  if (col[4] >= 0) {
+    const std::string& field = fields[col[4]];
+    // A sample without its drift value cannot enter the drift's system: skipped like one
+    // without a value.
+    if (isMissing(field) ||
+        (parseNumber(field, drift) && geoEas && (drift == kSgemsNoData || drift <= -1e21))) {
+      ++skipped;
+      return Status::ok();
+    }
+    if (!parseNumber(field, drift))
+      return makeError(ErrorCode::kInvalidArgument, path, ": line ", line,
+                       ": external drift column '", names[col[4]], "': '", field,
+                       "' is not a finite number");
+    out.drift.push_back(drift);
   }
   out.coords.push_back(p);
   out.values.push_back(v);
@@ -140,7 +156,10 @@ void finish(PointSet& set, const ColumnSelection& columns, size_t skipped,
   set.dimension = columns.z.empty() ? 2 : 3;
   if (skipped > 0)
     set.notes.push_back(
-        cat(path, ": ", skipped, " rows with a missing value (NA/NaN/no-data) skipped"));
+        cat(path, ": ", skipped,
+            columns.drift.empty()
+                ? " rows with a missing value (NA/NaN/no-data) skipped"
+                : " rows with a missing value or external drift (NA/NaN/no-data) skipped"));
 }
 
 }  // namespace

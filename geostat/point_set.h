@@ -16,6 +16,7 @@ struct PointSet {
   int dimension = 2;  // 2: z is 0 for every point
   std::vector<Point3> coords;
   std::vector<double> values;
+  std::vector<double> drift;       // the external drift column, when one was selected
   std::vector<std::string> notes;  // rows skipped and why, for the command's summary
 
   size_t size() const { return values.size(); }
@@ -26,6 +27,7 @@ struct ColumnSelection {
   std::string y = "Y";
   std::string z;      // empty: 2-D data
   std::string value;  // required
+  std::string drift;  // optional: an external drift column (rows missing it are skipped)
 };
 
 // Reads a CSV table with a header row. Names are matched case-insensitively and may be quoted.

@@ -1,0 +1,498 @@
+#include "geostat/local_kriging.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <optional>
+#include <unordered_map>
+
+#include "format/parallel_for.h"
+#include "geostat/drift.h"
+#include "geostat/spd_kernels.h"
+
+namespace voxlink::kriging {
+namespace {
+
+constexpr uint32_t kBrickEdge = 16;     // nodes along x and y of a brick before it is split
+constexpr uint32_t kSlabDepth = 8;      // slices kriged (and bricks deep) at a time in 3-D
+constexpr size_t kCandidateFactor = 4;  // a brick with more than 4 (k + 1) candidates is split
+constexpr size_t kCacheBytes = size_t{8} << 20;  // factorizations kept per thread
+
+struct Box {
+  std::array<uint32_t, 3> lo, hi;  // node index ranges [lo, hi)
+  uint64_t nodes() const { return uint64_t{hi[0] - lo[0]} * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
+};
+
+struct Factorization {
+  std::vector<uint32_t> key;  // sample indices, ascending
+  std::vector<double> l;      // column-major lower factor, leading dimension paddedSize(n)
+  std::vector<double> u, r;   // L^-1 F (n x p, column-major) and L^-1 (z - mean)
+  std::vector<double> ur;     // U^T r, one per drift term
+  DriftSystem drift;          // G = U^T U
+  double condition = 0, jitter = 0;
+  bool bounded = false;  // condition is the nugget's bound, not an estimate
+};
+
+// Factorizations of recently seen neighbour sets, found by the hash of the set.
+class FactorizationCache {
+ public:
+  explicit FactorizationCache(size_t capacity) : capacity_(std::max<size_t>(capacity, 16)) {}
+  Factorization* find(uint64_t hash, const std::vector<uint32_t>& key) {
+    const auto it = index_.find(hash);
+    if (it == index_.end()) return nullptr;
+    Factorization& f = entries_[it->second];
+    return f.key == key ? &f : nullptr;
+  }
+  // A slot for a new set (reusing an old slot's memory); forgets everything when full.
+  Factorization& insert(uint64_t hash) {
+    if (used_ == capacity_) {
+      index_.clear();
+      used_ = 0;
+    }
+    if (used_ == entries_.size()) entries_.emplace_back();
+    index_[hash] = static_cast<uint32_t>(used_);
+    return entries_[used_++];
+  }
+
+ private:
+  size_t capacity_, used_ = 0;
+  std::vector<Factorization> entries_;
+  std::unordered_map<uint64_t, uint32_t> index_;
+};
+
+struct ThreadState {
+  explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
+  std::vector<Neighbour> nearest;
+  std::vector<uint32_t> candidates;      // sample indices, ascending
+  std::vector<double> cx, cy, cz, pair;  // their coordinates and covariances (m x m)
+  std::vector<double> d2, rhs, work, nth, drift;
+  double cut = 0;  // squared distance between the last node's k-th and (k+1)-th (0: none)
+  std::vector<uint32_t> picked, lastPicked, key;
+  FactorizationCache cache;
+  const Factorization* last = nullptr;  // the previous node's, valid while lastPicked is
+  KrigingSummary summary;
+  double neighbourSum = 0;
+};
+
+uint64_t hashKey(const std::vector<uint32_t>& key) {
+  uint64_t h = 1469598103934665603ULL;
+  for (uint32_t v : key) h = (h ^ v) * 1099511628211ULL;
+  return h ^ (h >> 29);
+}
+
+class BrickSolver {
+ public:
+  BrickSolver(const Kriger& kriger, const GridSpec& grid, uint32_t z0, double* values,
+              double* variances, double noData, const double* externalDrift)
+      : kriger_(kriger),
+        grid_(grid),
+        z0_(z0),
+        values_(values),
+        variances_(variances),
+        noData_(noData),
+        externalDrift_(externalDrift),
+        terms_(kriger.driftBasis().terms()),
+        k_(kriger.isGlobal() ? kriger.sampleCount() : kriger.options().maxNeighbours),
+        sill_(kriger.variogram().sill()),
+        maxDistance_(kriger.options().maxDistance) {}
+
+  Status solve(const Box& box, ThreadState& ts) const {
+    // Centre and half-diagonal in model space (a box there only without anisotropy): the
+    // farthest corner from the centre bounds every node's distance to it.
+    const Point3 a = centred(box.lo[0], box.lo[1], box.lo[2]);
+    const Point3 b = centred(box.hi[0] - 1, box.hi[1] - 1, box.hi[2] - 1);
+    const Point3 c{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+    double halfDiagonal = 0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Point3 p =
+          centred(corner & 1 ? box.hi[0] - 1 : box.lo[0], corner & 2 ? box.hi[1] - 1 : box.lo[1],
+                  corner & 4 ? box.hi[2] - 1 : box.lo[2]);
+      halfDiagonal = std::max(
+          halfDiagonal, std::sqrt((p[0] - c[0]) * (p[0] - c[0]) + (p[1] - c[1]) * (p[1] - c[1]) +
+                                  (p[2] - c[2]) * (p[2] - c[2])));
+    }
+    const KdTree& tree = kriger_.tree();
+    ts.candidates.clear();
+    if (box.nodes() == 1) {  // the node's own neighbours, straight from the tree
+      tree.nearest(c, k_, maxDistance_, ts.nearest);
+      for (const Neighbour& n : ts.nearest) ts.candidates.push_back(n.index);
+    } else {
+      // The k+1 nearest of any node p lie within d_k+1(c) + |p - c| of p: within
+      // d_k+1(c) + 2 h of c. The margin covers rounding in the distances.
+      tree.nearest(c, k_ + 1, INFINITY, ts.nearest);
+      const double kth = ts.nearest.size() > k_ ? ts.nearest.back().distance : INFINITY;
+      // A brick far wider than a neighbourhood (samples denser than nodes) would split level
+      // by level, a tree query each: cut it at once into pieces of half-diagonal ~0.3 d_k+1.
+      if (halfDiagonal > 1.0 * kth) return cut(box, 0.3 * kth, ts);
+      const double reach = std::min(kth + 2 * halfDiagonal, maxDistance_ + halfDiagonal);
+      if (!tree.within(c, reach * (1 + 1e-9), kCandidateFactor * (k_ + 1), ts.candidates))
+        return split(box, ts);
+    }
+    std::sort(ts.candidates.begin(), ts.candidates.end());
+    loadCandidates(ts);
+    ts.lastPicked.clear();
+    ts.cut = 0;
+    for (uint32_t z = box.lo[2]; z < box.hi[2]; ++z)
+      for (uint32_t y = box.lo[1]; y < box.hi[1]; ++y)
+        for (uint32_t x = box.lo[0]; x < box.hi[0]; ++x)
+          VOXLINK_RETURN_IF_ERROR(solveNode(x, y, z, ts));
+    return Status::ok();
+  }
+
+ private:
+  Point3 centred(uint32_t i, uint32_t j, uint32_t k) const {
+    return kriger_.modelCoordinates(grid_.node(i, j, k));
+  }
+
+  Status cut(const Box& box, double halfDiagonal, ThreadState& ts) const {
+    std::array<uint32_t, 3> pieces{1, 1, 1};
+    const double edge = 2 * halfDiagonal / std::sqrt(3.0);
+    const Point3 origin = centred(box.lo[0], box.lo[1], box.lo[2]);
+    for (int a = 0; a < 3; ++a) {
+      const uint32_t nodes = box.hi[a] - box.lo[a];
+      if (nodes < 2) continue;
+      // One node step along axis a, in model space (anisotropy stretches it).
+      std::array<uint32_t, 3> next = box.lo;
+      ++next[a];
+      const Point3 p = centred(next[0], next[1], next[2]);
+      const double step = std::sqrt((p[0] - origin[0]) * (p[0] - origin[0]) +
+                                    (p[1] - origin[1]) * (p[1] - origin[1]) +
+                                    (p[2] - origin[2]) * (p[2] - origin[2]));
+      pieces[a] = static_cast<uint32_t>(
+          std::clamp(std::ceil(nodes * step / std::max(edge, 1e-300)), 1.0, double(nodes)));
+    }
+    if (pieces[0] * pieces[1] * pieces[2] == 1) return split(box, ts);  // always progresses
+    for (uint32_t pz = 0; pz < pieces[2]; ++pz)
+      for (uint32_t py = 0; py < pieces[1]; ++py)
+        for (uint32_t px = 0; px < pieces[0]; ++px) {
+          Box part = box;
+          const std::array<uint32_t, 3> p{px, py, pz};
+          for (int a = 0; a < 3; ++a) {
+            const uint64_t nodes = box.hi[a] - box.lo[a];
+            part.lo[a] = box.lo[a] + static_cast<uint32_t>(nodes * p[a] / pieces[a]);
+            part.hi[a] = box.lo[a] + static_cast<uint32_t>(nodes * (p[a] + 1) / pieces[a]);
+          }
+          VOXLINK_RETURN_IF_ERROR(solve(part, ts));
+        }
+    return Status::ok();
+  }
+
+  Status split(const Box& box, ThreadState& ts) const {
+    int axis = -1;
+    double widest = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double extent = (box.hi[a] - box.lo[a] - 1) * grid_.spacing[a];
+      if (box.hi[a] - box.lo[a] > 1 && (axis < 0 || extent > widest)) {
+        axis = a;
+        widest = extent;
+      }
+    }
+    Box first = box, second = box;
+    first.hi[axis] = second.lo[axis] = box.lo[axis] + (box.hi[axis] - box.lo[axis]) / 2;
+    VOXLINK_RETURN_IF_ERROR(solve(first, ts));
+    return solve(second, ts);
+  }
+
+  // Coordinates of the candidates and their covariances, once per brick.
+  void loadCandidates(ThreadState& ts) const {
+    const size_t m = ts.candidates.size();
+    const auto& coords = kriger_.centredSamples();
+    ts.cx.resize(m);
+    ts.cy.resize(m);
+    ts.cz.resize(m);
+    for (size_t i = 0; i < m; ++i) {
+      const Point3& p = coords[ts.candidates[i]];
+      ts.cx[i] = p[0];
+      ts.cy[i] = p[1];
+      ts.cz[i] = p[2];
+    }
+    // Filled on first use (NaN: not yet): in 3-D most nodes have their own neighbour set,
+    // and all pairs of a crowded brick cost more exp() calls than its nodes ever read.
+    ts.pair.assign(m * m, NAN);
+  }
+
+  double pairCovariance(ThreadState& ts, uint32_t i, uint32_t j) const {
+    const size_t m = ts.candidates.size();
+    double& c = ts.pair[i * m + j];
+    if (std::isnan(c)) {
+      const double dx = ts.cx[i] - ts.cx[j], dy = ts.cy[i] - ts.cy[j], dz = ts.cz[i] - ts.cz[j];
+      c = i == j ? sill_
+                 : kriger_.variogram().covariance(
+                       std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300));
+      ts.pair[j * m + i] = c;
+    }
+    return c;
+  }
+
+  // The node's k nearest candidates, ascending, in ts.picked; false when none is in reach.
+  // Order: distance, then sample index (candidates are in sample order), as KdTree::nearest.
+  bool pickNeighbours(const Point3& q, ThreadState& ts) const {
+    const size_t m = ts.candidates.size();
+    ts.d2.resize(m);
+    const double reach2 = std::isfinite(maxDistance_) ? maxDistance_ * maxDistance_ : INFINITY;
+    size_t inReach = 0;
+    for (size_t j = 0; j < m; ++j) {  // as KdTree computes them, so ties break alike
+      const double dx = ts.cx[j] - q[0], dy = ts.cy[j] - q[1], dz = ts.cz[j] - q[2];
+      ts.d2[j] = dx * dx + dy * dy + dz * dz;
+      inReach += ts.d2[j] <= reach2;
+    }
+    ts.picked.clear();
+    if (inReach <= k_) {
+      for (size_t j = 0; j < m; ++j)
+        if (ts.d2[j] <= reach2) ts.picked.push_back(static_cast<uint32_t>(j));
+      return !ts.picked.empty();
+    }
+    // Neighbouring nodes have nearly the same k-th distance: when exactly k candidates are
+    // closer than the previous node's cut, they are this node's k nearest (one pass).
+    if (ts.cut > 0 && ts.cut <= reach2 && pickBelowCut(ts)) return true;
+    ts.nth.assign(ts.d2.begin(), ts.d2.end());
+    std::nth_element(ts.nth.begin(), ts.nth.begin() + static_cast<long>(k_ - 1), ts.nth.end());
+    const double kth = ts.nth[k_ - 1];
+    size_t closer = 0;
+    for (size_t j = 0; j < m; ++j) closer += ts.d2[j] < kth;
+    size_t atKth = k_ - closer;  // samples exactly as far as the k-th: the lowest indices
+    double next = INFINITY;
+    for (size_t j = 0; j < m; ++j) {
+      if (ts.d2[j] < kth || (ts.d2[j] == kth && atKth > 0 && atKth--))
+        ts.picked.push_back(static_cast<uint32_t>(j));
+      else if (ts.d2[j] > kth)
+        next = std::min(next, ts.d2[j]);
+    }
+    ts.cut = 0.5 * (kth + next);  // no cut when the k-th and (k+1)-th tie: 0.5 (a + a) = a
+    if (!(ts.cut > kth)) ts.cut = 0;
+    return true;
+  }
+
+  // The candidates closer than ts.cut if they are exactly k; the cut then moves to halfway
+  // between this node's k-th and (k+1)-th distance.
+  bool pickBelowCut(ThreadState& ts) const {
+    const size_t m = ts.d2.size();
+    size_t below = 0;
+    double inside = 0, outside = INFINITY;
+    for (size_t j = 0; j < m; ++j) {
+      const double d = ts.d2[j];
+      const bool in = d < ts.cut;
+      below += in;
+      inside = in ? std::max(inside, d) : inside;
+      outside = in ? outside : std::min(outside, d);
+    }
+    if (below != k_) return false;
+    for (size_t j = 0; j < m; ++j)
+      if (ts.d2[j] < ts.cut) ts.picked.push_back(static_cast<uint32_t>(j));
+    ts.cut = 0.5 * (inside + outside);
+    return true;
+  }
+
+  // The covariances among the picked candidates (lower triangle, column-major) plus jitter on
+  // the diagonal, into f.l; returns the 1-norm of that matrix.
+  double gather(ThreadState& ts, double jitter, Factorization& f) const {
+    const size_t n = ts.picked.size(), ld = spd::paddedSize(n);
+    f.l.resize(ld * n);
+    ts.work.assign(n, 0.0);  // column sums of |A|
+    for (size_t j = 0; j < n; ++j) {
+      double* column = &f.l[j * ld];
+      column[j] = sill_ + jitter;
+      double sum = column[j];
+      for (size_t i = j + 1; i < n; ++i) {  // the upper part is never read
+        const double a = pairCovariance(ts, ts.picked[j], ts.picked[i]);
+        column[i] = a;
+        sum += std::fabs(a);
+        ts.work[i] += std::fabs(a);
+      }
+      ts.work[j] += sum;
+    }
+    return *std::max_element(ts.work.begin(), ts.work.end());
+  }
+
+  Status factor(ThreadState& ts, Factorization& f) const {
+    const size_t n = ts.picked.size(), ld = spd::paddedSize(n);
+    const double maxCondition = kriger_.options().maxCondition;
+    const double nugget = kriger_.variogram().params().nugget;
+    double jitter = 0;
+    for (;;) {
+      const double norm1 = gather(ts, jitter, f);
+      // With a nugget the matrix is nugget I plus a positive semidefinite one, so its smallest
+      // eigenvalue is >= nugget and cond_1 <= sqrt(n) ||A||_1 / nugget (doubled for rounding):
+      // below --max-condition that bound makes the estimate (10 triangular solves) needless.
+      const double bound = nugget > 0 ? 2 * std::sqrt(double(n)) * norm1 / nugget : INFINITY;
+      if (spd::factorLower(f.l.data(), n, ld)) {
+        f.bounded = jitter == 0 && bound <= maxCondition;
+        if (!f.bounded) ts.work.resize(3 * n);
+        f.condition =
+            f.bounded ? bound : norm1 * spd::inverseNormEstimate(f.l.data(), n, ld, ts.work.data());
+        if (f.condition <= maxCondition) break;
+      }
+      jitter = jitter == 0 ? kFirstJitter * sill_ : jitter * 10;
+      if (jitter > kLastJitter * sill_ * 1.0000001) return singularSystemError(n, maxCondition);
+    }
+    f.jitter = jitter;
+    const double mean = kriger_.dataMean();
+    const size_t p = terms_;
+    f.u.resize(n * p);
+    ts.drift.resize(p);
+    for (size_t i = 0; i < n; ++i) {
+      kriger_.sampleDriftTerms(ts.key[i], ts.drift.data());
+      for (size_t j = 0; j < p; ++j) f.u[j * n + i] = ts.drift[j];
+    }
+    f.r.resize(n);
+    for (size_t i = 0; i < n; ++i) f.r[i] = kriger_.values()[ts.key[i]] - mean;
+    if (p > 0)
+      spd::solveLower(f.l.data(), n, ld, f.u.data(), f.r.data());
+    else
+      spd::solveLower(f.l.data(), n, ld, f.r.data());
+    for (size_t j = 1; j < p; ++j) spd::solveLower(f.l.data(), n, ld, &f.u[j * n]);
+    f.drift.factor(f.u.data(), n, n, p);
+    f.ur.resize(p);
+    for (size_t j = 0; j < p; ++j) f.ur[j] = spd::dot(&f.u[j * n], f.r.data(), n);
+    f.key = ts.key;
+    return Status::ok();
+  }
+
+  Status solveNode(uint32_t x, uint32_t y, uint32_t z, ThreadState& ts) const {
+    const uint64_t at = (uint64_t{z - z0_} * grid_.dims[1] + y) * grid_.dims[0] + x;
+    const Point3 q = centred(x, y, z);
+    if (!pickNeighbours(q, ts)) {
+      values_[at] = variances_[at] = noData_;
+      ++ts.summary.nodesWithoutData;
+      return Status::ok();
+    }
+    const size_t n = ts.picked.size();
+    const Factorization* f = nullptr;
+    if (ts.last && ts.picked == ts.lastPicked) {
+      f = ts.last;
+    } else {
+      ts.key.resize(n);
+      for (size_t i = 0; i < n; ++i) ts.key[i] = ts.candidates[ts.picked[i]];
+      const uint64_t hash = hashKey(ts.key);
+      f = ts.cache.find(hash, ts.key);
+      if (!f) {
+        Factorization& fresh = ts.cache.insert(hash);
+        VOXLINK_RETURN_IF_ERROR(factor(ts, fresh));
+        f = &fresh;
+        ++ts.summary.systemsFactored;
+        if (fresh.bounded) ++ts.summary.systemsBounded;
+        --ts.summary.systemsReused;  // counted below; this node did not reuse
+      }
+      ts.last = f;
+      ts.lastPicked = ts.picked;
+    }
+    ++ts.summary.systemsReused;
+    ts.rhs.resize(n);
+    const Variogram& v = kriger_.variogram();
+    for (size_t i = 0; i < n; ++i) ts.rhs[i] = v.covariance(std::sqrt(ts.d2[ts.picked[i]]));
+    spd::solveLower(f->l.data(), n, spd::paddedSize(n), ts.rhs.data());
+    const double yy = spd::dot(ts.rhs.data(), ts.rhs.data(), n);
+    const double ry = spd::dot(f->r.data(), ts.rhs.data(), n);
+    double value = kriger_.dataMean() + ry, variance = sill_ - yy;
+    if (terms_ > 0) {  // the drift's Lagrange multipliers (drift.h)
+      const uint64_t node = (uint64_t{z} * grid_.dims[1] + y) * grid_.dims[0] + x;
+      ts.drift.resize(3 * terms_);
+      kriger_.driftBasis().at(q, externalDrift_ ? externalDrift_[node] : NAN, ts.drift.data());
+      f->drift.correct(f->u.data(), n, ts.rhs.data(), ts.drift.data(), f->ur.data(),
+                       ts.drift.data() + terms_, value, variance);
+      if (f->drift.dropped() > 0) ++ts.summary.driftReducedNodes;
+    }
+    if (!std::isfinite(value) || !std::isfinite(variance)) {
+      const Point3 p = grid_.node(x, y, z);
+      return makeError(ErrorCode::kNonFinite, "kriging: non-finite prediction at (", p[0], ", ",
+                       p[1], ", ", p[2], ") from ", n, " samples");
+    }
+    values_[at] = value;
+    variances_[at] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
+    ts.neighbourSum += static_cast<double>(n);
+    if (f->bounded)
+      ts.summary.worstConditionBound = std::max(ts.summary.worstConditionBound, f->condition);
+    else
+      ts.summary.worstCondition = std::max(ts.summary.worstCondition, f->condition);
+    if (f->jitter > 0) ++ts.summary.regularizedNodes;
+    ts.summary.largestJitter = std::max(ts.summary.largestJitter, f->jitter);
+    return Status::ok();
+  }
+
+  const Kriger& kriger_;
+  const GridSpec& grid_;
+  uint32_t z0_;
+  double* values_;
+  double* variances_;
+  double noData_;
+  const double* externalDrift_;  // per node of the whole grid, or null
+  size_t terms_;
+  size_t k_;
+  double sill_, maxDistance_;
+};
+
+}  // namespace
+
+Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid,
+                                      const SliceSink& sink, const GridKrigingOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const uint32_t depth =
+      grid.dims[2] == 1 ? 1 : std::min(grid.dims[2], std::max(kSlabDepth, options.slicesPerBatch));
+  const uint64_t slabNodes = grid.sliceNodes() * depth;
+  std::vector<double> values, variances;
+  try {
+    values.resize(slabNodes);
+    variances.resize(slabNodes);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, "kriging grid: a slab of ", slabNodes,
+                     " nodes does not fit in memory");
+  }
+  const unsigned threads = format::threadCount(options.threads);
+  const size_t n = kriger.isGlobal() ? kriger.sampleCount() : kriger.options().maxNeighbours;
+  const size_t cacheEntries =
+      kCacheBytes / (8 * (spd::paddedSize(n) * n + (3 + kriger.driftBasis().terms()) * n) + 64);
+  std::vector<ThreadState> states;
+  states.reserve(threads);
+  for (unsigned t = 0; t < threads; ++t) states.emplace_back(cacheEntries);
+  const uint32_t bricksX = (grid.dims[0] + kBrickEdge - 1) / kBrickEdge;
+  const uint32_t bricksY = (grid.dims[1] + kBrickEdge - 1) / kBrickEdge;
+  std::mutex failureLock;
+  std::optional<Error> failure;
+  for (uint32_t z0 = 0; z0 < grid.dims[2]; z0 += depth) {
+    const uint32_t count = std::min(depth, grid.dims[2] - z0);
+    const BrickSolver solver(kriger, grid, z0, values.data(), variances.data(), options.noData,
+                             options.externalDrift);
+    std::atomic<uint64_t> next{0};
+    std::atomic<bool> stop{false};
+    format::runOnThreads(threads, [&](unsigned t) {
+      ThreadState& ts = states[t];
+      for (uint64_t b; !stop && (b = next.fetch_add(1)) < uint64_t{bricksX} * bricksY;) {
+        const uint32_t bx = static_cast<uint32_t>(b % bricksX) * kBrickEdge;
+        const uint32_t by = static_cast<uint32_t>(b / bricksX) * kBrickEdge;
+        const Box box{{bx, by, z0},
+                      {std::min(bx + kBrickEdge, grid.dims[0]),
+                       std::min(by + kBrickEdge, grid.dims[1]), z0 + count}};
+        if (Status s = solver.solve(box, ts); !s) {
+          std::lock_guard lock(failureLock);
+          if (!failure) failure = s.error();
+          stop = true;
+        }
+      }
+    });
+    if (failure) return *failure;
+    VOXLINK_RETURN_IF_ERROR(sink(z0, count, values.data(), variances.data()));
+  }
+  KrigingSummary summary;
+  double neighbourSum = 0;
+  for (const ThreadState& ts : states) {
+    summary.nodesWithoutData += ts.summary.nodesWithoutData;
+    summary.systemsFactored += ts.summary.systemsFactored;
+    summary.systemsReused += ts.summary.systemsReused;
+    summary.regularizedNodes += ts.summary.regularizedNodes;
+    summary.driftReducedNodes += ts.summary.driftReducedNodes;
+    summary.systemsBounded += ts.summary.systemsBounded;
+    summary.worstCondition = std::max(summary.worstCondition, ts.summary.worstCondition);
+    summary.worstConditionBound =
+        std::max(summary.worstConditionBound, ts.summary.worstConditionBound);
+    summary.largestJitter = std::max(summary.largestJitter, ts.summary.largestJitter);
+    neighbourSum += ts.neighbourSum;
+  }
+  summary.nodes = grid.nodeCount();
+  const uint64_t predicted = summary.nodes - summary.nodesWithoutData;
+  summary.meanNeighbours = predicted ? neighbourSum / static_cast<double>(predicted) : 0.0;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace voxlink::kriging

@@ -1,0 +1,28 @@
+// Cholesky kernels for the small symmetric positive definite systems of local kriging (tens of
+// unknowns), column-major so every inner loop is an axpy or a split-accumulator dot product that
+// the compiler vectorizes; on x86-64 they are also built for x86-64-v3 (AVX2 + FMA) and picked
+// at run time. cholesky.cpp's row-major dot products are latency bound at these sizes.
+#pragma once
+
+#include <cstddef>
+
+namespace voxlink::kriging::spd {
+
+// Leading dimension for an n x n column-major matrix: n rounded up to whole 32-byte rows.
+constexpr size_t paddedSize(size_t n) { return (n + 3) & ~size_t{3}; }
+
+// Factors the lower triangle of a (column-major, leading dimension ld) in place into L with
+// A = L L^T, storing 1 / l_jj on the diagonal (the solves multiply instead of divide, which
+// shortens their dependency chain). Returns false when a pivot is not positive and finite.
+bool factorLower(double* a, size_t n, size_t ld);
+// b <- L^-1 b; the second form solves for two right-hand sides in one pass.
+void solveLower(const double* l, size_t n, size_t ld, double* b);
+void solveLower(const double* l, size_t n, size_t ld, double* b, double* c);
+// b <- L^-T b.
+void solveLowerTransposed(const double* l, size_t n, size_t ld, double* b);
+double dot(const double* a, const double* b, size_t n);
+// Hager/Higham estimate of ||A^-1||_1 from the factor (a lower bound almost always within a
+// factor of 3); `work` holds 3 n doubles. Times ||A||_1 it is the 1-norm condition estimate.
+double inverseNormEstimate(const double* l, size_t n, size_t ld, double* work);
+
+}  // namespace voxlink::kriging::spd
