@@ -83,12 +83,11 @@ TEST_P(SameBytes, AsOneProcess) {
   std::ofstream(dir.file("tf.json"))
       << R"({"opacity": [[100, 0], [140, 0.2], [170, 0.2], [171, 0], [200, 0], [210, 0.7]]})";
   std::vector<std::string> args = {
-      "convert", raw,
-      "--dims",  std::to_string(d[0]) + "," + std::to_string(d[1]) + "," + std::to_string(d[2]),
-      "--type",  c.type,
-      "-q",      "--slab",
-      "8",       "--threads",
-      "1"};
+      "convert",   raw,
+      "--dims",    std::to_string(d[0]) + "," + std::to_string(d[1]) + "," + std::to_string(d[2]),
+      "--type",    c.type,
+      "--slab",    "8",
+      "--threads", "1"};
   for (const std::string& o : c.options) args.push_back(o == "TF" ? dir.file("tf.json") : o);
   std::vector<std::string> one = args, many = args;
   one.insert(one.end(), {"-o", dir.file("one.vxl")});

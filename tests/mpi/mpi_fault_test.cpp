@@ -94,9 +94,11 @@ TEST(MpiFaults, DiskFullOnOneRank) {
 // cannot run one, by its helper process (format/temp_janitor.h).
 void expectKilledRankLeavesNothing(int victim, int delayMs) {
   TempDir in, out;
-  writeBytes(in.file("n.raw"), noise(256 * 256 * 256));
+  // Large enough that no rank is done `delayMs` after the temporary appears on a quiet machine
+  // (one process converts it in about 1.6 s on one thread here).
+  writeBytes(in.file("n.raw"), noise(512 * 512 * 512));
   const std::string args = "convert " + in.file("n.raw") +
-                           " --dims 256,256,256 --type u8 --keep-all --threads 1 -q -o " +
+                           " --dims 512,512,512 --type u8 --keep-all --threads 1 -q -o " +
                            out.file("n.vxl");
   const std::string pidFile = in.file("victim.pid");
   const std::string victimApp =
@@ -131,7 +133,7 @@ void expectKilledRankLeavesNothing(int victim, int delayMs) {
   EXPECT_TRUE(left.empty()) << left.front();
 }
 
-TEST(MpiFaults, KilledRankInsideTheEncoding) { expectKilledRankLeavesNothing(1, 300); }
+TEST(MpiFaults, KilledRankInsideTheEncoding) { expectKilledRankLeavesNothing(1, 100); }
 
 // Rank 0 waits inside MPI for rank 1 right after creating the temporary: Open MPI ends it with
 // _exit(), no handler runs.
