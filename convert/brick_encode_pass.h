@@ -48,6 +48,19 @@ struct EncodeStats {
   double gradientMaxErrorDeg = 0;
   uint64_t zeroGradients = 0;
   bool countMismatch = false;  // the source changed between the passes
+
+  // Folds in the stats of other bricks (another thread's or another rank's).
+  void add(const EncodeStats& s) {
+    valueMin = std::min(valueMin, s.valueMin);
+    valueMax = std::max(valueMax, s.valueMax);
+    maxAbsError = std::max(maxAbsError, s.maxAbsError);
+    maxRelError = std::max(maxRelError, s.maxRelError);
+    gradientSamples += s.gradientSamples;
+    gradientErrorNanoDeg += s.gradientErrorNanoDeg;
+    gradientMaxErrorDeg = std::max(gradientMaxErrorDeg, s.gradientMaxErrorDeg);
+    zeroGradients += s.zeroGradients;
+    countMismatch |= s.countMismatch;
+  }
 };
 
 // Keep flags of every cell of a row of bricks (n slices x n rows x the whole width), x fastest,

@@ -189,16 +189,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     report(0.25 + 0.75 * done(bz1), "writing");
   }
   if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
-  for (const EncodeStats& s : stats) {
-    total.valueMin = std::min(total.valueMin, s.valueMin);
-    total.valueMax = std::max(total.valueMax, s.valueMax);
-    total.maxAbsError = std::max(total.maxAbsError, s.maxAbsError);
-    total.maxRelError = std::max(total.maxRelError, s.maxRelError);
-    total.gradientSamples += s.gradientSamples;
-    total.gradientErrorNanoDeg += s.gradientErrorNanoDeg;
-    total.gradientMaxErrorDeg = std::max(total.gradientMaxErrorDeg, s.gradientMaxErrorDeg);
-    total.zeroGradients += s.zeroGradients;
-  }
+  for (const EncodeStats& s : stats) total.add(s);
   return Status::ok();
 }
 

@@ -78,17 +78,7 @@ EncodeStats reduceStats(RankGroup& ranks, const EncodeStats& mine) {
   std::vector<EncodeStats> all(static_cast<size_t>(ranks.size()));
   ranks.allGather(&mine, sizeof mine, all.data());
   EncodeStats total;
-  for (const EncodeStats& s : all) {
-    total.valueMin = std::min(total.valueMin, s.valueMin);
-    total.valueMax = std::max(total.valueMax, s.valueMax);
-    total.maxAbsError = std::max(total.maxAbsError, s.maxAbsError);
-    total.maxRelError = std::max(total.maxRelError, s.maxRelError);
-    total.gradientSamples += s.gradientSamples;
-    total.gradientErrorNanoDeg += s.gradientErrorNanoDeg;
-    total.gradientMaxErrorDeg = std::max(total.gradientMaxErrorDeg, s.gradientMaxErrorDeg);
-    total.zeroGradients += s.zeroGradients;
-    total.countMismatch |= s.countMismatch;
-  }
+  for (const EncodeStats& s : all) total.add(s);
   return total;
 }
 

@@ -26,17 +26,6 @@ uint64_t fileBytes(const std::string& path) {
   return ec ? 0 : uint64_t(size);
 }
 
-// Bytes of one PLY scalar type; 0 for an unknown name (left to assimp).
-uint64_t plyTypeBytes(const std::string& type) {
-  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
-      type == "float32")
-    return 4;
-  if (type == "double" || type == "float64") return 8;
-  return 0;
-}
-
 // The OFF keyword with assimp's optional prefixes (ST, C, N, 4, n), or npos.
 size_t offKeywordLength(std::string_view token) {
   size_t at = 0;
@@ -215,6 +204,16 @@ uint64_t declaredFaceCount(const std::string& path) {
   if (!nextDataLine(in, line, number)) return 0;
   std::istringstream counts(line);
   return counts >> vertices >> faces ? faces : 0;
+}
+
+uint64_t plyTypeBytes(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
+      type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
 }
 
 }  // namespace voxlink::geometry

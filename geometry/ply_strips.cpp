@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "format/limits.h"
+#include "geometry/mesh_file_checks.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -34,16 +35,6 @@ struct PlyHeader {
   std::vector<PlyElement> elements;
   size_t dataStart = 0;
 };
-
-size_t typeBytes(const std::string& type) {
-  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
-      type == "float32")
-    return 4;
-  if (type == "double" || type == "float64") return 8;
-  return 0;
-}
 
 Result<PlyHeader> parseHeader(const std::string& path, const std::string& text) {
   const size_t end = text.find("\nend_header");
@@ -77,12 +68,12 @@ Result<PlyHeader> parseHeader(const std::string& path, const std::string& text) 
       if (p.type == "list") {
         p.list = true;
         words >> p.countType >> p.type;
-        if (typeBytes(p.countType) == 0)
+        if (plyTypeBytes(p.countType) == 0)
           return makeError(ErrorCode::kCorrupt, path, ": element ", header.elements.back().name,
                            ": list length type '", p.countType, "' is not a PLY type");
       }
       words >> p.name;
-      if (typeBytes(p.type) == 0)
+      if (plyTypeBytes(p.type) == 0)
         return makeError(ErrorCode::kCorrupt, path, ": element ", header.elements.back().name,
                          ": property ", p.name, ": type '", p.type, "' is not a PLY type");
       header.elements.back().properties.push_back(p);
@@ -100,7 +91,7 @@ class ValueReader {
   // False when the data ends first.
   bool next(const std::string& type, double& out) {
     if (encoding_ == PlyEncoding::kAscii) return nextText(out);
-    const size_t bytes = typeBytes(type);
+    const size_t bytes = plyTypeBytes(type);
     if (data_.size() - at_ < bytes) return false;
     uint8_t raw[8];
     std::memcpy(raw, data_.data() + at_, bytes);
