@@ -14,6 +14,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "convert/encode_output.h"
+
 #if defined(__SSE4_1__)
 #include <immintrin.h>
 #endif
@@ -27,41 +29,6 @@
 #include "format/source_value.h"
 
 namespace voxlink::convert {
-
-// Where pass 2 writes the bricks of one slab: occupied bricks [k0, k0 + ...) and voxels
-// [v0, v0 + ...) of the final sections.
-struct SlabOutput {
-  uint64_t k0 = 0, v0 = 0;
-  uint16_t* rows = nullptr;
-  uint32_t* masks = nullptr;
-  uint8_t* values = nullptr;
-  uint16_t* gradients = nullptr;
-};
-
-// Pass 2 statistics of one worker; sums are integers so totals do not depend on job order.
-struct EncodeStats {
-  double valueMin = std::numeric_limits<double>::infinity();  // decoded, source units
-  double valueMax = -std::numeric_limits<double>::infinity();
-  double maxAbsError = 0, maxRelError = 0;
-  uint64_t gradientSamples = 0;
-  uint64_t gradientErrorNanoDeg = 0;
-  double gradientMaxErrorDeg = 0;
-  uint64_t zeroGradients = 0;
-  bool countMismatch = false;  // the source changed between the passes
-
-  // Folds in the stats of other bricks (another thread's or another rank's).
-  void add(const EncodeStats& s) {
-    valueMin = std::min(valueMin, s.valueMin);
-    valueMax = std::max(valueMax, s.valueMax);
-    maxAbsError = std::max(maxAbsError, s.maxAbsError);
-    maxRelError = std::max(maxRelError, s.maxRelError);
-    gradientSamples += s.gradientSamples;
-    gradientErrorNanoDeg += s.gradientErrorNanoDeg;
-    gradientMaxErrorDeg = std::max(gradientMaxErrorDeg, s.gradientMaxErrorDeg);
-    zeroGradients += s.zeroGradients;
-    countMismatch |= s.countMismatch;
-  }
-};
 
 // Keep flags of every cell of a row of bricks (n slices x n rows x the whole width), x fastest,
 // into flags[(z - z0) * n * nx + (y - y0) * nx + x].

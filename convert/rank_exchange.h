@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "convert/brick_count_pass.h"
-#include "convert/brick_encode_pass.h"
+#include "convert/encode_output.h"
 #include "convert/rank_group.h"
 #include "format/file_writer.h"
 
