@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "convert/classification.h"
 #include "base/rank_group.h"
+#include "convert/classification.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
 #include "sources/volume_source.h"

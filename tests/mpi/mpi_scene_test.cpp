@@ -29,6 +29,9 @@ struct SceneCase {
   std::vector<std::string> options;
 };
 
+// Test names and failure messages show the case's name, not its bytes.
+void PrintTo(const SceneCase& c, std::ostream* os) { *os << c.name; }
+
 std::string expand(std::string json) {
   for (size_t at; (at = json.find('@')) != std::string::npos;) {
     const size_t end = json.find('"', at);
