@@ -14,12 +14,12 @@ trap 'rm -f "$work/torus.ply" "$work/torus.scene.json" "$work"/torus-*.vxl' EXIT
 echo '{"objects": [{"type": "mesh", "file": "torus.ply"}]}' > "$work/torus.scene.json"
 args=(scene build "$work/torus.scene.json" --resolution "$resolution")
 echo "load average $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores"
-/usr/bin/time -f "plain: %e s wall, peak RSS %M KiB" "$voxlink" "${args[@]}" \
+/usr/bin/time -f "plain: %e s wall, %U s user + %S s sys CPU, peak RSS %M KiB" "$voxlink" "${args[@]}" \
   -o "$work/torus-plain.vxl"
 for ranks in 1 2 4; do
   start=$(date +%s.%N)
   "${mpirun[@]}" -n "$ranks" sh -c \
-    'exec /usr/bin/time -f "  rank $OMPI_COMM_WORLD_RANK: %e s wall, peak RSS %M KiB" "$@"' sh \
+    'exec /usr/bin/time -f "  rank $OMPI_COMM_WORLD_RANK: %e s wall, %U s user + %S s sys CPU, peak RSS %M KiB" "$@"' sh \
     "$voxlink" "${args[@]}" -o "$work/torus-$ranks.vxl"
   end=$(date +%s.%N)
   echo "$ranks ranks: $(echo "$end - $start" | bc) s wall under mpirun (start-up included)"
