@@ -38,13 +38,13 @@ RankGroup& singleProcess() {
   return group;
 }
 
-std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group,
-                                                    std::span<const uint8_t> mine) {
+std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group, std::span<const uint8_t> mine,
+                                                    uint64_t roundBytes) {
   if (group.size() == 1) return group.gatherToRoot(mine);
   const uint64_t size = mine.size();
   std::vector<uint64_t> sizes(static_cast<size_t>(group.size()));
   group.allGather(&size, sizeof size, sizes.data());
-  const uint64_t chunk = std::max<uint64_t>(1 << 20, (uint64_t(1) << 30) / sizes.size());
+  const uint64_t chunk = std::max<uint64_t>(1, roundBytes / sizes.size());
   uint64_t rounds = 0;
   for (uint64_t s : sizes) rounds = std::max(rounds, (s + chunk - 1) / chunk);
   std::vector<std::vector<uint8_t>> all(group.rank() == 0 ? sizes.size() : 0);

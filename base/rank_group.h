@@ -39,9 +39,9 @@ class RankGroup {
 RankGroup& singleProcess();
 
 // Collective: as RankGroup::gatherToRoot for parts of any size (MPI counts bytes in int): sent
-// in rounds of at most about 1 GiB over all ranks.
-std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group,
-                                                    std::span<const uint8_t> mine);
+// in rounds of at most `roundBytes` over all ranks (each rank sends roundBytes / size a round).
+std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group, std::span<const uint8_t> mine,
+                                                    uint64_t roundBytes = uint64_t(1) << 30);
 
 // Collective: ok on every rank when `mine` is ok on every rank; otherwise, on every rank, the
 // error of the lowest failing rank, prefixed "rank R: " when there are several ranks.
