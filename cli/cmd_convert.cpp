@@ -85,7 +85,7 @@ struct Prepared {
   convert::ConvertOptions options;
 };
 Result<Prepared> prepareFile(const ConvertArgs& a, const std::string& input,
-                             const std::string& output, convert::RankGroup* ranks, ProgressBar* bar,
+                             const std::string& output, base::RankGroup* ranks, ProgressBar* bar,
                              bool announce) {
   VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, {input}));
   VOXLINK_ASSIGN_OR_RETURN(convert::OpenOptions open, toOpenOptions(a.source));
@@ -143,11 +143,11 @@ int runConvert(const ConvertArgs& a) {
                     });
   // Errors before the conversion are agreed too: a rank that cannot open the input must not
   // leave the others waiting for it.
-  convert::RankGroup& ranks = processRanks();
+  base::RankGroup& ranks = processRanks();
   const bool root = ranks.rank() == 0;
   ProgressBar bar(root && a.out.showProgress());
   auto prepared = prepareFile(a, a.input, a.output, &ranks, &bar, root);
-  if (Status all = convert::agree(ranks, prepared.status()); !all) return reportOnRankZero(all);
+  if (Status all = base::agree(ranks, prepared.status()); !all) return reportOnRankZero(all);
   // convertVolume agrees on its errors itself.
   auto summary = convert::convertVolume(*prepared->source, prepared->options, a.output);
   bar.finish();

@@ -1,11 +1,12 @@
 // voxlink scene build SCENE.json -o OUT.vxl: meshes, spheres and a volume voxelized into one
-// VoxLink buffer (docs/scene.md).
+// VoxLink buffer (docs/scene.md); under mpirun split across ranks (docs/scale.md).
 #include <cstdio>
 #include <memory>
 #include <optional>
 
 #include "cli/command.h"
 #include "cli/output_options.h"
+#include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "format/file_writer.h"
 #include "format/output_file.h"
@@ -49,12 +50,19 @@ CommandRunner addSceneCommand(CLI::App& app) {
   o->out.add(build, true);
   return [o, build] {
     if (!build->parsed()) return 2;
+    // On several MPI ranks every rank reads the scene file and checks the target itself; the
+    // errors are agreed, so no rank is left waiting for one that stopped.
+    base::RankGroup& ranks = processRanks();
+    const bool root = ranks.rank() == 0;
     auto description = scene::readSceneDescription(o->input);
-    if (!description) return reportError(description.error());
-    if (Status s =
-            format::checkOutputTarget(o->output, o->input, scene::sceneInputFiles(*description));
-        !s)
-      return reportError(s);
+    Status ready = description.status();
+    if (ready)
+      ready = format::checkOutputTarget(o->output, o->input, scene::sceneInputFiles(*description));
+    if (ready && ranks.size() > 1 && o->voxelizer == "gl")
+      ready = makeError(ErrorCode::kUnsupported,
+                        "--voxelizer gl runs in one process; use --voxelizer exact on several MPI "
+                        "ranks");
+    if (Status all = base::agree(ranks, ready); !all) return reportOnRankZero(all);
     if (o->resolution) description->grid.resolution = o->resolution;
     if (o->brick) description->grid.brickSize = o->brick;
     scene::SurfaceVoxelizer voxelizer;  // empty: the exact CPU path
@@ -81,14 +89,17 @@ CommandRunner addSceneCommand(CLI::App& app) {
       return reportError(makeError(ErrorCode::kUnsupported,
                                    "--voxelizer gl: this voxlink was built without the viewer"));
 #endif
-    ProgressBar bar(o->out.showProgress());
+    ProgressBar bar(root && o->out.showProgress());
     auto built = scene::buildScene(
-        *description, [&](const char* stage, double f) { bar.update(f, stage); }, voxelizer);
-    if (!built) return reportError(built.error());
+        *description, [&](const char* stage, double f) { bar.update(f, stage); }, voxelizer,
+        &ranks);
+    if (!built) return reportOnRankZero(built.status());
     bar.update(1.0, "write");
-    Status written = format::writeBrickedVolume(o->output, built->volume);
+    // Rank 0 holds the merged voxels and writes the file (a temporary renamed into place).
+    Status written = root ? format::writeBrickedVolume(o->output, built->volume) : Status::ok();
     bar.finish();
-    if (!written) return reportError(written.error());
+    if (Status all = base::agree(ranks, written); !all) return reportOnRankZero(all);
+    if (!root) return 0;
     const scene::SceneBuildReport& r = built->report;
     o->out.print(
         "%s: %ux%ux%u [%u], %llu voxels (%llu surface from %llu triangles, %llu sphere from %llu "

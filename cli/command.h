@@ -22,7 +22,7 @@ int reportError(const Error& error);
 int reportError(const Status& status);
 // The exit status reportError gives, without printing.
 int exitStatusFor(const Error& error);
-// With several MPI ranks that agreed on `status` (convert::agree): only rank 0 prints it; every
+// With several MPI ranks that agreed on `status` (base::agree): only rank 0 prints it; every
 // rank returns the same exit status.
 int reportOnRankZero(const Status& status);
 

@@ -47,12 +47,12 @@ Status prepareOutDir(const std::string& outDir) {
 
 int runBatch(const std::string& listPath, const std::string& outDir, bool resume,
              const ConvertOneFile& convertOne) {
-  convert::RankGroup& ranks = processRanks();
+  base::RankGroup& ranks = processRanks();
   const auto start = Clock::now();
   auto items = convert::readBatchList(listPath, outDir);
   Status ready = items.status();
   if (ready && ranks.rank() == 0) ready = prepareOutDir(outDir);
-  if (Status all = convert::agree(ranks, ready); !all) return reportOnRankZero(all);
+  if (Status all = base::agree(ranks, ready); !all) return reportOnRankZero(all);
 
   Tally tally;
   ranks.startQueue(items->size());

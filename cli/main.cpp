@@ -117,12 +117,13 @@ int main(int argc, char** argv) {
   voxlink::format::removeTempsOnSignals();
   for (auto& [sub, run] : commands) {
     if (!sub->parsed()) continue;
-    // Only convert divides its work among MPI ranks; N copies of another command would each do
-    // all of it.
-    if (processRanks().size() > 1 && sub->get_name() != "convert")
+    // Only convert and scene build divide their work among MPI ranks; N copies of another
+    // command would each do all of it.
+    if (processRanks().size() > 1 && sub->get_name() != "convert" && sub->get_name() != "scene")
       return reportOnRankZero(voxlink::makeError(
           voxlink::ErrorCode::kInvalidArgument, "voxlink ", sub->get_name(),
-          " runs in one process; of the commands only convert splits its work across MPI ranks"));
+          " runs in one process; of the commands only convert and scene build split their work "
+          "across MPI ranks"));
     return finishStandardOutput(voxlink::cli::runCommand(run));
   }
   return 2;

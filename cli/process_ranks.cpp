@@ -9,7 +9,7 @@
 
 namespace voxlink::cli {
 namespace {
-std::unique_ptr<convert::RankGroup> mpiRanks;
+std::unique_ptr<base::RankGroup> mpiRanks;
 }
 
 bool startProcessRanks([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv) {
@@ -26,6 +26,6 @@ bool startProcessRanks([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv
 
 void endProcessRanks() { mpiRanks.reset(); }
 
-convert::RankGroup& processRanks() { return mpiRanks ? *mpiRanks : convert::singleProcess(); }
+base::RankGroup& processRanks() { return mpiRanks ? *mpiRanks : base::singleProcess(); }
 
 }  // namespace voxlink::cli

@@ -2,7 +2,7 @@
 // has MPI (VOXLINK_MPI), else this process alone.
 #pragma once
 
-#include "convert/rank_group.h"
+#include "base/rank_group.h"
 
 namespace voxlink::cli {
 
@@ -10,6 +10,6 @@ namespace voxlink::cli {
 // The group lives until endProcessRanks() (MPI_Finalize).
 bool startProcessRanks(int* argc, char*** argv);
 void endProcessRanks();
-convert::RankGroup& processRanks();
+base::RankGroup& processRanks();
 
 }  // namespace voxlink::cli

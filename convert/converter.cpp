@@ -29,7 +29,7 @@ double secondsSince(Clock::time_point t) {
 struct Passes {
   VolumeSource& source;
   const ConvertOptions& options;
-  RankGroup& ranks;
+  base::RankGroup& ranks;
   GridShape shape{};
   uint32_t slabLayers = 1;  // brick layers per slab
   LayerShare share;         // this rank's brick layers
@@ -37,7 +37,7 @@ struct Passes {
   ConvertSummary summary;
 
   Passes(VolumeSource& s, const ConvertOptions& o)
-      : source(s), options(o), ranks(o.ranks ? *o.ranks : singleProcess()), pool(o.threads) {}
+      : source(s), options(o), ranks(o.ranks ? *o.ranks : base::singleProcess()), pool(o.threads) {}
 
   uint64_t rowsPerLayer() const { return shape.grid[1]; }
   uint64_t brickBegin() const { return uint64_t{share.begin} * shape.grid[1] * shape.grid[0]; }
@@ -200,11 +200,11 @@ template <class T, class Keep>
 Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& outputPath) {
   const VolumeInfo& info = passes.source.info();
   const ConvertOptions& options = passes.options;
-  RankGroup& ranks = passes.ranks;
+  base::RankGroup& ranks = passes.ranks;
   const bool root = ranks.rank() == 0;
   const auto start = Clock::now();
   Result<BrickCensus> counted = passes.template count<T>(keep);
-  VOXLINK_RETURN_IF_ERROR(agree(ranks, counted.status()));
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, counted.status()));
   BrickCensus census = std::move(counted).value();
   exchangeCounts(ranks, census);
   if (census.totalVoxels > format::kMaxVoxels)
@@ -249,7 +249,7 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
   EncodeStats local;
   if (wrote) wrote = passes.template encode<T>(keep, census, mapping, writer, local);
   if (wrote && !root) wrote = writer.close();
-  VOXLINK_RETURN_IF_ERROR(agree(ranks, wrote));
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, wrote));
   const uint64_t totalBricks =
       uint64_t{passes.shape.grid[0]} * passes.shape.grid[1] * passes.shape.grid[2];
   const std::vector<uint32_t> occupancy = gatherOccupancy(ranks, census, (totalBricks + 31) / 32);
@@ -280,7 +280,7 @@ Result<ConvertSummary> run(Passes& passes, const Keep& keep, const std::string& 
     h.valueMaxRelError = stats.maxRelError;
     if (committed) committed = writer.commit(metaJson(info, options, mapping, s), otherParts);
   }
-  VOXLINK_RETURN_IF_ERROR(agree(ranks, committed));
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, committed));
   s.writeSeconds = secondsSince(writeStart);
   s.seconds = secondsSince(start);
   std::error_code ec;  // other ranks may not see the file yet (another node's view of the disk)

@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
+#include "base/rank_group.h"
 #include "convert/classification.h"
-#include "convert/rank_group.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
 #include "sources/volume_source.h"
@@ -37,7 +37,7 @@ struct ConvertOptions {
   // The processes converting this volume together (docs/scale.md): each classifies and encodes
   // a share of the brick layers, reading only those slices and the ghost slices around them,
   // and all write one file, byte for byte the file one process writes. Null: this one alone.
-  RankGroup* ranks = nullptr;
+  base::RankGroup* ranks = nullptr;
 };
 
 struct ConvertSummary {

@@ -13,7 +13,7 @@ LayerShare layerShare(uint32_t layers, int rank, int size) {
   return LayerShare{at(rank), at(rank + 1)};
 }
 
-void exchangeCounts(RankGroup& ranks, BrickCensus& census) {
+void exchangeCounts(base::RankGroup& ranks, BrickCensus& census) {
   struct Counts {
     uint64_t voxels, occupied;
     double keptMin, keptMax, keptMinMagnitude;
@@ -55,7 +55,7 @@ void numberBricks(BrickCensus& census, const GridShape& shape, uint64_t brickBeg
   census.voxelBase.push_back(static_cast<uint32_t>(voxel));
 }
 
-std::vector<uint32_t> gatherOccupancy(RankGroup& ranks, BrickCensus& census, uint64_t words) {
+std::vector<uint32_t> gatherOccupancy(base::RankGroup& ranks, BrickCensus& census, uint64_t words) {
   if (ranks.size() == 1) return std::move(census.occupancy);
   std::vector<uint8_t> mine(8 + census.occupancy.size() * 4);
   std::memcpy(mine.data(), &census.occupancyWord0, 8);
@@ -74,7 +74,7 @@ std::vector<uint32_t> gatherOccupancy(RankGroup& ranks, BrickCensus& census, uin
   return all;
 }
 
-EncodeStats reduceStats(RankGroup& ranks, const EncodeStats& mine) {
+EncodeStats reduceStats(base::RankGroup& ranks, const EncodeStats& mine) {
   std::vector<EncodeStats> all(static_cast<size_t>(ranks.size()));
   ranks.allGather(&mine, sizeof mine, all.data());
   EncodeStats total;
@@ -82,7 +82,7 @@ EncodeStats reduceStats(RankGroup& ranks, const EncodeStats& mine) {
   return total;
 }
 
-std::vector<format::FileWriter::SectionPart> gatherSectionParts(RankGroup& ranks,
+std::vector<format::FileWriter::SectionPart> gatherSectionParts(base::RankGroup& ranks,
                                                                 const format::FileWriter& writer) {
   using Part = format::FileWriter::SectionPart;
   if (ranks.size() == 1) return {};
@@ -100,7 +100,7 @@ std::vector<format::FileWriter::SectionPart> gatherSectionParts(RankGroup& ranks
   return others;
 }
 
-Result<format::FileWriter> openSharedWriter(RankGroup& ranks, const std::string& path,
+Result<format::FileWriter> openSharedWriter(base::RankGroup& ranks, const std::string& path,
                                             const format::FileHeader& header) {
   if (ranks.size() == 1) return format::FileWriter::create(path, header);
   std::optional<format::FileWriter> writer;
@@ -115,7 +115,7 @@ Result<format::FileWriter> openSharedWriter(RankGroup& ranks, const std::string&
       created = w.status();
     }
   }
-  VOXLINK_RETURN_IF_ERROR(agree(ranks, created));
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, created));
   ranks.broadcast(tempPath, 0);
   Status attached;
   if (ranks.rank() != 0) {
@@ -125,7 +125,7 @@ Result<format::FileWriter> openSharedWriter(RankGroup& ranks, const std::string&
     else
       attached = w.status();
   }
-  VOXLINK_RETURN_IF_ERROR(agree(ranks, attached));  // rank 0's writer removes the temporary
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, attached));  // rank 0's writer removes the temporary
   return std::move(*writer);
 }
 

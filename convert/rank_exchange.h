@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/rank_group.h"
 #include "convert/brick_count_pass.h"
 #include "convert/encode_output.h"
-#include "convert/rank_group.h"
 #include "format/file_writer.h"
 
 namespace voxlink::convert {
@@ -36,25 +36,25 @@ struct LayerShare {
 LayerShare layerShare(uint32_t layers, int rank, int size);
 
 // Collective: sets totals, this rank's first voxel and brick, and the kept range of all ranks.
-void exchangeCounts(RankGroup& ranks, BrickCensus& census);
+void exchangeCounts(base::RankGroup& ranks, BrickCensus& census);
 
 // Numbers this rank's occupied bricks: occupancy bits, firstOccupied and voxelBase.
 // `brickBegin` is the grid index of this rank's first brick.
 void numberBricks(BrickCensus& census, const GridShape& shape, uint64_t brickBegin);
 
 // Collective: BOCC of the whole grid (`words` words) on rank 0, empty elsewhere.
-std::vector<uint32_t> gatherOccupancy(RankGroup& ranks, BrickCensus& census, uint64_t words);
+std::vector<uint32_t> gatherOccupancy(base::RankGroup& ranks, BrickCensus& census, uint64_t words);
 
 // Collective: every rank's encode statistics combined (sums, minima, maxima), on every rank.
-EncodeStats reduceStats(RankGroup& ranks, const EncodeStats& mine);
+EncodeStats reduceStats(base::RankGroup& ranks, const EncodeStats& mine);
 
 // Collective: the section parts of every other rank's writer, on rank 0 (empty elsewhere).
-std::vector<format::FileWriter::SectionPart> gatherSectionParts(RankGroup& ranks,
+std::vector<format::FileWriter::SectionPart> gatherSectionParts(base::RankGroup& ranks,
                                                                 const format::FileWriter& writer);
 
 // Collective: rank 0 creates the output's temporary, the others open it (one rank: an unnamed
 // temporary, as always). Fails on every rank when any rank fails.
-Result<format::FileWriter> openSharedWriter(RankGroup& ranks, const std::string& path,
+Result<format::FileWriter> openSharedWriter(base::RankGroup& ranks, const std::string& path,
                                             const format::FileHeader& header);
 
 }  // namespace voxlink::convert

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/normal_error.h"
+
 namespace voxlink::geometry {
 namespace {
-
-constexpr int kHistogramBins = 18001;  // 0.01-degree bins over 0..180, as surface_voxelizer.cpp
 
 struct TriangleInfo {
   std::array<double, 3> normal;  // unit
@@ -56,9 +56,7 @@ Result<SurfaceVoxelization> resolveVoxelTriangles(const TriangleMesh& mesh, cons
     infos.push_back(info);
   }
   SurfaceVoxelization result;
-  std::vector<uint64_t> histogram(options.computeNormalError ? kHistogramBins : 0, 0);
-  double errorSum = 0.0;
-  NormalErrorStats& stats = result.normalError;
+  NormalErrorTally tally;
   for (size_t begin = 0; begin < pairs.size();) {
     size_t end = begin + 1;
     while (end < pairs.size() && pairs[end].key == pairs[begin].key) ++end;
@@ -86,31 +84,19 @@ Result<SurfaceVoxelization> resolveVoxelTriangles(const TriangleMesh& mesh, cons
         mesh.triangleMaterials.empty() ? uint16_t(0) : mesh.triangleMaterials[dominant];
     result.voxels.push_back({xyz[0], xyz[1], xyz[2], normal, material});
     if (options.computeNormalError) {
-      stats.multiTriangleVoxels += end - begin > 1;
+      if (end - begin > 1) tally.countMultiTriangleVoxel();
       for (size_t i = begin; i < end; ++i) {
         const auto& tn = infos[size_t(slot[pairs[i].triangle])].normal;
         const double cosine =
             std::clamp(normal[0] * tn[0] + normal[1] * tn[1] + normal[2] * tn[2], -1.0, 1.0);
-        const double degrees = std::acos(cosine) * (180.0 / 3.14159265358979323846);
-        ++histogram[size_t(std::min(kHistogramBins - 1, int(degrees * 100.0 + 0.5)))];
-        errorSum += degrees;
-        stats.maxDegrees = std::max(stats.maxDegrees, degrees);
-        ++stats.pairs;
+        tally.add(std::acos(cosine) * (180.0 / 3.14159265358979323846));
       }
     }
     begin = end;
   }
-  if (stats.pairs > 0) {
-    stats.meanDegrees = errorSum / double(stats.pairs);
-    const uint64_t rank = (stats.pairs * 95 + 99) / 100;
-    uint64_t seen = 0;
-    for (int b = 0; b < kHistogramBins; ++b) {
-      seen += histogram[size_t(b)];
-      if (seen >= rank) {
-        stats.p95Degrees = b / 100.0;
-        break;
-      }
-    }
+  if (options.computeNormalError) {
+    result.normalError = tally.stats();
+    result.normalTally = std::make_shared<NormalErrorTally>(std::move(tally));
   }
   return result;
 }

@@ -24,7 +24,7 @@ struct Overlap {
 
 Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
                                            const VoxelGrid& grid, uint64_t maxOverlaps,
-                                           SphereFill fill) {
+                                           SphereFill fill, ZSlab slab) {
   VOXLINK_RETURN_IF_ERROR(validateGrid(grid));
   for (size_t s = 0; s < spheres.size(); ++s) {
     const Sphere& sphere = spheres[s];
@@ -56,8 +56,10 @@ Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
         // Voxel i's box [i, i+1] reaches the sphere's extent [c - r, c + r].
         lo[a] = std::max<int64_t>(0, int64_t(std::ceil(c[a] - r)) - 1);
         hi[a] = std::min<int64_t>(int64_t(grid.dims[a]) - 1, int64_t(std::floor(c[a] + r)));
-        empty |= lo[a] > hi[a];
       }
+      lo[2] = std::max<int64_t>(lo[2], slab.begin);
+      hi[2] = std::min<int64_t>(hi[2], int64_t(slab.end) - 1);
+      for (int a = 0; a < 3; ++a) empty |= lo[a] > hi[a];
       if (empty) continue;
       for (int64_t k = lo[2]; k <= hi[2]; ++k) {
         for (int64_t j = lo[1]; j <= hi[1]; ++j) {

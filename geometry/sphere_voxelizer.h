@@ -33,11 +33,12 @@ inline constexpr uint64_t kDefaultMaxSphereOverlaps = 256ull << 20;
 enum class SphereFill { kSolid, kShell };
 
 // Errors: an invalid grid, a non-finite centre or a radius that is not finite and > 0 (names the
-// sphere), more overlaps than maxOverlaps (kTooLarge).
+// sphere), more overlaps than maxOverlaps (kTooLarge). Only voxels in `slab` are marked (and
+// counted against maxOverlaps); slabs' results concatenate to the whole grid's.
 Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
                                            const VoxelGrid& grid,
                                            uint64_t maxOverlaps = kDefaultMaxSphereOverlaps,
-                                           SphereFill fill = SphereFill::kSolid);
+                                           SphereFill fill = SphereFill::kSolid, ZSlab slab = {});
 
 // Exact test used by voxelizeSpheres: sphere (centre and radius in grid coordinates) against
 // voxel (i, j, k)'s box [i, i+1] x [j, j+1] x [k, k+1].

@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 
+#include "geometry/normal_error.h"
 #include "geometry/triangle_box_overlap.h"
 
 namespace voxlink::geometry {
@@ -27,23 +28,18 @@ struct TriangleInfo {
   float area;                   // in voxel units (only compared)
 };
 
-constexpr int kHistogramBins = 18001;  // 0.01-degree bins over 0..180
-
-struct ErrorAccumulator {
-  std::vector<uint64_t> histogram = std::vector<uint64_t>(kHistogramBins, 0);
-  uint64_t pairs = 0, multi = 0;
-  double sum = 0.0, max = 0.0;
-};
-
-// Appends the voxels `tri` overlaps (clipped to the grid) to `out`.
+// Appends the voxels `tri` overlaps (clipped to the grid and the slab) to `out`.
 void collectTriangle(const TriangleVoxelTest& test, uint32_t tri, const VoxelGrid& grid,
-                     std::vector<Overlap>& out) {
+                     const ZSlab& slab, std::vector<Overlap>& out) {
   int64_t lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
     lo[a] = std::max<int64_t>(test.firstVoxel(a), 0);
     hi[a] = std::min<int64_t>(test.lastVoxel(a), int64_t(grid.dims[a]) - 1);
-    if (lo[a] > hi[a]) return;
   }
+  lo[2] = std::max<int64_t>(lo[2], slab.begin);
+  hi[2] = std::min<int64_t>(hi[2], int64_t(slab.end) - 1);
+  for (int a = 0; a < 3; ++a)
+    if (lo[a] > hi[a]) return;
   const Vec3d& n = test.normal();
   // Columns along the dominant normal axis w; (u, v) as in the projection test of w.
   int w = 0;
@@ -145,7 +141,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
       info[t] = {{float(n[0] / length), float(n[1] / length), float(n[2] / length)},
                  float(0.5 * length)};
       const size_t before = out.size();
-      collectTriangle(test, uint32_t(t), grid, out);
+      collectTriangle(test, uint32_t(t), grid, options.slab, out);
       if (total.fetch_add(out.size() - before) + (out.size() - before) > options.maxOverlaps)
         tooMany = true;
     }
@@ -234,10 +230,10 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   std::vector<size_t> firstVoxel(chunkCount + 1, 0);
   for (size_t c = 0; c < chunkCount; ++c) firstVoxel[c + 1] = firstVoxel[c] + runs[c];
   result.voxels.resize(firstVoxel[chunkCount]);
-  tbb::enumerable_thread_specific<ErrorAccumulator> errors;
+  tbb::enumerable_thread_specific<NormalErrorTally> errors;
 
   tbb::parallel_for(size_t(0), chunkCount, [&](size_t c) {
-    ErrorAccumulator* e = options.computeNormalError ? &errors.local() : nullptr;
+    NormalErrorTally* e = options.computeNormalError ? &errors.local() : nullptr;
     size_t out = firstVoxel[c];
     for (size_t begin = starts[c]; begin < starts[c + 1];) {
       size_t end = begin + 1;
@@ -262,17 +258,14 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
           mesh.triangleMaterials.empty() ? uint16_t(0) : mesh.triangleMaterials[dominant];
       result.voxels[out++] = {xyz[0], xyz[1], xyz[2], normal, material};
       if (e != nullptr) {
-        e->multi += end - begin > 1;
+        if (end - begin > 1) e->countMultiTriangleVoxel();
         for (size_t i = begin; i < end; ++i) {
           const auto& tn = info[overlaps[i].triangle].normal;
           const double cosine = std::clamp(
               double(normal[0]) * tn[0] + double(normal[1]) * tn[1] + double(normal[2]) * tn[2],
               -1.0, 1.0);
           const double degrees = std::acos(cosine) * (180.0 / 3.14159265358979323846);
-          ++e->histogram[std::min(kHistogramBins - 1, int(degrees * 100.0 + 0.5))];
-          e->sum += degrees;
-          e->max = std::max(e->max, degrees);
-          ++e->pairs;
+          e->add(degrees);
         }
       }
       begin = end;
@@ -281,28 +274,10 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
 
   report(1.0);
   if (options.computeNormalError) {
-    NormalErrorStats& stats = result.normalError;
-    std::vector<uint64_t> histogram(kHistogramBins, 0);
-    double sum = 0.0;
-    for (const ErrorAccumulator& e : errors) {
-      for (int b = 0; b < kHistogramBins; ++b) histogram[b] += e.histogram[b];
-      stats.pairs += e.pairs;
-      stats.multiTriangleVoxels += e.multi;
-      sum += e.sum;
-      stats.maxDegrees = std::max(stats.maxDegrees, e.max);
-    }
-    if (stats.pairs > 0) {
-      stats.meanDegrees = sum / double(stats.pairs);
-      const uint64_t rank = (stats.pairs * 95 + 99) / 100;  // the 95th percentile pair
-      uint64_t seen = 0;
-      for (int b = 0; b < kHistogramBins; ++b) {
-        seen += histogram[b];
-        if (seen >= rank) {
-          stats.p95Degrees = b / 100.0;
-          break;
-        }
-      }
-    }
+    auto tally = std::make_shared<NormalErrorTally>();
+    for (const NormalErrorTally& e : errors) tally->merge(e);
+    result.normalError = tally->stats();
+    result.normalTally = std::move(tally);
   }
   return result;
 }

@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "format/error.h"
@@ -35,6 +36,8 @@
 #include "geometry/voxel_grid.h"
 
 namespace voxlink::geometry {
+
+class NormalErrorTally;
 
 struct SurfaceVoxel {
   uint32_t x, y, z;
@@ -64,6 +67,10 @@ struct SurfaceVoxelizeOptions {
   NormalRule normalRule = NormalRule::kAreaWeighted;
   bool computeNormalError = true;
   uint64_t maxOverlaps = kDefaultMaxOverlaps;  // more (voxel, triangle) overlaps: kTooLarge
+  // Only voxels in these slices (the others are neither tested nor counted in maxOverlaps); a
+  // voxel's fragment and error pairs do not depend on the slab, so slabs' results concatenate
+  // to the whole grid's.
+  ZSlab slab;
   // Called with the fraction done (0..1), one call at a time, from any thread; may be empty.
   std::function<void(double fraction)> progress;
 };
@@ -71,7 +78,9 @@ struct SurfaceVoxelizeOptions {
 struct SurfaceVoxelization {
   std::vector<SurfaceVoxel> voxels;  // sorted by (z, y, x), one per overlapped voxel
   NormalErrorStats normalError;      // zero unless computeNormalError
-  uint64_t zeroAreaTriangles = 0;    // skipped
+  // What normalError was computed from (geometry/normal_error.h), to merge slabs' results.
+  std::shared_ptr<const NormalErrorTally> normalTally;
+  uint64_t zeroAreaTriangles = 0;  // skipped
 };
 
 // Errors: an invalid grid, a triangle index >= vertexCount, triangleMaterials not one per

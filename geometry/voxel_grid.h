@@ -30,6 +30,13 @@ struct VoxelGrid {
   }
 };
 
+// The slices z in [begin, end) of a grid: the part one MPI rank voxelizes (scene/scene_ranks.h).
+// The default covers every slice.
+struct ZSlab {
+  uint32_t begin = 0;
+  uint32_t end = UINT32_MAX;
+};
+
 // dims in 1..kMaxGridDim, spacing finite and > 0, origin finite.
 Status validateGrid(const VoxelGrid& grid);
 

@@ -13,7 +13,7 @@ namespace {
 constexpr int kAskTag = 7701;   // a worker asks rank 0 for the next item
 constexpr int kItemTag = 7702;  // rank 0 answers with an item number, or `items` for "none left"
 
-class MpiRankGroup final : public convert::RankGroup {
+class MpiRankGroup final : public base::RankGroup {
  public:
   MpiRankGroup() {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
@@ -119,7 +119,7 @@ bool launchedByMpi() {
   return false;
 }
 
-std::unique_ptr<convert::RankGroup> startMpi(int* argc, char*** argv) {
+std::unique_ptr<base::RankGroup> startMpi(int* argc, char*** argv) {
   int provided = 0;
   MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided);
   return std::make_unique<MpiRankGroup>();

@@ -1,10 +1,10 @@
-// The ranks of an MPI job as a convert::RankGroup. MPI is initialized only when a launcher
+// The ranks of an MPI job as a base::RankGroup. MPI is initialized only when a launcher
 // (mpirun, mpiexec, srun) started this process, so a plain `voxlink` never touches MPI.
 #pragma once
 
 #include <memory>
 
-#include "convert/rank_group.h"
+#include "base/rank_group.h"
 
 namespace voxlink::mpi {
 
@@ -13,6 +13,6 @@ bool launchedByMpi();
 
 // Initializes MPI (thread level serialized) and gives the world communicator as a group;
 // MPI_Finalize runs when it is destroyed. Call once, before any thread starts.
-std::unique_ptr<convert::RankGroup> startMpi(int* argc, char*** argv);
+std::unique_ptr<base::RankGroup> startMpi(int* argc, char*** argv);
 
 }  // namespace voxlink::mpi

@@ -15,6 +15,7 @@
 #include "geometry/voxel_grid.h"
 #include "scene/build_estimate.h"
 #include "scene/scene_geometry.h"
+#include "scene/scene_ranks.h"
 #include "scene/scene_volume.h"
 
 namespace voxlink::scene {
@@ -33,33 +34,11 @@ uint32_t storedBits(const format::VoxLinkFile& f, uint64_t i) {
   return bits;
 }
 
-}  // namespace
-
-Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress,
-                                    const SurfaceVoxelizer& surfaceVoxelizer) {
-  auto stage = [&](const char* name, double fraction) {
-    if (progress) progress(name, fraction);
-  };
-  SceneBuildOutput out;
-  SceneBuildReport& report = out.report;
-  const auto loadStart = Clock::now();
-  stage("load", 0);
-  VOXLINK_ASSIGN_OR_RETURN(PlacedScene placed, placeSceneGeometry(scene));
-  report.triangles = placed.mesh.triangleCount();
-  report.spheres = placed.spheres.size();
-  std::optional<format::VoxLinkFile> volume;
-  for (const SceneObject* o : placed.volumes) {
-    VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, openSceneVolume(*o, scene.grid));
-    if (f.isScene())
-      return makeError(
-          ErrorCode::kUnsupported, o->path,
-          ": a scene (version 2) cannot be a scene's volume; give the volume's own .vxl");
-    VOXLINK_RETURN_IF_ERROR(format::validateFile(f).status());
-    volume.emplace(std::move(f));
-  }
-  report.loadSeconds = secondsSince(loadStart);
-
-  // The grid, and the description the file's header is made from.
+// The grid and the description the file's header is made from: the volume's, or one fitted
+// around the geometry.
+Result<format::VolumeDescription> describeGrid(const SceneDescription& scene,
+                                               const PlacedScene& placed,
+                                               const format::VoxLinkFile* volume) {
   format::VolumeDescription d;
   if (volume) {
     const format::FileHeader& h = volume->header();
@@ -93,16 +72,34 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
     d.predominantAxis = scene.grid.axis;
   }
   VOXLINK_RETURN_IF_ERROR(format::checkDescription(d));
-  report.dims = d.dims;
-  report.spacing = d.spacing;
   const SceneBuildEstimate estimate =
       estimateSceneBuild(placed, d, volume ? volume->voxelCount() : 0);
   VOXLINK_RETURN_IF_ERROR(checkSceneBuildFits(estimate, format::memoryForThisProcess(), scene.path,
-                                              scene.grid.resolution, volume.has_value()));
+                                              scene.grid.resolution, volume != nullptr));
+  return d;
+}
 
-  const auto voxelizeStart = Clock::now();
-  stage("voxelize", 0);
-  format::SceneBuilder builder(d);
+// Rank 0's volume object, opened and validated (the last one the scene names).
+Status openVolume(const PlacedScene& placed, const SceneGrid& grid,
+                  std::optional<format::VoxLinkFile>& volume) {
+  for (const SceneObject* o : placed.volumes) {
+    VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f, openSceneVolume(*o, grid));
+    if (f.isScene())
+      return makeError(
+          ErrorCode::kUnsupported, o->path,
+          ": a scene (version 2) cannot be a scene's volume; give the volume's own .vxl");
+    VOXLINK_RETURN_IF_ERROR(format::validateFile(f).status());
+    volume.emplace(std::move(f));
+  }
+  return Status::ok();
+}
+
+// The meshes and spheres of `placed` in the slices `slab` of the grid `d`.
+Status voxelizeSlab(const SceneDescription& scene, PlacedScene& placed,
+                    const format::VolumeDescription& d, geometry::ZSlab slab,
+                    const SurfaceVoxelizer& surfaceVoxelizer,
+                    const std::function<void(double)>& meshProgress, SceneBuildReport& report,
+                    SlabVoxels& out) {
   // Meshes are voxelized in index space (voxel centres on integers, unit voxels), which is exact
   // for anisotropic voxels too: a per-axis scaling keeps which boxes a triangle overlaps. Normals
   // come back to world space through the inverse transpose of that scaling.
@@ -114,23 +111,21 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
         mesh.positions[3 * v + a] = float((mesh.positions[3 * v + a] - d.origin[a]) / d.spacing[a]);
     geometry::VoxelGrid indexGrid;
     indexGrid.dims = d.dims;
-    const auto meshProgress = [&](double f) { stage("voxelize", 0.5 * f); };
     geometry::SurfaceVoxelizeOptions exact;
     exact.progress = meshProgress;
+    exact.slab = slab;
     VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface,
                              surfaceVoxelizer ? surfaceVoxelizer(mesh, indexGrid, meshProgress)
                                               : geometry::voxelizeSurface(mesh, indexGrid, exact));
+    out.surface.reserve(surface.voxels.size());
     for (const geometry::SurfaceVoxel& v : surface.voxels) {
       const double n[3] = {v.normal[0] / d.spacing[0], v.normal[1] / d.spacing[1],
                            v.normal[2] / d.spacing[2]};
-      builder.addSurface(v.x, v.y, v.z, format::encodeGradient(n[0], n[1], n[2]), v.material);
+      out.surface.push_back({v.x, v.y, v.z, format::encodeGradient(n[0], n[1], n[2]), v.material});
     }
-    report.surfaceVoxels = surface.voxels.size();
-    report.normalError = surface.normalError;
+    if (surface.normalTally) out.normalError = *surface.normalTally;
     report.zeroAreaTriangles = surface.zeroAreaTriangles;
   }
-  stage("voxelize", 0.5);
-  std::vector<format::SphereRecord> sphereRecords;
   if (!placed.spheres.empty()) {
     const double s0 = d.spacing[0];
     if (std::abs(d.spacing[1] - s0) > 1e-9 * s0 || std::abs(d.spacing[2] - s0) > 1e-9 * s0)
@@ -144,25 +139,95 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
     VOXLINK_ASSIGN_OR_RETURN(
         geometry::SphereVoxelization spheres,
         geometry::voxelizeSpheres(placed.spheres, grid, geometry::kDefaultMaxSphereOverlaps,
-                                  geometry::SphereFill::kShell));
+                                  geometry::SphereFill::kShell, slab));
+    out.sphereRefs.reserve(spheres.sphereIds.size());
     for (size_t n = 0; n < spheres.voxels.size(); ++n)
       for (uint64_t r = spheres.offsets[n]; r < spheres.offsets[n + 1]; ++r)
-        builder.addSphereRef(spheres.voxels[n][0], spheres.voxels[n][1], spheres.voxels[n][2],
-                             spheres.sphereIds[r]);
-    report.sphereVoxels = spheres.voxels.size();
-    report.sphereRefs = spheres.sphereIds.size();
-    for (const geometry::Sphere& s : placed.spheres) {
-      format::SphereRecord r{};
-      for (int a = 0; a < 3; ++a) r.center[a] = s.center[a];
-      r.radius = s.radius;
-      r.material = s.material;
-      sphereRecords.push_back(r);
+        out.sphereRefs.push_back({spheres.voxels[n][0], spheres.voxels[n][1], spheres.voxels[n][2],
+                                  spheres.sphereIds[r]});
+    out.sphereVoxels = spheres.voxels.size();
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const SceneProgress& progress,
+                                    const SurfaceVoxelizer& surfaceVoxelizer,
+                                    base::RankGroup* group) {
+  base::RankGroup& ranks = group ? *group : base::singleProcess();
+  const bool root = ranks.rank() == 0;
+  auto stage = [&](const char* name, double fraction) {
+    if (progress) progress(name, fraction);
+  };
+  SceneBuildOutput out;
+  SceneBuildReport& report = out.report;
+  const auto loadStart = Clock::now();
+  stage("load", 0);
+  // Every rank loads and places the geometry itself (inputs are small next to the voxels);
+  // every step that needs the others is preceded by an agreement, so a failing rank ends all.
+  auto placedOr = placeSceneGeometry(scene);
+  Status loaded = placedOr.status();
+  if (loaded && surfaceVoxelizer && ranks.size() > 1)
+    loaded = makeError(ErrorCode::kUnsupported,
+                       "scene build: the GL voxelizer runs in one process; use --voxelizer exact "
+                       "on several MPI ranks");
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, loaded));
+  PlacedScene& placed = *placedOr;
+  VOXLINK_RETURN_IF_ERROR(checkSameGeometry(ranks, placed, scene.path));
+  report.triangles = placed.mesh.triangleCount();
+  report.spheres = placed.spheres.size();
+  // Rank 0 alone opens the volume (a dense one is converted there) and fixes the grid.
+  std::optional<format::VoxLinkFile> volume;
+  format::VolumeDescription d;
+  Status described = Status::ok();
+  if (root) {
+    described = openVolume(placed, scene.grid, volume);
+    if (described) {
+      auto grid = describeGrid(scene, placed, volume ? &*volume : nullptr);
+      if (grid) d = *grid;
+      described = grid.status();
     }
   }
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, described));
+  broadcastDescription(ranks, d);
+  report.loadSeconds = secondsSince(loadStart);
+  report.dims = d.dims;
+  report.spacing = d.spacing;
+
+  const auto voxelizeStart = Clock::now();
+  stage("voxelize", 0);
+  SlabVoxels slab;
+  const Status voxelized = voxelizeSlab(
+      scene, placed, d, rankSlab(d.dims[2], d.brickSize, ranks.rank(), ranks.size()),
+      surfaceVoxelizer, [&](double f) { stage("voxelize", f); }, report, slab);
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, voxelized));
   report.voxelizeSeconds = secondsSince(voxelizeStart);
 
   const auto mergeStart = Clock::now();
   stage("merge", 0);
+  slab = gatherSlabVoxels(ranks, std::move(slab));
+  if (!root) return out;  // rank 0 alone holds the merged voxels and the file
+  report.surfaceVoxels = slab.surface.size();
+  report.normalError = slab.normalError.stats();
+  report.sphereVoxels = slab.sphereVoxels;
+  report.sphereRefs = slab.sphereRefs.size();
+  format::SceneBuilder builder(d);
+  builder.reserve(slab.surface.size() + slab.sphereRefs.size() +
+                  (volume ? volume->voxelCount() : 0));
+  for (const SurfaceEntry& e : slab.surface)
+    builder.addSurface(e.x, e.y, e.z, e.normalCode, e.material);
+  std::vector<SurfaceEntry>().swap(slab.surface);
+  for (const SphereEntry& e : slab.sphereRefs) builder.addSphereRef(e.x, e.y, e.z, e.sphere);
+  std::vector<SphereEntry>().swap(slab.sphereRefs);
+  std::vector<format::SphereRecord> sphereRecords;
+  for (const geometry::Sphere& s : placed.spheres) {
+    format::SphereRecord r{};
+    for (int a = 0; a < 3; ++a) r.center[a] = s.center[a];
+    r.radius = s.radius;
+    r.material = s.material;
+    sphereRecords.push_back(r);
+  }
   nlohmann::ordered_json meta;
   meta["scene"]["file"] = scene.path;
   meta["scene"]["materials"] = placed.materialNames;

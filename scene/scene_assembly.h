@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 
+#include "base/rank_group.h"
 #include "format/error.h"
 #include "format/file_writer.h"
 #include "geometry/surface_voxelizer.h"
@@ -46,8 +47,13 @@ using SurfaceVoxelizer = std::function<Result<geometry::SurfaceVoxelization>(
     const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
     const std::function<void(double fraction)>& progress)>;
 
+// On several MPI ranks (`ranks`; null: this process alone) every rank must call it; each
+// voxelizes its slab of brick layers (scene/scene_ranks.h) and rank 0 alone gets the merged
+// volume and the whole report (the others an empty volume). Errors are agreed: every rank gets
+// the lowest failing rank's. A SurfaceVoxelizer other than the exact one needs one process.
 Result<SceneBuildOutput> buildScene(const SceneDescription& scene,
                                     const SceneProgress& progress = {},
-                                    const SurfaceVoxelizer& surfaceVoxelizer = {});
+                                    const SurfaceVoxelizer& surfaceVoxelizer = {},
+                                    base::RankGroup* ranks = nullptr);
 
 }  // namespace voxlink::scene

@@ -1,8 +1,9 @@
-#include "convert/rank_group.h"
+#include "base/rank_group.h"
 
+#include <algorithm>
 #include <cstring>
 
-namespace voxlink::convert {
+namespace voxlink::base {
 namespace {
 
 class SingleProcess final : public RankGroup {
@@ -37,6 +38,26 @@ RankGroup& singleProcess() {
   return group;
 }
 
+std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group, std::span<const uint8_t> mine,
+                                                    uint64_t roundBytes) {
+  if (group.size() == 1) return group.gatherToRoot(mine);
+  const uint64_t size = mine.size();
+  std::vector<uint64_t> sizes(static_cast<size_t>(group.size()));
+  group.allGather(&size, sizeof size, sizes.data());
+  const uint64_t chunk = std::max<uint64_t>(1, roundBytes / sizes.size());
+  uint64_t rounds = 0;
+  for (uint64_t s : sizes) rounds = std::max(rounds, (s + chunk - 1) / chunk);
+  std::vector<std::vector<uint8_t>> all(group.rank() == 0 ? sizes.size() : 0);
+  for (size_t r = 0; r < all.size(); ++r) all[r].reserve(sizes[r]);
+  for (uint64_t round = 0; round < rounds; ++round) {
+    const uint64_t from = std::min(size, round * chunk);
+    const auto parts = group.gatherToRoot(mine.subspan(from, std::min(chunk, size - from)));
+    for (size_t r = 0; r < all.size(); ++r)
+      all[r].insert(all[r].end(), parts[r].begin(), parts[r].end());
+  }
+  return all;
+}
+
 Status agree(RankGroup& group, const Status& mine) {
   if (group.size() == 1) return mine;
   struct Outcome {
@@ -56,4 +77,4 @@ Status agree(RankGroup& group, const Status& mine) {
                    ": ", message);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::base

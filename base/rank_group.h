@@ -1,6 +1,6 @@
 // The processes one command runs on: this process alone (the default), or the ranks of an MPI
-// job (mpi/mpi_rank_group.h). The converter and the batch runner talk to other ranks only
-// through this interface, so they build and run without MPI.
+// job (mpi/mpi_rank_group.h). The converter, the batch runner and the scene builder talk to other
+// ranks only through this interface, so they build and run without MPI.
 #pragma once
 
 #include <cstddef>
@@ -12,7 +12,7 @@
 
 #include "format/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::base {
 
 class RankGroup {
  public:
@@ -38,8 +38,13 @@ class RankGroup {
 // This process alone: rank 0 of 1.
 RankGroup& singleProcess();
 
+// Collective: as RankGroup::gatherToRoot for parts of any size (MPI counts bytes in int): sent
+// in rounds of at most `roundBytes` over all ranks (each rank sends roundBytes / size a round).
+std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group, std::span<const uint8_t> mine,
+                                                    uint64_t roundBytes = uint64_t(1) << 30);
+
 // Collective: ok on every rank when `mine` is ok on every rank; otherwise, on every rank, the
 // error of the lowest failing rank, prefixed "rank R: " when there are several ranks.
 Status agree(RankGroup& group, const Status& mine);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::base
