@@ -117,12 +117,14 @@ int main(int argc, char** argv) {
   voxlink::format::removeTempsOnSignals();
   for (auto& [sub, run] : commands) {
     if (!sub->parsed()) continue;
-    // Only convert divides its work among MPI ranks; N copies of another command would each do
-    // all of it.
-    if (processRanks().size() > 1 && sub->get_name() != "convert")
+    // Only convert, krige and grf divide their work among MPI ranks; N copies of another
+    // command would each do all of it.
+    const std::string name = sub->get_name();
+    if (processRanks().size() > 1 && name != "convert" && name != "krige" && name != "grf")
       return reportOnRankZero(voxlink::makeError(
-          voxlink::ErrorCode::kInvalidArgument, "voxlink ", sub->get_name(),
-          " runs in one process; of the commands only convert splits its work across MPI ranks"));
+          voxlink::ErrorCode::kInvalidArgument, "voxlink ", name,
+          " runs in one process; of the commands only convert, krige and grf split their work "
+          "across MPI ranks"));
     return finishStandardOutput(voxlink::cli::runCommand(run));
   }
   return 2;
