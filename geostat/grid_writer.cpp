@@ -149,11 +149,14 @@ Status GridWriter::write(uint64_t firstNode, uint64_t nodes, const double* value
     VOXLINK_RETURN_IF_ERROR(checkFinite(values, nodes, firstNode, info_, path_));
     VOXLINK_RETURN_IF_ERROR(writeAt(fd_, values, nodes * sizeof(double),
                                     dataOffset_ + firstNode * sizeof(double), dataPath_));
-  } else {
-    std::vector<float> f(values, values + nodes);
-    VOXLINK_RETURN_IF_ERROR(checkFinite(f.data(), nodes, firstNode, info_, path_));
-    VOXLINK_RETURN_IF_ERROR(writeAt(fd_, f.data(), nodes * sizeof(float),
-                                    dataOffset_ + firstNode * sizeof(float), dataPath_));
+  } else {  // converted a piece at a time: a whole 2-D grid's run held twice cost 4 B a node
+    std::vector<float> f;
+    for (uint64_t done = 0; done < nodes; done += f.size()) {
+      f.assign(values + done, values + done + std::min<uint64_t>(nodes - done, 1 << 20));
+      VOXLINK_RETURN_IF_ERROR(checkFinite(f.data(), f.size(), firstNode + done, info_, path_));
+      VOXLINK_RETURN_IF_ERROR(writeAt(fd_, f.data(), f.size() * sizeof(float),
+                                      dataOffset_ + (firstNode + done) * sizeof(float), dataPath_));
+    }
   }
   nodesWritten_ += nodes;
   return Status::ok();
