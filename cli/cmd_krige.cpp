@@ -9,12 +9,15 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "cli/command.h"
 #include "cli/krige_options.h"
 #include "cli/output_options.h"
+#include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
+#include "cli/shared_grids.h"
 #include "format/output_file.h"
 #include "geostat/cross_validation.h"
 #include "geostat/grid_writer.h"
@@ -119,39 +122,51 @@ std::string variancePath(const std::string& out) {
   return out.substr(0, dot) + "_variance" + out.substr(dot);
 }
 
-int runKrige(const KrigeArgs& a) {
+// What every rank needs to krige its share, made from the same sample bytes on every rank.
+struct KrigeJob {
+  std::optional<Kriger> kriger;
+  GridSpec grid;
+  GridFileInfo info;
+  std::vector<double> nodeDrift;
+  std::string varianceFile;
+};
+
+// Everything before the grid: the samples (parsed from `sampleText`), the variogram, the
+// kriger, cross-validation (rank 0), the output names and the grid. Prints on rank 0 only.
+Result<KrigeJob> prepareKrige(const KrigeArgs& a, const std::string& sampleText, bool root) {
+  KrigeJob job;
   if (a.externalDrift.empty() != a.externalDriftGrid.empty() && !a.output.empty())
-    return reportError(makeError(ErrorCode::kInvalidArgument,
-                                 "krige: --external-drift COLUMN and --external-drift-grid FILE "
-                                 "go together"));
+    return makeError(ErrorCode::kInvalidArgument,
+                     "krige: --external-drift COLUMN and --external-drift-grid FILE "
+                     "go together");
   if (!a.externalDriftGrid.empty() && a.externalDrift.empty())
-    return reportError(makeError(ErrorCode::kInvalidArgument,
-                                 "krige: --external-drift-grid needs --external-drift COLUMN"));
+    return makeError(ErrorCode::kInvalidArgument,
+                     "krige: --external-drift-grid needs --external-drift COLUMN");
   ColumnSelection columns{a.xColumn, a.yColumn, a.zColumn, a.valueColumn, a.externalDrift};
-  auto points = readPoints(a.input, columns);
-  if (!points) return reportError(points.error());
+  auto points = parsePoints(sampleText, a.input, columns);
+  if (!points) return points.error();
   for (const auto& note : points->notes) a.out.print("note: %s\n", note.c_str());
   a.out.print("samples: %zu (%d-D)\n", points->size(), points->dimension);
 
   VariogramParams params;
   if (!a.variogram.empty()) {
     auto parsed = parseVariogram(a.variogram);
-    if (!parsed) return reportError(parsed.error());
+    if (!parsed) return parsed.error();
     params = *parsed;
   } else {
     auto p = parseVariogram(a.fit + ":range=1");
     if (!p)
-      return reportError(makeError(ErrorCode::kInvalidArgument,
-                                   "krige: give --variogram MODEL or --fit exp|sph|gau|mat"));
+      return makeError(ErrorCode::kInvalidArgument,
+                       "krige: give --variogram MODEL or --fit exp|sph|gau|mat");
     auto bins = experimentalVariogram(*points);
-    if (!bins) return reportError(bins.error());
+    if (!bins) return bins.error();
     auto fitted = fitVariogram(*bins, {p->type, a.nu, !a.fixNuggetZero});
-    if (!fitted) return reportError(fitted.error());
+    if (!fitted) return fitted.error();
     params = *fitted;
     a.out.print("experimental variogram: %zu bins; fitted by WLS (pairs/lag^2)\n", bins->size());
   }
   auto variogram = Variogram::make(params);
-  if (!variogram) return reportError(variogram.error());
+  if (!variogram) return variogram.error();
   a.out.print("variogram: %s\n", variogram->describe().c_str());
 
   KrigingOptions options;
@@ -167,12 +182,12 @@ int runKrige(const KrigeArgs& a) {
   options.externalDrift = !a.externalDrift.empty();
   if (!a.anisotropy.empty()) {
     auto anis = parseNumberList("--anisotropy", a.anisotropy, 2, 2);
-    if (!anis) return reportError(anis.error());
+    if (!anis) return anis.error();
     options.anisotropyAngle = (*anis)[0];
     options.anisotropyRatio = (*anis)[1];
   }
   auto kriger = Kriger::make(*points, *variogram, options);
-  if (!kriger) return reportError(kriger.error());
+  if (!kriger) return kriger.error();
   if (kriger->driftBasis().terms() > 1) {
     std::string what = a.drift == "none" ? "" : a.drift;
     if (!a.externalDrift.empty())
@@ -184,15 +199,15 @@ int runKrige(const KrigeArgs& a) {
     a.out.print("merged: %zu samples closer than %g to another (largest value spread %g)\n",
                 kriger->mergedSamples(), kriger->options().mergeDistance,
                 kriger->largestMergedSpread());
-  if (a.crossValidate) {
+  if (a.crossValidate && root) {
     auto cv = leaveOneOut(*kriger);
-    if (!cv) return reportError(cv.error());
+    if (!cv) return cv.error();
     a.out.print(
         "leave-one-out: %zu samples, mean error %.6g, RMSE %.6g, mean standardized squared error "
         "%.4f, r %.4f\n",
         cv->evaluated, cv->meanError, cv->rmse, cv->meanStandardizedSquaredError, cv->correlation);
   }
-  if (a.output.empty()) return 0;
+  if (a.output.empty()) return job;
   // Every file the two grids go to (an .nhdr's .raw too) must spare the input and each other:
   // `-o s.nhdr` over an input named s.raw, or the variance given the values' name, replaced
   // data without a word.
@@ -201,54 +216,101 @@ int runKrige(const KrigeArgs& a) {
   std::vector<std::string> written;
   for (const std::string& out : {a.output, varianceFile})
     for (const std::string& file : GridWriter::filesOf(out)) {
-      if (Status s = format::checkOutputTarget(file, {a.input}); !s) return reportError(s);
+      if (Status s = format::checkOutputTarget(file, {a.input}); !s) return s;
       for (const std::string& other : written)
         if (std::filesystem::weakly_canonical(other) == std::filesystem::weakly_canonical(file))
-          return reportError(makeError(ErrorCode::kInvalidArgument, file,
-                                       ": the values and the kriging variance would both be "
-                                       "written here (give --variance-output another name)"));
+          return makeError(ErrorCode::kInvalidArgument, file,
+                           ": the values and the kriging variance would both be "
+                           "written here (give --variance-output another name)");
       written.push_back(file);
     }
 
   auto grid = gridFromArgs(a, *points);
-  if (!grid) return reportError(grid.error());
+  if (!grid) return grid.error();
   GridFileInfo info{grid->dims, grid->origin, grid->spacing,
                     a.type == "f32" ? ScalarType::kF32 : ScalarType::kF64};
   std::vector<double> nodeDrift;
   if (options.externalDrift) {
     auto read = readDriftGrid(a.externalDriftGrid, *grid);
-    if (!read) return reportError(read.error());
+    if (!read) return read.error();
     nodeDrift = std::move(*read);
   }
-  auto values = GridWriter::create(a.output, info);
-  if (!values) return reportError(values.error());
-  auto variances = GridWriter::create(varianceFile, info);
-  if (!variances) return reportError(variances.error());
+  job.kriger.emplace(std::move(*kriger));
+  job.grid = *grid;
+  job.info = info;
+  job.nodeDrift = std::move(nodeDrift);
+  job.varianceFile = varianceFile;
+  return job;
+}
+
+int runKrige(KrigeArgs a) {
+  // On MPI ranks (docs/scale.md) rank 0 reads the samples and broadcasts them once; every rank
+  // then makes the same kriger and krige its share of the grid's nodes.
+  convert::RankGroup& ranks = processRanks();
+  const bool root = ranks.rank() == 0;
+  if (!root) a.out.quiet = true;
+  std::string sampleText;
+  Status read;
+  if (root) {
+    auto text = readSampleFile(a.input);
+    if (text)
+      sampleText = std::move(*text);
+    else
+      read = text.status();
+  }
+  if (Status all = convert::agree(ranks, read); !all) return reportOnRankZero(all);
+  if (ranks.size() > 1) ranks.broadcast(sampleText, 0);
+  auto job = prepareKrige(a, sampleText, root);
+  if (Status all = convert::agree(ranks, job.status()); !all) return reportOnRankZero(all);
+  if (a.output.empty()) return 0;
+  const GridSpec& grid = job->grid;
+  auto grids = SharedGrids::open(ranks, {a.output, job->varianceFile}, job->info);
+  if (!grids) return reportOnRankZero(grids.status());
   GridKrigingOptions gridOptions;
   gridOptions.threads = a.threads;
   gridOptions.noData = a.noData;
-  gridOptions.externalDrift = nodeDrift.empty() ? nullptr : nodeDrift.data();
+  gridOptions.externalDrift = job->nodeDrift.empty() ? nullptr : job->nodeDrift.data();
   ProgressBar bar(a.out.showProgress());
-  auto summary = krigeGrid(
-      *kriger, *grid,
-      [&](uint32_t z0, uint32_t count, const double* v, const double* s) -> Status {
-        VOXLINK_RETURN_IF_ERROR((*values)->append(count, v));
-        bar.update(double(z0 + count) / grid->dims[2], "krige");
-        return (*variances)->append(count, s);
+  uint64_t done = 0;
+  const GridPart part{static_cast<uint32_t>(ranks.rank()), static_cast<uint32_t>(ranks.size())};
+  auto summary = krigeGridPart(
+      *job->kriger, grid, part,
+      [&](uint64_t first, uint64_t nodes, const double* v, const double* s) -> Status {
+        VOXLINK_RETURN_IF_ERROR((*grids)[0].write(first, nodes, v));
+        done += nodes;
+        bar.update(double(done) * ranks.size() / double(grid.nodeCount()), "krige");
+        return (*grids)[1].write(first, nodes, s);
       },
       gridOptions);
   bar.finish();
-  if (!summary) return reportError(summary.error());
-  if (auto st = (*values)->finish(); !st) return reportError(st);
-  if (auto st = (*variances)->finish(); !st) return reportError(st);
-  a.out.print("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid->dims[0],
-              grid->dims[1], grid->dims[2], grid->origin[0], grid->origin[1], grid->origin[2],
-              grid->spacing[0], grid->spacing[1], grid->spacing[2], summary->text().c_str());
+  if (Status all = grids->finish(summary.status()); !all) return reportOnRankZero(all);
+  // The summary of every rank's share, and each rank's peak memory.
+  struct RankReport {
+    KrigingSummary summary;
+    double peakMiB;
+  };
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);  // ru_maxrss: KiB on Linux
-  a.out.print("peak memory: %.0f MiB (resident)\n", usage.ru_maxrss / 1024.0);
+  const RankReport mine{*summary, usage.ru_maxrss / 1024.0};
+  std::vector<RankReport> all(static_cast<size_t>(ranks.size()));
+  ranks.allGather(&mine, sizeof mine, all.data());
+  if (!root) return 0;
+  KrigingSummary total;
+  std::string peaks;
+  for (const RankReport& r : all) {
+    total.add(r.summary);
+    peaks += cat(peaks.empty() ? "" : ", ", static_cast<long>(std::lround(r.peakMiB)));
+  }
+  a.out.print("grid: %u x %u x %u, origin (%g, %g, %g), spacing (%g, %g, %g)\n%s", grid.dims[0],
+              grid.dims[1], grid.dims[2], grid.origin[0], grid.origin[1], grid.origin[2],
+              grid.spacing[0], grid.spacing[1], grid.spacing[2], total.text().c_str());
+  if (ranks.size() > 1)
+    a.out.print("ranks: %d; peak memory per rank: %s MiB (resident)\n", ranks.size(),
+                peaks.c_str());
+  else
+    a.out.print("peak memory: %s MiB (resident)\n", peaks.c_str());
   a.out.print("wrote: %s (values), %s (kriging variance)\n", a.output.c_str(),
-              varianceFile.c_str());
+              job->varianceFile.c_str());
   return 0;
 }
 

@@ -117,12 +117,15 @@ int main(int argc, char** argv) {
   voxlink::format::removeTempsOnSignals();
   for (auto& [sub, run] : commands) {
     if (!sub->parsed()) continue;
-    // Only convert and scene build divide their work among MPI ranks; N copies of another
-    // command would each do all of it.
-    if (processRanks().size() > 1 && sub->get_name() != "convert" && sub->get_name() != "scene")
+    // Only convert, scene build, krige and grf divide their work among MPI ranks; N copies of
+    // another command would each do all of it.
+    const std::string name = sub->get_name();
+    if (processRanks().size() > 1 && name != "convert" && name != "scene" && name != "krige" &&
+        name != "grf")
       return reportOnRankZero(voxlink::makeError(
-          voxlink::ErrorCode::kInvalidArgument, "voxlink ", sub->get_name(),
-          " runs in one process; of the commands only convert and scene build split their work "
+          voxlink::ErrorCode::kInvalidArgument, "voxlink ", name,
+          " runs in one process; of the commands only convert, scene build, krige and grf split "
+          "their work "
           "across MPI ranks"));
     return finishStandardOutput(voxlink::cli::runCommand(run));
   }

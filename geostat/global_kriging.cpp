@@ -112,7 +112,8 @@ Result<Factor> factorSamples(const Kriger& kriger, bool invert) {
   return f;
 }
 
-// Estimates and variances of nodes [first, first + count) of the batch starting at slice z0.
+// Estimates and variances of nodes [first, first + count) of the batch starting at slice z0,
+// into values[0, count) and variances[0, count).
 void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
                 const double* externalDrift, uint32_t z0, uint64_t first, size_t count,
                 std::vector<double>& k, std::vector<double>& f0, double* values,
@@ -152,8 +153,8 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
     double variance = sill - spd::dot(y, y, n);
     f.drift.correct(f.u.data(), n, y, &f0[c * terms], f.ur.data(), &f0[count * terms], value,
                     variance);
-    values[first + c] = value;
-    variances[first + c] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
+    values[c] = value;
+    variances[c] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
   }
 }
 
@@ -164,7 +165,8 @@ uint64_t globalKrigingBytes(size_t samples, unsigned threads) {
 }
 
 Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& grid,
-                                       const SliceSink& sink, const GridKrigingOptions& options) {
+                                       const GridPart& part, const NodeRunSink& sink,
+                                       const GridKrigingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const unsigned threads = format::threadCount(options.threads);
   const size_t n = kriger.sampleCount();
@@ -178,40 +180,57 @@ Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& gri
   VOXLINK_ASSIGN_OR_RETURN(const Factor f, factorSamples(kriger, grid.nodeCount() >= n));
   blas.set(1);
 
+  // The units of a share: the blocks of every batch of slices, numbered in file order; the
+  // buffers hold the share's nodes of one batch.
   const uint32_t batch = std::max<uint32_t>(1, options.slicesPerBatch);
   const uint64_t batchNodes = grid.sliceNodes() * batch;
+  const uint64_t batchBlocks = (batchNodes + kBlockNodes - 1) / kBlockNodes;
+  const uint64_t lastNodes =
+      grid.sliceNodes() * (grid.dims[2] - (grid.dims[2] - 1) / batch * batch);
+  const uint64_t units =
+      (grid.dims[2] - 1) / batch * batchBlocks + (lastNodes + kBlockNodes - 1) / kBlockNodes;
+  const uint64_t firstUnit = part.firstUnit(units), endUnit = part.endUnit(units);
+  const uint64_t bufferNodes = std::min(batchNodes, (endUnit - firstUnit) * kBlockNodes);
   std::vector<double> values, variances;
   try {
-    values.resize(batchNodes);
-    variances.resize(batchNodes);
+    values.resize(bufferNodes), variances.resize(bufferNodes);
   } catch (const std::bad_alloc&) {
-    return makeError(ErrorCode::kTooLarge, "kriging grid: a batch of ", batchNodes,
+    return makeError(ErrorCode::kTooLarge, "kriging grid: a batch of ", bufferNodes,
                      " nodes does not fit in memory");
   }
-  for (uint32_t z0 = 0; z0 < grid.dims[2]; z0 += batch) {
+  uint64_t ownNodes = 0;
+  for (uint64_t batchIndex = firstUnit / batchBlocks;
+       firstUnit < endUnit && batchIndex * batchBlocks < endUnit; ++batchIndex) {
+    const uint32_t z0 = static_cast<uint32_t>(batchIndex * batch);
     const uint32_t count = std::min(batch, grid.dims[2] - z0);
     const uint64_t nodes = grid.sliceNodes() * count;
-    const uint64_t blocks = (nodes + kBlockNodes - 1) / kBlockNodes;
-    std::atomic<uint64_t> next{0};
+    const uint64_t blockBegin =
+        std::max(firstUnit, batchIndex * batchBlocks) - batchIndex * batchBlocks;
+    const uint64_t blocks =
+        std::min(endUnit - batchIndex * batchBlocks, (nodes + kBlockNodes - 1) / kBlockNodes);
+    const uint64_t begin = blockBegin * kBlockNodes, end = std::min(nodes, blocks * kBlockNodes);
+    std::atomic<uint64_t> next{blockBegin};
     format::runOnThreads(threads, [&](unsigned) {
       std::vector<double> k(n * kBlockNodes), drift;
       for (uint64_t b; (b = next.fetch_add(1)) < blocks;) {
         const uint64_t first = b * kBlockNodes;
         solveBlock(kriger, grid, f, options.externalDrift, z0, first,
-                   std::min<uint64_t>(kBlockNodes, nodes - first), k, drift, values.data(),
-                   variances.data());
+                   std::min<uint64_t>(kBlockNodes, nodes - first), k, drift,
+                   values.data() + (first - begin), variances.data() + (first - begin));
       }
     });
-    for (uint64_t i = 0; i < nodes; ++i)
-      if (!std::isfinite(values[i]) || !std::isfinite(variances[i]))
+    for (uint64_t i = begin; i < end; ++i)
+      if (!std::isfinite(values[i - begin]) || !std::isfinite(variances[i - begin]))
         return makeError(ErrorCode::kNonFinite, "kriging: non-finite prediction at node ", i,
                          " of slice ", z0 + i / grid.sliceNodes(), " from ", n, " samples");
-    VOXLINK_RETURN_IF_ERROR(sink(z0, count, values.data(), variances.data()));
+    VOXLINK_RETURN_IF_ERROR(
+        sink(z0 * grid.sliceNodes() + begin, end - begin, values.data(), variances.data()));
+    ownNodes += end - begin;
   }
   KrigingSummary summary;
-  summary.nodes = grid.nodeCount();
-  summary.systemsFactored = 1;
-  summary.systemsReused = summary.nodes - 1;
+  summary.nodes = ownNodes;
+  summary.systemsFactored = 1;  // on every rank of a shared grid
+  summary.systemsReused = summary.nodes ? summary.nodes - 1 : 0;
   summary.worstCondition = f.condition;
   summary.regularizedNodes = f.jitter > 0 ? summary.nodes : 0;
   summary.largestJitter = f.jitter;

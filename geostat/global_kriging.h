@@ -15,6 +15,7 @@ namespace voxlink::kriging {
 uint64_t globalKrigingBytes(size_t samples, unsigned threads);
 
 Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& grid,
-                                       const SliceSink& sink, const GridKrigingOptions& options);
+                                       const GridPart& part, const NodeRunSink& sink,
+                                       const GridKrigingOptions& options);
 
 }  // namespace voxlink::kriging

@@ -98,6 +98,19 @@ std::string GrfReport::text() const {
 }
 
 Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
+  const uint64_t sliceVoxels = uint64_t{spec.dims[0]} * spec.dims[1];
+  return generateGrfPart(spec, GridPart{},
+                         [&](uint64_t first, uint64_t voxels, const double* slab, const double*) {
+                           return sink(static_cast<uint32_t>(first / sliceVoxels),
+                                       static_cast<uint32_t>(voxels / sliceVoxels), slab);
+                         });
+}
+
+Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
+                                  const NodeRunSink& sink) {
+  if (part.count == 0 || part.index >= part.count)
+    return makeError(ErrorCode::kInvalidArgument, "random field: share ", part.index, " of ",
+                     part.count);
   VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(spec.threads, "random field: threads"));
   for (int a = 0; a < 3; ++a)
     if (spec.dims[a] == 0 || spec.dims[a] > kMaxGrfAxis)
@@ -133,10 +146,14 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
   const std::array<uint32_t, 3> nb{(spec.dims[0] + B[0] - 1) / B[0],
                                    (spec.dims[1] + B[1] - 1) / B[1],
                                    (spec.dims[2] + B[2] - 1) / B[2]};
-  report.blocks = uint64_t{nb[0]} * nb[1] * nb[2];
   unsigned threads =
       std::max(1u, std::min<unsigned>(format::threadCount(spec.threads), nb[0] * nb[1]));
-  const uint64_t slabBytes = uint64_t{spec.dims[0]} * spec.dims[1] * B[2] * sizeof(double);
+  // The units of a share: rows of blocks (along y), z block by z block; its slab holds the
+  // share's rows only.
+  const uint64_t firstRow = part.firstUnit(uint64_t{nb[2]} * nb[1]);
+  const uint64_t endRow = part.endUnit(uint64_t{nb[2]} * nb[1]);
+  const uint64_t slabRows = std::min<uint64_t>(spec.dims[1], (endRow - firstRow) * B[1]);
+  const uint64_t slabBytes = uint64_t{spec.dims[0]} * slabRows * B[2] * sizeof(double);
   const uint64_t blockBytes = complexCount * sizeof(fftw_complex);
   // The FFT block must hold the kernel's reach on both sides, so a long range needs large
   // blocks. Fewer threads than asked for when their blocks do not all fit; none fitting is
@@ -145,9 +162,9 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
       double(spec.memoryBytes ? spec.memoryBytes : format::memoryForThisProcess());
   if (double(slabBytes) > memory)
     return makeError(ErrorCode::kTooLarge, "random field: an output slab of ", spec.dims[0], " x ",
-                     spec.dims[1], " x ", B[2], " voxels (",
-                     std::round(double(slabBytes) / 1e8) / 10, " GB) does not fit in the ",
-                     std::round(memory / 1e8) / 10, " GB this process may use");
+                     slabRows, " x ", B[2], " voxels (", std::round(double(slabBytes) / 1e8) / 10,
+                     " GB) does not fit in the ", std::round(memory / 1e8) / 10,
+                     " GB this process may use");
   const double kernelBytes = double(kernel.octant.size()) * sizeof(double);
   const double fixedBytes = double(slabBytes) + double(complexCount) * sizeof(double) + kernelBytes;
   if (fixedBytes + double(blockBytes) > memory)
@@ -169,7 +186,7 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
   for (auto& b : buffers) b.reset(allocate());
   std::vector<double> slab;
   try {
-    slab.resize(uint64_t{spec.dims[0]} * spec.dims[1] * B[2]);
+    slab.resize(slabBytes / sizeof(double));
   } catch (const std::bad_alloc&) {
     return makeError(ErrorCode::kTooLarge, "random field: an output slab of ", slabBytes,
                      " bytes does not fit in memory");
@@ -206,15 +223,19 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
       spectrum.get()[i] = buffers[0].get()[i][0] / double(realCount);
   }
 
+  report.blocks = (endRow - firstRow) * nb[0];
   Status status;
-  for (uint32_t bz = 0; bz < nb[2] && status; ++bz) {
-    const uint32_t z0 = bz * B[2];
+  for (uint64_t bz = firstRow / nb[1]; status && firstRow < endRow && bz * nb[1] < endRow; ++bz) {
+    const uint32_t z0 = static_cast<uint32_t>(bz) * B[2];
     const uint32_t zCount = std::min(B[2], spec.dims[2] - z0);
-    std::atomic<uint32_t> next{0};
+    const uint32_t rowBegin = static_cast<uint32_t>(std::max(firstRow, bz * nb[1]) - bz * nb[1]);
+    const uint32_t rowEnd = static_cast<uint32_t>(std::min(endRow, (bz + 1) * nb[1]) - bz * nb[1]);
+    const uint32_t yBase = rowBegin * B[1], rows = std::min(rowEnd * B[1], spec.dims[1]) - yBase;
+    std::atomic<uint32_t> next{rowBegin * nb[0]};
     auto work = [&](unsigned t) {
       fftw_complex* freq = buffers[t].get();
       double* real = reinterpret_cast<double*>(freq);
-      for (uint32_t job = next++; job < nb[0] * nb[1]; job = next++) {
+      for (uint32_t job = next++; job < rowEnd * nb[0]; job = next++) {
         const uint32_t x0 = (job % nb[0]) * B[0], y0 = (job / nb[0]) * B[1];
         // Noise for the block plus the kernel's reach on every side; pairs start at even x.
         const int64_t gx0 = int64_t(x0) - r[0];
@@ -240,13 +261,16 @@ Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink) {
         for (uint32_t k = 0; k < zCount; ++k)
           for (uint32_t j = 0; j < yCount; ++j) {
             const double* src = &realAt(real, r[0], j + r[1], k + r[2]);
-            double* dst = slab.data() + (uint64_t{k} * spec.dims[1] + y0 + j) * spec.dims[0] + x0;
+            double* dst = slab.data() + (uint64_t{k} * rows + y0 + j - yBase) * spec.dims[0] + x0;
             for (uint32_t i = 0; i < xCount; ++i) dst[i] = src[i] + spec.mean;
           }
       }
     };
     format::runOnThreads(threads, work);
-    status = sink(z0, zCount, slab.data());
+    status = forEachRowRun(spec.dims, z0, zCount, yBase, yBase + rows,
+                           [&](uint64_t first, uint64_t voxels, uint64_t offset) {
+                             return sink(first, voxels, slab.data() + offset, nullptr);
+                           });
   }
   fftw_destroy_plan(forward);
   fftw_destroy_plan(backward);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "geostat/grf_kernel.h"
+#include "geostat/grid_part.h"
 
 namespace voxlink::kriging {
 
@@ -48,6 +49,12 @@ struct GrfReport {
 using GrfSink = std::function<Status(uint32_t z0, uint32_t count, const double* slab)>;
 
 Result<GrfReport> generateGrf(const GrfSpec& spec, const GrfSink& sink);
+
+// The voxels of share `part` of the field (grid_part.h; the units are rows of FFT blocks),
+// byte for byte as generateGrf makes them; `sink` gets no variances. Every share computes the
+// kernel; `blocks` in the report counts this share's.
+Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
+                                  const NodeRunSink& sink);
 
 // The standard normal white noise value at lattice point (x, y, z) for `seed` (coordinates may
 // lie outside the grid, down to -2^20).

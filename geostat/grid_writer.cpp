@@ -1,7 +1,9 @@
 #include "geostat/grid_writer.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -45,42 +47,72 @@ std::vector<std::string> GridWriter::filesOf(const std::string& path) {
   return {path};
 }
 
-Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
-                                                       const GridFileInfo& info) {
+namespace {
+
+// Checks the type and the name's ending; sets the paths and where the data starts.
+Status describe(const std::string& path, const GridFileInfo& info, std::string& dataPath,
+                bool& nrrd, uint64_t& dataOffset) {
   if (info.type != ScalarType::kF64 && info.type != ScalarType::kF32)
     return makeError(ErrorCode::kInvalidArgument, path, ": output type must be f32 or f64, got ",
                      scalarName(info.type));
-  std::unique_ptr<GridWriter> w(new GridWriter);
-  w->path_ = path;
-  w->info_ = info;
   if (!format::hasExtension(path, ".nhdr") && !format::hasExtension(path, ".npy"))
     return makeError(ErrorCode::kInvalidArgument, path,
                      ": output name must end in .nhdr (raw + NRRD header) or .npy");
-  w->nrrd_ = format::hasExtension(path, ".nhdr");
-  const std::vector<std::string> files = filesOf(path);
-  w->dataPath_ = files.back();  // the .raw beside an .nhdr, or the .npy itself
-  for (const std::string& file : files) VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));
+  nrrd = format::hasExtension(path, ".nhdr");
+  dataPath = GridWriter::filesOf(path).back();  // the .raw beside an .nhdr, or the .npy itself
+  dataOffset = nrrd ? 0 : npyHeader(info.type, info.dims).size();
+  return Status::ok();
+}
+
+Status writeAt(int fd, const void* data, uint64_t bytes, uint64_t offset, const std::string& path) {
+  const auto* at = static_cast<const uint8_t*>(data);
+  while (bytes > 0) {
+    const ssize_t n =
+        ::pwrite(fd, at, std::min<uint64_t>(bytes, uint64_t{1} << 30), static_cast<off_t>(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return makeError(ErrorCode::kIo, path, ": write failed: ", std::strerror(errno));
+    at += n, bytes -= static_cast<uint64_t>(n), offset += static_cast<uint64_t>(n);
+  }
+  return Status::ok();
+}
+
+}  // namespace
+
+Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
+                                                       const GridFileInfo& info) {
+  std::unique_ptr<GridWriter> w(new GridWriter);
+  w->path_ = path;
+  w->info_ = info;
+  VOXLINK_RETURN_IF_ERROR(describe(path, info, w->dataPath_, w->nrrd_, w->dataOffset_));
+  for (const std::string& file : filesOf(path))
+    VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));
   // A unique O_EXCL temporary (never a fixed name a symlink could be planted at); the data and
   // the header are renamed into place together by finish().
   VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(w->dataPath_));
   w->tempPath_ = temp.path;
-  w->file_ = fdopen(temp.fd, "wb");
-  if (!w->file_) {
-    ::close(temp.fd);
-    format::discardTemp(temp.path);
-    return makeError(ErrorCode::kIo, path, ": cannot create: ", std::strerror(errno));
-  }
-  if (!w->nrrd_) {
-    const std::string header = npyHeader(info.type, info.dims);
-    if (std::fwrite(header.data(), 1, header.size(), w->file_) != header.size())
-      return makeError(ErrorCode::kIo, w->dataPath_, ": write failed: ", std::strerror(errno));
-  }
+  w->fd_ = temp.fd;
+  return w;
+}
+
+Result<std::unique_ptr<GridWriter>> GridWriter::attach(const std::string& path,
+                                                       const std::string& tempPath,
+                                                       const GridFileInfo& info) {
+  std::unique_ptr<GridWriter> w(new GridWriter);
+  w->path_ = path;
+  w->info_ = info;
+  w->attached_ = true;
+  VOXLINK_RETURN_IF_ERROR(describe(path, info, w->dataPath_, w->nrrd_, w->dataOffset_));
+  w->fd_ = ::open(tempPath.c_str(), O_WRONLY | O_CLOEXEC);
+  if (w->fd_ < 0)
+    return makeError(ErrorCode::kIo, w->dataPath_, ": cannot open the shared temporary ", tempPath,
+                     ": ", std::strerror(errno));
+  w->tempPath_ = tempPath;
   return w;
 }
 
 GridWriter::~GridWriter() {
-  if (file_) std::fclose(file_);
-  if (!tempPath_.empty()) format::discardTemp(tempPath_);
+  if (fd_ >= 0) ::close(fd_);
+  if (!tempPath_.empty() && !attached_) format::discardTemp(tempPath_);
 }
 
 namespace {
@@ -104,31 +136,49 @@ Status checkFinite(const T* values, uint64_t n, uint64_t firstIndex, const GridF
 }  // namespace
 
 Status GridWriter::append(uint32_t count, const double* slices) {
-  const uint64_t n = uint64_t{info_.dims[0]} * info_.dims[1] * count;
-  const uint64_t first = uint64_t{info_.dims[0]} * info_.dims[1] * slicesWritten_;
-  size_t written;
+  const uint64_t sliceNodes = uint64_t{info_.dims[0]} * info_.dims[1];
+  return write(nodesWritten_, sliceNodes * count, slices);
+}
+
+Status GridWriter::write(uint64_t firstNode, uint64_t nodes, const double* values) {
+  const uint64_t total = uint64_t{info_.dims[0]} * info_.dims[1] * info_.dims[2];
+  if (fd_ < 0 || firstNode > total || nodes > total - firstNode)
+    return makeError(ErrorCode::kInvalidArgument, path_, ": nodes ", firstNode, "..",
+                     firstNode + nodes, " are not in the grid of ", total);
   if (info_.type == ScalarType::kF64) {
-    VOXLINK_RETURN_IF_ERROR(checkFinite(slices, n, first, info_, path_));
-    written = std::fwrite(slices, sizeof(double), n, file_);
-  } else {
-    std::vector<float> f(slices, slices + n);
-    VOXLINK_RETURN_IF_ERROR(checkFinite(f.data(), n, first, info_, path_));
-    written = std::fwrite(f.data(), sizeof(float), n, file_);
+    VOXLINK_RETURN_IF_ERROR(checkFinite(values, nodes, firstNode, info_, path_));
+    VOXLINK_RETURN_IF_ERROR(writeAt(fd_, values, nodes * sizeof(double),
+                                    dataOffset_ + firstNode * sizeof(double), dataPath_));
+  } else {  // converted a piece at a time: a whole 2-D grid's run held twice cost 4 B a node
+    std::vector<float> f;
+    for (uint64_t done = 0; done < nodes; done += f.size()) {
+      f.assign(values + done, values + done + std::min<uint64_t>(nodes - done, 1 << 20));
+      VOXLINK_RETURN_IF_ERROR(checkFinite(f.data(), f.size(), firstNode + done, info_, path_));
+      VOXLINK_RETURN_IF_ERROR(writeAt(fd_, f.data(), f.size() * sizeof(float),
+                                      dataOffset_ + (firstNode + done) * sizeof(float), dataPath_));
+    }
   }
-  if (written != n)
-    return makeError(ErrorCode::kIo, dataPath_, ": write failed: ", std::strerror(errno));
-  slicesWritten_ += count;
+  nodesWritten_ += nodes;
   return Status::ok();
 }
 
-Status GridWriter::finish() {
-  if (slicesWritten_ != info_.dims[2])
-    return makeError(ErrorCode::kInvalidArgument, path_, ": ", slicesWritten_, " slices written, ",
-                     info_.dims[2], " expected");
-  const bool flushed = std::fflush(file_) == 0;
-  const bool ok = std::fclose(file_) == 0 && flushed;
-  file_ = nullptr;
-  if (!ok) return makeError(ErrorCode::kIo, dataPath_, ": write failed: ", std::strerror(errno));
+Status GridWriter::close() {
+  const int fd = std::exchange(fd_, -1);
+  if (fd >= 0 && ::close(fd) != 0)
+    return makeError(ErrorCode::kIo, dataPath_, ": write failed: ", std::strerror(errno));
+  return Status::ok();
+}
+
+Status GridWriter::finish(uint64_t nodesWrittenByAll) {
+  const uint64_t total = uint64_t{info_.dims[0]} * info_.dims[1] * info_.dims[2];
+  if (attached_ || nodesWrittenByAll != total)
+    return makeError(ErrorCode::kInvalidArgument, path_, ": ", nodesWrittenByAll,
+                     " nodes written, ", total, " expected");
+  if (!nrrd_) {
+    const std::string header = npyHeader(info_.type, info_.dims);
+    VOXLINK_RETURN_IF_ERROR(writeAt(fd_, header.data(), header.size(), 0, dataPath_));
+  }
+  VOXLINK_RETURN_IF_ERROR(close());
   if (!nrrd_) return format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_);
   const auto& d = info_.dims;
   const auto& s = info_.spacing;

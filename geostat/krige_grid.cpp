@@ -29,8 +29,47 @@ std::string KrigingSummary::text() const {
   return out.str();
 }
 
+void KrigingSummary::add(const KrigingSummary& other) {
+  const uint64_t predicted = nodes - nodesWithoutData;
+  const uint64_t otherPredicted = other.nodes - other.nodesWithoutData;
+  const uint64_t bothPredicted = predicted + otherPredicted;
+  meanNeighbours =
+      bothPredicted
+          ? (meanNeighbours * double(predicted) + other.meanNeighbours * double(otherPredicted)) /
+                double(bothPredicted)
+          : 0.0;
+  nodes += other.nodes;
+  nodesWithoutData += other.nodesWithoutData;
+  systemsFactored += other.systemsFactored;
+  systemsReused += other.systemsReused;
+  regularizedNodes += other.regularizedNodes;
+  driftReducedNodes += other.driftReducedNodes;
+  systemsBounded += other.systemsBounded;
+  worstCondition = std::max(worstCondition, other.worstCondition);
+  worstConditionBound = std::max(worstConditionBound, other.worstConditionBound);
+  largestJitter = std::max(largestJitter, other.largestJitter);
+  seconds = std::max(seconds, other.seconds);
+}
+
 Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,
                                  const GridKrigingOptions& options) {
+  // One share of one: runs of whole slices, in order.
+  const uint64_t sliceNodes = grid.sliceNodes();
+  return krigeGridPart(
+      kriger, grid, GridPart{},
+      [&](uint64_t first, uint64_t nodes, const double* values, const double* variances) {
+        return sink(static_cast<uint32_t>(first / sliceNodes),
+                    static_cast<uint32_t>(nodes / sliceNodes), values, variances);
+      },
+      options);
+}
+
+Result<KrigingSummary> krigeGridPart(const Kriger& kriger, const GridSpec& grid,
+                                     const GridPart& part, const NodeRunSink& sink,
+                                     const GridKrigingOptions& options) {
+  if (part.count == 0 || part.index >= part.count)
+    return makeError(ErrorCode::kInvalidArgument, "kriging grid: share ", part.index, " of ",
+                     part.count);
   VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(options.threads, "kriging grid: threads"));
   for (int a = 0; a < 3; ++a)
     if (grid.dims[a] == 0)
@@ -40,8 +79,8 @@ Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, con
                      "kriging grid: external drift without its values at the nodes");
   // Global kriging within a search radius has a neighbour set per node: the local path.
   if (kriger.isGlobal() && !std::isfinite(kriger.options().maxDistance))
-    return krigeGridGlobal(kriger, grid, sink, options);
-  return krigeGridLocal(kriger, grid, sink, options);
+    return krigeGridGlobal(kriger, grid, part, sink, options);
+  return krigeGridLocal(kriger, grid, part, sink, options);
 }
 
 }  // namespace voxlink::kriging

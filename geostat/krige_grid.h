@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "geostat/grid_part.h"
 #include "geostat/kriging.h"
 
 namespace voxlink::kriging {
@@ -39,6 +40,10 @@ struct KrigingSummary {
   double seconds = 0;
 
   std::string text() const;  // a few lines for the command's summary
+  // Folds in the summary of other nodes (another thread's, another rank's): counts add up,
+  // worst cases are the larger, the mean neighbours are weighted by predicted nodes, the time
+  // is the longer.
+  void add(const KrigingSummary& other);
 };
 
 // Receives finished slices [z0, z0 + count): values and variances, x fastest.
@@ -56,5 +61,11 @@ struct GridKrigingOptions {
 
 Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,
                                  const GridKrigingOptions& options = {});
+
+// The nodes of share `part` of the grid (grid_part.h), byte for byte as krigeGrid computes
+// them; the summary counts this share's nodes only.
+Result<KrigingSummary> krigeGridPart(const Kriger& kriger, const GridSpec& grid,
+                                     const GridPart& part, const NodeRunSink& sink,
+                                     const GridKrigingOptions& options = {});
 
 }  // namespace voxlink::kriging

@@ -5,10 +5,10 @@
 #include <chrono>
 #include <mutex>
 #include <optional>
-#include <unordered_map>
 
 #include "format/parallel_for.h"
 #include "geostat/drift.h"
+#include "geostat/factorization_cache.h"
 #include "geostat/spd_kernels.h"
 
 namespace voxlink::kriging {
@@ -22,43 +22,6 @@ constexpr size_t kCacheBytes = size_t{8} << 20;  // factorizations kept per thre
 struct Box {
   std::array<uint32_t, 3> lo, hi;  // node index ranges [lo, hi)
   uint64_t nodes() const { return uint64_t{hi[0] - lo[0]} * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
-};
-
-struct Factorization {
-  std::vector<uint32_t> key;  // sample indices, ascending
-  std::vector<double> l;      // column-major lower factor, leading dimension paddedSize(n)
-  std::vector<double> u, r;   // L^-1 F (n x p, column-major) and L^-1 (z - mean)
-  std::vector<double> ur;     // U^T r, one per drift term
-  DriftSystem drift;          // G = U^T U
-  double condition = 0, jitter = 0;
-  bool bounded = false;  // condition is the nugget's bound, not an estimate
-};
-
-// Factorizations of recently seen neighbour sets, found by the hash of the set.
-class FactorizationCache {
- public:
-  explicit FactorizationCache(size_t capacity) : capacity_(std::max<size_t>(capacity, 16)) {}
-  Factorization* find(uint64_t hash, const std::vector<uint32_t>& key) {
-    const auto it = index_.find(hash);
-    if (it == index_.end()) return nullptr;
-    Factorization& f = entries_[it->second];
-    return f.key == key ? &f : nullptr;
-  }
-  // A slot for a new set (reusing an old slot's memory); forgets everything when full.
-  Factorization& insert(uint64_t hash) {
-    if (used_ == capacity_) {
-      index_.clear();
-      used_ = 0;
-    }
-    if (used_ == entries_.size()) entries_.emplace_back();
-    index_[hash] = static_cast<uint32_t>(used_);
-    return entries_[used_++];
-  }
-
- private:
-  size_t capacity_, used_ = 0;
-  std::vector<Factorization> entries_;
-  std::unordered_map<uint64_t, uint32_t> index_;
 };
 
 struct ThreadState {
@@ -75,19 +38,16 @@ struct ThreadState {
   double neighbourSum = 0;
 };
 
-uint64_t hashKey(const std::vector<uint32_t>& key) {
-  uint64_t h = 1469598103934665603ULL;
-  for (uint32_t v : key) h = (h ^ v) * 1099511628211ULL;
-  return h ^ (h >> 29);
-}
-
 class BrickSolver {
  public:
-  BrickSolver(const Kriger& kriger, const GridSpec& grid, uint32_t z0, double* values,
-              double* variances, double noData, const double* externalDrift)
+  // `values` and `variances` hold rows [y0, y0 + rows) of the slices from z0 on.
+  BrickSolver(const Kriger& kriger, const GridSpec& grid, uint32_t z0, uint32_t y0, uint32_t rows,
+              double* values, double* variances, double noData, const double* externalDrift)
       : kriger_(kriger),
         grid_(grid),
         z0_(z0),
+        y0_(y0),
+        rows_(rows),
         values_(values),
         variances_(variances),
         noData_(noData),
@@ -350,8 +310,9 @@ class BrickSolver {
   }
 
   Status solveNode(uint32_t x, uint32_t y, uint32_t z, ThreadState& ts) const {
-    const uint64_t at = (uint64_t{z - z0_} * grid_.dims[1] + y) * grid_.dims[0] + x;
+    const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
     const Point3 q = centred(x, y, z);
+    ++ts.summary.nodes;
     if (!pickNeighbours(q, ts)) {
       values_[at] = variances_[at] = noData_;
       ++ts.summary.nodesWithoutData;
@@ -412,7 +373,7 @@ class BrickSolver {
 
   const Kriger& kriger_;
   const GridSpec& grid_;
-  uint32_t z0_;
+  uint32_t z0_, y0_, rows_;
   double* values_;
   double* variances_;
   double noData_;
@@ -425,19 +386,11 @@ class BrickSolver {
 }  // namespace
 
 Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid,
-                                      const SliceSink& sink, const GridKrigingOptions& options) {
+                                      const GridPart& part, const NodeRunSink& sink,
+                                      const GridKrigingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const uint32_t depth =
       grid.dims[2] == 1 ? 1 : std::min(grid.dims[2], std::max(kSlabDepth, options.slicesPerBatch));
-  const uint64_t slabNodes = grid.sliceNodes() * depth;
-  std::vector<double> values, variances;
-  try {
-    values.resize(slabNodes);
-    variances.resize(slabNodes);
-  } catch (const std::bad_alloc&) {
-    return makeError(ErrorCode::kTooLarge, "kriging grid: a slab of ", slabNodes,
-                     " nodes does not fit in memory");
-  }
   const unsigned threads = format::threadCount(options.threads);
   const size_t n = kriger.isGlobal() ? kriger.sampleCount() : kriger.options().maxNeighbours;
   const size_t cacheEntries =
@@ -447,17 +400,35 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
   for (unsigned t = 0; t < threads; ++t) states.emplace_back(cacheEntries);
   const uint32_t bricksX = (grid.dims[0] + kBrickEdge - 1) / kBrickEdge;
   const uint32_t bricksY = (grid.dims[1] + kBrickEdge - 1) / kBrickEdge;
+  // The units of a share: rows of bricks, slab by slab; the buffers hold the share's rows.
+  const uint64_t slabs = (grid.dims[2] + depth - 1) / depth;
+  const uint64_t firstRow = part.firstUnit(slabs * bricksY), endRow = part.endUnit(slabs * bricksY);
+  const uint64_t slabNodes = uint64_t{depth} * grid.dims[0] *
+                             std::min<uint64_t>(grid.dims[1], (endRow - firstRow) * kBrickEdge);
+  std::vector<double> values, variances;
+  try {
+    values.resize(slabNodes), variances.resize(slabNodes);
+  } catch (const std::bad_alloc&) {
+    return makeError(ErrorCode::kTooLarge, "kriging grid: a slab of ", slabNodes,
+                     " nodes does not fit in memory");
+  }
   std::mutex failureLock;
   std::optional<Error> failure;
-  for (uint32_t z0 = 0; z0 < grid.dims[2]; z0 += depth) {
+  for (uint64_t slab = firstRow / bricksY; firstRow < endRow && slab * bricksY < endRow; ++slab) {
+    const uint32_t z0 = static_cast<uint32_t>(slab * depth);
     const uint32_t count = std::min(depth, grid.dims[2] - z0);
-    const BrickSolver solver(kriger, grid, z0, values.data(), variances.data(), options.noData,
-                             options.externalDrift);
-    std::atomic<uint64_t> next{0};
+    const uint64_t rowBegin = std::max(firstRow, slab * bricksY) - slab * bricksY;
+    const uint64_t rowEnd = std::min(endRow, (slab + 1) * bricksY) - slab * bricksY;
+    const uint32_t y0 = static_cast<uint32_t>(rowBegin * kBrickEdge);
+    const uint32_t y1 =
+        static_cast<uint32_t>(std::min<uint64_t>(rowEnd * kBrickEdge, grid.dims[1]));
+    const BrickSolver solver(kriger, grid, z0, y0, y1 - y0, values.data(), variances.data(),
+                             options.noData, options.externalDrift);
+    std::atomic<uint64_t> next{rowBegin * bricksX};
     std::atomic<bool> stop{false};
     format::runOnThreads(threads, [&](unsigned t) {
       ThreadState& ts = states[t];
-      for (uint64_t b; !stop && (b = next.fetch_add(1)) < uint64_t{bricksX} * bricksY;) {
+      for (uint64_t b; !stop && (b = next.fetch_add(1)) < rowEnd * bricksX;) {
         const uint32_t bx = static_cast<uint32_t>(b % bricksX) * kBrickEdge;
         const uint32_t by = static_cast<uint32_t>(b / bricksX) * kBrickEdge;
         const Box box{{bx, by, z0},
@@ -471,26 +442,17 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
       }
     });
     if (failure) return *failure;
-    VOXLINK_RETURN_IF_ERROR(sink(z0, count, values.data(), variances.data()));
+    VOXLINK_RETURN_IF_ERROR(forEachRowRun(
+        grid.dims, z0, count, y0, y1, [&](uint64_t first, uint64_t nodes, uint64_t offset) {
+          return sink(first, nodes, values.data() + offset, variances.data() + offset);
+        }));
   }
   KrigingSummary summary;
-  double neighbourSum = 0;
-  for (const ThreadState& ts : states) {
-    summary.nodesWithoutData += ts.summary.nodesWithoutData;
-    summary.systemsFactored += ts.summary.systemsFactored;
-    summary.systemsReused += ts.summary.systemsReused;
-    summary.regularizedNodes += ts.summary.regularizedNodes;
-    summary.driftReducedNodes += ts.summary.driftReducedNodes;
-    summary.systemsBounded += ts.summary.systemsBounded;
-    summary.worstCondition = std::max(summary.worstCondition, ts.summary.worstCondition);
-    summary.worstConditionBound =
-        std::max(summary.worstConditionBound, ts.summary.worstConditionBound);
-    summary.largestJitter = std::max(summary.largestJitter, ts.summary.largestJitter);
-    neighbourSum += ts.neighbourSum;
+  for (ThreadState& ts : states) {
+    const uint64_t predicted = ts.summary.nodes - ts.summary.nodesWithoutData;
+    ts.summary.meanNeighbours = predicted ? ts.neighbourSum / double(predicted) : 0.0;
+    summary.add(ts.summary);
   }
-  summary.nodes = grid.nodeCount();
-  const uint64_t predicted = summary.nodes - summary.nodesWithoutData;
-  summary.meanNeighbours = predicted ? neighbourSum / static_cast<double>(predicted) : 0.0;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

@@ -18,6 +18,7 @@
 namespace voxlink::kriging {
 
 Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid,
-                                      const SliceSink& sink, const GridKrigingOptions& options);
+                                      const GridPart& part, const NodeRunSink& sink,
+                                      const GridKrigingOptions& options);
 
 }  // namespace voxlink::kriging

@@ -162,11 +162,8 @@ void finish(PointSet& set, const ColumnSelection& columns, size_t skipped,
                 : " rows with a missing value or external drift (NA/NaN/no-data) skipped"));
 }
 
-}  // namespace
-
-Result<PointSet> readCsvPoints(const std::string& path, const ColumnSelection& columns) {
-  std::ifstream in(path);
-  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
+Result<PointSet> csvPoints(std::istream& in, const std::string& path,
+                           const ColumnSelection& columns) {
   std::string line;
   if (!std::getline(in, line))
     return makeError(ErrorCode::kTruncated, path, ": empty file, expected a header row");
@@ -183,9 +180,8 @@ Result<PointSet> readCsvPoints(const std::string& path, const ColumnSelection& c
   return set;
 }
 
-Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection& columns) {
-  std::ifstream in(path);
-  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
+Result<PointSet> geoEasPoints(std::istream& in, const std::string& path,
+                              const ColumnSelection& columns) {
   std::string title, countLine;
   if (!std::getline(in, title) || !std::getline(in, countLine))
     return makeError(ErrorCode::kTruncated, path,
@@ -220,14 +216,41 @@ Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection
   return set;
 }
 
-Result<PointSet> readPoints(const std::string& path, const ColumnSelection& columns) {
-  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "sample file"));  // a FIFO would block
+}  // namespace
+
+Result<PointSet> readCsvPoints(const std::string& path, const ColumnSelection& columns) {
   std::ifstream in(path);
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
-  std::string first;
-  std::getline(in, first);
-  if (first.find(',') != std::string::npos) return readCsvPoints(path, columns);
-  return readGeoEasPoints(path, columns);
+  return csvPoints(in, path, columns);
+}
+
+Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection& columns) {
+  std::ifstream in(path);
+  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
+  return geoEasPoints(in, path, columns);
+}
+
+Result<std::string> readSampleFile(const std::string& path) {
+  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "sample file"));  // a FIFO would block
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return makeError(ErrorCode::kIo, path, ": read failed");
+  return text.str();
+}
+
+Result<PointSet> parsePoints(const std::string& text, const std::string& path,
+                             const ColumnSelection& columns) {
+  std::istringstream in(text);
+  const std::string first = text.substr(0, text.find('\n'));
+  if (first.find(',') != std::string::npos) return csvPoints(in, path, columns);
+  return geoEasPoints(in, path, columns);
+}
+
+Result<PointSet> readPoints(const std::string& path, const ColumnSelection& columns) {
+  VOXLINK_ASSIGN_OR_RETURN(const std::string text, readSampleFile(path));
+  return parsePoints(text, path, columns);
 }
 
 }  // namespace voxlink::kriging

@@ -43,4 +43,11 @@ Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection
 // Picks the reader by content: a first line with a comma is CSV, anything else GEO-EAS.
 Result<PointSet> readPoints(const std::string& path, const ColumnSelection& columns);
 
+// readPoints in two steps, so that one process reads the file and others parse the same bytes
+// (MPI ranks, docs/scale.md): the file's bytes (a regular file), then the points in `text`
+// (errors name `path`).
+Result<std::string> readSampleFile(const std::string& path);
+Result<PointSet> parsePoints(const std::string& text, const std::string& path,
+                             const ColumnSelection& columns);
+
 }  // namespace voxlink::kriging
