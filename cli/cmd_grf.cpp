@@ -51,7 +51,7 @@ Result<GrfSpec> grfSpec(const GrfArgs& a) {
 int runGrf(GrfArgs a) {
   // On MPI ranks (docs/scale.md) each rank makes its share of the field: the noise is a hash of
   // the seed and the voxel, so the field does not depend on the split.
-  convert::RankGroup& ranks = processRanks();
+  base::RankGroup& ranks = processRanks();
   const bool root = ranks.rank() == 0;
   if (!root) a.out.quiet = true;
   auto spec = grfSpec(a);
@@ -93,7 +93,7 @@ int runGrf(GrfArgs a) {
   bar.finish();
   if (grids) {
     if (Status all = grids->finish(report.status()); !all) return reportOnRankZero(all);
-  } else if (Status all = convert::agree(ranks, report.status()); !all) {
+  } else if (Status all = base::agree(ranks, report.status()); !all) {
     return reportOnRankZero(all);
   }
   uint64_t blocks = report->blocks, allBlocks = 0;

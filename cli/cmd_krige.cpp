@@ -246,7 +246,7 @@ Result<KrigeJob> prepareKrige(const KrigeArgs& a, const std::string& sampleText,
 int runKrige(KrigeArgs a) {
   // On MPI ranks (docs/scale.md) rank 0 reads the samples and broadcasts them once; every rank
   // then makes the same kriger and krige its share of the grid's nodes.
-  convert::RankGroup& ranks = processRanks();
+  base::RankGroup& ranks = processRanks();
   const bool root = ranks.rank() == 0;
   if (!root) a.out.quiet = true;
   std::string sampleText;
@@ -258,10 +258,10 @@ int runKrige(KrigeArgs a) {
     else
       read = text.status();
   }
-  if (Status all = convert::agree(ranks, read); !all) return reportOnRankZero(all);
+  if (Status all = base::agree(ranks, read); !all) return reportOnRankZero(all);
   if (ranks.size() > 1) ranks.broadcast(sampleText, 0);
   auto job = prepareKrige(a, sampleText, root);
-  if (Status all = convert::agree(ranks, job.status()); !all) return reportOnRankZero(all);
+  if (Status all = base::agree(ranks, job.status()); !all) return reportOnRankZero(all);
   if (a.output.empty()) return 0;
   const GridSpec& grid = job->grid;
   auto grids = SharedGrids::open(ranks, {a.output, job->varianceFile}, job->info);

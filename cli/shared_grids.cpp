@@ -4,7 +4,7 @@
 
 namespace voxlink::cli {
 
-Result<SharedGrids> SharedGrids::open(convert::RankGroup& ranks,
+Result<SharedGrids> SharedGrids::open(base::RankGroup& ranks,
                                       const std::vector<std::string>& paths,
                                       const kriging::GridFileInfo& info) {
   SharedGrids grids;
@@ -21,7 +21,7 @@ Result<SharedGrids> SharedGrids::open(convert::RankGroup& ranks,
       tempNames += (*writer)->tempPath() + "\n";
       grids.writers_.push_back(std::move(*writer));
     }
-  VOXLINK_RETURN_IF_ERROR(convert::agree(ranks, created));
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, created));
   if (ranks.size() == 1) return grids;
   ranks.broadcast(tempNames, 0);
   Status attached;
@@ -38,17 +38,17 @@ Result<SharedGrids> SharedGrids::open(convert::RankGroup& ranks,
       grids.writers_.push_back(std::move(*writer));
     }
   }
-  VOXLINK_RETURN_IF_ERROR(convert::agree(ranks, attached));  // rank 0's writers remove them
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, attached));  // rank 0's writers remove them
   return grids;
 }
 
 Status SharedGrids::finish(const Status& mine) {
-  convert::RankGroup& ranks = *ranks_;
+  base::RankGroup& ranks = *ranks_;
   Status wrote = mine;
   if (ranks.rank() != 0)
     for (auto& writer : writers_)
       if (wrote) wrote = writer->close();
-  VOXLINK_RETURN_IF_ERROR(convert::agree(ranks, wrote));
+  VOXLINK_RETURN_IF_ERROR(base::agree(ranks, wrote));
   // Every node of every grid written once: the sums must be the grids' sizes.
   const size_t grids = writers_.size();
   std::vector<uint64_t> counts(grids), all(grids * static_cast<size_t>(ranks.size()));
@@ -61,7 +61,7 @@ Status SharedGrids::finish(const Status& mine) {
       for (int r = 0; r < ranks.size(); ++r) total += all[static_cast<size_t>(r) * grids + i];
       committed = writers_[i]->finish(total);
     }
-  return convert::agree(ranks, committed);
+  return base::agree(ranks, committed);
 }
 
 }  // namespace voxlink::cli

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "convert/rank_group.h"
+#include "base/rank_group.h"
 #include "geostat/grid_writer.h"
 
 namespace voxlink::cli {
@@ -17,7 +17,7 @@ class SharedGrids {
  public:
   // Collective: every rank gets a writer for each of `paths`, or every rank the error of the
   // lowest failing one (no temporary left).
-  static Result<SharedGrids> open(convert::RankGroup& ranks, const std::vector<std::string>& paths,
+  static Result<SharedGrids> open(base::RankGroup& ranks, const std::vector<std::string>& paths,
                                   const kriging::GridFileInfo& info);
 
   kriging::GridWriter& operator[](size_t i) { return *writers_[i]; }
@@ -27,7 +27,7 @@ class SharedGrids {
   Status finish(const Status& mine);
 
  private:
-  convert::RankGroup* ranks_ = nullptr;
+  base::RankGroup* ranks_ = nullptr;
   std::vector<std::unique_ptr<kriging::GridWriter>> writers_;
 };
 
