@@ -18,6 +18,8 @@ import re
 import subprocess
 import sys
 
+from scene_paths import absolute_paths
+
 voxlink, scenes_dir, data = sys.argv[1:4]
 scenes_dir, data = os.path.abspath(scenes_dir), os.path.abspath(data)
 quick = "--quick" in sys.argv
@@ -34,13 +36,6 @@ def run(cmd):
     if p.returncode != 0:
         sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
     return p.stdout
-
-
-def absolute_paths(scene, folder):
-    for o in scene.get("objects", []):
-        if "file" in o and not os.path.isabs(o["file"]):
-            o["file"] = os.path.normpath(os.path.join(folder, o["file"]))
-    return scene
 
 
 def scenes():

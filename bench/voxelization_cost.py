@@ -19,6 +19,8 @@ import subprocess
 import sys
 import time
 
+from scene_paths import absolute_paths
+
 voxlink, scenes_dir, data = sys.argv[1:4]
 data = os.path.abspath(data)  # the scene files are written elsewhere
 quick = "--quick" in sys.argv
@@ -37,13 +39,6 @@ def run(cmd):
     if p.returncode != 0:
         sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
     return p.stdout, seconds
-
-
-def absolute_paths(scene, folder):
-    for o in scene.get("objects", []):
-        if "file" in o and not os.path.isabs(o["file"]):
-            o["file"] = os.path.normpath(os.path.join(folder, o["file"]))
-    return scene
 
 
 def scenes():

@@ -98,7 +98,7 @@ Result<Prepared> prepareFile(const ConvertArgs& a, const std::string& input,
       return makeError(ErrorCode::kInvalidArgument,
                        "--standardize goes with --keep-outside and without --mean/--sigma");
     convert::PassProgress momentsProgress;
-    if (bar) momentsProgress = [bar](double f, const char* stage) { bar->update(f, stage); };
+    if (bar) momentsProgress = bar->callback();
     VOXLINK_ASSIGN_OR_RETURN(convert::Moments moments,
                              convert::measureMoments(*source, a.slab, momentsProgress));
     if (!(moments.sigma > 0))
@@ -122,7 +122,7 @@ Result<Prepared> prepareFile(const ConvertArgs& a, const std::string& input,
   options.sourceOptions = open;
   options.ranks = ranks;
   if (!a.valueType.empty()) options.storedType = parseStoredName(a.valueType);
-  if (bar) options.progress = [bar](double f, const char* stage) { bar->update(f, stage); };
+  if (bar) options.progress = bar->callback();
   return Prepared{std::move(source), std::move(options)};
 }
 

@@ -41,17 +41,11 @@ CommandRunner addExportCommand(CLI::App& app) {
     if (Status s = format::checkOutputTarget(out, {args->path}); !s) return reportError(s);
     // Validating a quarter of the bar, exporting the rest.
     ProgressBar bar(args->out.showProgress());
-    const format::ProgressCallback progress = [&](double fraction, const char* stage) {
-      bar.update(fraction, stage);
-    };
-    auto fail = [&](const Error& error) {  // the message on a line of its own
-      bar.finish();
-      return reportError(error);
-    };
+    const format::ProgressCallback progress = bar.callback();
     auto file = format::VoxLinkFile::open(args->path);
-    if (!file) return fail(file.error());
+    if (!file) return bar.fail(file.error());
     if (auto valid = format::validateFile(*file, format::progressPart(progress, 0, 0.25)); !valid)
-      return fail(valid.error());
+      return bar.fail(valid.error());
     const format::ProgressCallback exportProgress = format::progressPart(progress, 0.25, 1);
     if (vdb) {
       auto written = convert::exportVdb(*file, out, exportProgress);

@@ -83,20 +83,14 @@ CommandRunner addPackCommand(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     // Validating a fifth of the bar, packing the rest (GRAD's prediction dominates).
     ProgressBar bar(args->out.showProgress());
-    const format::ProgressCallback progress = [&](double fraction, const char* stage) {
-      bar.update(fraction, stage);
-    };
-    auto fail = [&](const auto& error) {  // the message on a line of its own
-      bar.finish();
-      return reportError(error);
-    };
+    const format::ProgressCallback progress = bar.callback();
     auto file = openInputFor(args->path, args->output, format::progressPart(progress, 0, 0.2));
-    if (!file) return fail(file.error());
+    if (!file) return bar.fail(file.error());
     const double readSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (file->packedBytes() != 0)
-      return fail(makeError(ErrorCode::kInvalidArgument, args->path,
-                            ": already packed (voxlink unpack gives the original)"));
+      return bar.fail(makeError(ErrorCode::kInvalidArgument, args->path,
+                                ": already packed (voxlink unpack gives the original)"));
     auto report = format::packFile(
         *file, args->output,
         {args->level, args->threads, !args->fast, format::progressPart(progress, 0.2, 1)});
@@ -139,18 +133,12 @@ CommandRunner addUnpackCommand(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     // Unpacking and validating 90 % of the bar, writing the rest.
     ProgressBar bar(args->out.showProgress());
-    const format::ProgressCallback progress = [&](double fraction, const char* stage) {
-      bar.update(fraction, stage);
-    };
-    auto fail = [&](const auto& error) {  // the message on a line of its own
-      bar.finish();
-      return reportError(error);
-    };
+    const format::ProgressCallback progress = bar.callback();
     auto file = openInputFor(args->path, args->output, format::progressPart(progress, 0, 0.9));
-    if (!file) return fail(file.error());
+    if (!file) return bar.fail(file.error());
     if (file->packedBytes() == 0)
-      return fail(makeError(ErrorCode::kInvalidArgument, args->path,
-                            ": not a packed file (nothing to unpack)"));
+      return bar.fail(makeError(ErrorCode::kInvalidArgument, args->path,
+                                ": not a packed file (nothing to unpack)"));
     bar.update(0.9, "writing");
     const Status written = format::writeWholeFile(args->output, file->bytes());
     if (written) bar.update(1.0, "written");

@@ -35,8 +35,7 @@ CommandRunner addStatsCommand(CLI::App& app) {
     if (!source) return reportError(source.error());
     const convert::VolumeInfo& info = (*source)->info();
     ProgressBar bar(a->out.showProgress());
-    auto h = convert::measureHistogram(**source, a->bins, 64,
-                                       [&](double f, const char* stage) { bar.update(f, stage); });
+    auto h = convert::measureHistogram(**source, a->bins, 64, bar.callback());
     bar.finish();
     if (!h) return reportError(h.error());
     if (a->out.quiet) return 0;

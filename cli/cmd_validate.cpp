@@ -25,8 +25,7 @@ CommandRunner addValidateCommand(CLI::App& app) {
         continue;
       }
       ProgressBar bar(out->showProgress());
-      auto report = format::validateFile(
-          *file, [&](double fraction, const char* stage) { bar.update(fraction, stage); });
+      auto report = format::validateFile(*file, bar.callback());
       bar.finish();
       if (!report) {
         status = reportError(report.error());

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "cli/command.h"
+
 namespace voxlink::cli {
 
 bool stderrIsTerminal() { return isatty(STDERR_FILENO) == 1; }
@@ -35,6 +37,15 @@ void ProgressBar::finish() {
   std::fprintf(stderr, "\r%*s\r", 70, "");
   std::fflush(stderr);
   lastPermille_ = -1;
+}
+
+format::ProgressCallback ProgressBar::callback() {
+  return [this](double fraction, const char* stage) { update(fraction, stage); };
+}
+
+int ProgressBar::fail(const Error& error) {
+  finish();
+  return reportError(error);
 }
 
 }  // namespace voxlink::cli

@@ -4,6 +4,9 @@
 #include <chrono>
 #include <string>
 
+#include "format/error.h"
+#include "format/progress.h"
+
 namespace voxlink::cli {
 
 class ProgressBar {
@@ -12,6 +15,10 @@ class ProgressBar {
   ~ProgressBar();
   void update(double fraction, const char* stage);
   void finish();
+  // Moves this bar from a library call's progress reports; the bar must outlive the callback.
+  format::ProgressCallback callback();
+  // Clears the bar, then reports `error` on a line of its own (reportError); the exit status.
+  int fail(const Error& error);
 
  private:
   bool enabled_;

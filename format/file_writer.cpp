@@ -106,52 +106,45 @@ SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
   return layout;
 }
 
+FileWriter::FileWriter(const std::string& path, const FileHeader& header)
+    : path_(path), header_(header), layout_(planSections(header, 0)) {
+  crcs_.resize(layout_.entries.size());
+}
+
+Status FileWriter::takeTemp(const TempFile& temp) {
+  fd_ = temp.fd;
+  tempPath_ = temp.path;
+  unnamedTemp_ = temp.unnamed;
+  const uint64_t dataEnd = layout_.entry(SectionId::kMeta).offset;
+  if (ftruncate(fd_, static_cast<off_t>(dataEnd)) != 0)
+    return makeError(ErrorCode::kIo, path_, ": cannot size output to ", dataEnd,
+                     " bytes: ", std::strerror(errno));
+  return Status::ok();
+}
+
 Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header) {
   if (header.voxelCount > kMaxVoxels)
     return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount,
                      " voxels exceed the format's limit of ", kMaxVoxels,
                      "; classify more strictly or split the volume");
-  FileWriter w;
-  w.path_ = path;
-  w.header_ = header;
-  w.layout_ = planSections(header, 0);
-  w.crcs_.resize(w.layout_.entries.size());
+  FileWriter w(path, header);
   // The temporary file sits beside the destination so the final rename stays on one file system;
   // unnamed where possible, so that not even kill -9 leaves a partial file behind.
   VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createUnnamedTempBeside(path));
-  w.fd_ = temp.fd;
-  w.tempPath_ = temp.path;
-  w.unnamedTemp_ = temp.unnamed;
-  const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
-  if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
-    return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd,
-                     " bytes: ", std::strerror(errno));
+  VOXLINK_RETURN_IF_ERROR(w.takeTemp(temp));
   return w;
 }
 
 Result<FileWriter> FileWriter::createShared(const std::string& path, const FileHeader& header) {
-  FileWriter w;
-  w.path_ = path;
-  w.header_ = header;
-  w.layout_ = planSections(header, 0);
-  w.crcs_.resize(w.layout_.entries.size());
+  FileWriter w(path, header);
   VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path));
-  w.fd_ = temp.fd;
-  w.tempPath_ = temp.path;
-  const uint64_t dataEnd = w.layout_.entry(SectionId::kMeta).offset;
-  if (ftruncate(w.fd_, static_cast<off_t>(dataEnd)) != 0)
-    return makeError(ErrorCode::kIo, path, ": cannot size output to ", dataEnd,
-                     " bytes: ", std::strerror(errno));
+  VOXLINK_RETURN_IF_ERROR(w.takeTemp(temp));
   return w;
 }
 
 Result<FileWriter> FileWriter::attach(const std::string& path, const std::string& tempPath,
                                       const FileHeader& header) {
-  FileWriter w;
-  w.path_ = path;
-  w.header_ = header;
-  w.layout_ = planSections(header, 0);
-  w.crcs_.resize(w.layout_.entries.size());
+  FileWriter w(path, header);
   w.attached_ = true;
   w.fd_ = ::open(tempPath.c_str(), O_WRONLY | O_CLOEXEC);
   if (w.fd_ < 0)

@@ -16,6 +16,8 @@
 
 namespace voxlink::format {
 
+struct TempFile;  // format/output_file.h
+
 // What the header says about a volume, apart from counts and section bookkeeping.
 struct VolumeDescription {
   std::array<uint32_t, 3> dims{0, 0, 0};
@@ -94,7 +96,9 @@ class FileWriter {
   Status close();
 
  private:
-  FileWriter() = default;
+  FileWriter(const std::string& path, const FileHeader& header);  // no file yet
+  // Writes into `temp` from now on (a discard removes it), sized to the data sections' end.
+  Status takeTemp(const TempFile& temp);
   Status writeRaw(uint64_t fileOffset, const void* data, size_t bytes);
   void discard();
 

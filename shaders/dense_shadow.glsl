@@ -1,5 +1,7 @@
 // Shadow rays through the dense volume: transmittance towards the light with voxel (nearest)
-// sampling over every cell. Mirrors ReferenceRenderer::shadowTransmittance.
+// sampling over every cell (dense_walk.glsl). Mirrors ReferenceRenderer::shadowTransmittance.
+
+#include "dense_walk.glsl"
 
 uniform usampler3D uDenseValues;     // stored value bits (R8UI, R16UI, R32UI)
 uniform usampler3D uDenseGradients;  // polar16 codes (R16UI)
@@ -11,17 +13,14 @@ float shadowTransmittance(vec3 worldPoint) {
   float t = max(range.x, 0.0), t1 = range.y;
   float transmittance = 1.0;
   if (!(t < t1)) return transmittance;
-  Dda voxels = ddaInit(o, d, t, ivec3(0), uDims - 1);
-  int limit = uDims.x + uDims.y + uDims.z + 3;
-  for (int i = 0; i < limit && t < t1; ++i) {
-    int axis = minAxis(voxels.tMax);
-    float tn = min(max(voxels.tMax[axis], t), t1);
-    uint bits = texelFetch(uDenseValues, voxels.cell, 0).r;
-    transmittance *= 1.0 - correctedAlpha(classify(bits).a, tn - t);
+  for (DenseWalk w = denseWalkBegin(o, d, t, t1); denseWalkGoesOn(w);) {
+    ivec3 cell;
+    float ta, tz;
+    denseWalkEnter(w, cell, ta, tz);
+    uint bits = texelFetch(uDenseValues, cell, 0).r;
+    transmittance *= 1.0 - correctedAlpha(classify(bits).a, tz - ta);
     if (transmittance < uShadowStop) return transmittance;
-    t = tn;
-    ddaAdvance(voxels, axis);
-    if (voxels.cell[axis] < 0 || voxels.cell[axis] >= uDims[axis]) break;
+    if (!denseWalkLeave(w)) break;
   }
   return transmittance;
 }

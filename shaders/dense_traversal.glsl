@@ -1,32 +1,31 @@
 // The dense 3D-texture ray caster the benchmark compares against: the same sampling, shading,
 // transfer function and step as the VoxLink traversals, reading every voxel from 3D textures
-// (stored value bits and gradient codes) and skipping no empty space.
+// (stored value bits and gradient codes) and skipping no empty space (dense_walk.glsl).
+
+#include "dense_walk.glsl"
 
 void traceVoxels(vec3 o, vec3 d, float t, float t1, vec3 toEye, inout vec3 color,
                  inout float transmittance) {
-  Dda voxels = ddaInit(o, d, t, ivec3(0), uDims - 1);
-  int limit = uDims.x + uDims.y + uDims.z + 3;
-  for (int i = 0; i < limit && t < t1; ++i) {
-    int axis = minAxis(voxels.tMax);
-    float tn = min(max(voxels.tMax[axis], t), t1);
-    uint bits = texelFetch(uDenseValues, voxels.cell, 0).r;
+  for (DenseWalk w = denseWalkBegin(o, d, t, t1); denseWalkGoesOn(w);) {
+    ivec3 cell;
+    float ta, tz;
+    denseWalkEnter(w, cell, ta, tz);
+    uint bits = texelFetch(uDenseValues, cell, 0).r;
     vec4 c = classify(bits);
-    float a = correctedAlpha(c.a, tn - t);
+    float a = correctedAlpha(c.a, tz - ta);
     if (a > 0.0) {
       vec3 ambient, lit;
-      uint code = texelFetch(uDenseGradients, voxels.cell, 0).r;
+      uint code = texelFetch(uDenseGradients, cell, 0).r;
       shadeSample(c.rgb, 1.0, decodeGradient(code), toEye, ambient, lit);
       float shadow = 1.0;
 #if VXL_SHADOWS
-      shadow = shadowTransmittance(indexToWorld(o + 0.5 * (t + tn) * d));
+      shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));
 #endif
       color += transmittance * a * (ambient + shadow * lit);
       transmittance *= 1.0 - a;
       if (transmittance <= uStopTransmittance) return;
     }
-    t = tn;
-    ddaAdvance(voxels, axis);
-    if (voxels.cell[axis] < 0 || voxels.cell[axis] >= uDims[axis]) break;
+    if (!denseWalkLeave(w)) break;
   }
 }
 

@@ -1,45 +1,23 @@
 // Voxel (nearest) sampling of a VoxLink file (paper, section 3.1.4): a walk over bricks skips
-// unoccupied ones; inside an occupied brick the row walk (voxlink_row_walk.glsl) visits the
-// stored voxels along the lists. Each stored voxel contributes over the exact chord the ray
-// spends in it. Mirrors ReferenceRenderer::traceVoxels.
+// unoccupied ones (voxlink_brick_walk.glsl); inside an occupied brick the row walk
+// (voxlink_row_walk.glsl) visits the stored voxels along the lists. Each stored voxel
+// contributes over the exact chord the ray spends in it. Mirrors ReferenceRenderer::traceVoxels.
+
+#include "voxlink_brick_walk.glsl"
 
 void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
                  inout float transmittance) {
-  Dda bricks = ddaInit(o / float(VXL_N), d / float(VXL_N), t0, ivec3(0), uBrickGrid - 1);
-  float t = t0;
-  int limit = uBrickGrid.x + uBrickGrid.y + uBrickGrid.z + 3;
-  for (int i = 0; i < limit && t < t1; ++i) {
+  for (BrickWalk w = brickWalkBegin(o, d, t0, t1); brickWalkGoesOn(w);) {
 #if VXL_EFFECTS
-    // t is a brick's (and so a voxel's) entry: the next pass starts a thousandth of a voxel
+    // w.t is a brick's (and so a voxel's) entry: the next pass starts a thousandth of a voxel
     // further, inside that voxel, so the voxel before is not met twice.
-    if (continueNextPass(i, o + (t + 1e-3 * uUnit) * d, toEye, transmittance)) {
+    if (continueNextPass(w.step, o + (w.t + 1e-3 * uUnit) * d, toEye, transmittance)) {
       transmittance = 0.0;
       return;
     }
 #endif
-    int axis = minAxis(bricks.tMax);
-    // Runs of empty bricks are crossed here, one occupancy bit each: llvmpipe executes the
-    // whole body of this loop for all 8 lanes of a SIMD vector whenever one of them needs it,
-    // so an empty brick taking a pass of its own costs as much as an occupied one.
-    int k = occupiedIndex(bricks.cell);
-    bool outside = false;  // (a return from inside this loop gave wrong images on Mesa 22.3 llvmpipe)
-    for (int j = 0; j < limit && k < 0; ++j) {
-      t = min(max(bricks.tMax[axis], t), t1);
-      ddaAdvance(bricks, axis);
-      if (t >= t1 || bricks.cell[axis] < 0 || bricks.cell[axis] >= uBrickGrid[axis]) {
-        outside = true;
-        break;
-      }
-      axis = minAxis(bricks.tMax);
-      k = occupiedIndex(bricks.cell);
-    }
-    if (outside) break;
-    float tb = min(max(bricks.tMax[axis], t), t1);
-    float tIn = t, tOut = tb;
-    ivec3 lo, hi;
-    uint base;
-    if (k >= 0 && tb > t && clipToBrickBounds(o, d, uint(k), bricks.cell, tIn, tOut, lo, hi, base)) {
-      RowWalk walk = rowWalkBegin(o, d, tIn, tOut, bricks.cell, uint(k), base, lo, hi);
+    RowWalk walk;
+    if (brickWalkEnter(w, o, d, true, walk)) {
       uint voxel;
       float ta, tz;
       while (rowWalkNext(walk, voxel, ta, tz)) {
@@ -71,8 +49,6 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
         }
       }
     }
-    t = tb;
-    ddaAdvance(bricks, axis);
-    if (bricks.cell[axis] < 0 || bricks.cell[axis] >= uBrickGrid[axis]) break;
+    if (!brickWalkLeave(w)) break;
   }
 }

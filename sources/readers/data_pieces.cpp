@@ -181,6 +181,26 @@ class PieceSource final : public VolumeSource {
 
 }  // namespace
 
+Error unevenDataFiles(const std::string& path, std::string_view field, uint64_t files,
+                      uint32_t depth) {
+  return makeError(ErrorCode::kSizeMismatch, path, ": header field '", field, "': ", files,
+                   " files cannot each hold whole z slices of ", depth);
+}
+
+Status addDataFilePieces(const DataPiece& base, const std::vector<std::string>& files,
+                         uint32_t depth, const std::string& path, std::string_view field,
+                         PieceLayout& layout) {
+  if (files.empty() || depth % files.size() != 0)
+    return unevenDataFiles(path, field, files.size(), depth);
+  for (const std::string& file : files) {
+    DataPiece piece = base;
+    piece.path = file;
+    piece.slices = static_cast<uint32_t>(depth / files.size());
+    layout.pieces.push_back(piece);
+  }
+  return Status::ok();
+}
+
 Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayout layout) {
   if (layout.pieces.empty())
     return makeError(ErrorCode::kCorrupt, layout.label, ": no data file named");

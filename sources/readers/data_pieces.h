@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sources/volume_source.h"
@@ -34,6 +35,18 @@ struct PieceLayout {
   // Starts messages about the data ("foot.nrrd: data").
   std::string label;
 };
+
+// The error of a header whose `files` data files (field `field`) cannot each hold whole z slices
+// of `depth`.
+Error unevenDataFiles(const std::string& path, std::string_view field, uint64_t files,
+                      uint32_t depth);
+
+// Adds one piece per data file, each a copy of `base` holding an equal share of the `depth` z
+// slices; unevenDataFiles when they do not divide evenly. `path` and `field` name the header
+// and its file-list field (MetaImage ElementDataFile, NRRD data file) in the message.
+Status addDataFilePieces(const DataPiece& base, const std::vector<std::string>& files,
+                         uint32_t depth, const std::string& path, std::string_view field,
+                         PieceLayout& layout);
 
 // Checks that every piece exists and (raw) has the right size, then returns the source.
 // `info` must be complete (dims, type, spacing, path, format).

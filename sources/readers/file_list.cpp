@@ -98,6 +98,14 @@ Result<std::vector<std::string>> expandNumberedFiles(const std::vector<std::stri
   return names;
 }
 
+Status appendNumberedFiles(const std::vector<std::string>& words, const std::string& headerPath,
+                           std::string_view field, std::vector<std::string>& paths) {
+  VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names,
+                           expandNumberedFiles(words, headerPath, field));
+  for (const auto& n : names) paths.push_back(besideHeader(headerPath, n));
+  return Status::ok();
+}
+
 std::string besideHeader(const std::string& headerPath, const std::string& name) {
   const std::filesystem::path p(name);
   if (p.is_absolute()) return name;

@@ -18,6 +18,11 @@ Result<std::vector<std::string>> expandNumberedFiles(const std::vector<std::stri
                                                      const std::string& file,
                                                      std::string_view field);
 
+// expandNumberedFiles of header `headerPath`, each name placed beside the header (besideHeader)
+// and appended to `paths`.
+Status appendNumberedFiles(const std::vector<std::string>& words, const std::string& headerPath,
+                           std::string_view field, std::vector<std::string>& paths);
+
 // `name` relative to the directory of `headerPath`, unless it is absolute.
 std::string besideHeader(const std::string& headerPath, const std::string& name);
 

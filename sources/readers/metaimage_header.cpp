@@ -144,10 +144,7 @@ class MetaImageParser {
       return Status::ok();
     }
     if (words[0].find('%') != std::string::npos && words.size() == 4) {
-      VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names,
-                               expandNumberedFiles(words, path_, "ElementDataFile"));
-      for (const auto& n : names) h_.dataFiles.push_back(besideHeader(path_, n));
-      return Status::ok();
+      return appendNumberedFiles(words, path_, "ElementDataFile", h_.dataFiles);
     }
     h_.dataFiles.push_back(besideHeader(path_, std::string(value)));
     return Status::ok();

@@ -49,16 +49,8 @@ Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
     base.slices = info.dims[2];
     layout.pieces.push_back(base);
   } else {
-    const uint64_t files = h.dataFiles.size();
-    if (info.dims[2] % files != 0)
-      return makeError(ErrorCode::kSizeMismatch, path, ": header field 'ElementDataFile': ", files,
-                       " files cannot each hold whole z slices of ", info.dims[2]);
-    for (const std::string& file : h.dataFiles) {
-      DataPiece piece = base;
-      piece.path = file;
-      piece.slices = static_cast<uint32_t>(info.dims[2] / files);
-      layout.pieces.push_back(piece);
-    }
+    VOXLINK_RETURN_IF_ERROR(
+        addDataFilePieces(base, h.dataFiles, info.dims[2], path, "ElementDataFile", layout));
   }
   // CompressedDataSize is advisory here: the stream is decoded to its end. Say so when it
   // disagrees with the file (VTK's frogtissue.mhd states 260020 for a 262087-byte .zraw).

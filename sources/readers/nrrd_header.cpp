@@ -307,10 +307,7 @@ class NrrdParser {
         VOXLINK_RETURN_IF_ERROR(parseSubdim(words[4]));
       else if (words.size() > 5)
         return badField(path_, "data file", "'<format> <min> <max> <step> [<subdim>]'", value);
-      VOXLINK_ASSIGN_OR_RETURN(std::vector<std::string> names,
-                               expandNumberedFiles(list, path_, "data file"));
-      for (const auto& n : names) h_.dataFiles.push_back(besideHeader(path_, n));
-      return Status::ok();
+      return appendNumberedFiles(list, path_, "data file", h_.dataFiles);
     }
     // A single file; its name may contain spaces.
     h_.dataFiles.push_back(besideHeader(path_, std::string(value)));

@@ -74,17 +74,11 @@ Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path,
     const uint64_t files = h.dataFiles.size();
     // A <subdim> of 2 (or 3 for 4-D) means one z slice per file.
     const int sliceSubdim = h.dimension - 1;
-    if ((h.dataFileSubdim != 0 && h.dataFileSubdim != sliceSubdim &&
-         h.dataFileSubdim != h.dimension) ||
-        info.dims[2] % files != 0 || (h.dataFileSubdim == sliceSubdim && files != info.dims[2]))
-      return makeError(ErrorCode::kSizeMismatch, path, ": header field 'data file': ", files,
-                       " files cannot each hold whole z slices of ", info.dims[2]);
-    for (const std::string& file : h.dataFiles) {
-      DataPiece piece = base;
-      piece.path = file;
-      piece.slices = static_cast<uint32_t>(info.dims[2] / files);
-      layout.pieces.push_back(piece);
-    }
+    const bool subdimFits = h.dataFileSubdim == 0 || h.dataFileSubdim == h.dimension ||
+                            (h.dataFileSubdim == sliceSubdim && files == info.dims[2]);
+    if (!subdimFits) return unevenDataFiles(path, "data file", files, info.dims[2]);
+    VOXLINK_RETURN_IF_ERROR(
+        addDataFilePieces(base, h.dataFiles, info.dims[2], path, "data file", layout));
     if (files > 1) info.notes.push_back(cat("data in ", files, " files"));
   }
   return openDataPieces(std::move(info), std::move(layout));

@@ -12,6 +12,21 @@
 #include "tests/support/test_util.h"
 
 namespace voxlink::testing {
+namespace {
+
+// In a forked child: becomes the voxlink executable with `args` (exit 127 when it cannot).
+[[noreturn]] void execVoxlink(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  std::string exe = VOXLINK_EXECUTABLE;
+  argv.push_back(exe.data());
+  std::vector<std::string> copy = args;
+  for (std::string& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv(exe.c_str(), argv.data());
+  _exit(127);
+}
+
+}  // namespace
 
 CommandResult runVoxlink(const std::vector<std::string>& args) { return runVoxlink(args, {}); }
 
@@ -40,14 +55,7 @@ CommandResult runVoxlink(const std::vector<std::string>& args, const RunOptions&
     const int err = open(errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(out, 1);
     dup2(err, 2);
-    std::vector<char*> argv;
-    std::string exe = VOXLINK_EXECUTABLE;
-    argv.push_back(exe.data());
-    std::vector<std::string> copy = args;
-    for (std::string& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(exe.c_str(), argv.data());
-    _exit(127);
+    execVoxlink(args);
   }
   int status = 0;
   waitpid(pid, &status, 0);
@@ -69,14 +77,7 @@ int startVoxlink(const std::vector<std::string>& args) {
     const int null = open("/dev/null", O_WRONLY);
     dup2(null, 1);
     dup2(null, 2);
-    std::vector<char*> argv;
-    std::string exe = VOXLINK_EXECUTABLE;
-    argv.push_back(exe.data());
-    std::vector<std::string> copy = args;
-    for (std::string& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(exe.c_str(), argv.data());
-    _exit(127);
+    execVoxlink(args);
   }
   return pid;
 }

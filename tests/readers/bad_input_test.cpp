@@ -32,6 +32,29 @@ TEST(BadInput, TruncatedSliceFileOfAList) {
               {"slices.nhdr: data file", "slice.2", "only 412"});
 }
 
+TEST(BadInput, DataFilesThatCannotShareTheSlicesEvenlyAreNamed) {
+  TempDir dir;
+  for (const char* name : {"a.raw", "b.raw"}) writeBytes(dir.file(name), patternBytes(48));
+  // Two files for three slices, in each header's list form.
+  writeText(dir.file("two.mhd"),
+            "NDims = 3\nDimSize = 4 4 3\nElementType = MET_UCHAR\n"
+            "ElementDataFile = LIST\na.raw\nb.raw\n");
+  expectError(openVolume(dir.file("two.mhd")), ErrorCode::kSizeMismatch,
+              {"two.mhd: header field 'ElementDataFile': 2 files cannot each hold whole z slices "
+               "of 3"});
+  writeText(dir.file("two.nhdr"), nrrd("type: uint8\ndimension: 3\nsizes: 4 4 3\nencoding: raw\n"
+                                       "data file: LIST\na.raw\nb.raw"));
+  expectError(openVolume(dir.file("two.nhdr")), ErrorCode::kSizeMismatch,
+              {"two.nhdr: header field 'data file': 2 files cannot each hold whole z slices of 3"});
+  // NRRD's <subdim> 2 means a slice per file: two files for four slices do not fit, though
+  // they would split four slices evenly without it.
+  writeText(dir.file("subdim.nhdr"), nrrd("type: uint8\ndimension: 3\nsizes: 4 3 4\nencoding: raw\n"
+                                          "data file: LIST 2\na.raw\nb.raw"));
+  expectError(openVolume(dir.file("subdim.nhdr")), ErrorCode::kSizeMismatch,
+              {"subdim.nhdr: header field 'data file': 2 files cannot each hold whole z slices "
+               "of 4"});
+}
+
 TEST(BadInput, TruncatedGzipStream) {
   TempDir dir;
   auto gz = gzipBytes(patternBytes(20 * 20 * 20));

@@ -26,6 +26,57 @@ double clampBetween(const std::vector<Point>& points, int i, double v) {
   return v;
 }
 
+// A strip of the editor showing the values [lo, hi] across its width: an invisible button (the
+// last ImGui item) that takes the mouse, and the mapping between values and screen x.
+struct ValueStrip {
+  ImVec2 origin, size;
+  double lo, hi;
+
+  ValueStrip(const char* id, float height, double viewLo, double viewHi)
+      : origin(ImGui::GetCursorScreenPos()),
+        size(std::max(ImGui::GetContentRegionAvail().x, 100.0f), height),
+        lo(viewLo),
+        hi(viewHi) {
+    ImGui::InvisibleButton(id, size,
+                           ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+  }
+  float xOf(double v) const { return origin.x + float((v - lo) / (hi - lo)) * size.x; }
+  double valueOf(float x) const { return lo + double(x - origin.x) / size.x * (hi - lo); }
+};
+
+// The mouse edits of a strip's points, the same for opacity and colour points: a left click on
+// the hovered point selects it (and unselects the other kind's point, `otherSelected`) and
+// drags it while held (`dragTo(i)` moves point i to the mouse, true when it moved); a double
+// click off the points inserts `newPoint()` in value order; a right click removes the hovered
+// point, never the last one. True when the points changed.
+template <class Point, class DragTo, class NewPoint>
+bool editPoints(std::vector<Point>& pts, int hovered, int& selected, int& dragging,
+                int& otherSelected, DragTo dragTo, NewPoint newPoint) {
+  bool changed = false;
+  if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hovered >= 0) {
+    dragging = selected = hovered;
+    otherSelected = -1;
+  }
+  if (dragging >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+    changed = dragTo(dragging);
+  else
+    dragging = -1;
+  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && hovered < 0) {
+    const Point p = newPoint();
+    auto at = std::upper_bound(pts.begin(), pts.end(), p.value,
+                               [](double v, const Point& q) { return v < q.value; });
+    selected = int(pts.insert(at, p) - pts.begin());
+    changed = true;
+  }
+  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 &&
+      pts.size() > 1) {
+    pts.erase(pts.begin() + hovered);
+    selected = -1;
+    changed = true;
+  }
+  return changed;
+}
+
 }  // namespace
 
 bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context) {
@@ -53,17 +104,9 @@ bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context
 }
 
 bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& context) {
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 100.0f), 150.0f);
-  ImGui::InvisibleButton("opacity", size,
-                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+  const ValueStrip strip("opacity", 150.0f, viewLo_, viewHi_);
+  const ImVec2 origin = strip.origin, size = strip.size;
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  auto xOf = [&](double v) {
-    return origin.x + float((v - viewLo_) / (viewHi_ - viewLo_)) * size.x;
-  };
-  auto valueOf = [&](float x) {
-    return viewLo_ + double(x - origin.x) / size.x * (viewHi_ - viewLo_);
-  };
   auto yOf = [&](double a) { return origin.y + size.y - float(a / alphaMax_) * size.y; };
   auto alphaOf = [&](float y) {
     return std::clamp(double(origin.y + size.y - y) / size.y * alphaMax_, 0.0, 1.0);
@@ -77,8 +120,8 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
     const double width = (h->hi - h->lo) / h->counts.size();
     for (size_t i = 0; i < h->counts.size(); ++i) {
       if (!h->counts[i]) continue;
-      const float x0 = xOf(h->lo + i * width),
-                  x1 = std::max(xOf(h->lo + (i + 1) * width), x0 + 1.0f);
+      const float x0 = strip.xOf(h->lo + i * width),
+                  x1 = std::max(strip.xOf(h->lo + (i + 1) * width), x0 + 1.0f);
       const float top = origin.y + size.y - float(std::log1p(double(h->counts[i])) / norm) * size.y;
       draw->AddRectFilled(ImVec2(x0, top), ImVec2(x1, origin.y + size.y),
                           IM_COL32(90, 90, 100, 255));
@@ -86,7 +129,8 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   }
   // Values the pre-classification removed: the file holds none of them.
   for (const auto& r : context.removed) {
-    const float x0 = std::max(xOf(r.lo), origin.x), x1 = std::min(xOf(r.hi), origin.x + size.x);
+    const float x0 = std::max(strip.xOf(r.lo), origin.x),
+                x1 = std::min(strip.xOf(r.hi), origin.x + size.x);
     if (x1 > x0)
       draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1, origin.y + size.y),
                           IM_COL32(200, 50, 50, 55));
@@ -95,14 +139,14 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   auto& pts = tf.opacity;
   std::vector<ImVec2> line;
   line.emplace_back(origin.x, yOf(pts.front().alpha));
-  for (const auto& p : pts) line.emplace_back(xOf(p.value), yOf(p.alpha));
+  for (const auto& p : pts) line.emplace_back(strip.xOf(p.value), yOf(p.alpha));
   line.emplace_back(origin.x + size.x, yOf(pts.back().alpha));
   draw->PushClipRect(origin, ImVec2(origin.x + size.x, origin.y + size.y), true);
   draw->AddPolyline(line.data(), int(line.size()), IM_COL32(240, 240, 240, 255), 0, 2.0f);
   int hovered = -1;
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (int i = 0; i < int(pts.size()); ++i) {
-    const ImVec2 c(xOf(pts[i].value), yOf(pts[i].alpha));
+    const ImVec2 c(strip.xOf(pts[i].value), yOf(pts[i].alpha));
     const float dx = mouse.x - c.x, dy = mouse.y - c.y;
     if (dx * dx + dy * dy < 2.5f * kPointRadius * kPointRadius) hovered = i;
     draw->AddCircleFilled(
@@ -111,97 +155,60 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   }
   draw->PopClipRect();
 
-  bool changed = false;
-  if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hovered >= 0) {
-    draggingOpacity_ = selectedOpacity_ = hovered;
-    selectedColor_ = -1;
-  }
-  if (draggingOpacity_ >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-    auto& p = pts[draggingOpacity_];
-    const format::OpacityPoint moved{clampBetween(pts, draggingOpacity_, valueOf(mouse.x)),
-                                     alphaOf(mouse.y)};
-    changed = moved.value != p.value || moved.alpha != p.alpha;
-    p = moved;
-  } else {
-    draggingOpacity_ = -1;
-  }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && hovered < 0) {
-    const format::OpacityPoint p{valueOf(mouse.x), alphaOf(mouse.y)};
-    auto at = std::upper_bound(pts.begin(), pts.end(), p.value,
-                               [](double v, const auto& q) { return v < q.value; });
-    selectedOpacity_ = int(pts.insert(at, p) - pts.begin());
-    changed = true;
-  }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 &&
-      pts.size() > 1) {
-    pts.erase(pts.begin() + hovered);
-    selectedOpacity_ = -1;
-    changed = true;
-  }
+  const bool changed = editPoints(
+      pts, hovered, selectedOpacity_, draggingOpacity_, selectedColor_,
+      [&](int i) {
+        auto& p = pts[i];
+        const format::OpacityPoint moved{clampBetween(pts, i, strip.valueOf(mouse.x)),
+                                         alphaOf(mouse.y)};
+        const bool moves = moved.value != p.value || moved.alpha != p.alpha;
+        p = moved;
+        return moves;
+      },
+      [&] {
+        return format::OpacityPoint{strip.valueOf(mouse.x), alphaOf(mouse.y)};
+      });
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
         "value %.4g, opacity %.3f\ndrag a point, double-click to add, right-click to remove",
-        valueOf(mouse.x), alphaOf(mouse.y));
+        strip.valueOf(mouse.x), alphaOf(mouse.y));
   return changed;
 }
 
 bool TfEditor::drawColorBar(format::TransferFunction& tf) {
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 100.0f), 22.0f);
-  ImGui::InvisibleButton("colors", size,
-                         ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+  const ValueStrip strip("colors", 22.0f, viewLo_, viewHi_);
+  const ImVec2 origin = strip.origin, size = strip.size;
   ImDrawList* draw = ImGui::GetWindowDrawList();
-  auto xOf = [&](double v) {
-    return origin.x + float((v - viewLo_) / (viewHi_ - viewLo_)) * size.x;
-  };
-  auto valueOf = [&](float x) {
-    return viewLo_ + double(x - origin.x) / size.x * (viewHi_ - viewLo_);
-  };
   constexpr int kSegments = 128;
   for (int i = 0; i < kSegments; ++i) {
     const float x0 = origin.x + size.x * i / kSegments,
                 x1 = origin.x + size.x * (i + 1) / kSegments;
     draw->AddRectFilled(ImVec2(x0, origin.y), ImVec2(x1 + 1, origin.y + size.y - 8),
-                        toImColor(tf.colorAt(valueOf(0.5f * (x0 + x1)))));
+                        toImColor(tf.colorAt(strip.valueOf(0.5f * (x0 + x1)))));
   }
   auto& pts = tf.color;
   int hovered = -1;
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (int i = 0; i < int(pts.size()); ++i) {
-    const float x = xOf(pts[i].value), y = origin.y + size.y - 8;
+    const float x = strip.xOf(pts[i].value), y = origin.y + size.y - 8;
     if (std::abs(mouse.x - x) < kPointRadius && mouse.y >= origin.y && mouse.y <= origin.y + size.y)
       hovered = i;
     draw->AddTriangleFilled(
         ImVec2(x, y), ImVec2(x - 5, y + 8), ImVec2(x + 5, y + 8),
         i == selectedColor_ ? IM_COL32(255, 200, 40, 255) : IM_COL32(230, 230, 230, 255));
   }
-  bool changed = false;
-  if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hovered >= 0) {
-    draggingColor_ = selectedColor_ = hovered;
-    selectedOpacity_ = -1;
-  }
-  if (draggingColor_ >= 0 && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-    const double v = clampBetween(pts, draggingColor_, valueOf(mouse.x));
-    changed = v != pts[draggingColor_].value;
-    pts[draggingColor_].value = v;
-  } else {
-    draggingColor_ = -1;
-  }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && hovered < 0) {
-    const double v = valueOf(mouse.x);
-    const format::ColorPoint p{v, tf.colorAt(v)};
-    auto at = std::upper_bound(pts.begin(), pts.end(), v,
-                               [](double x, const auto& q) { return x < q.value; });
-    selectedColor_ = int(pts.insert(at, p) - pts.begin());
-    changed = true;
-  }
-  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && hovered >= 0 &&
-      pts.size() > 1) {
-    pts.erase(pts.begin() + hovered);
-    selectedColor_ = -1;
-    changed = true;
-  }
-  return changed;
+  return editPoints(
+      pts, hovered, selectedColor_, draggingColor_, selectedOpacity_,
+      [&](int i) {
+        const double v = clampBetween(pts, i, strip.valueOf(mouse.x));
+        const bool moves = v != pts[i].value;
+        pts[i].value = v;
+        return moves;
+      },
+      [&] {
+        const double v = strip.valueOf(mouse.x);
+        return format::ColorPoint{v, tf.colorAt(v)};
+      });
 }
 
 bool TfEditor::drawSelection(format::TransferFunction& tf) {
