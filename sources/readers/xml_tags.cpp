@@ -83,9 +83,9 @@ Result<XmlHeader> XmlHeader::parse(std::string_view xml, const std::string& file
     if (raw != kNone && header[raw].textBegin != kNone && at >= header[raw].textBegin)
       return header;
   }
-  // pugixml reports the input's last byte when the input ends inside a tag, a comment or an
-  // element.
-  if (at + 1 >= xml.size()) {
+  // pugixml reports the input's last byte when the input ends inside an element, and the
+  // start of a tag or attribute that runs to the end (no '>' after it): both mean cut short.
+  if (at + 1 >= xml.size() || xml.find('>', at) == std::string_view::npos) {
     if (cutShort) {
       header.endedOpen_ = true;
       return header;
