@@ -1,4 +1,5 @@
-// IEEE 754 binary16 conversion (round to nearest even), for the f16 stored value type.
+// IEEE 754 binary16 conversion (round to nearest even), for the f16 stored value type; NaNs
+// written as one quiet NaN (0x7E00, sign kept).
 #pragma once
 
 #include <cstdint>

@@ -2,117 +2,137 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <nanoflann.hpp>
 
 namespace voxlink::kriging {
 namespace {
 
-constexpr uint32_t kLeafSize = 12;
+constexpr size_t kLeafSize = 12;
+
+// nanoflann keeps a leaf's point when its distance is below the result set's worstDist(), and
+// prunes a branch whose lower bound (summed over axes, so a few ulps off) is above it. Asking
+// with a bound this much larger lets every point at exactly the bound through to the result
+// sets, which then decide by the exact comparisons below.
+constexpr double kBoundMargin = 1 + 1e-12;
 
 // Max-heap order: the farthest (then highest index) neighbour on top.
 bool closer(const Neighbour& a, const Neighbour& b) {
   return a.distance < b.distance || (a.distance == b.distance && a.index < b.index);
 }
 
-double distance2(const Point3& a, const Point3& b) {
-  const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
-  return dx * dx + dy * dy + dz * dz;
-}
+struct Cloud {
+  std::vector<Point3> points;
+  size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(uint32_t i, size_t axis) const { return points[i][axis]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+
+// Squared distances as local_kriging.cpp computes them (p - q, x then y then z), so that both
+// break ties alike.
+struct SquaredDistance {
+  using ElementType = double;
+  using DistanceType = double;
+  const Cloud& cloud;
+  explicit SquaredDistance(const Cloud& c) : cloud(c) {}
+  double evalMetric(const double* q, uint32_t i, size_t) const {
+    const Point3& p = cloud.points[i];
+    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+    return dx * dx + dy * dy + dz * dz;
+  }
+  double accum_dist(double a, double b, size_t) const { return (a - b) * (a - b); }
+};
+
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<SquaredDistance, Cloud, 3, uint32_t>;
+
+// The k nearest by (squared distance, index) within a squared bound: a max-heap.
+class NearestSet {
+ public:
+  NearestSet(size_t k, double bound2, std::vector<Neighbour>& heap)
+      : k_(k), bound2_(bound2), heap_(heap) {}
+  bool full() const { return heap_.size() == k_; }
+  double worstDist() const {
+    const double worst = full() ? std::min(bound2_, heap_.front().distance) : bound2_;
+    return std::nextafter(worst * kBoundMargin, INFINITY);
+  }
+  bool addPoint(double d2, uint32_t index) {
+    const Neighbour n{index, d2};  // squared until the end
+    if (d2 > bound2_) return true;
+    if (!full()) {
+      heap_.push_back(n);
+      std::push_heap(heap_.begin(), heap_.end(), closer);
+    } else if (closer(n, heap_.front())) {
+      std::pop_heap(heap_.begin(), heap_.end(), closer);
+      heap_.back() = n;
+      std::push_heap(heap_.begin(), heap_.end(), closer);
+    }
+    return true;
+  }
+
+ private:
+  size_t k_;
+  double bound2_;
+  std::vector<Neighbour>& heap_;
+};
+
+// Every point within a squared radius, stopping once there are more than maxCount.
+class BallSet {
+ public:
+  BallSet(double radius2, size_t maxCount, std::vector<uint32_t>& out)
+      : radius2_(radius2), maxCount_(maxCount), out_(out) {}
+  bool full() const { return true; }
+  double worstDist() const { return std::nextafter(radius2_ * kBoundMargin, INFINITY); }
+  bool addPoint(double d2, uint32_t index) {
+    if (d2 > radius2_) return true;
+    if (found_ >= maxCount_) {
+      overflow_ = true;
+      return false;
+    }
+    ++found_;
+    out_.push_back(index);
+    return true;
+  }
+  bool overflow() const { return overflow_; }
+
+ private:
+  double radius2_;
+  size_t maxCount_;
+  std::vector<uint32_t>& out_;
+  size_t found_ = 0;
+  bool overflow_ = false;
+};
 
 }  // namespace
 
-KdTree::KdTree(const std::vector<Point3>& points) : points_(points), order_(points.size()) {
-  for (uint32_t i = 0; i < order_.size(); ++i) order_[i] = i;
-  if (!order_.empty()) build(0, static_cast<uint32_t>(order_.size()), 0);
-}
+struct KdTree::Index {
+  Cloud cloud;
+  Tree tree;
+  explicit Index(const std::vector<Point3>& points)
+      : cloud{points}, tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize)) {}
+};
 
-int32_t KdTree::build(uint32_t begin, uint32_t end, int depth) {
-  const int32_t id = static_cast<int32_t>(nodes_.size());
-  nodes_.push_back(Node{begin, end});
-  if (end - begin <= kLeafSize) return id;
-  // Split the widest axis at the median.
-  Point3 lo{1e308, 1e308, 1e308}, hi{-1e308, -1e308, -1e308};
-  for (uint32_t i = begin; i < end; ++i)
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], points_[order_[i]][a]);
-      hi[a] = std::max(hi[a], points_[order_[i]][a]);
-    }
-  int axis = 0;
-  for (int a = 1; a < 3; ++a)
-    if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
-  if (hi[axis] == lo[axis]) return id;  // all points coincide: keep a leaf
-  const uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
-                   [&](uint32_t a, uint32_t b) { return points_[a][axis] < points_[b][axis]; });
-  nodes_[id].axis = static_cast<uint8_t>(axis);
-  nodes_[id].split = points_[order_[mid]][axis];
-  const int32_t left = build(begin, mid, depth + 1);
-  const int32_t right = build(mid, end, depth + 1);
-  nodes_[id].left = left;
-  nodes_[id].right = right;
-  return id;
-}
+KdTree::KdTree(const std::vector<Point3>& points) : index_(std::make_unique<Index>(points)) {}
 
-void KdTree::search(int32_t nodeId, const Point3& q, size_t k, double& worst2,
-                    std::vector<Neighbour>& heap) const {
-  const Node& node = nodes_[nodeId];
-  if (node.left < 0) {
-    for (uint32_t i = node.begin; i < node.end; ++i) {
-      const uint32_t idx = order_[i];
-      const double d2 = distance2(points_[idx], q);
-      if (d2 > worst2) continue;
-      const Neighbour n{idx, d2};  // squared until the end
-      if (heap.size() < k) {
-        heap.push_back(n);
-        std::push_heap(heap.begin(), heap.end(), closer);
-      } else if (closer(n, heap.front())) {
-        std::pop_heap(heap.begin(), heap.end(), closer);
-        heap.back() = n;
-        std::push_heap(heap.begin(), heap.end(), closer);
-      } else {
-        continue;
-      }
-      if (heap.size() == k) worst2 = std::min(worst2, heap.front().distance);
-    }
-    return;
-  }
-  const double diff = q[node.axis] - node.split;
-  const int32_t nearSide = diff < 0 ? node.left : node.right;
-  const int32_t farSide = diff < 0 ? node.right : node.left;
-  search(nearSide, q, k, worst2, heap);
-  // <= keeps equal-distance candidates reachable so index tie-breaking is exact.
-  if (diff * diff <= worst2) search(farSide, q, k, worst2, heap);
-}
-
-bool KdTree::collect(int32_t nodeId, const Point3& q, double radius2, size_t maxCount,
-                     std::vector<uint32_t>& out) const {
-  const Node& node = nodes_[nodeId];
-  if (node.left < 0) {
-    for (uint32_t i = node.begin; i < node.end; ++i)
-      if (distance2(points_[order_[i]], q) <= radius2) {
-        if (out.size() >= maxCount) return false;
-        out.push_back(order_[i]);
-      }
-    return true;
-  }
-  const double diff = q[node.axis] - node.split;
-  const int32_t nearSide = diff < 0 ? node.left : node.right;
-  const int32_t farSide = diff < 0 ? node.right : node.left;
-  if (!collect(nearSide, q, radius2, maxCount, out)) return false;
-  return diff * diff > radius2 || collect(farSide, q, radius2, maxCount, out);
-}
+KdTree::~KdTree() = default;
 
 bool KdTree::within(const Point3& q, double radius, size_t maxCount,
                     std::vector<uint32_t>& out) const {
-  if (nodes_.empty()) return true;
-  return collect(0, q, radius * radius, maxCount, out);
+  if (index_->cloud.points.empty()) return true;
+  BallSet ball(radius * radius, maxCount, out);
+  index_->tree.findNeighbors(ball, q.data(), nanoflann::SearchParams());
+  return !ball.overflow();
 }
 
 void KdTree::nearest(const Point3& q, size_t k, double maxDistance,
                      std::vector<Neighbour>& out) const {
   out.clear();
-  if (k == 0 || nodes_.empty()) return;
-  double worst2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : INFINITY;
-  search(0, q, k, worst2, out);
+  if (k == 0 || index_->cloud.points.empty()) return;
+  const double bound2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : INFINITY;
+  NearestSet set(k, bound2, out);
+  index_->tree.findNeighbors(set, q.data(), nanoflann::SearchParams());
   std::sort(out.begin(), out.end(), closer);
   for (Neighbour& n : out) n.distance = std::sqrt(n.distance);
 }

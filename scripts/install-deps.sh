@@ -5,7 +5,8 @@
 # `sample` is what building the `voxlink` executable (CMake finds every library at configure
 # time) and running it on samples/headsq need: the OpenVDB plugin for `info`'s peer, the
 # OpenImageIO plugin for the PNG (OpenImageIO's CMake config also wants its tools' binaries),
-# EGL on Mesa for the headless render, OpenBLAS/LAPACKE for Kriging. `tests` adds the test
+# EGL on Mesa for the headless render, OpenBLAS/LAPACKE for Kriging, pugixml for the .vti/.vvd
+# headers, nanoflann for Kriging's k-d tree, Imath for half floats. `tests` adds the test
 # frameworks, tools the tests call, Python, ParaView, clang, R and Open MPI (the build enables
 # MPI when it finds Open MPI; without it `voxlink` is the same program minus mpirun support).
 set -euo pipefail
@@ -23,6 +24,7 @@ sample=(
   libfftw3-dev libzip-dev libzstd-dev
   libassimp-dev libembree-dev
   libopenblas-dev liblapacke-dev
+  libpugixml-dev libnanoflann-dev libimath-dev
 )
 tests=(
   git ca-certificates time file

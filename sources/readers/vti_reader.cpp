@@ -196,15 +196,13 @@ std::string componentCount(const XmlTag& array) {
 // The point-data array to read: the one `variable` (--variable) names; without it the scalar
 // array the `Scalars` attribute names, else the first scalar (one-component) array, with a note
 // listing them all. Vector arrays are skipped, not refused, so a scalar array after one is read.
-Result<XmlTag> pickArray(std::string_view xml, const XmlTag& pointData, size_t pointDataEnd,
-                         const std::string& variable, const std::string& path,
-                         std::vector<std::string>& notes) {
+Result<XmlTag> pickArray(const XmlHeader& xml, size_t pointData, const std::string& variable,
+                         const std::string& path, std::vector<std::string>& notes) {
   std::vector<XmlTag> arrays;
-  for (size_t at = pointData.end;;) {
-    VOXLINK_ASSIGN_OR_RETURN(auto tag, findTag(xml, "DataArray", path, at, pointDataEnd));
-    if (!tag) break;
-    at = tag->end;
-    arrays.push_back(std::move(*tag));
+  for (size_t at = pointData + 1;; ++at) {
+    at = xml.find("DataArray", at, xml[pointData].subtreeEnd);
+    if (at == XmlHeader::kNone) break;
+    arrays.push_back(xml[at]);
   }
   if (arrays.empty())
     return makeError(ErrorCode::kUnsupported, path, ": no <DataArray> in <PointData>");
@@ -229,7 +227,7 @@ Result<XmlTag> pickArray(std::string_view xml, const XmlTag& pointData, size_t p
                        " (only scalars; scalar arrays: ", scalars, ")");
     return *it;
   }
-  const std::string* wanted = pointData.attribute("Scalars");
+  const std::string* wanted = xml[pointData].attribute("Scalars");
   auto chosen = std::find_if(arrays.begin(), arrays.end(), [&](const XmlTag& a) {
     return wanted && arrayName(a) == *wanted && isScalar(a);
   });
@@ -247,11 +245,27 @@ Result<XmlTag> pickArray(std::string_view xml, const XmlTag& pointData, size_t p
   return *chosen;
 }
 
+// The XML elements. Appended data may be raw bytes (not XML) and large: the parser reads the
+// first MiB, and the whole file only when the header (or inline data) goes on past it, so a
+// large appended array is not copied into the parser.
+Result<XmlHeader> parseHeader(std::string_view xml, const std::string& path) {
+  constexpr size_t kFirstBytes = size_t{1} << 20;
+  if (xml.size() > kFirstBytes) {
+    VOXLINK_ASSIGN_OR_RETURN(XmlHeader first,
+                             XmlHeader::parse(xml.substr(0, kFirstBytes), path, "AppendedData",
+                                              /*cutShort=*/true));
+    if (!first.endedOpen()) return first;
+  }
+  return XmlHeader::parse(xml, path, "AppendedData");
+}
+
 }  // namespace
 
 Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const OpenOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(std::string xml, readFilePrefix(path, limits::kMaxWholeFileBytes));
-  VOXLINK_ASSIGN_OR_RETURN(auto root, findTag(xml, "VTKFile", path));
+  VOXLINK_ASSIGN_OR_RETURN(const XmlHeader header, parseHeader(xml, path));
+  const size_t rootAt = header.find("VTKFile");
+  const XmlTag* root = rootAt == XmlHeader::kNone ? nullptr : &header[rootAt];
   if (!root || !root->attribute("type") || *root->attribute("type") != "ImageData")
     return makeError(ErrorCode::kCorrupt, path,
                      ": not a VTK XML ImageData file (<VTKFile type=\"ImageData\">)");
@@ -271,8 +285,10 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
     layout.compressed = true;
   }
 
-  VOXLINK_ASSIGN_OR_RETURN(auto image, findTag(xml, "ImageData", path, root->end));
-  if (!image) return makeError(ErrorCode::kCorrupt, path, ": no <ImageData> element");
+  const size_t imageAt = header.find("ImageData", rootAt + 1);
+  if (imageAt == XmlHeader::kNone)
+    return makeError(ErrorCode::kCorrupt, path, ": no <ImageData> element");
+  const XmlTag* image = &header[imageAt];
   Status status;
   const std::string extentText = requireAttribute(*image, "WholeExtent", status, path);
   VOXLINK_RETURN_IF_ERROR(status);
@@ -334,19 +350,19 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
     for (int a = 0; a < 3; ++a) info.spacing[reorder->worldAxis[a]] = spacing[a] * length(axes[a]);
   }
 
-  VOXLINK_ASSIGN_OR_RETURN(auto piece, findTag(xml, "Piece", path, image->end));
-  if (!piece) return makeError(ErrorCode::kCorrupt, path, ": no <Piece> element");
+  const size_t pieceAt = header.find("Piece", imageAt + 1);
+  if (pieceAt == XmlHeader::kNone)
+    return makeError(ErrorCode::kCorrupt, path, ": no <Piece> element");
+  const XmlTag* piece = &header[pieceAt];
   if (piece->attribute("Extent") && trim(*piece->attribute("Extent")) != trim(extentText))
     return makeError(ErrorCode::kUnsupported, path,
                      ": Piece attribute 'Extent' differs from WholeExtent (several pieces)");
-  VOXLINK_ASSIGN_OR_RETURN(auto pointData, findTag(xml, "PointData", path, piece->end));
-  const size_t pointDataEnd =
-      pointData ? findEndTag(xml, "PointData", pointData->end) : std::string::npos;
-  if (!pointData || pointData->selfClosing || pointDataEnd == std::string::npos)
+  const size_t pointData = header.find("PointData", pieceAt + 1);
+  if (pointData == XmlHeader::kNone || !header[pointData].hasChildren)
     return makeError(ErrorCode::kUnsupported, path,
                      ": no <PointData> arrays (cell data is not supported)");
-  VOXLINK_ASSIGN_OR_RETURN(const XmlTag chosen, pickArray(xml, *pointData, pointDataEnd,
-                                                          options.variable, path, info.notes));
+  VOXLINK_ASSIGN_OR_RETURN(const XmlTag chosen,
+                           pickArray(header, pointData, options.variable, path, info.notes));
   const XmlTag* array = &chosen;
   VOXLINK_ASSIGN_OR_RETURN(info.type,
                            vtkType(requireAttribute(*array, "type", status, path), path));
@@ -359,19 +375,19 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
   std::string_view encoded;
   bool base64 = true;
   if (format == "binary") {
-    const size_t end = findEndTag(xml, "DataArray", array->end);
-    if (end == std::string::npos)
-      return makeError(ErrorCode::kCorrupt, path, ": DataArray not closed");
-    encoded = trim(std::string_view(xml).substr(array->end, end - array->end));
+    encoded = trim(array->text);
   } else if (format == "appended") {
     VOXLINK_ASSIGN_OR_RETURN(
         int64_t offset,
         parseInteger(requireAttribute(*array, "offset", status, path), path, "offset"));
     VOXLINK_RETURN_IF_ERROR(status);
-    VOXLINK_ASSIGN_OR_RETURN(auto appended, findTag(xml, "AppendedData", path, pointDataEnd));
-    if (!appended)
+    const size_t appendedAt = header.find("AppendedData", header[pointData].subtreeEnd);
+    if (appendedAt == XmlHeader::kNone)
       return makeError(ErrorCode::kCorrupt, path, ": no <AppendedData> for an appended DataArray");
-    const size_t underscore = xml.find('_', appended->end);
+    const XmlTag* appended = &header[appendedAt];
+    const size_t underscore = appended->textBegin == XmlHeader::kNone
+                                  ? std::string::npos
+                                  : xml.find('_', appended->textBegin);
     if (underscore == std::string::npos || offset < 0 ||
         underscore + 1 + static_cast<uint64_t>(offset) > xml.size())
       return makeError(ErrorCode::kCorrupt, path, ": AppendedData: no '_' marker or offset ",

@@ -35,20 +35,19 @@ Result<uint64_t> dimAttribute(const XmlTag& tag, const char* key, const std::str
   return static_cast<uint64_t>(n);
 }
 
-// The <value x= y= z=/> of <MetaItem name="NAME"> inside xml[from, until), if present.
-Result<std::optional<Vec3>> metaVector(std::string_view xml, const char* name, size_t from,
+// The <value x= y= z=/> of <MetaItem name="NAME"> among elements [from, until), if present.
+Result<std::optional<Vec3>> metaVector(const XmlHeader& xml, const char* name, size_t from,
                                        size_t until, const std::string& file) {
-  size_t at = from;
-  while (true) {
-    VOXLINK_ASSIGN_OR_RETURN(auto item, findTag(xml, "MetaItem", file, at, until));
-    if (!item) return std::optional<Vec3>();
-    at = item->end;
-    const std::string* n = item->attribute("name");
+  for (size_t at = from;; ++at) {
+    at = xml.find("MetaItem", at, until);
+    if (at == XmlHeader::kNone) return std::optional<Vec3>();
+    const std::string* n = xml[at].attribute("name");
     if (!n || *n != name) continue;
-    VOXLINK_ASSIGN_OR_RETURN(auto value, findTag(xml, "value", file, item->end, until));
+    const size_t valueAt = xml.find("value", at + 1, until);
     const std::string field = cat("MetaItem ", name);
-    if (!value)
+    if (valueAt == XmlHeader::kNone)
       return makeError(ErrorCode::kCorrupt, file, ": header field '", field, "' has no <value>");
+    const XmlTag* value = &xml[valueAt];
     Vec3 v{};
     for (int a = 0; a < 3; ++a) {
       const std::string* text = value->attribute(std::string(1, "xyz"[a]));
@@ -69,17 +68,22 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
   if (xml.find("<VoreenData") == std::string::npos)
     return makeError(ErrorCode::kCorrupt, path,
                      ": not a Voreen .vvd file (no <VoreenData> element)");
-  VOXLINK_ASSIGN_OR_RETURN(auto volume, findTag(xml, "Volume", path));
-  if (!volume) return makeError(ErrorCode::kCorrupt, path, ": no <Volume> element");
-  const size_t volumeEnd = findEndTag(xml, "Volume", volume->end);
-  // A header read whole must close its volume: a cut file would otherwise pass.
-  if (volumeEnd == std::string::npos && xml.size() < kMaxHeaderBytes)
+  // The header may be cut at kMaxHeaderBytes: what it holds so far counts.
+  VOXLINK_ASSIGN_OR_RETURN(const XmlHeader header, XmlHeader::parse(xml, path, {}, true));
+  const size_t volume = header.find("Volume");
+  if (volume == XmlHeader::kNone)
+    return makeError(ErrorCode::kCorrupt, path, ": no <Volume> element");
+  // A header read whole must close its volume: a cut file would otherwise pass. (With nothing
+  // after it, the volume or an element around it is open.)
+  if (header.endedOpen() && !header[volume].followed && xml.size() < kMaxHeaderBytes)
     return makeError(ErrorCode::kTruncated, path,
                      ": <Volume> element is not closed (truncated header?)");
-  VOXLINK_ASSIGN_OR_RETURN(auto raw, findTag(xml, "RawData", path, volume->end, volumeEnd));
-  if (!raw)
+  const size_t volumeEnd = header[volume].subtreeEnd;
+  const size_t rawAt = header.find("RawData", volume + 1, volumeEnd);
+  if (rawAt == XmlHeader::kNone)
     return makeError(ErrorCode::kCorrupt, path,
                      ": header field 'RawData' missing in the first <Volume>");
+  const XmlTag* raw = &header[rawAt];
 
   const std::string* filename = raw->attribute("filename");
   const std::string* format = raw->attribute("format");
@@ -99,8 +103,9 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
   VOXLINK_RETURN_IF_ERROR(checkDims(dims, path, "RawData x y z"));
   for (int a = 0; a < 3; ++a) info.dims[a] = static_cast<uint32_t>(dims[a]);
 
-  VOXLINK_ASSIGN_OR_RETURN(auto spacing, metaVector(xml, "Spacing", volume->end, volumeEnd, path));
-  VOXLINK_ASSIGN_OR_RETURN(auto offset, metaVector(xml, "Offset", volume->end, volumeEnd, path));
+  VOXLINK_ASSIGN_OR_RETURN(auto spacing,
+                           metaVector(header, "Spacing", volume + 1, volumeEnd, path));
+  VOXLINK_ASSIGN_OR_RETURN(auto offset, metaVector(header, "Offset", volume + 1, volumeEnd, path));
   if (spacing) {
     info.spacing = *spacing;
     VOXLINK_RETURN_IF_ERROR(checkSpacing(info.spacing, path, "MetaItem Spacing"));
@@ -115,10 +120,8 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
     info.notes.push_back("RealWorldMapping meta item not applied: values are the raw file's");
   if (xml.find("name=\"Transformation\"") != std::string::npos)
     info.notes.push_back("Transformation meta item ignored: voxels stay in index order");
-  VOXLINK_ASSIGN_OR_RETURN(
-      auto second,
-      findTag(xml, "Volume", path, volumeEnd == std::string::npos ? xml.size() : volumeEnd));
-  if (second) info.notes.push_back("the file describes more than one volume; the first is read");
+  if (header.find("Volume", volumeEnd) != XmlHeader::kNone)
+    info.notes.push_back("the file describes more than one volume; the first is read");
   VOXLINK_RETURN_IF_ERROR(applyOpenOptions(info, options));
 
   PieceLayout layout;

@@ -1,110 +1,114 @@
 #include "sources/readers/xml_tags.h"
 
 #include <algorithm>
-#include <cctype>
+#include <pugixml.hpp>
 
 namespace voxlink::convert {
 namespace {
 
-bool isNameChar(char c) {
-  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' ||
-         c == ':';
+// Escapes and CDATA as XML defines them; attribute whitespace kept as written (the readers
+// split lists on any space), no DOCTYPE expansion: pugixml never reads external entities.
+constexpr unsigned kParseOptions = pugi::parse_cdata | pugi::parse_escapes;
+
+bool isText(const pugi::xml_node& node) {
+  return node.type() == pugi::node_pcdata || node.type() == pugi::node_cdata;
 }
 
-std::string decodeEntities(std::string_view text) {
-  static const std::pair<std::string_view, char> kEntities[] = {
-      {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''}};
-  std::string out;
-  for (size_t i = 0; i < text.size(); ++i) {
-    bool replaced = false;
-    if (text[i] == '&') {
-      for (const auto& [entity, c] : kEntities) {
-        if (text.substr(i, entity.size()) == entity) {
-          out += c;
-          i += entity.size() - 1;
-          replaced = true;
-          break;
-        }
-      }
-    }
-    if (!replaced) out += text[i];
-  }
-  return out;
+size_t offsetOf(const pugi::xml_node& node) {
+  const ptrdiff_t at = node.offset_debug();
+  return at < 0 ? XmlHeader::kNone : static_cast<size_t>(at);
 }
 
-Result<XmlTag> parseTag(std::string_view xml, size_t begin, const std::string& file) {
+XmlTag tagOf(const pugi::xml_node& node, bool followed) {
   XmlTag tag;
-  tag.begin = begin;
-  size_t i = begin + 1;
-  while (i < xml.size() && isNameChar(xml[i])) tag.name += xml[i++];
-  const auto fail = [&](const char* what) {
-    return makeError(ErrorCode::kCorrupt, file, ": XML tag <", tag.name, "> at byte ", begin, ": ",
-                     what);
-  };
-  while (true) {
-    while (i < xml.size() && std::isspace(static_cast<unsigned char>(xml[i]))) ++i;
-    if (i >= xml.size()) return fail("not closed");
-    if (xml[i] == '>') {
-      tag.end = i + 1;
-      return tag;
+  tag.name = node.name();
+  for (const pugi::xml_attribute& a : node.attributes()) tag.attributes[a.name()] = a.value();
+  tag.begin = offsetOf(node);
+  tag.textBegin = XmlHeader::kNone;
+  for (const pugi::xml_node& child : node.children()) {
+    tag.hasChildren = true;
+    if (isText(child) && tag.textBegin == XmlHeader::kNone) {
+      tag.textBegin = offsetOf(child);
+      tag.text = child.value();
     }
-    if (xml[i] == '/' && i + 1 < xml.size() && xml[i + 1] == '>') {
-      tag.selfClosing = true;
-      tag.end = i + 2;
-      return tag;
-    }
-    std::string key;
-    while (i < xml.size() && isNameChar(xml[i])) key += xml[i++];
-    while (i < xml.size() && std::isspace(static_cast<unsigned char>(xml[i]))) ++i;
-    if (key.empty() || i >= xml.size() || xml[i] != '=') return fail("malformed attribute");
-    ++i;
-    while (i < xml.size() && std::isspace(static_cast<unsigned char>(xml[i]))) ++i;
-    if (i >= xml.size() || (xml[i] != '"' && xml[i] != '\''))
-      return fail("attribute value not quoted");
-    const char quote = xml[i++];
-    const size_t close = xml.find(quote, i);
-    if (close == std::string_view::npos) return fail("attribute value not closed");
-    tag.attributes[key] = decodeEntities(xml.substr(i, close - i));
-    i = close + 1;
   }
+  tag.followed = followed;
+  return tag;
+}
+
+// The elements in document order, walked without recursion (a hostile file may nest deeply).
+std::vector<XmlTag> elementsOf(const pugi::xml_document& document) {
+  std::vector<XmlTag> tags;
+  std::vector<size_t> open;  // the elements around the current node
+  pugi::xml_node node = document.first_child();
+  while (node) {
+    if (node.type() == pugi::node_element) {
+      const bool followed = node.next_sibling() || (!open.empty() && tags[open.back()].followed);
+      tags.push_back(tagOf(node, followed));
+      if (node.first_child()) {
+        open.push_back(tags.size() - 1);
+        node = node.first_child();
+        continue;
+      }
+      tags.back().subtreeEnd = tags.size();
+    }
+    while (node && !node.next_sibling()) {
+      node = node.parent();
+      if (node == document) return tags;
+      tags[open.back()].subtreeEnd = tags.size();
+      open.pop_back();
+    }
+    node = node.next_sibling();
+  }
+  return tags;
 }
 
 }  // namespace
 
-Result<std::optional<XmlTag>> findTag(std::string_view xml, std::string_view name,
-                                      const std::string& file, size_t from, size_t until) {
-  until = std::min(until, xml.size());
-  size_t i = from;
-  while (true) {
-    i = xml.find('<', i);
-    if (i == std::string_view::npos || i >= until) return std::optional<XmlTag>();
-    if (xml.substr(i, 4) == "<!--") {
-      const size_t close = xml.find("-->", i + 4);
-      if (close == std::string_view::npos)
-        return makeError(ErrorCode::kCorrupt, file, ": XML comment not closed");
-      i = close + 3;
-      continue;
-    }
-    const std::string_view rest = xml.substr(i + 1);
-    if (rest.starts_with(name) && rest.size() > name.size() && !isNameChar(rest[name.size()])) {
-      VOXLINK_ASSIGN_OR_RETURN(XmlTag tag, parseTag(xml, i, file));
-      return std::optional<XmlTag>(std::move(tag));
-    }
-    ++i;
+XmlHeader::XmlHeader() : document_(std::make_unique<pugi::xml_document>()) {}
+XmlHeader::XmlHeader(XmlHeader&&) noexcept = default;
+XmlHeader& XmlHeader::operator=(XmlHeader&&) noexcept = default;
+XmlHeader::~XmlHeader() = default;
+
+Result<XmlHeader> XmlHeader::parse(std::string_view xml, const std::string& file,
+                                   std::string_view rawElement, bool cutShort) {
+  XmlHeader header;
+  const pugi::xml_parse_result result =
+      header.document_->load_buffer(xml.data(), xml.size(), kParseOptions, pugi::encoding_utf8);
+  header.tags_ = elementsOf(*header.document_);
+  if (result) return header;
+  const size_t at = static_cast<size_t>(result.offset);
+  if (!rawElement.empty()) {  // the raw bytes need not be XML: what came before them counts
+    const size_t raw = header.find(rawElement);
+    if (raw != kNone && header[raw].textBegin != kNone && at >= header[raw].textBegin)
+      return header;
   }
+  // pugixml reports the input's last byte when the input ends inside an element, and the
+  // start of a tag or attribute that runs to the end (no '>' after it): both mean cut short.
+  if (at + 1 >= xml.size() || xml.find('>', at) == std::string_view::npos) {
+    if (cutShort) {
+      header.endedOpen_ = true;
+      return header;
+    }
+    // The outermost open element is the last one at the top level.
+    size_t outer = 0;
+    while (outer < header.size() && header[outer].subtreeEnd < header.size())
+      outer = header[outer].subtreeEnd;
+    if (outer >= header.size()) return makeError(ErrorCode::kTruncated, file, ": XML ends early");
+    return makeError(ErrorCode::kTruncated, file, ": XML ends inside <", header[outer].name,
+                     "> (truncated?)");
+  }
+  std::string after;  // the element the error follows, to say where it is
+  for (const XmlTag& tag : header.tags_)
+    if (tag.begin != kNone && tag.begin < at) after = cat(" after <", tag.name, ">");
+  return makeError(ErrorCode::kCorrupt, file, ": XML at byte ", at, after, ": ",
+                   result.description());
 }
 
-size_t findEndTag(std::string_view xml, std::string_view name, size_t from) {
-  const std::string close = "</" + std::string(name);
-  size_t i = from;
-  while ((i = xml.find(close, i)) != std::string_view::npos) {
-    const size_t after = i + close.size();
-    if (after < xml.size() &&
-        (xml[after] == '>' || std::isspace(static_cast<unsigned char>(xml[after]))))
-      return i;
-    i = after;
-  }
-  return std::string_view::npos;
+size_t XmlHeader::find(std::string_view name, size_t from, size_t until) const {
+  for (size_t i = from; i < std::min(until, tags_.size()); ++i)
+    if (tags_[i].name == name) return i;
+  return kNone;
 }
 
 }  // namespace voxlink::convert

@@ -48,6 +48,65 @@ TEST(KdTree, MatchesBruteForceIncludingTiesOnAnIntegerLattice) {
   }
 }
 
+// The k nearest by squared distance (p - q, as the tree computes it; the square roots of two
+// different squares can be equal), then index.
+std::vector<uint32_t> bruteForceSquared(const std::vector<Point3>& pts, const Point3& q, size_t k) {
+  std::vector<std::pair<double, uint32_t>> all;
+  for (uint32_t i = 0; i < pts.size(); ++i) {
+    const double dx = pts[i][0] - q[0], dy = pts[i][1] - q[1], dz = pts[i][2] - q[2];
+    all.push_back({dx * dx + dy * dy + dz * dz, i});
+  }
+  std::sort(all.begin(), all.end());
+  std::vector<uint32_t> out;
+  for (size_t i = 0; i < std::min(k, all.size()); ++i) out.push_back(all[i].second);
+  return out;
+}
+
+// Coordinates in steps of 0.1 (not exact in binary): the tree's per-axis bounds round, and
+// points exactly at the k-th distance must still be found and ordered by index.
+TEST(KdTree, MatchesBruteForceWithTiesOnAnInexactLattice) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coord(-15, 15);
+  std::vector<Point3> pts(4000);
+  for (auto& p : pts) p = {0.1 * coord(rng), 0.1 * coord(rng), 0.1 * (coord(rng) % 4)};
+  const KdTree tree(pts);
+  std::vector<Neighbour> got;
+  for (int t = 0; t < 300; ++t) {
+    const Point3 q{0.1 * coord(rng), 0.1 * coord(rng), 0.1 * (t % 3)};
+    for (size_t k : {5, 16, 64}) {
+      tree.nearest(q, k, INFINITY, got);
+      const auto want = bruteForceSquared(pts, q, k);
+      ASSERT_EQ(got.size(), want.size());
+      for (size_t i = 0; i < got.size(); ++i)
+        ASSERT_EQ(got[i].index, want[i]) << "query " << t << " k " << k << " rank " << i;
+    }
+  }
+}
+
+TEST(KdTree, WithinFindsThePointsOnTheSphereAndStopsPastMaxCount) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> coord(0, 12);
+  std::vector<Point3> pts(2000);
+  for (auto& p : pts) p = {double(coord(rng)), double(coord(rng)), double(coord(rng))};
+  const KdTree tree(pts);
+  for (int t = 0; t < 200; ++t) {
+    const Point3 q{double(coord(rng)), double(coord(rng)), double(coord(rng))};
+    const double radius = 1 + t % 4;  // lattice points lie exactly on these spheres
+    std::vector<uint32_t> want;
+    for (uint32_t i = 0; i < pts.size(); ++i) {
+      const double dx = pts[i][0] - q[0], dy = pts[i][1] - q[1], dz = pts[i][2] - q[2];
+      if (dx * dx + dy * dy + dz * dz <= radius * radius) want.push_back(i);
+    }
+    std::vector<uint32_t> got;
+    ASSERT_TRUE(tree.within(q, radius, want.size(), got));
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, want) << "query " << t;
+    if (want.empty()) continue;
+    got.clear();
+    EXPECT_FALSE(tree.within(q, radius, want.size() - 1, got)) << "query " << t;
+  }
+}
+
 TEST(KdTree, HandlesCoincidentPointsAndEmptyInput) {
   std::vector<Point3> same(100, Point3{1, 2, 3});
   const KdTree tree(same);

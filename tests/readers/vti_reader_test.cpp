@@ -248,3 +248,41 @@ TEST(VtiReader, ReversedAndPermutedDirectionsKeepWorldPositions) {
 
 }  // namespace
 }  // namespace voxlink::convert::testing
+
+namespace voxlink::convert::testing {
+namespace {
+
+// The header is parsed by pugixml: broken or cut XML is one line naming the file and the
+// element, entity references are decoded, and deep nesting is no danger.
+TEST(VtiReader, HeaderXmlErrorsNameTheFileAndTheElement) {
+  TempDir dir;
+  const std::vector<uint8_t> mass = patternBytes(2 * 2 * 2, 13);
+  const std::string good = imageFile("0 1 0 1 0 1", "", inlineArray("m&amp;n", "UInt8", 1, mass));
+  OpenOptions options;
+  options.variable = "m&n";
+  writeText(dir.file("entity.vti"), good);
+  auto source = openOrDie(dir.file("entity.vti"), options);
+  ASSERT_TRUE(source);
+  auto data = readAll(*source);
+  ASSERT_TRUE(data) << data.message();
+  EXPECT_TRUE(*data == mass);
+
+  std::string broken = good;
+  broken.replace(broken.find("Name="), 5, "Name");  // an attribute without '='
+  writeText(dir.file("broken.vti"), broken);
+  const auto error = openVolume(dir.file("broken.vti"));
+  expectError(error, ErrorCode::kCorrupt, {"broken.vti", "XML at byte", "<DataArray>"});
+  EXPECT_EQ(error.message().find('\n'), std::string::npos);
+
+  writeText(dir.file("cut.vti"), good.substr(0, good.find("<Piece")));
+  expectError(openVolume(dir.file("cut.vti")), ErrorCode::kTruncated,
+              {"cut.vti", "ends inside <VTKFile>"});
+
+  std::string deep;
+  for (int i = 0; i < 200000; ++i) deep += "<a>";
+  writeText(dir.file("deep.vti"), imageFile("0 1 0 1 0 1", "", deep));
+  expectError(openVolume(dir.file("deep.vti")), ErrorCode::kCorrupt, {"deep.vti", "XML at byte"});
+}
+
+}  // namespace
+}  // namespace voxlink::convert::testing

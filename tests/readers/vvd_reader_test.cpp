@@ -29,6 +29,25 @@ TEST(VvdReader, WalnutMatchesItsRawFile) {
   EXPECT_EQ(top, 22526);
 }
 
+// A header cut inside an attribute (the walnut's long preview) is a cut header, as one cut
+// between elements; XML broken before the cut is named as such.
+TEST(VvdReader, HeaderCutInsideAnAttributeIsTruncated) {
+  VOXLINK_REQUIRE_DATA("ct/voreen_walnut/walnut.vvd");
+  TempDir dir;
+  const auto header = readBytes(dataPath("ct/voreen_walnut/walnut.vvd"));
+  const std::string text(header.begin(), header.end());
+  const size_t preview = text.find("prevData=\"");
+  ASSERT_NE(preview, std::string::npos);
+  writeText(dir.file("cut.vvd"), text.substr(0, preview + 40));
+  expectError(openVolume(dir.file("cut.vvd")), ErrorCode::kTruncated,
+              {"cut.vvd", "<Volume>", "not closed"});
+  std::string broken = text;
+  broken.replace(preview, 10, "prevData ");
+  writeText(dir.file("broken.vvd"), broken);
+  expectError(openVolume(dir.file("broken.vvd")), ErrorCode::kCorrupt,
+              {"broken.vvd", "XML at byte", "<DerivedItem>"});
+}
+
 TEST(VvdReader, BadHeadersNameTheField) {
   TempDir dir;
   const std::string body =
