@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "format/brick_rows.h"
+#include "format/check.h"
 #include "format/crc32c.h"
 #include "format/mapped_file.h"
 #include "format/output_file.h"
@@ -23,6 +24,16 @@ namespace voxlink::format {
 namespace {
 
 uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+
+// A writer's header came from makeHeader(): the fixed fields it sets, and a brick grid that
+// matches the dims (planSections sizes every section from these).
+void checkMadeByMakeHeader(const FileHeader& h) {
+  VOXLINK_CHECK(std::memcmp(h.magic, kMagic, sizeof(kMagic)) == 0, "header not from makeHeader()");
+  VOXLINK_CHECK_EQ(h.versionMajor, kVersionMajor);
+  VOXLINK_CHECK_EQ(h.headerBytes, sizeof(FileHeader));
+  VOXLINK_CHECK_GT(h.brickSize, 0u);
+  for (int a = 0; a < 3; ++a) VOXLINK_CHECK_EQ(h.brickGrid[a], ceilDiv(h.dims[a], h.brickSize));
+}
 
 }  // namespace
 
@@ -107,6 +118,7 @@ SectionLayout planSections(const FileHeader& header, uint64_t metaBytes) {
 }
 
 Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header) {
+  checkMadeByMakeHeader(header);
   if (header.voxelCount > kMaxVoxels)
     return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount,
                      " voxels exceed the format's limit of ", kMaxVoxels,
@@ -130,6 +142,7 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
 }
 
 Result<FileWriter> FileWriter::createShared(const std::string& path, const FileHeader& header) {
+  checkMadeByMakeHeader(header);
   FileWriter w;
   w.path_ = path;
   w.header_ = header;
@@ -147,6 +160,7 @@ Result<FileWriter> FileWriter::createShared(const std::string& path, const FileH
 
 Result<FileWriter> FileWriter::attach(const std::string& path, const std::string& tempPath,
                                       const FileHeader& header) {
+  checkMadeByMakeHeader(header);
   FileWriter w;
   w.path_ = path;
   w.header_ = header;
