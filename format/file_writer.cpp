@@ -25,11 +25,12 @@ namespace {
 
 uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
-// A writer's header came from makeHeader(): the fixed fields it sets, and a brick grid that
-// matches the dims (planSections sizes every section from these).
+// A writer's header came from makeHeader() (a scene's then says version 2): the fixed fields it
+// sets, and a brick grid that matches the dims (planSections sizes every section from these).
 void checkMadeByMakeHeader(const FileHeader& h) {
   VOXLINK_CHECK(std::memcmp(h.magic, kMagic, sizeof(kMagic)) == 0, "header not from makeHeader()");
-  VOXLINK_CHECK_EQ(h.versionMajor, kVersionMajor);
+  VOXLINK_CHECK(h.versionMajor == kVersionMajor || h.versionMajor == kVersionMajorScene,
+                "header not from makeHeader() or a scene's");
   VOXLINK_CHECK_EQ(h.headerBytes, sizeof(FileHeader));
   VOXLINK_CHECK_GT(h.brickSize, 0u);
   for (int a = 0; a < 3; ++a) VOXLINK_CHECK_EQ(h.brickGrid[a], ceilDiv(h.dims[a], h.brickSize));
