@@ -16,6 +16,7 @@
 #include "cli/output_options.h"
 #include "cli/progress_bar.h"
 #include "format/output_file.h"
+#include "format/parallel_for.h"
 #include "geostat/cross_validation.h"
 #include "geostat/grid_writer.h"
 #include "geostat/krige_grid.h"
@@ -321,7 +322,10 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   cmd->add_flag("--cross-validate", a->crossValidate, "Print leave-one-out statistics");
   addThreadsOption(cmd, a->threads);
   a->out.add(cmd, true);
-  return [a] { return runKrige(*a); };
+  return [a] {
+    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    return runKrige(*a);
+  };
 }
 
 }  // namespace voxlink::cli

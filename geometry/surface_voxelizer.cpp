@@ -1,14 +1,12 @@
 #include "geometry/surface_voxelizer.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <memory>
 #include <mutex>
 
+#include "format/parallel_for.h"
 #include "geometry/triangle_box_overlap.h"
 
 namespace voxlink::geometry {
@@ -29,10 +27,13 @@ struct TriangleInfo {
 
 constexpr int kHistogramBins = 18001;  // 0.01-degree bins over 0..180
 
+// Order-free parts only (counts, a maximum): which worker took which chunk does not change them.
+// The sum of degrees is kept per chunk (chunkDegrees) and added in chunk order, so the mean,
+// which goes into the file's META, has the same bits on any number of threads.
 struct ErrorAccumulator {
   std::vector<uint64_t> histogram = std::vector<uint64_t>(kHistogramBins, 0);
   uint64_t pairs = 0, multi = 0;
-  double sum = 0.0, max = 0.0;
+  double max = 0.0;
 };
 
 // Appends the voxels `tri` overlaps (clipped to the grid) to `out`.
@@ -124,7 +125,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     std::lock_guard<std::mutex> lock(progressMutex);
     options.progress(0.8 * double(++blocksDone) / double(blockCount));
   };
-  tbb::parallel_for(size_t(0), blockCount, [&](size_t block) {
+  format::parallelFor(blockCount, 0, [&](uint64_t block) {
     std::vector<Overlap>& out = blocks[block];
     uint64_t zero = 0;
     const size_t end = std::min(triangleCount, (block + 1) * blockSize);
@@ -179,7 +180,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   }
   const size_t overlapCount = sliceStart[depth];
   std::unique_ptr<Overlap[]> overlaps(new Overlap[overlapCount]);  // not zero-filled
-  tbb::parallel_for(size_t(0), blockCount, [&](size_t block) {
+  format::parallelFor(blockCount, 0, [&](uint64_t block) {
     uint64_t* at = &perSlice[block * depth];
     for (const Overlap& o : blocks[block]) overlaps[at[o.key >> 32]++] = o;
     std::vector<Overlap>().swap(blocks[block]);
@@ -190,13 +191,14 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     std::vector<Overlap> buffer;
     std::vector<uint32_t> rowStart;
   };
-  tbb::enumerable_thread_specific<SliceScratch> scratch;
+  const unsigned workers = format::threadCount(0);
+  std::vector<SliceScratch> scratch(workers);  // one per worker
   const size_t rows = grid.dims[1];
-  tbb::parallel_for(size_t(0), depth, [&](size_t z) {
+  format::parallelFor(depth, workers, [&](uint64_t z, unsigned worker) {
     Overlap* slice = overlaps.get() + sliceStart[z];
     const size_t count = sliceStart[z + 1] - sliceStart[z];
     if (count < 2) return;
-    SliceScratch& tmp = scratch.local();
+    SliceScratch& tmp = scratch[worker];
     tmp.buffer.resize(count);
     tmp.rowStart.assign(rows + 1, 0);
     for (size_t i = 0; i < count; ++i) ++tmp.rowStart[((slice[i].key >> 16) & 0xffff) + 1];
@@ -225,7 +227,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     starts[c] = s;
   }
   std::vector<size_t> runs(chunkCount, 0);
-  tbb::parallel_for(size_t(0), chunkCount, [&](size_t c) {
+  format::parallelFor(chunkCount, 0, [&](uint64_t c) {
     size_t count = 0;
     for (size_t i = starts[c]; i < starts[c + 1]; ++i)
       count += i == starts[c] || overlaps[i].key != overlaps[i - 1].key;
@@ -234,10 +236,14 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   std::vector<size_t> firstVoxel(chunkCount + 1, 0);
   for (size_t c = 0; c < chunkCount; ++c) firstVoxel[c + 1] = firstVoxel[c] + runs[c];
   result.voxels.resize(firstVoxel[chunkCount]);
-  tbb::enumerable_thread_specific<ErrorAccumulator> errors;
+  // One per worker that needs one: a histogram is 144 KB.
+  std::vector<std::unique_ptr<ErrorAccumulator>> errors(workers);
+  std::vector<double> chunkDegrees(options.computeNormalError ? chunkCount : 0, 0.0);
 
-  tbb::parallel_for(size_t(0), chunkCount, [&](size_t c) {
-    ErrorAccumulator* e = options.computeNormalError ? &errors.local() : nullptr;
+  format::parallelFor(chunkCount, workers, [&](uint64_t c, unsigned worker) {
+    if (options.computeNormalError && !errors[worker])
+      errors[worker] = std::make_unique<ErrorAccumulator>();
+    ErrorAccumulator* e = errors[worker].get();
     size_t out = firstVoxel[c];
     for (size_t begin = starts[c]; begin < starts[c + 1];) {
       size_t end = begin + 1;
@@ -270,7 +276,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
               -1.0, 1.0);
           const double degrees = std::acos(cosine) * (180.0 / 3.14159265358979323846);
           ++e->histogram[std::min(kHistogramBins - 1, int(degrees * 100.0 + 0.5))];
-          e->sum += degrees;
+          chunkDegrees[c] += degrees;
           e->max = std::max(e->max, degrees);
           ++e->pairs;
         }
@@ -284,11 +290,13 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     NormalErrorStats& stats = result.normalError;
     std::vector<uint64_t> histogram(kHistogramBins, 0);
     double sum = 0.0;
-    for (const ErrorAccumulator& e : errors) {
+    for (double degrees : chunkDegrees) sum += degrees;
+    for (const auto& accumulator : errors) {
+      if (!accumulator) continue;
+      const ErrorAccumulator& e = *accumulator;
       for (int b = 0; b < kHistogramBins; ++b) histogram[b] += e.histogram[b];
       stats.pairs += e.pairs;
       stats.multiTriangleVoxels += e.multi;
-      sum += e.sum;
       stats.maxDegrees = std::max(stats.maxDegrees, e.max);
     }
     if (stats.pairs > 0) {
