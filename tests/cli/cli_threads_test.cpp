@@ -52,14 +52,18 @@ size_t expectOneThreadAndSameBytes(TempDir& dir, const std::vector<std::string>&
     args.insert(args.end(), {"-o", out});
     const CensusRun run = runCounted(dir, args, threads);
     EXPECT_EQ(run.result.status, 0) << argsBeforeOutput[0] << ": " << run.result.err;
-    if (threads == 1) EXPECT_EQ(run.threads, 1u) << argsBeforeOutput[0] << " --threads 1";
-    if (threads == 2) atTwo = run.threads;
+    if (threads == 1) {
+      EXPECT_EQ(run.threads, 1u) << argsBeforeOutput[0] << " --threads 1";
+    } else {
+      atTwo = run.threads;
+    }
     outputs.push_back(out);
   }
-  if (sameBytes)
+  if (sameBytes) {
     EXPECT_EQ(readBytes(outputs[0]), readBytes(outputs[1])) << argsBeforeOutput[0];
-  else
+  } else {
     EXPECT_EQ(readBytes(outputs[0]).size(), readBytes(outputs[1]).size()) << argsBeforeOutput[0];
+  }
   return atTwo;
 }
 
