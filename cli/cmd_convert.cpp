@@ -14,6 +14,7 @@
 #include "convert/converter.h"
 #include "convert/moments.h"
 #include "format/output_file.h"
+#include "format/parallel_for.h"
 #include "format/transfer_function.h"
 
 namespace voxlink::cli {
@@ -220,7 +221,10 @@ CommandRunner addConvertCommand(CLI::App& app) {
   cmd->add_option("--slab", a->slab, "Slices per slab (memory bound; output does not depend on it)")
       ->capture_default_str();
   a->out.add(cmd, true);
-  return [a] { return runConvert(*a); };
+  return [a] {
+    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    return runConvert(*a);
+  };
 }
 
 }  // namespace voxlink::cli

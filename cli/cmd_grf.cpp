@@ -11,6 +11,7 @@
 #include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "cli/shared_grids.h"
+#include "format/parallel_for.h"
 #include "geostat/field_statistics.h"
 #include "geostat/grf.h"
 #include "geostat/grid_writer.h"
@@ -144,7 +145,10 @@ CommandRunner addGrfCommand(CLI::App& app) {
   a->out.add(cmd, true);
   cmd->add_flag("--stats", a->stats,
                 "Print empirical mean, sigma, 95 % interval exceedance and axis variograms");
-  return [a] { return runGrf(*a); };
+  return [a] {
+    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    return runGrf(*a);
+  };
 }
 
 }  // namespace voxlink::cli

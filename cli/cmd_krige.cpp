@@ -19,6 +19,7 @@
 #include "cli/progress_bar.h"
 #include "cli/shared_grids.h"
 #include "format/output_file.h"
+#include "format/parallel_for.h"
 #include "geostat/cross_validation.h"
 #include "geostat/grid_writer.h"
 #include "geostat/krige_grid.h"
@@ -383,7 +384,10 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   cmd->add_flag("--cross-validate", a->crossValidate, "Print leave-one-out statistics");
   addThreadsOption(cmd, a->threads);
   a->out.add(cmd, true);
-  return [a] { return runKrige(*a); };
+  return [a] {
+    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    return runKrige(*a);
+  };
 }
 
 }  // namespace voxlink::cli

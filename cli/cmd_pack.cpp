@@ -11,6 +11,7 @@
 #include "format/mapped_file.h"
 #include "format/output_file.h"
 #include "format/packed_file.h"
+#include "format/parallel_for.h"
 #include "format/validator.h"
 
 namespace voxlink::cli {
@@ -80,6 +81,7 @@ CommandRunner addPackCommand(CLI::App& app) {
   cmd->add_flag("--sections", args->sections, "Print each section's size before and after");
   args->out.add(cmd, true);
   return [args] {
+    const format::ThreadLimit limit(args->threads);  // every parallel path, for the whole run
     const auto start = std::chrono::steady_clock::now();
     // Validating a fifth of the bar, packing the rest (GRAD's prediction dominates).
     ProgressBar bar(args->out.showProgress());

@@ -14,7 +14,6 @@
 #include "convert/rank_exchange.h"
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
-#include "convert/worker_pool.h"
 #include "format/file_writer.h"
 #include "format/parallel_for.h"
 
@@ -33,11 +32,14 @@ struct Passes {
   GridShape shape{};
   uint32_t slabLayers = 1;  // brick layers per slab
   LayerShare share;         // this rank's brick layers
-  WorkerPool pool;
+  unsigned workers;         // threads the passes run on: per-thread results are this many
   ConvertSummary summary;
 
   Passes(VolumeSource& s, const ConvertOptions& o)
-      : source(s), options(o), ranks(o.ranks ? *o.ranks : base::singleProcess()), pool(o.threads) {}
+      : source(s),
+        options(o),
+        ranks(o.ranks ? *o.ranks : base::singleProcess()),
+        workers(format::threadCount(o.threads)) {}
 
   uint64_t rowsPerLayer() const { return shape.grid[1]; }
   uint64_t brickBegin() const { return uint64_t{share.begin} * shape.grid[1] * shape.grid[0]; }
@@ -71,18 +73,20 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
   const bool trackRange = sizeof(T) > 1;
   SlabWindow window(source, 0);
   VOXLINK_RETURN_IF_ERROR(window.rewind());
-  std::vector<CountResult> results(pool.size());
+  std::vector<CountResult> results(workers);
   for (uint32_t bz0 = share.begin; bz0 < share.end; bz0 += slabLayers) {
     VOXLINK_RETURN_IF_ERROR(checkCancel());
     const uint32_t bz1 = std::min(share.end, bz0 + slabLayers);
     VOXLINK_RETURN_IF_ERROR(window.load(bz0 * n, std::min(info.dims[2], bz1 * n)));
-    pool.run(uint64_t{bz1 - bz0} * rowsPerLayer(), [&](size_t job, unsigned worker) {
-      const uint32_t bz = bz0 + static_cast<uint32_t>(job / rowsPerLayer());
-      const uint32_t by = static_cast<uint32_t>(job % rowsPerLayer());
-      uint16_t* counts =
-          census.counts.data() + (uint64_t{bz - share.begin} * shape.grid[1] + by) * shape.grid[0];
-      countBrickRow<T>(BrickRow{window, shape, bz, by}, keep, trackRange, counts, results[worker]);
-    });
+    format::parallelFor(
+        uint64_t{bz1 - bz0} * rowsPerLayer(), workers, [&](uint64_t job, unsigned worker) {
+          const uint32_t bz = bz0 + static_cast<uint32_t>(job / rowsPerLayer());
+          const uint32_t by = static_cast<uint32_t>(job % rowsPerLayer());
+          uint16_t* counts = census.counts.data() +
+                             (uint64_t{bz - share.begin} * shape.grid[1] + by) * shape.grid[0];
+          countBrickRow<T>(BrickRow{window, shape, bz, by}, keep, trackRange, counts,
+                           results[worker]);
+        });
     window.release();
     for (const CountResult& r : results) {
       if (r.nonFinite)
@@ -115,7 +119,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
   const size_t valueSize = storedSize(mapping.type);
   SlabWindow window(source, 1);
   VOXLINK_RETURN_IF_ERROR(window.rewind());
-  std::vector<EncodeStats> stats(pool.size());
+  std::vector<EncodeStats> stats(workers);
   // Two sets of slab buffers: while the workers encode one slab, a writer task checksums and
   // writes the previous one (at most one write in flight, so sections stay in file order).
   struct SlabBuffers {
@@ -165,7 +169,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     b.gradients.resize(v1 - v0);
     const SlabOutput out{
         k0, v0, b.rows.data(), b.masks.data(), b.values.data(), b.gradients.data()};
-    pool.run(rowEnd - rowBegin, [&](size_t job, unsigned worker) {
+    format::parallelFor(rowEnd - rowBegin, workers, [&](uint64_t job, unsigned worker) {
       const uint64_t rowOfBricks = rowBegin + job;
       const uint32_t bz = share.begin + static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
       const uint32_t by = static_cast<uint32_t>(rowOfBricks % shape.grid[1]);
@@ -181,11 +185,8 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
         return makeError(ErrorCode::kCorrupt, info.path,
                          ": data: the source changed between the two passes of the conversion");
     if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
-    try {
-      pendingWrite = std::async(std::launch::async, writeSlab, std::cref(b));
-    } catch (const std::system_error&) {  // no thread to spare (task or address-space limits)
-      VOXLINK_RETURN_IF_ERROR(writeSlab(b));
-    }
+    // Written while the next slab encodes; with one thread, written now.
+    pendingWrite = format::runInBackground(workers, [&writeSlab, &b] { return writeSlab(b); });
     report(0.25 + 0.75 * done(bz1), "writing");
   }
   if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());

@@ -48,7 +48,8 @@ void numberBricks(BrickCensus& census, const GridShape& shape, uint64_t brickBeg
     if (census.counts[b] == 0) continue;
     const uint64_t bit = brickBegin + b - census.occupancyWord0 * 32;
     census.occupancy[bit >> 5] |= 1u << (bit & 31);
-    census.voxelBase.push_back(static_cast<uint32_t>(voxel));  // the caller checked the limit
+    VOXLINK_CHECK_LE(voxel, UINT32_MAX);  // the caller refused files over kMaxVoxels
+    census.voxelBase.push_back(static_cast<uint32_t>(voxel));
     voxel += census.counts[b];
     ++occupied;
   }

@@ -14,7 +14,7 @@ SlabWindow::SlabWindow(VolumeSource& source, uint32_t halo)
 
 Status SlabWindow::rewind() {
   release();
-  first_ = end_ = 0;
+  first_ = end_ = passEnd_ = 0;
   base_ = nullptr;
   buffer_.clear();
   active_.clear();
@@ -22,6 +22,10 @@ Status SlabWindow::rewind() {
 }
 
 Status SlabWindow::load(uint32_t z0, uint32_t z1) {
+  VOXLINK_CHECK_GE(z0, passEnd_);  // forward only: the kept slices assume it
+  VOXLINK_CHECK_LE(z0, z1);
+  VOXLINK_CHECK_LE(z1, depth_);
+  passEnd_ = z1;
   const uint32_t first = z0 > halo_ ? z0 - halo_ : 0;
   const uint32_t end = std::min(depth_, z1 + halo_);
   // Sources with inactive voxels give values and active flags in one read (one walk of an

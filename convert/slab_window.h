@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "format/check.h"
 #include "sources/volume_source.h"
 
 namespace voxlink::convert {
@@ -17,10 +18,14 @@ class SlabWindow {
   // Starts a new pass over the source.
   Status rewind();
   // Makes slices [z0 - halo, z1 + halo) (clipped to the volume) available. Successive loads
-  // within a pass must move forward: z0 >= the previous z1.
+  // within a pass must move forward: z0 >= the previous z1 (checked).
   Status load(uint32_t z0, uint32_t z1);
-  // Slice z, which must lie in the loaded range.
-  const uint8_t* slice(uint32_t z) const { return base_ + (z - first_) * sliceBytes_; }
+  // Slice z, which must lie in the loaded range (checked in debug builds: once per row).
+  const uint8_t* slice(uint32_t z) const {
+    VOXLINK_DCHECK_GE(z, first_);
+    VOXLINK_DCHECK_LT(z, end_);
+    return base_ + (z - first_) * sliceBytes_;
+  }
   // Active flags of slice z (in the loaded range), x fastest; null when the source has no
   // inactive voxels.
   const uint8_t* active(uint32_t z) const {
@@ -38,6 +43,7 @@ class SlabWindow {
   uint32_t depth_;
   const uint8_t* base_ = nullptr;
   uint32_t first_ = 0, end_ = 0;  // loaded slices [first_, end_)
+  uint32_t passEnd_ = 0;          // the last load's z1 in this pass
   bool mapped_ = false;
   std::vector<uint8_t> buffer_;
   uint64_t sliceVoxels_;

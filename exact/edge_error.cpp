@@ -1,10 +1,10 @@
 #include "exact/edge_error.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "format/parallel_for.h"
 
 namespace voxlink::exact {
 
@@ -32,7 +32,8 @@ double psnrOf(double squaredSum, uint64_t samples) {
 FirstHitMap firstHits(const viewer::SceneWalker& scene, const viewer::Camera& camera,
                       uint32_t width, uint32_t height) {
   FirstHitMap map{width, height, std::vector<int32_t>(size_t{width} * height, kNoHit)};
-  tbb::parallel_for(uint32_t{0}, height, [&](uint32_t y) {
+  format::parallelFor(height, 0, [&](uint64_t row) {
+    const auto y = static_cast<uint32_t>(row);
     for (uint32_t x = 0; x < width; ++x)
       scene.walk(camera.primaryRay(x, y, width, height), 0.0, HUGE_VAL,
                  [&](const viewer::SceneEvent& e) {

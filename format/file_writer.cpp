@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "format/brick_rows.h"
+#include "format/check.h"
 #include "format/crc32c.h"
 #include "format/mapped_file.h"
 #include "format/output_file.h"
@@ -23,6 +24,17 @@ namespace voxlink::format {
 namespace {
 
 uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+
+// A writer's header came from makeHeader() (a scene's then says version 2): the fixed fields it
+// sets, and a brick grid that matches the dims (planSections sizes every section from these).
+void checkMadeByMakeHeader(const FileHeader& h) {
+  VOXLINK_CHECK(std::memcmp(h.magic, kMagic, sizeof(kMagic)) == 0, "header not from makeHeader()");
+  VOXLINK_CHECK(h.versionMajor == kVersionMajor || h.versionMajor == kVersionMajorScene,
+                "header not from makeHeader() or a scene's");
+  VOXLINK_CHECK_EQ(h.headerBytes, sizeof(FileHeader));
+  VOXLINK_CHECK_GT(h.brickSize, 0u);
+  for (int a = 0; a < 3; ++a) VOXLINK_CHECK_EQ(h.brickGrid[a], ceilDiv(h.dims[a], h.brickSize));
+}
 
 }  // namespace
 
@@ -123,6 +135,7 @@ Status FileWriter::takeTemp(const TempFile& temp) {
 }
 
 Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader& header) {
+  checkMadeByMakeHeader(header);
   if (header.voxelCount > kMaxVoxels)
     return makeError(ErrorCode::kTooLarge, path, ": ", header.voxelCount,
                      " voxels exceed the format's limit of ", kMaxVoxels,
@@ -136,6 +149,7 @@ Result<FileWriter> FileWriter::create(const std::string& path, const FileHeader&
 }
 
 Result<FileWriter> FileWriter::createShared(const std::string& path, const FileHeader& header) {
+  checkMadeByMakeHeader(header);
   FileWriter w(path, header);
   VOXLINK_ASSIGN_OR_RETURN(TempFile temp, createTempBeside(path));
   VOXLINK_RETURN_IF_ERROR(w.takeTemp(temp));
@@ -144,6 +158,7 @@ Result<FileWriter> FileWriter::createShared(const std::string& path, const FileH
 
 Result<FileWriter> FileWriter::attach(const std::string& path, const std::string& tempPath,
                                       const FileHeader& header) {
+  checkMadeByMakeHeader(header);
   FileWriter w(path, header);
   w.attached_ = true;
   w.fd_ = ::open(tempPath.c_str(), O_WRONLY | O_CLOEXEC);

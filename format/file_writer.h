@@ -55,8 +55,8 @@ SectionLayout planSections(const FileHeader& header, uint64_t metaBytes);
 
 class FileWriter {
  public:
-  // `header` must come from makeHeader(). Data sections may be written right away; the META
-  // section (placed last) is given to commit().
+  // `header` must come from makeHeader() (checked: VOXLINK_CHECK). Data sections may be written
+  // right away; the META section (placed last) is given to commit().
   static Result<FileWriter> create(const std::string& path, const FileHeader& header);
   // Several processes writing one file (docs/scale.md): one creates it with createShared (a
   // named temporary beside `path`, since the others must open it: tempPath()) and commits it;

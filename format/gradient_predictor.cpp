@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "format/brick_rows.h"
+#include "format/check.h"
 #include "format/dense_brick_rows.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
@@ -615,6 +616,7 @@ void predictWith(const VoxLinkFile& file, std::span<uint16_t> codes, unsigned th
 
 void predictAs(GradientPrediction kind, const VoxLinkFile& file, std::span<uint16_t> codes,
                unsigned threads, PredictionMode mode) {
+  VOXLINK_CHECK_EQ(codes.size(), sampleSlots(file.header()));  // one code per GRAD entry
   if (kind == GradientPrediction::kExact)
     predictWith<double>(file, codes, threads, mode);
   else

@@ -1,13 +1,10 @@
 #include "geometry/sphere_voxelizer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+
+#include "format/parallel_for.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -40,13 +37,17 @@ Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
   if (spheres.size() > UINT32_MAX)
     return makeError(ErrorCode::kTooLarge, "spheres: ", spheres.size(), " is more than 2^32-1");
 
-  tbb::enumerable_thread_specific<std::vector<Overlap>> local;
+  const unsigned workers = format::threadCount(0);
+  std::vector<std::vector<Overlap>> local(workers);  // one per worker
   std::atomic<uint64_t> total{0};
   std::atomic<bool> tooMany{false};
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, spheres.size(), 64), [&](const auto& range) {
-    std::vector<Overlap>& out = local.local();
+  constexpr size_t kSpheresPerItem = 64;
+  const size_t items = (spheres.size() + kSpheresPerItem - 1) / kSpheresPerItem;
+  format::parallelFor(items, workers, [&](uint64_t item, unsigned worker) {
+    std::vector<Overlap>& out = local[worker];
     const size_t before = out.size();
-    for (size_t s = range.begin(); s != range.end() && !tooMany; ++s) {
+    const size_t end = std::min(spheres.size(), (item + 1) * kSpheresPerItem);
+    for (size_t s = item * kSpheresPerItem; s != end && !tooMany; ++s) {
       const Sphere& sphere = spheres[s];
       const auto c = grid.toGrid(sphere.center[0], sphere.center[1], sphere.center[2]);
       const double r = sphere.radius / grid.spacing;
@@ -94,7 +95,7 @@ Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
     overlaps.insert(overlaps.end(), part.begin(), part.end());
     std::vector<Overlap>().swap(part);
   }
-  tbb::parallel_sort(overlaps.begin(), overlaps.end());
+  format::parallelSort(overlaps.begin(), overlaps.end());
 
   SphereVoxelization result;
   result.sphereIds.resize(overlaps.size());

@@ -1,14 +1,12 @@
 #include "geometry/surface_voxelizer.h"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <memory>
 #include <mutex>
 
+#include "format/parallel_for.h"
 #include "geometry/normal_error.h"
 #include "geometry/triangle_box_overlap.h"
 
@@ -120,7 +118,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     std::lock_guard<std::mutex> lock(progressMutex);
     options.progress(0.8 * double(++blocksDone) / double(blockCount));
   };
-  tbb::parallel_for(size_t(0), blockCount, [&](size_t block) {
+  format::parallelFor(blockCount, 0, [&](uint64_t block) {
     std::vector<Overlap>& out = blocks[block];
     uint64_t zero = 0;
     const size_t end = std::min(triangleCount, (block + 1) * blockSize);
@@ -175,7 +173,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   }
   const size_t overlapCount = sliceStart[depth];
   std::unique_ptr<Overlap[]> overlaps(new Overlap[overlapCount]);  // not zero-filled
-  tbb::parallel_for(size_t(0), blockCount, [&](size_t block) {
+  format::parallelFor(blockCount, 0, [&](uint64_t block) {
     uint64_t* at = &perSlice[block * depth];
     for (const Overlap& o : blocks[block]) overlaps[at[o.key >> 32]++] = o;
     std::vector<Overlap>().swap(blocks[block]);
@@ -186,13 +184,14 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     std::vector<Overlap> buffer;
     std::vector<uint32_t> rowStart;
   };
-  tbb::enumerable_thread_specific<SliceScratch> scratch;
+  const unsigned workers = format::threadCount(0);
+  std::vector<SliceScratch> scratch(workers);  // one per worker
   const size_t rows = grid.dims[1];
-  tbb::parallel_for(size_t(0), depth, [&](size_t z) {
+  format::parallelFor(depth, workers, [&](uint64_t z, unsigned worker) {
     Overlap* slice = overlaps.get() + sliceStart[z];
     const size_t count = sliceStart[z + 1] - sliceStart[z];
     if (count < 2) return;
-    SliceScratch& tmp = scratch.local();
+    SliceScratch& tmp = scratch[worker];
     tmp.buffer.resize(count);
     tmp.rowStart.assign(rows + 1, 0);
     for (size_t i = 0; i < count; ++i) ++tmp.rowStart[((slice[i].key >> 16) & 0xffff) + 1];
@@ -221,7 +220,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     starts[c] = s;
   }
   std::vector<size_t> runs(chunkCount, 0);
-  tbb::parallel_for(size_t(0), chunkCount, [&](size_t c) {
+  format::parallelFor(chunkCount, 0, [&](uint64_t c) {
     size_t count = 0;
     for (size_t i = starts[c]; i < starts[c + 1]; ++i)
       count += i == starts[c] || overlaps[i].key != overlaps[i - 1].key;
@@ -230,10 +229,14 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   std::vector<size_t> firstVoxel(chunkCount + 1, 0);
   for (size_t c = 0; c < chunkCount; ++c) firstVoxel[c + 1] = firstVoxel[c] + runs[c];
   result.voxels.resize(firstVoxel[chunkCount]);
-  tbb::enumerable_thread_specific<NormalErrorTally> errors;
+  // One tally per worker that needs one (a histogram is 144 KB); fixed-point sums, so merging
+  // them in any order gives the same bits.
+  std::vector<std::unique_ptr<NormalErrorTally>> errors(workers);
 
-  tbb::parallel_for(size_t(0), chunkCount, [&](size_t c) {
-    NormalErrorTally* e = options.computeNormalError ? &errors.local() : nullptr;
+  format::parallelFor(chunkCount, workers, [&](uint64_t c, unsigned worker) {
+    if (options.computeNormalError && !errors[worker])
+      errors[worker] = std::make_unique<NormalErrorTally>();
+    NormalErrorTally* e = errors[worker].get();
     size_t out = firstVoxel[c];
     for (size_t begin = starts[c]; begin < starts[c + 1];) {
       size_t end = begin + 1;
@@ -275,7 +278,8 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   report(1.0);
   if (options.computeNormalError) {
     auto tally = std::make_shared<NormalErrorTally>();
-    for (const NormalErrorTally& e : errors) tally->merge(e);
+    for (const auto& e : errors)
+      if (e) tally->merge(*e);
     result.normalError = tally->stats();
     result.normalTally = std::move(tally);
   }

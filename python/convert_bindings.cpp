@@ -12,6 +12,7 @@
 
 #include "convert/converter.h"
 #include "format/output_file.h"
+#include "format/parallel_for.h"
 #include "format/transfer_function.h"
 #include "python/array_source.h"
 #include "python/bindings.h"
@@ -167,6 +168,8 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
   if (brick != 4 && brick != 8 && brick != 16 && brick != 32)
     throw py::value_error("brick must be 4, 8, 16 or 32");
   if (axis != "x" && axis != "y" && axis != "z") throw py::value_error("axis must be x, y or z");
+  // The reader's and the converter's parallel work, for this call: the same limit as --threads.
+  const format::ThreadLimit limit(threads);
   convert::ConvertOptions options;
   options.brickSize = brick;
   options.axis = static_cast<format::Axis>(axis[0] - 'x');

@@ -1,11 +1,18 @@
 // parallelFor runs every index once; thread counts above kMaxThreads are refused by
 // checkThreadCount and capped by threadCount, so a caller that skipped the check still cannot
-// start tens of thousands of threads.
+// start tens of thousands of threads. A ThreadLimit bounds every call while it lives, nested
+// calls stay on their thread, parallelSort sorts like std::sort.
 #include "format/parallel_for.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <mutex>
+#include <random>
+#include <set>
+#include <thread>
 #include <vector>
 
 namespace voxlink::format {
@@ -29,6 +36,84 @@ TEST(ParallelFor, ThreadCountsAboveTheLimitAreRefusedAndCapped) {
   EXPECT_EQ(threadCount(4294967295u), kMaxThreads);
   EXPECT_EQ(threadCount(3), 3u);
   EXPECT_GE(threadCount(0), 1u);
+}
+
+// The distinct threads that ran parallelFor's items.
+template <class Run>
+size_t threadsUsed(Run&& run) {
+  std::mutex mutex;
+  std::set<std::thread::id> ids;
+  run([&] {
+    std::lock_guard lock(mutex);
+    ids.insert(std::this_thread::get_id());
+    // Long enough that a second thread, if started, takes items too.
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  });
+  return ids.size();
+}
+
+TEST(ThreadLimit, BoundsEveryCallWhileItLivesAndTheSmallestWins) {
+  const auto parallel = [](unsigned threads) {
+    return threadsUsed([&](auto note) { parallelFor(64, threads, [&](uint64_t) { note(); }); });
+  };
+  EXPECT_EQ(parallel(3), 3u);  // the check below can fail
+  {
+    ThreadLimit two(2);
+    EXPECT_LE(threadCount(0), 2u);
+    EXPECT_EQ(threadCount(8), 2u);
+    {
+      ThreadLimit one(1);
+      EXPECT_EQ(processThreadLimit(), 1u);
+      EXPECT_EQ(parallel(3), 1u);
+      ThreadLimit four(4);  // a larger one later does not lift the smaller
+      EXPECT_EQ(processThreadLimit(), 1u);
+    }
+    EXPECT_EQ(processThreadLimit(), 2u);
+    EXPECT_EQ(parallel(3), 2u);
+  }
+  EXPECT_EQ(processThreadLimit(), kMaxThreads);
+}
+
+TEST(ParallelFor, WorkersAreNumberedBelowTheThreadCountAndNestedCallsStayOnTheirThread) {
+  std::atomic<unsigned> highest{0};
+  std::atomic<int> nestedOnOtherThreads{0};
+  parallelFor(100, 3, [&](uint64_t, unsigned worker) {
+    unsigned seen = highest.load();
+    while (worker > seen && !highest.compare_exchange_weak(seen, worker)) {
+    }
+    const std::thread::id outer = std::this_thread::get_id();
+    parallelFor(4, 4, [&](uint64_t) {
+      if (std::this_thread::get_id() != outer) ++nestedOnOtherThreads;
+    });
+  });
+  EXPECT_LT(highest.load(), 3u);
+  EXPECT_EQ(nestedOnOtherThreads.load(), 0);
+}
+
+TEST(ParallelSort, SortsLikeStdSortWhateverTheThreads) {
+  std::mt19937 random(7);
+  for (size_t size : {0u, 1u, 1000u, 100000u, 300001u}) {
+    std::vector<uint32_t> values(size);
+    for (uint32_t& v : values) v = random() % 5000;  // many equal keys
+    std::vector<uint32_t> expected = values;
+    std::sort(expected.begin(), expected.end());
+    for (unsigned threads : {1u, 2u, 3u, 7u}) {
+      std::vector<uint32_t> sorted = values;
+      parallelSort(sorted.begin(), sorted.end(), std::less<>(), threads);
+      ASSERT_EQ(sorted, expected) << size << " " << threads;
+    }
+  }
+}
+
+TEST(RunInBackground, RunsOnTheCallerWithOneThreadAndElsewhereWithMore) {
+  const std::thread::id caller = std::this_thread::get_id();
+  auto here = runInBackground(1, [] { return std::this_thread::get_id(); });
+  EXPECT_EQ(here.get(), caller);
+  auto away = runInBackground(2, [] { return std::this_thread::get_id(); });
+  EXPECT_NE(away.get(), caller);
+  ThreadLimit one(1);
+  auto limited = runInBackground(2, [] { return std::this_thread::get_id(); });
+  EXPECT_EQ(limited.get(), caller);
 }
 
 }  // namespace

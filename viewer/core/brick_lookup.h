@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "format/check.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::viewer {
@@ -23,8 +24,10 @@ struct BrickRange {
   std::array<uint32_t, 3> lo{0, 0, 0};
   std::array<uint32_t, 3> size{0, 0, 0};
   uint64_t count() const { return uint64_t{size[0]} * size[1] * size[2]; }
-  // Entry of cell (x, y, z), which must lie in the box, in a table over the box (x fastest).
+  // Entry of cell (x, y, z), which must lie in the box (checked in debug builds: per cell), in
+  // a table over the box (x fastest).
   uint64_t local(uint64_t x, uint64_t y, uint64_t z) const {
+    VOXLINK_DCHECK(x - lo[0] < size[0] && y - lo[1] < size[1] && z - lo[2] < size[2]);
     return ((z - lo[2]) * size[1] + (y - lo[1])) * size[0] + (x - lo[0]);
   }
 };

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <vector>
 
+#include "format/check.h"
+
 namespace voxlink::viewer {
 namespace {
 
@@ -105,6 +107,9 @@ Camera Camera::framing(const Box& box, const CameraSpec& spec) {
 
 Camera Camera::lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up,
                       double fovYDeg) {
+  VOXLINK_CHECK(eye != target, "a camera needs a view direction");
+  VOXLINK_CHECK_GT(glm::length(glm::cross(up, glm::normalize(eye - target))), 1e-9);
+  VOXLINK_CHECK(fovYDeg > 0 && fovYDeg < 180, "the field of view is an angle in (0, 180)");
   Camera c;
   c.target_ = target;
   c.fovYDeg_ = fovYDeg;

@@ -41,7 +41,8 @@ class Camera {
  public:
   // Looks at the box's centre from the spec's direction, far enough to see all of it.
   static Camera framing(const Box& box, const CameraSpec& spec);
-  // A camera at `eye` looking at `target`; `up` must not be parallel to the view direction.
+  // A camera at `eye` looking at `target`; `up` must not be parallel to the view direction
+  // (checked: VOXLINK_CHECK).
   static Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up,
                        double fovYDeg);
 

@@ -2,10 +2,9 @@
 // parallel, each pixel's linear RGBA from trace(ray).
 #pragma once
 
-#include <tbb/parallel_for.h>
-
 #include <array>
 
+#include "format/parallel_for.h"
 #include "viewer/core/camera.h"
 #include "viewer/core/image.h"
 #include "viewer/core/render_settings.h"
@@ -15,7 +14,8 @@ namespace voxlink::viewer {
 template <class Trace>
 Image renderRows(const Camera& camera, const RenderSettings& settings, const Trace& trace) {
   Image image(settings.width, settings.height);
-  tbb::parallel_for(uint32_t{0}, settings.height, [&](uint32_t y) {
+  format::parallelFor(settings.height, 0, [&](uint64_t row) {
+    const auto y = static_cast<uint32_t>(row);
     for (uint32_t x = 0; x < settings.width; ++x) {
       const std::array<double, 4> c =
           trace(camera.primaryRay(x, y, settings.width, settings.height));

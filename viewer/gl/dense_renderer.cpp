@@ -1,12 +1,11 @@
 #include "viewer/gl/dense_renderer.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 #include <cstring>
 
 #include "format/gradient_codec.h"
 #include "format/half.h"
+#include "format/parallel_for.h"
 
 namespace voxlink::viewer {
 namespace {
@@ -64,7 +63,8 @@ Result<std::unique_ptr<DenseRenderer>> DenseRenderer::create(const DenseVolume& 
   std::unique_ptr<DenseRenderer> r(new DenseRenderer(g));
   const size_t n = volume.values.size();
   std::vector<uint16_t> codes(n);
-  tbb::parallel_for(uint32_t{0}, volume.dims[2], [&](uint32_t z) {
+  format::parallelFor(volume.dims[2], 0, [&](uint64_t z64) {
+    const auto z = static_cast<uint32_t>(z64);
     for (uint32_t y = 0; y < volume.dims[1]; ++y)
       for (uint32_t x = 0; x < volume.dims[0]; ++x) {
         const glm::dvec3 gr = volume.gradient(x, y, z);

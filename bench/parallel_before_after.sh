@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Times two voxlink builds on the same jobs, runs alternated, medians of 5, and compares the
+# outputs byte for byte (docs/parallelism.md). Usage: bench/parallel_before_after.sh BEFORE AFTER
+set -euo pipefail
+before=$1; after=$2
+data=${VOXLINK_DATA_DIR:-$(cd "$(dirname "$0")/../.." && pwd)/shared/data}
+scenes=$(cd "$(dirname "$0")/../samples/scenes" && pwd)
+out=/tmp/bench-parallel; mkdir -p $out
+declare -A jobs=(
+  [convert-foot]="convert $data/ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd --threshold 60 -q -o"
+  [convert-foot-slab8]="convert $data/ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd --threshold 60 --slab 8 -q -o"
+  [scene-dragon512]="scene build $scenes/dragon.scene.json -q -o"
+  [scene-bunny-molecule]="scene build $scenes/bunny-molecule.scene.json -q -o"
+)
+echo "uptime at start: $(uptime)"
+for job in convert-foot convert-foot-slab8 scene-dragon512 scene-bunny-molecule; do
+  declare -a tb=() ta=()
+  for i in 1 2 3 4 5; do
+    for which in before after; do
+      bin=$before; [ $which = after ] && bin=$after
+      s=$(date +%s.%N)
+      $bin ${jobs[$job]} $out/$job.$which.vxl
+      e=$(date +%s.%N)
+      t=$(echo "$e - $s" | bc)
+      if [ $which = before ]; then tb+=($t); else ta+=($t); fi
+    done
+  done
+  mb=$(printf '%s\n' "${tb[@]}" | sort -n | sed -n 3p)
+  ma=$(printf '%s\n' "${ta[@]}" | sort -n | sed -n 3p)
+  same=$(cmp -s $out/$job.before.vxl $out/$job.after.vxl && echo identical || echo DIFFERENT)
+  echo "$job: before ${tb[*]} (median $mb s); after ${ta[*]} (median $ma s); outputs $same"
+done
+echo "uptime at end: $(uptime)"
