@@ -1,10 +1,11 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """`pip install --no-build-isolation .`: builds the `voxlink` module with CMake (docs/python.md).
 
 Debian 12 has no scikit-build, so setuptools drives CMake itself: it configures ./build-pip
 (beside ./build, so that ccache reuses the objects of a ./build of the same checkout), builds
 only the module and the plugins it loads, and copies them into the wheel: the module as a
 top-level `voxlink` extension, the plugins into `voxlink.plugins/` beside it, where the loader
-looks first (plugins/plugin_loader.h).
+looks first (base/plugin_loader.h).
 """
 
 import os

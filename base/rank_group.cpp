@@ -1,9 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "base/rank_group.h"
 
 #include <algorithm>
 #include <cstring>
 
-namespace voxlink::base {
+namespace voxlink {
+inline namespace base {
 namespace {
 
 class SingleProcess final : public RankGroup {
@@ -77,4 +79,5 @@ Status agree(RankGroup& group, const Status& mine) {
                    ": ", message);
 }
 
-}  // namespace voxlink::base
+}  // namespace base
+}  // namespace voxlink

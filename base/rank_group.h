@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The processes one command runs on: this process alone (the default), or the ranks of an MPI
 // job (mpi/mpi_rank_group.h). The converter, the batch runner and the scene builder talk to other
 // ranks only through this interface, so they build and run without MPI.
@@ -10,9 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::base {
+namespace voxlink {
+inline namespace base {
 
 class RankGroup {
  public:
@@ -47,4 +49,5 @@ std::vector<std::vector<uint8_t>> gatherLargeToRoot(RankGroup& group, std::span<
 // error of the lowest failing rank, prefixed "rank R: " when there are several ranks.
 Status agree(RankGroup& group, const Status& mine);
 
-}  // namespace voxlink::base
+}  // namespace base
+}  // namespace voxlink

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Timing helpers shared by the benchmark scripts of this folder (imported by path: the scripts
 run from here, so Python finds this module beside them)."""
 import os

@@ -1,4 +1,5 @@
-# Sizes of the GL renderer's derived brick tables for a .vxl (viewer/core/brick_lookup.h): the
+# SPDX-License-Identifier: BSD-3-Clause
+# Sizes of the GL renderer's derived brick tables for a .vxl (render/brick_lookup.h): the
 # brick index and dual boxes over the occupied bricks' box (now) and over the whole grid (before
 # issue 30), and the per-occupied-brick entries. Reads the header and BOCC (docs/format.md).
 # Usage: python3 bench/brick_table_sizes.py FILE.vxl

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink_cholesky_bench [SYSTEMS]: the per-location kriging solve (geostat/cholesky.cpp:
 // factor, 1-norm condition estimate, solve) against LAPACK's dpotrf + dpocon + dpotrs on the
 // same kriging matrices (exponential covariance of random 3-D neighbourhoods), for 8..64
@@ -19,7 +20,7 @@
 
 namespace {
 
-using voxlink::kriging::Cholesky;
+using voxlink::geostat::Cholesky;
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Two builds of voxlink on the same command: speed and identical outputs (docs/kriging.md,
 docs/benchmarks.md, "Libraries in place of hand-written code").
 

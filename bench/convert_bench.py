@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Conversion benchmark: speed, memory, footprint and error of `voxlink convert`, against the
 same job done with OpenVDB (copyFromDense + Blosc write), run in this script on this machine.
 

@@ -1,4 +1,5 @@
 #!/bin/bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Peak memory and time of reading a large uncompressed Enhanced CT multi-frame file: `voxlink
 # stats` and `voxlink convert` (frames decoded one at a time; the GDCM guard's child included,
 # as GNU time counts waited-for descendants) against `gdcmconv --raw`, which decodes the whole

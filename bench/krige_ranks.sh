@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # docs/scale.md: `voxlink krige` (or any krige/grf command line) on 1, 2 and 4 MPI ranks
 # (oversubscribed past the machine's cores), wall time and peak RSS per rank (/usr/bin/time), and
 # whether every rank count wrote the bytes the plain process wrote.

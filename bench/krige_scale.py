@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Local kriging at scale (docs/kriging.md): samples of a generated 3-D Gaussian random field
 with a known covariance, kriged onto a large 3-D grid with the same model.
 

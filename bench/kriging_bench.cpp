@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink_kriging_bench [DATA_DIR [--blas-only|--kriging-only]]: speed against error for
 // kriging and random fields, after the BLAS rates global kriging can reach.
 //  1. Walker Lake (470 samples -> 260 x 300 grid): neighbourhood size against time, deviation
@@ -19,7 +20,7 @@
 #include "geostat/variogram_fit.h"
 
 using namespace voxlink;
-using namespace voxlink::kriging;
+using namespace voxlink::geostat;
 
 namespace {
 

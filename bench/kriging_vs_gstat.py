@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """voxlink krige against R's gstat on the same job, in the same run (docs/kriging.md).
 
 Walker Lake: 470 samples of V -> the 260 x 300 grid, spherical(nugget 22144, psill 70207.9,

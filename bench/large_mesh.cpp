@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writes a closed torus of about TRIANGLES triangles as a binary little-endian PLY, for the
 // large-mesh stress run (bench/large_mesh_run.sh): a 10-million-triangle mesh through
 // `voxlink scene build`, its time and peak memory.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Stress run, not part of CI: a generated 10-million-triangle torus through `voxlink scene build`
 # with each voxelizer, printing wall time and peak RSS (GNU time) for each.
 #   bash bench/large_mesh_run.sh VOXLINK GENERATOR [TRIANGLES] [RESOLUTION] [WORKDIR]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes an uncompressed Enhanced CT multi-frame file of X x Y x Z u16 voxels (per-frame plane
 positions, shared orientation and pixel measures), for the multi-frame memory benchmark.
 Usage: make_enhanced_dicom.py OUT X Y Z"""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Inputs for the library swaps' measurements (docs/benchmarks.md, "Libraries in place of
 hand-written code"): a 192^3 float32 volume (normal(0, 300), seed 5, every 7th z slice times
 1e-6 so that subnormal halves occur) as DIR/in.npy, and the same values as VTK XML image data

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Makes a batch of CT volumes for `voxlink convert --batch` (docs/scale.md): every CT in
 ../shared/data listed below, resampled (nearest neighbour) to COUNT different sizes between
 0.25x and 1x per axis, written as raw-encoded NRRD files, plus the list file.

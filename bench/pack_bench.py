@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Packed files for sharing: size, packing speed and load time of `voxlink pack`, beside the
 OpenVDB file of the same voxels (Blosc, what a user would share instead) and plain zstd of the
 .vxl file (what a user would otherwise run), all made in this script on this machine.

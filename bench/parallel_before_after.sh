@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Times two voxlink builds on the same jobs, runs alternated, medians of 5, and compares the
 # outputs byte for byte (docs/parallelism.md). Usage: bench/parallel_before_after.sh BEFORE AFTER
 set -euo pipefail

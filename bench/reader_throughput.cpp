@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Read throughput of the dense readers on the shared real files, each against a peer doing the
 // same work with nothing of ours in the way: zlib's one-shot inflate of the same compressed
 // bytes (already in memory) for compressed inputs, a plain ifstream read of the same bytes for
@@ -117,7 +118,7 @@ int main(int argc, char** argv) {
   std::printf("%-32s %10s %12s %12s %8s  %s\n", "input", "MB decoded", "ours MB/s", "peer MB/s",
               "ours/peer", "peer");
   for (const Input& in : inputs) {
-    auto opened = voxlink::convert::openVolume(in.path);
+    auto opened = voxlink::sources::openVolume(in.path);
     if (!opened) {
       std::printf("%-32s error: %s\n", in.name, opened.message().c_str());
       continue;

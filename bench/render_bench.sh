@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The rendering benchmark of docs/rendering-benchmark.md: converts real CT with a transfer
 # function (pre-classification keeps what it shows), then runs `voxlink bench-render`: the
 # paper's protocol (360 deg about y, then 360 deg about x) for the VoxLink ray tracer and the

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Speed-up of the VoxLink ray tracer over the dense ray caster as the kept fraction shrinks:
 # the LIDC chest CT classified at rising thresholds, rendered with the ct-bone preset stretched
 # over what each file keeps (so the TF shows exactly the kept values), voxel and trilinear

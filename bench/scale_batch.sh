@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # docs/scale.md: `voxlink convert --batch` of the volumes bench/make_resampled_batch.py made, in
 # one plain process and on 2 and 4 MPI ranks (one thread each, oversubscribed past the
 # machine's cores); prints each run's summary line (wall, busy and busiest-rank seconds) and

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # docs/scale.md: `voxlink scene build` of a generated torus (bench/large_mesh.cpp) on 1, 2 and 4
 # MPI ranks (oversubscribed past the machine's cores): rank 0's summary line (load, voxelize,
 # merge), wall time and peak RSS per rank (/usr/bin/time, labelled with the rank), and whether

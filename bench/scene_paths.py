@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """Scene files for the bench scripts that rewrite them elsewhere (table1_vs_embree.py,
 voxelization_cost.py): object file names made absolute, since a scene file's relative names
 are relative to its own folder."""

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """The paper's Table 1 columns on this machine beside the exact tracer: for each scene at 256
 voxels (bricks of 8), 512 (8) and 1024 (16), `voxlink scene build`, then `voxlink bench-render`
 (the GL ray tracer on this machine's GL, the paper's rotation protocol, plain or --effects all)

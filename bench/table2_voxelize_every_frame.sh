@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The paper's Table 2 on this machine (llvmpipe): the dragon, the house with glass windows and
 # the glass-bunny scene voxelized every frame with the GL voxelizer (`scene build --voxelizer
 # gl`, one process per frame, so context and shader set-up are included: an upper bound) plus a

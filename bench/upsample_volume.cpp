@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Makes the benchmark's large inputs: reads a volume, upsamples it by an integer factor per
 // axis with trilinear interpolation (cell-centred), writes a raw file slice by slice.
 //   voxlink_bench_upsample INPUT FACTOR OUT.raw
@@ -15,17 +16,17 @@ int main(int argc, char** argv) {
     return 2;
   }
   const int factor = std::atoi(argv[2]);
-  auto source = convert::openVolume(argv[1]);
+  auto source = sources::openVolume(argv[1]);
   if (!source) {
     std::fprintf(stderr, "%s\n", source.message().c_str());
     return 1;
   }
-  const convert::VolumeInfo info = (*source)->info();
+  const sources::VolumeInfo info = (*source)->info();
   if (info.type != ScalarType::kU8 || factor < 1) {
     std::fprintf(stderr, "%s: only u8 volumes and factors >= 1 are supported\n", argv[1]);
     return 1;
   }
-  auto data = convert::readAll(**source);
+  auto data = sources::readAll(**source);
   if (!data) {
     std::fprintf(stderr, "%s\n", data.message().c_str());
     return 1;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The OpenVDB peer of the conversion benchmark: the same job done with OpenVDB.
 // Reads a raw u8 volume, keeps voxels >= THRESHOLD as active voxels of an openvdb::FloatGrid
 // (tools::copyFromDense with background 0 and tolerance THRESHOLD - 0.5), writes a

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """What voxelization costs: for each scene and voxel resolution, `voxlink scene build` (file size,
 build time), then `voxlink render-exact --compare` renders the voxel scene and the original
 meshes and spheres (Embree 3, the exact tracer a user would pick instead) with the same float64

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Surface voxelization benchmark (docs/geometry.md): the exact CPU voxelizer of geometry/ and the
 // GL voxelizer (viewer/gl/gl_voxelizer.h, headless) against OpenVDB's
 // tools::meshToUnsignedDistanceField (tools::meshToVolume with an unsigned band) with a

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Walker Lake's exhaustive U as a 260 x 300 grid for `voxlink krige --external-drift-grid`.
 
 Usage: walker_u_grid.py walker.exh.csv OUT.npy

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink bench-render FILE.vxl: the paper's protocol (360 deg about y, then 360 deg about x,
 // mean FPS) for the VoxLink ray tracer and the dense 3D-texture ray caster, with the PSNR of
 // each against the float64 reference, as a Markdown table.
@@ -10,9 +11,10 @@
 #include "cli/output_options.h"
 #include "cli/render_options.h"
 #include "format/validator.h"
-#include "viewer/core/recorded_source.h"
-#include "viewer/core/reference_renderer.h"
-#include "viewer/core/scene_reference_renderer.h"
+#include "pack/open_file.h"
+#include "render/recorded_source.h"
+#include "render/reference_renderer.h"
+#include "render/scene_reference_renderer.h"
 #include "viewer/gl/dense_renderer.h"
 #include "viewer/gl/gl_context.h"
 #include "viewer/gl/render_benchmark.h"
@@ -51,20 +53,20 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
   args->render.add(cmd, false);
   args->out.add(cmd, false);
   return [args] {
-    auto file = format::openValidatedFile(args->path);
+    auto file = pack::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     viewer::BenchmarkOptions o;
     o.framesPerTurn = args->framesPerTurn;
     o.sizes.clear();
     for (const auto& s : args->sizes) {
-      auto wh = viewer::parseImageSize(s);
+      auto wh = render::parseImageSize(s);
       if (!wh) return reportError(wh.error());
       o.sizes.push_back(*wh);
     }
     o.samplings.clear();
-    for (const auto& s : args->samplings) o.samplings.push_back(*viewer::parseSampling(s));
+    for (const auto& s : args->samplings) o.samplings.push_back(*render::parseSampling(s));
     // Scenes render with voxel sampling only (the ray tracer refuses trilinear for them).
-    if (file->isScene()) o.samplings = {viewer::Sampling::kVoxel};
+    if (file->isScene()) o.samplings = {render::Sampling::kVoxel};
     auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
     o.base = *settings;
@@ -82,11 +84,11 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     // A scene has no dense source: its reference is the float64 tracer over the same voxel
     // scene, and there is no dense peer.
     if (file->isScene()) args->noDense = true;
-    std::optional<viewer::DenseVolume> dense;
+    std::optional<render::DenseVolume> dense;
     if (!file->isScene() && (!args->noDense || !args->noReference)) {
       auto sourceOptions = args->source.openOptions();
       if (!sourceOptions) return reportError(sourceOptions.error());
-      auto loaded = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
+      auto loaded = render::loadSourceVolume(*file, args->source.path, *sourceOptions);
       if (!loaded) return reportError(loaded.error());
       dense = std::move(*loaded);
     }
@@ -104,17 +106,17 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
       denseRenderer->setTransferFunction(*tf);
       renderers.push_back(denseRenderer.get());
     }
-    std::optional<viewer::ReferenceRenderer> volumeReference;
-    std::optional<viewer::SceneReferenceRenderer> sceneReference;
+    std::optional<render::ReferenceRenderer> volumeReference;
+    std::optional<render::SceneReferenceRenderer> sceneReference;
     viewer::ReferenceRender reference;
     if (!args->noReference && file->isScene()) {
       sceneReference.emplace(*file, *tf);
-      reference = [&](const viewer::Camera& c, const viewer::RenderSettings& s) {
+      reference = [&](const render::Camera& c, const render::RenderSettings& s) {
         return sceneReference->render(c, s);
       };
     } else if (!args->noReference) {
       volumeReference.emplace(*dense, *tf);
-      reference = [&](const viewer::Camera& c, const viewer::RenderSettings& s) {
+      reference = [&](const render::Camera& c, const render::RenderSettings& s) {
         return volumeReference->render(c, s);
       };
     }
@@ -135,7 +137,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
         "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; "
         "shadows %s; effects %s (max %d bounces, %zu scene lights)\n\n",
         o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
-        o.base.shading.shadows ? "on" : "off", viewer::effectsName(o.base.effects).c_str(),
+        o.base.shading.shadows ? "on" : "off", render::effectsName(o.base.effects).c_str(),
         o.base.effects.maxBounces, o.base.lights.size());
     auto rows =
         viewer::runRenderBenchmark(renderers, reference, (*voxlink)->geometry().worldBox(), o);

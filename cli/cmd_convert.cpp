@@ -1,9 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink convert INPUT -o OUT.vxl --threshold 60: pre-classify a dense volume and write a
 // VoxLink file, with a progress bar and a one-line summary of size, speed and error. Under
 // mpirun/srun the ranks share the volume; --batch LIST --out-dir DIR converts many files.
 #include <cstdio>
 #include <thread>
 
+#include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/convert_batch.h"
 #include "cli/output_options.h"
@@ -13,9 +16,7 @@
 #include "cli/source_options.h"
 #include "convert/converter.h"
 #include "convert/moments.h"
-#include "format/output_file.h"
-#include "format/parallel_for.h"
-#include "format/transfer_function.h"
+#include "tf/transfer_function.h"
 
 namespace voxlink::cli {
 namespace {
@@ -51,7 +52,7 @@ Result<convert::Classification> classificationFrom(const ConvertArgs& a) {
                      "give only one of --threshold, --tf, --keep-outside, --keep-all");
   if (!a.thresholds.empty()) return convert::thresholdClassification(a.thresholds);
   if (!a.tfPath.empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf, format::loadTransferFunction(a.tfPath));
+    VOXLINK_ASSIGN_OR_RETURN(tf::TransferFunction tf, tf::loadTransferFunction(a.tfPath));
     return convert::tfClassification(tf);
   }
   if (!a.keepOutside.empty())
@@ -82,17 +83,17 @@ std::string relativeErrorNote(double maxRelError) {
 // measurement (when `announce`). `ranks` null: this process alone (every file of a batch); else
 // the ranks that share the volume.
 struct Prepared {
-  std::unique_ptr<convert::VolumeSource> source;
+  std::unique_ptr<sources::VolumeSource> source;
   convert::ConvertOptions options;
 };
 Result<Prepared> prepareFile(const ConvertArgs& a, const std::string& input,
                              const std::string& output, base::RankGroup* ranks, ProgressBar* bar,
                              bool announce) {
-  VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, {input}));
-  VOXLINK_ASSIGN_OR_RETURN(convert::OpenOptions open, toOpenOptions(a.source));
-  VOXLINK_ASSIGN_OR_RETURN(std::unique_ptr<convert::VolumeSource> source,
-                           convert::openVolume(input, open));
-  VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, input, source->info().files));
+  VOXLINK_RETURN_IF_ERROR(base::checkOutputTarget(output, {input}));
+  VOXLINK_ASSIGN_OR_RETURN(sources::OpenOptions open, toOpenOptions(a.source));
+  VOXLINK_ASSIGN_OR_RETURN(std::unique_ptr<sources::VolumeSource> source,
+                           sources::openVolume(input, open));
+  VOXLINK_RETURN_IF_ERROR(base::checkOutputTarget(output, input, source->info().files));
   ConvertArgs args = a;
   if (a.standardize) {
     if (a.keepOutside.empty() || a.mean || a.sigma)
@@ -155,7 +156,7 @@ int runConvert(const ConvertArgs& a) {
   if (!summary) return reportOnRankZero(summary.status());
   if (!root) return 0;
   const convert::ConvertSummary& s = *summary;
-  const convert::VolumeInfo& info = prepared->source->info();
+  const sources::VolumeInfo& info = prepared->source->info();
   const double denseBytes = double(info.voxelCount()) * scalarSize(info.type);
   a.out.print(
       "%s: %s of %s voxels (%.2f%%) in %s of %s bricks (%.1f%%) | %.2f MB, %.3f B/voxel, %.1fx "
@@ -222,7 +223,7 @@ CommandRunner addConvertCommand(CLI::App& app) {
       ->capture_default_str();
   a->out.add(cmd, true);
   return [a] {
-    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    const base::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
     return runConvert(*a);
   };
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink dicom list PATH [--json]: the DICOM series under a folder (recursive), so a user can
 // pick one for `voxlink convert PATH --series UID|INDEX`.
 #include <cstdio>
@@ -10,23 +11,23 @@
 namespace voxlink::cli {
 namespace {
 
-std::string dimsText(const convert::DicomSeriesSummary& s) {
+std::string dimsText(const sources::DicomSeriesSummary& s) {
   if (!s.problem.empty()) return "-";
   return cat(s.dims[0], "x", s.dims[1], "x", s.dims[2]);
 }
 
-std::string spacingText(const convert::DicomSeriesSummary& s) {
+std::string spacingText(const sources::DicomSeriesSummary& s) {
   if (!s.problem.empty()) return "-";
   char text[96];
   std::snprintf(text, sizeof text, "%g x %g x %g", s.spacing[0], s.spacing[1], s.spacing[2]);
   return text;
 }
 
-void printTable(const convert::DicomFolderListing& listing) {
+void printTable(const sources::DicomFolderListing& listing) {
   std::printf("%-3s %-8s %-12s %-14s %-7s %-7s %-10s %-24s %s\n", "#", "modality", "dims",
               "spacing (mm)", "files", "images", "MB", "description", "SeriesInstanceUID");
   for (size_t i = 0; i < listing.series.size(); ++i) {
-    const convert::DicomSeriesSummary& s = listing.series[i];
+    const sources::DicomSeriesSummary& s = listing.series[i];
     std::printf("%-3zu %-8s %-12s %-14s %-7llu %-7llu %-10.2f %-24s %s\n", i + 1,
                 s.modality.c_str(), dimsText(s).c_str(), spacingText(s).c_str(),
                 (unsigned long long)s.files, (unsigned long long)s.frames, s.bytes / 1e6,
@@ -40,11 +41,11 @@ void printTable(const convert::DicomFolderListing& listing) {
       (unsigned long long)listing.nonImages);
 }
 
-std::string listingJson(const convert::DicomFolderListing& listing) {
+std::string listingJson(const sources::DicomFolderListing& listing) {
   nlohmann::ordered_json j;
   nlohmann::ordered_json series = nlohmann::ordered_json::array();
   for (size_t i = 0; i < listing.series.size(); ++i) {
-    const convert::DicomSeriesSummary& s = listing.series[i];
+    const sources::DicomSeriesSummary& s = listing.series[i];
     nlohmann::ordered_json e;
     e["index"] = i + 1;
     e["series_instance_uid"] = s.uid;
@@ -80,7 +81,7 @@ CommandRunner addDicomCommand(CLI::App& app) {
   list->add_flag("--json", *json, "Print JSON instead of a table");
   out->add(list, false);
   return [path, json, out]() {
-    auto listing = convert::listDicomFolder(*path);
+    auto listing = sources::listDicomFolder(*path);
     if (!listing) return reportError(listing.error());
     if (out->quiet) return 0;
     if (*json)

@@ -1,15 +1,17 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink export FILE.vxl -o out.nrrd [--fill V] | -o out.vdb: the classified volume dense
 // again in the source's type, or as OpenVDB grids of values and gradients (through the plugin).
 #include <cstdio>
 
+#include "base/file_name.h"
+#include "base/output_file.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/progress_bar.h"
 #include "convert/vdb_export.h"
-#include "format/dense_export.h"
-#include "format/file_name.h"
-#include "format/output_file.h"
 #include "format/validator.h"
+#include "pack/open_file.h"
+#include "report/dense_export.h"
 
 namespace voxlink::cli {
 
@@ -33,20 +35,20 @@ CommandRunner addExportCommand(CLI::App& app) {
   args->out.add(cmd, true);
   return [args] {
     const std::string& out = args->output;
-    const bool vdb = format::hasExtension(out, ".vdb");
-    if (!vdb && !format::hasExtension(out, ".nrrd") && !format::hasExtension(out, ".nhdr"))
+    const bool vdb = base::hasExtension(out, ".vdb");
+    if (!vdb && !base::hasExtension(out, ".nrrd") && !base::hasExtension(out, ".nhdr"))
       return reportError(makeError(
           ErrorCode::kInvalidArgument, out,
           ": unknown export format; the output name must end in .nrrd, .nhdr (+ .raw) or .vdb"));
-    if (Status s = format::checkOutputTarget(out, {args->path}); !s) return reportError(s);
+    if (Status s = base::checkOutputTarget(out, {args->path}); !s) return reportError(s);
     // Validating a quarter of the bar, exporting the rest.
     ProgressBar bar(args->out.showProgress());
-    const format::ProgressCallback progress = bar.callback();
-    auto file = format::VoxLinkFile::open(args->path);
+    const base::ProgressCallback progress = bar.callback();
+    auto file = pack::openFile(args->path);
     if (!file) return bar.fail(file.error());
-    if (auto valid = format::validateFile(*file, format::progressPart(progress, 0, 0.25)); !valid)
+    if (auto valid = format::validateFile(*file, base::progressPart(progress, 0, 0.25)); !valid)
       return bar.fail(valid.error());
-    const format::ProgressCallback exportProgress = format::progressPart(progress, 0.25, 1);
+    const base::ProgressCallback exportProgress = base::progressPart(progress, 0.25, 1);
     if (vdb) {
       auto written = convert::exportVdb(*file, out, exportProgress);
       bar.finish();
@@ -55,13 +57,13 @@ CommandRunner addExportCommand(CLI::App& app) {
                       out.c_str(), (unsigned long long)written->voxels, written->bytes / 1e6);
       return 0;
     }
-    auto summary = format::exportDenseNrrd(*file, out, args->fill, exportProgress);
+    auto summary = report::exportDenseNrrd(*file, out, args->fill, exportProgress);
     bar.finish();
     if (!summary) return reportError(summary.error());
     args->out.print("%s: %llu stored voxels, %llu filled with %g, %.2f MB dense NRRD%s\n",
                     out.c_str(), (unsigned long long)summary->keptVoxels,
                     (unsigned long long)summary->filledVoxels, args->fill, summary->bytes / 1e6,
-                    format::hasExtension(out, ".nhdr") ? " (header + .raw)" : "");
+                    base::hasExtension(out, ".nhdr") ? " (header + .raw)" : "");
     return 0;
   };
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink grf --dims X,Y,Z --variogram MODEL -o FIELD.nhdr|FIELD.npy: an unconditional
 // Gaussian random field (N(0,1) for a sill of 1) on a voxel grid, generated slab by slab with
 // bounded memory, and its empirical statistics against the model.
@@ -5,13 +6,13 @@
 #include <cstdio>
 #include <optional>
 
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/krige_options.h"
 #include "cli/output_options.h"
 #include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "cli/shared_grids.h"
-#include "format/parallel_for.h"
 #include "geostat/field_statistics.h"
 #include "geostat/grf.h"
 #include "geostat/grid_writer.h"
@@ -19,7 +20,7 @@
 namespace voxlink::cli {
 namespace {
 
-using namespace voxlink::kriging;
+using namespace voxlink::geostat;
 
 struct GrfArgs {
   std::string output, dims, variogram = "exp:range=32", type = "f64";
@@ -146,7 +147,7 @@ CommandRunner addGrfCommand(CLI::App& app) {
   cmd->add_flag("--stats", a->stats,
                 "Print empirical mean, sigma, 95 % interval exceedance and axis variograms");
   return [a] {
-    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    const base::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
     return runGrf(*a);
   };
 }

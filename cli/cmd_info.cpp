@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink info FILE [--json]: the memory footprint report (paper, Table 3) with the OpenVDB
 // peer measured on the same voxels.
 #include <cstdio>
@@ -5,9 +6,10 @@
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "convert/vdb_footprint.h"
-#include "format/footprint.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
+#include "report/footprint.h"
 
 namespace voxlink::cli {
 
@@ -26,10 +28,10 @@ CommandRunner addInfoCommand(CLI::App& app) {
                 "Skip building the OpenVDB FloatGrid used for comparison");
   args->out.add(cmd, false);
   return [args] {
-    auto file = format::openValidatedFile(args->path);
+    auto file = pack::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     if (args->out.quiet) return 0;  // opened and validated: nothing else to say
-    format::FootprintReport report = format::computeFootprint(*file);
+    report::FootprintReport report = report::computeFootprint(*file);
     if (!args->skipVdb) {
       auto peer = convert::measureVdbFootprint(*file);
       if (!peer)
@@ -37,7 +39,7 @@ CommandRunner addInfoCommand(CLI::App& app) {
             makeError(peer.code(), peer.message(), " (--no-vdb reports without it)"));
       report.peer = *peer;
     }
-    std::fputs((args->json ? format::footprintJson(report) + "\n" : format::footprintTable(report))
+    std::fputs((args->json ? report::footprintJson(report) + "\n" : report::footprintTable(report))
                    .c_str(),
                stdout);
     return 0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink krige SAMPLES -o GRID.nhdr|GRID.npy: ordinary, simple or universal kriging (with a
 // coordinate or external drift) of scattered samples
 // (CSV or GEO-EAS) onto a regular grid, with the kriging variance as a second grid, the
@@ -12,14 +13,14 @@
 #include <optional>
 #include <vector>
 
+#include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/krige_options.h"
 #include "cli/output_options.h"
 #include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "cli/shared_grids.h"
-#include "format/output_file.h"
-#include "format/parallel_for.h"
 #include "geostat/cross_validation.h"
 #include "geostat/grid_writer.h"
 #include "geostat/krige_grid.h"
@@ -29,7 +30,7 @@
 namespace voxlink::cli {
 namespace {
 
-using namespace voxlink::kriging;
+using namespace voxlink::geostat;
 
 struct KrigeArgs {
   std::string input, output, varianceOutput;
@@ -48,13 +49,13 @@ struct KrigeArgs {
 // The external drift at every node: a dense grid file (any format `convert` reads) with the
 // krige grid's dims, read as doubles, x fastest; every value finite.
 Result<std::vector<double>> readDriftGrid(const std::string& path, const GridSpec& grid) {
-  VOXLINK_ASSIGN_OR_RETURN(auto source, convert::openVolume(path));
+  VOXLINK_ASSIGN_OR_RETURN(auto source, sources::openVolume(path));
   const auto& dims = source->info().dims;
   if (dims != grid.dims)
     return makeError(ErrorCode::kInvalidArgument, path, ": --external-drift-grid is ", dims[0],
                      " x ", dims[1], " x ", dims[2], ", the krige grid ", grid.dims[0], " x ",
                      grid.dims[1], " x ", grid.dims[2]);
-  VOXLINK_ASSIGN_OR_RETURN(const std::vector<uint8_t> bytes, convert::readAll(*source));
+  VOXLINK_ASSIGN_OR_RETURN(const std::vector<uint8_t> bytes, sources::readAll(*source));
   std::vector<double> out(grid.nodeCount());
   dispatchScalar(source->info().type, [&](auto zero) {
     using T = decltype(zero);
@@ -217,7 +218,7 @@ Result<KrigeJob> prepareKrige(const KrigeArgs& a, const std::string& sampleText,
   std::vector<std::string> written;
   for (const std::string& out : {a.output, varianceFile})
     for (const std::string& file : GridWriter::filesOf(out)) {
-      if (Status s = format::checkOutputTarget(file, {a.input}); !s) return s;
+      if (Status s = base::checkOutputTarget(file, {a.input}); !s) return s;
       for (const std::string& other : written)
         if (std::filesystem::weakly_canonical(other) == std::filesystem::weakly_canonical(file))
           return makeError(ErrorCode::kInvalidArgument, file,
@@ -385,7 +386,7 @@ CommandRunner addKrigeCommand(CLI::App& app) {
   addThreadsOption(cmd, a->threads);
   a->out.add(cmd, true);
   return [a] {
-    const format::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
+    const base::ThreadLimit limit(a->threads);  // every parallel path, for the whole run
     return runKrige(*a);
   };
 }

@@ -1,35 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink pack FILE.vxl -o FILE.packed.vxl: every section compressed losslessly, for sharing;
 // voxlink unpack PACKED.vxl -o FILE.vxl: the original file again, byte for byte. Every command
 // that reads .vxl files reads packed ones too (unpacked in memory).
 #include <chrono>
 #include <cstdio>
 
+#include "base/limits.h"
+#include "base/mapped_file.h"
+#include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/progress_bar.h"
-#include "format/limits.h"
-#include "format/mapped_file.h"
-#include "format/output_file.h"
-#include "format/packed_file.h"
-#include "format/parallel_for.h"
 #include "format/validator.h"
+#include "pack/open_file.h"
+#include "pack/packed_file.h"
 
 namespace voxlink::cli {
 namespace {
 
-const char* codecName(format::SectionCodec codec) {
+const char* codecName(pack::SectionCodec codec) {
   switch (codec) {
-    case format::SectionCodec::kStored:
+    case pack::SectionCodec::kStored:
       return "stored";
-    case format::SectionCodec::kZstd:
+    case pack::SectionCodec::kZstd:
       return "zstd";
-    case format::SectionCodec::kDeltaZstd:
+    case pack::SectionCodec::kDeltaZstd:
       return "delta+zstd";
-    case format::SectionCodec::kGradientResidual:
+    case pack::SectionCodec::kGradientResidual:
       return "predicted+zstd";
-    case format::SectionCodec::kGradientResidualPortable:
+    case pack::SectionCodec::kGradientResidualPortable:
       return "predicted-f32+zstd";
-    case format::SectionCodec::kDerived:
+    case pack::SectionCodec::kDerived:
       return "derived";
   }
   return "?";
@@ -38,18 +40,18 @@ const char* codecName(format::SectionCodec codec) {
 // The input, validated (and unpacked when packed), once the output is known to be writable:
 // openValidatedFile() with `progress` hearing the unpacking (when packed) and the validation.
 Result<format::VoxLinkFile> openInputFor(const std::string& input, const std::string& output,
-                                         const format::ProgressCallback& progress) {
-  VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(output, {input}));
-  VOXLINK_ASSIGN_OR_RETURN(format::MappedFile mapped, format::MappedFile::open(input));
+                                         const base::ProgressCallback& progress) {
+  VOXLINK_RETURN_IF_ERROR(base::checkOutputTarget(output, {input}));
+  VOXLINK_ASSIGN_OR_RETURN(base::MappedFile mapped, base::MappedFile::open(input));
   const std::span<const uint8_t> bytes(mapped.data(), mapped.size());
-  const bool packed = format::isPackedFile(bytes);
-  Result<format::VoxLinkFile> file =
-      packed ? format::unpackFile(bytes, input, limits::kMaxUnpackedBytes, 0,
-                                  format::progressPart(progress, 0, 0.5))
-             : format::VoxLinkFile::open(input);
+  const bool packed = pack::isPackedFile(bytes);
+  Result<format::VoxLinkFile> file = packed
+                                         ? pack::unpackFile(bytes, input, limits::kMaxUnpackedBytes,
+                                                            0, base::progressPart(progress, 0, 0.5))
+                                         : pack::openFile(input);
   if (!file) return file;
   VOXLINK_RETURN_IF_ERROR(
-      format::validateFile(*file, format::progressPart(progress, packed ? 0.5 : 0, 1)).status());
+      format::validateFile(*file, base::progressPart(progress, packed ? 0.5 : 0, 1)).status());
   return file;
 }
 
@@ -81,21 +83,21 @@ CommandRunner addPackCommand(CLI::App& app) {
   cmd->add_flag("--sections", args->sections, "Print each section's size before and after");
   args->out.add(cmd, true);
   return [args] {
-    const format::ThreadLimit limit(args->threads);  // every parallel path, for the whole run
+    const base::ThreadLimit limit(args->threads);  // every parallel path, for the whole run
     const auto start = std::chrono::steady_clock::now();
     // Validating a fifth of the bar, packing the rest (GRAD's prediction dominates).
     ProgressBar bar(args->out.showProgress());
-    const format::ProgressCallback progress = bar.callback();
-    auto file = openInputFor(args->path, args->output, format::progressPart(progress, 0, 0.2));
+    const base::ProgressCallback progress = bar.callback();
+    auto file = openInputFor(args->path, args->output, base::progressPart(progress, 0, 0.2));
     if (!file) return bar.fail(file.error());
     const double readSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (file->packedBytes() != 0)
       return bar.fail(makeError(ErrorCode::kInvalidArgument, args->path,
                                 ": already packed (voxlink unpack gives the original)"));
-    auto report = format::packFile(
+    auto report = pack::packFile(
         *file, args->output,
-        {args->level, args->threads, !args->fast, format::progressPart(progress, 0.2, 1)});
+        {args->level, args->threads, !args->fast, base::progressPart(progress, 0.2, 1)});
     bar.finish();
     if (!report) return reportError(report.error());
     if (args->out.quiet) return 0;
@@ -135,14 +137,14 @@ CommandRunner addUnpackCommand(CLI::App& app) {
     const auto start = std::chrono::steady_clock::now();
     // Unpacking and validating 90 % of the bar, writing the rest.
     ProgressBar bar(args->out.showProgress());
-    const format::ProgressCallback progress = bar.callback();
-    auto file = openInputFor(args->path, args->output, format::progressPart(progress, 0, 0.9));
+    const base::ProgressCallback progress = bar.callback();
+    auto file = openInputFor(args->path, args->output, base::progressPart(progress, 0, 0.9));
     if (!file) return bar.fail(file.error());
     if (file->packedBytes() == 0)
       return bar.fail(makeError(ErrorCode::kInvalidArgument, args->path,
                                 ": not a packed file (nothing to unpack)"));
     bar.update(0.9, "writing");
-    const Status written = format::writeWholeFile(args->output, file->bytes());
+    const Status written = base::writeWholeFile(args->output, file->bytes());
     if (written) bar.update(1.0, "written");
     bar.finish();
     if (!written) return reportError(written);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink render FILE.vxl -o out.png: one frame through EGL (no X server), written as PNG or
 // EXR. With --reference it also renders the float64 reference (from the dense source; for a
 // scene, the same voxel scene) and prints the image error.
@@ -6,15 +7,16 @@
 #include <optional>
 #include <vector>
 
+#include "base/output_file.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/render_options.h"
-#include "format/output_file.h"
 #include "format/validator.h"
+#include "pack/open_file.h"
+#include "render/recorded_source.h"
+#include "render/reference_renderer.h"
+#include "render/scene_reference_renderer.h"
 #include "sources/volume_source.h"
-#include "viewer/core/recorded_source.h"
-#include "viewer/core/reference_renderer.h"
-#include "viewer/core/scene_reference_renderer.h"
 #include "viewer/gl/gl_context.h"
 #include "viewer/gl/voxlink_renderer.h"
 
@@ -47,9 +49,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
     std::vector<std::string> outputs = {args->output};
     if (!args->referenceOut.empty()) outputs.push_back(args->referenceOut);
     for (const std::string& out : outputs)
-      if (Status s = format::checkOutputTarget(out, {args->path, args->source.path}); !s)
+      if (Status s = base::checkOutputTarget(out, {args->path, args->source.path}); !s)
         return reportError(s);
-    auto file = format::openValidatedFile(args->path);
+    auto file = pack::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     auto settings = args->render.settings(*file);
     if (!settings) return reportError(settings.error());
@@ -60,20 +62,20 @@ CommandRunner addRenderCommand(CLI::App& app) {
     // The reference's dense source is loaded first: one that cannot fit is refused before a
     // frame is rendered or an image written.
     const bool reference = args->reference || !args->referenceOut.empty();
-    std::optional<viewer::DenseVolume> dense;
+    std::optional<render::DenseVolume> dense;
     if (reference && !file->isScene()) {
       auto sourceOptions = args->source.openOptions();
       if (!sourceOptions) return reportError(sourceOptions.error());
       // No image may be one of the source's files (an image stack's slice, a header's data
       // file).
-      auto chosen = viewer::chosenSource(*file, args->source.path, *sourceOptions);
+      auto chosen = render::chosenSource(*file, args->source.path, *sourceOptions);
       if (!chosen) return reportError(chosen.error());
-      auto source = convert::openVolume(chosen->path, chosen->options);
+      auto source = sources::openVolume(chosen->path, chosen->options);
       if (!source) return reportError(source.error());
       for (const std::string& out : outputs)
-        if (Status s = format::checkOutputTarget(out, chosen->path, (*source)->info().files); !s)
+        if (Status s = base::checkOutputTarget(out, chosen->path, (*source)->info().files); !s)
           return reportError(s);
-      auto loaded = viewer::loadSourceVolume(*file, args->source.path, *sourceOptions);
+      auto loaded = render::loadSourceVolume(*file, args->source.path, *sourceOptions);
       if (!loaded) return reportError(loaded.error());
       dense = std::move(*loaded);
     }
@@ -82,36 +84,36 @@ CommandRunner addRenderCommand(CLI::App& app) {
     auto renderer = viewer::VoxLinkRenderer::create(*file);
     if (!renderer) return reportError(renderer.error());
     (*renderer)->setTransferFunction(*tf);
-    const viewer::Camera camera =
-        viewer::Camera::framing((*renderer)->geometry().worldBox(), *spec);
+    const render::Camera camera =
+        render::Camera::framing((*renderer)->geometry().worldBox(), *spec);
     viewer::RenderTarget target;
     const auto start = std::chrono::steady_clock::now();
     if (Status s = (*renderer)->render(camera, *settings, target); !s) return reportError(s);
-    const viewer::Image image = target.read();
+    const render::Image image = target.read();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (Status s = viewer::writeImage(image, args->output); !s) return reportError(s);
+    if (Status s = render::writeImage(image, args->output); !s) return reportError(s);
     args->out.print(
         "%s: %ux%u, %s sampling, %.3f s (first frame, includes shader compilation) on %s\n",
         args->output.c_str(), settings->width, settings->height,
-        std::string(viewer::samplingName(settings->sampling)).c_str(), seconds,
+        std::string(render::samplingName(settings->sampling)).c_str(), seconds,
         (*context)->description().c_str());
     if (settings->effects.any()) {
       const auto& stats = (*renderer)->lastEffectsStats();
       args->out.print("ray traced (%s): %d passes, %llu secondary rays, %llu dropped\n",
-                      viewer::effectsName(settings->effects).c_str(), stats.passes,
+                      render::effectsName(settings->effects).c_str(), stats.passes,
                       (unsigned long long)stats.secondaryRays,
                       (unsigned long long)stats.droppedRays);
     }
     if (!reference) return 0;
     // A scene's reference traces the same voxel scene in float64 (its geometry has no dense
     // source).
-    const viewer::Image truth =
-        file->isScene() ? viewer::SceneReferenceRenderer(*file, *tf).render(camera, *settings)
-                        : viewer::ReferenceRenderer(*dense, *tf).render(camera, *settings);
+    const render::Image truth =
+        file->isScene() ? render::SceneReferenceRenderer(*file, *tf).render(camera, *settings)
+                        : render::ReferenceRenderer(*dense, *tf).render(camera, *settings);
     if (!args->referenceOut.empty())
-      if (Status s = viewer::writeImage(truth, args->referenceOut); !s) return reportError(s);
-    auto error = viewer::compareImages(image, truth);
+      if (Status s = render::writeImage(truth, args->referenceOut); !s) return reportError(s);
+    auto error = render::compareImages(image, truth);
     if (!error) return reportError(error.error());
     args->out.print(
         "against the float64 reference: PSNR %.2f dB, max error %.4f, %llu pixels off by more than "

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink render-exact SCENE.json -o out.png: the scene's original meshes and spheres ray traced
 // exactly (Embree 3) by the float64 effects tracer. With --compare FILE.vxl it also traces the
 // voxelized scene with the same tracer, camera, lights and effects, and prints what
@@ -7,16 +8,17 @@
 #include <cstdio>
 #include <vector>
 
+#include "base/output_file.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "exact/edge_error.h"
 #include "exact/exact_scene_walker.h"
 #include "exact/scene_view.h"
-#include "format/output_file.h"
 #include "format/validator.h"
+#include "pack/open_file.h"
+#include "render/effects_tracer.h"
+#include "render/voxel_scene_walker.h"
 #include "scene/scene_description.h"
-#include "viewer/core/effects_tracer.h"
-#include "viewer/core/voxel_scene_walker.h"
 
 namespace voxlink::cli {
 
@@ -31,7 +33,7 @@ double secondsSince(Clock::time_point start) {
 // The median of `repeat` renders' times (the VM's speed drifts within minutes), and the last
 // image.
 template <class Render>
-double timeRenders(int repeat, viewer::Image& image, const Render& render) {
+double timeRenders(int repeat, render::Image& image, const Render& render) {
   std::vector<double> seconds;
   for (int i = 0; i < repeat; ++i) {
     const auto start = Clock::now();
@@ -71,7 +73,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
   cmd->add_option("--effects", args->effects, "reflect,refract,shadows, all or none")
       ->capture_default_str();
   cmd->add_option("--max-bounces", args->maxBounces, "Secondary-ray generations")
-      ->check(CLI::Range(0, viewer::kMaxBouncesLimit))
+      ->check(CLI::Range(0, render::kMaxBouncesLimit))
       ->capture_default_str();
   cmd->add_flag("--no-shading", args->noShading, "Unlit colours (no Phong shading)");
   cmd->add_option("--compare", args->compare,
@@ -88,29 +90,29 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     std::vector<std::string> outputs = {args->output};
     if (!args->voxelOutput.empty()) outputs.push_back(args->voxelOutput);
     for (const std::string& out : outputs)
-      if (Status s = format::checkOutputTarget(out, {args->scene, args->compare}); !s)
+      if (Status s = base::checkOutputTarget(out, {args->scene, args->compare}); !s)
         return reportError(s);
     if (!args->voxelOutput.empty() && args->compare.empty())
       return reportError(makeError(ErrorCode::kInvalidArgument, "--voxel-output needs --compare"));
     auto description = scene::readSceneDescription(args->scene);
     if (!description) return reportError(description.error());
 
-    viewer::RenderSettings settings;
-    auto size = viewer::parseImageSize(args->size);
+    render::RenderSettings settings;
+    auto size = render::parseImageSize(args->size);
     if (!size) return reportError(size.error());
     settings.width = (*size)[0];
     settings.height = (*size)[1];
     settings.shading.enabled = !args->noShading;
-    auto effects = viewer::parseEffects(args->effects, args->maxBounces);
+    auto effects = render::parseEffects(args->effects, args->maxBounces);
     if (!effects) return reportError(effects.error());
     settings.effects = *effects;
     settings.lights = exact::sceneLights(*description);
-    if (Status s = viewer::checkSettings(settings, "render-exact"); !s) return reportError(s);
+    if (Status s = render::checkSettings(settings, "render-exact"); !s) return reportError(s);
 
-    viewer::CameraSpec spec = exact::sceneCameraSpec(*description);
-    if (!args->up.empty()) spec.up = *viewer::parseUpAxis(args->up);
+    render::CameraSpec spec = exact::sceneCameraSpec(*description);
+    if (!args->up.empty()) spec.up = *render::parseUpAxis(args->up);
     if (!args->camera.empty()) {
-      auto parsed = viewer::parseCameraSpec(args->camera, spec);
+      auto parsed = render::parseCameraSpec(args->camera, spec);
       if (!parsed) return reportError(parsed.error());
       spec = *parsed;
     }
@@ -120,7 +122,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     std::optional<format::VoxLinkFile> file;
     uint32_t resolution = 0;
     if (!args->compare.empty()) {
-      auto opened = format::openValidatedFile(args->compare);
+      auto opened = pack::openValidatedFile(args->compare);
       if (!opened) return reportError(opened.error());
       if (!opened->isScene())
         return reportError(makeError(ErrorCode::kInvalidArgument, args->compare,
@@ -133,11 +135,11 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     auto walker = exact::ExactSceneWalker::open(*description, resolution);
     if (!walker) return reportError(walker.error());
     const double loadSeconds = secondsSince(loadStart);
-    const viewer::Box box = (*walker)->bounds();
-    std::optional<viewer::VoxelSceneWalker> voxels;
+    const render::Box box = (*walker)->bounds();
+    std::optional<render::VoxelSceneWalker> voxels;
     if (file) {
       voxels.emplace(*file);
-      const viewer::Box v = voxels->bounds();
+      const render::Box v = voxels->bounds();
       const double tolerance = 1e-4 * glm::length(box.hi - box.lo);
       if (glm::length(v.lo - box.lo) > tolerance || glm::length(v.hi - box.hi) > tolerance)
         return reportError(
@@ -146,28 +148,28 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
                       args->scene, " at ", resolution, " voxels (built from another scene file?)"));
     }
 
-    const format::TransferFunction noVolume;  // neither walker has volume samples
-    const viewer::Camera camera = viewer::Camera::framing(box, spec);
-    viewer::Image exactImage;
-    const viewer::EffectsTracer exactTracer(**walker, noVolume);
+    const tf::TransferFunction noVolume;  // neither walker has volume samples
+    const render::Camera camera = render::Camera::framing(box, spec);
+    render::Image exactImage;
+    const render::EffectsTracer exactTracer(**walker, noVolume);
     const double exactSeconds =
         timeRenders(args->repeat, exactImage, [&] { return exactTracer.render(camera, settings); });
-    if (Status s = viewer::writeImage(exactImage, args->output); !s) return reportError(s);
+    if (Status s = render::writeImage(exactImage, args->output); !s) return reportError(s);
     args->out.print(
         "%s: %ux%u, effects %s, exact (Embree 3, %zu triangles, %zu spheres; scene loaded and "
         "built in %.3f s): %.4f s\n",
         args->output.c_str(), settings.width, settings.height,
-        viewer::effectsName(settings.effects).c_str(), (*walker)->triangleCount(),
+        render::effectsName(settings.effects).c_str(), (*walker)->triangleCount(),
         (*walker)->sphereCount(), loadSeconds, exactSeconds);
     if (!file) return 0;
 
-    viewer::Image voxelImage;
-    const viewer::EffectsTracer voxelTracer(*voxels, noVolume);
+    render::Image voxelImage;
+    const render::EffectsTracer voxelTracer(*voxels, noVolume);
     const double voxelSeconds =
         timeRenders(args->repeat, voxelImage, [&] { return voxelTracer.render(camera, settings); });
     if (!args->voxelOutput.empty())
-      if (Status s = viewer::writeImage(voxelImage, args->voxelOutput); !s) return reportError(s);
-    auto whole = viewer::compareImages(voxelImage, exactImage);
+      if (Status s = render::writeImage(voxelImage, args->voxelOutput); !s) return reportError(s);
+    auto whole = render::compareImages(voxelImage, exactImage);
     if (!whole) return reportError(whole.error());
     const auto exactHits = exact::firstHits(**walker, camera, settings.width, settings.height);
     const auto voxelHits = exact::firstHits(*voxels, camera, settings.width, settings.height);

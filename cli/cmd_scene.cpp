@@ -1,15 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink scene build SCENE.json -o OUT.vxl: meshes, spheres and a volume voxelized into one
 // VoxLink buffer (docs/scene.md); under mpirun split across ranks (docs/scale.md).
 #include <cstdio>
 #include <memory>
 #include <optional>
 
+#include "base/output_file.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "format/file_writer.h"
-#include "format/output_file.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 #include "scene/scene_input_files.h"
@@ -57,7 +58,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
     auto description = scene::readSceneDescription(o->input);
     Status ready = description.status();
     if (ready)
-      ready = format::checkOutputTarget(o->output, o->input, scene::sceneInputFiles(*description));
+      ready = base::checkOutputTarget(o->output, o->input, scene::sceneInputFiles(*description));
     if (ready && ranks.size() > 1 && o->voxelizer == "gl")
       ready = makeError(ErrorCode::kUnsupported,
                         "--voxelizer gl runs in one process; use --voxelizer exact on several MPI "

@@ -1,14 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink stats INPUT: dims, type, spacing, value range, mean and sigma, and a histogram with
 // cumulative fractions, to choose a threshold or a transfer function before converting.
 #include <cstdio>
 
+#include "base/limits.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/printable_message.h"
 #include "cli/progress_bar.h"
 #include "cli/source_options.h"
 #include "convert/histogram.h"
-#include "format/limits.h"
 
 namespace voxlink::cli {
 
@@ -31,9 +32,9 @@ CommandRunner addStatsCommand(CLI::App& app) {
   return [a] {
     auto open = toOpenOptions(a->source);
     if (!open) return reportError(open.error());
-    auto source = convert::openVolume(a->input, *open);
+    auto source = sources::openVolume(a->input, *open);
     if (!source) return reportError(source.error());
-    const convert::VolumeInfo& info = (*source)->info();
+    const sources::VolumeInfo& info = (*source)->info();
     ProgressBar bar(a->out.showProgress());
     auto h = convert::measureHistogram(**source, a->bins, 64, bar.callback());
     bar.finish();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink validate FILE...: every checksum and structural invariant.
 #include <cstdio>
 
@@ -6,6 +7,7 @@
 #include "cli/progress_bar.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 
 namespace voxlink::cli {
 
@@ -19,7 +21,7 @@ CommandRunner addValidateCommand(CLI::App& app) {
   return [files, out] {
     int status = 0;
     for (const std::string& path : *files) {
-      auto file = format::VoxLinkFile::open(path);
+      auto file = pack::openFile(path);
       if (!file) {
         status = reportError(file.error());
         continue;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink view FILE.vxl: the interactive viewer (GLFW window; under a headless X server use
 // `xvfb-run -a voxlink view ...`).
 #include <cstdio>
@@ -6,6 +7,7 @@
 #include "cli/output_options.h"
 #include "cli/render_options.h"
 #include "format/validator.h"
+#include "pack/open_file.h"
 #include "viewer/app/viewer_app.h"
 
 namespace voxlink::cli {
@@ -31,11 +33,11 @@ CommandRunner addViewCommand(CLI::App& app) {
   args->render.add(cmd, false);
   args->out.add(cmd, false);
   return [args] {
-    auto file = format::openValidatedFile(args->path);
+    auto file = pack::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     viewer::ViewerOptions o;
     o.path = args->path;
-    auto size = viewer::parseImageSize(args->window);
+    auto size = render::parseImageSize(args->window);
     if (!size) return reportError(size.error());
     o.windowWidth = int((*size)[0]);
     o.windowHeight = int((*size)[1]);

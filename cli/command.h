@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Each `voxlink` subcommand lives in its own cmd_*.cpp and registers itself here. A command
 // turns library errors into one line on stderr and a non-zero exit status.
 #pragma once
@@ -9,7 +10,7 @@
 #include <functional>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::cli {
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli/convert_batch.h"
 
 #include <chrono>
@@ -11,6 +12,7 @@
 #include "cli/process_ranks.h"
 #include "convert/batch.h"
 #include "format/validator.h"
+#include "pack/open_file.h"
 
 namespace voxlink::cli {
 namespace {
@@ -62,7 +64,7 @@ int runBatch(const std::string& listPath, const std::string& outDir, bool resume
     j["input"] = item.input;
     j["output"] = item.output;
     const auto fileStart = Clock::now();
-    if (resume && std::filesystem::exists(item.output) && format::openValidatedFile(item.output)) {
+    if (resume && std::filesystem::exists(item.output) && pack::openValidatedFile(item.output)) {
       j["status"] = "skipped";
       j["reason"] = "the output exists and validates";
       ++tally.skipped;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink convert --batch LIST --out-dir DIR`: many conversions in one run, handed out one file
 // at a time to whichever MPI rank is free (or done one after another by one process), one JSON
 // line per file on stdout and a summary line at the end.

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Option parsing shared by `voxlink krige` and `voxlink grf`: comma lists and variogram models.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::cli {
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink: convert dense volumes to VoxLink files, report their footprint, validate them,
 // render them.
 #include <cerrno>
@@ -8,10 +9,10 @@
 #include <new>
 #include <vector>
 
+#include "base/output_file.h"
 #include "cli/command.h"
 #include "cli/printable_message.h"
 #include "cli/process_ranks.h"
-#include "format/output_file.h"
 
 namespace voxlink::cli {
 
@@ -71,10 +72,10 @@ int runCommand(const CommandRunner& run) {
   try {
     return run();
   } catch (const std::bad_alloc&) {
-    format::removeRegisteredTemps();
+    base::removeRegisteredTemps();
     std::fprintf(stderr, "voxlink: out of memory\n");
   } catch (const std::exception& e) {
-    format::removeRegisteredTemps();
+    base::removeRegisteredTemps();
     std::fprintf(stderr, "voxlink: internal error: %s\n", printableMessage(e.what()).c_str());
   }
   return 1;
@@ -114,7 +115,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return reportParseError(app, e);
   }
-  voxlink::format::removeTempsOnSignals();
+  voxlink::base::removeTempsOnSignals();
   for (auto& [sub, run] : commands) {
     if (!sub->parsed()) continue;
     // Only convert, scene build, krige and grf divide their work among MPI ranks; N copies of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The options every subcommand spells and means the same way (docs/cli.md): -q/--quiet,
 // --progress and --threads.
 #pragma once

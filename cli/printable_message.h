@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Error messages quote what a damaged file holds; before printing, control characters and
 // bytes that are not UTF-8 are escaped so every message stays one readable line.
 #pragma once

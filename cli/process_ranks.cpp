@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli/process_ranks.h"
 
 #include <memory>
 
-#include "format/temp_janitor.h"
+#include "base/temp_janitor.h"
 #ifdef VOXLINK_WITH_MPI
 #include "mpi/mpi_rank_group.h"
 #endif
@@ -17,7 +18,7 @@ bool startProcessRanks([[maybe_unused]] int* argc, [[maybe_unused]] char*** argv
   if (mpi::launchedByMpi()) {
     // Before MPI_Init (no threads yet): Open MPI may end this rank with _exit() when another
     // dies, and only a helper outside it can then remove rank 0's shared temporary.
-    format::startTempJanitor();
+    base::startTempJanitor();
     mpiRanks = mpi::startMpi(argc, argv);
   }
 #endif

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ranks this `voxlink` process runs with: MPI's when a launcher started it and the build
 // has MPI (VOXLINK_MPI), else this process alone.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli/progress_bar.h"
 
 #include <unistd.h>
@@ -39,7 +40,7 @@ void ProgressBar::finish() {
   lastPermille_ = -1;
 }
 
-format::ProgressCallback ProgressBar::callback() {
+base::ProgressCallback ProgressBar::callback() {
   return [this](double fraction, const char* stage) { update(fraction, stage); };
 }
 

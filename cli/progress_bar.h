@@ -1,11 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A one-line progress bar on stderr, drawn only when stderr is a terminal (or when forced).
 #pragma once
 
 #include <chrono>
 #include <string>
 
-#include "format/error.h"
-#include "format/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 
 namespace voxlink::cli {
 
@@ -16,7 +17,7 @@ class ProgressBar {
   void update(double fraction, const char* stage);
   void finish();
   // Moves this bar from a library call's progress reports; the bar must outlive the callback.
-  format::ProgressCallback callback();
+  base::ProgressCallback callback();
   // Clears the bar, then reports `error` on a line of its own (reportError); the exit status.
   int fail(const Error& error);
 

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli/render_options.h"
 
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "viewer/core/tf_presets.h"
+#include "tf/tf_presets.h"
 
 namespace voxlink::cli {
 
@@ -13,7 +14,7 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
   cmd->add_option("--tf", tfPath, "Transfer function JSON (docs/transfer-function.md)");
   cmd->add_option("--tf-preset", tfPreset,
                   "Built-in transfer function stretched over the stored value range")
-      ->check(CLI::IsMember(viewer::tfPresetNames()));
+      ->check(CLI::IsMember(tf::tfPresetNames()));
   cmd->add_option("--camera", camera,
                   "AZ,EL[,DIST[,FOV]]: azimuth and elevation in degrees, distance "
                   "(1 frames the volume), vertical field of view (default 30,20,1,30)");
@@ -44,19 +45,19 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
       ->capture_default_str();
 }
 
-Result<viewer::RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) const {
-  viewer::RenderSettings s;
-  VOXLINK_ASSIGN_OR_RETURN(s.effects, viewer::parseEffects(effects, maxBounces));
+Result<render::RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) const {
+  render::RenderSettings s;
+  VOXLINK_ASSIGN_OR_RETURN(s.effects, render::parseEffects(effects, maxBounces));
   s.effects.stepsPerPass = stepsPerPass;
   if (s.effects.any()) {
-    auto lights = viewer::sceneLights(file.metaJson());
+    auto lights = render::sceneLights(file.metaJson());
     if (!lights) return makeError(lights.error().code, file.path(), ": ", lights.message());
     s.lights = std::move(*lights);
   }
-  VOXLINK_ASSIGN_OR_RETURN(auto wh, viewer::parseImageSize(size));
+  VOXLINK_ASSIGN_OR_RETURN(auto wh, render::parseImageSize(size));
   s.width = wh[0];
   s.height = wh[1];
-  s.sampling = *viewer::parseSampling(sampling);
+  s.sampling = *render::parseSampling(sampling);
   s.stepVoxels = step;
   s.shading.shadows = shadows;
   s.shading.enabled = !noShading;
@@ -72,12 +73,12 @@ Result<viewer::RenderSettings> RenderOptions::settings(const format::VoxLinkFile
       return makeError(ErrorCode::kInvalidArgument, "--background: '", item, "' is not a number");
     }
   }
-  VOXLINK_RETURN_IF_ERROR(viewer::checkSettings(s, "render"));
+  VOXLINK_RETURN_IF_ERROR(render::checkSettings(s, "render"));
   return s;
 }
 
-Result<viewer::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& file) const {
-  viewer::CameraSpec defaults;
+Result<render::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& file) const {
+  render::CameraSpec defaults;
   // A scene's camera (META scene.camera, from its scene file) is the default view.
   const auto meta = nlohmann::json::parse(file.metaJson(), nullptr, /*allow_exceptions=*/false);
   const nlohmann::json* sceneCamera = nullptr;
@@ -94,26 +95,26 @@ Result<viewer::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& 
     number("distance", defaults.distanceScale);
     number("fov", defaults.fovYDeg);
     if (c.contains("up") && c["up"].is_string())
-      defaults.up = viewer::parseUpAxis(c["up"].get<std::string>()).value_or(viewer::UpAxis::kZ);
+      defaults.up = render::parseUpAxis(c["up"].get<std::string>()).value_or(render::UpAxis::kZ);
   }
   if (!up.empty()) {
-    auto axis = viewer::parseUpAxis(up);
+    auto axis = render::parseUpAxis(up);
     if (!axis)
       return makeError(ErrorCode::kInvalidArgument, "--up: \"", up, "\" is not y, z, -y or -z");
     defaults.up = *axis;
   }
   if (camera.empty()) return defaults;
-  return viewer::parseCameraSpec(camera, defaults);
+  return render::parseCameraSpec(camera, defaults);
 }
 
-Result<format::TransferFunction> RenderOptions::transferFunction(
+Result<tf::TransferFunction> RenderOptions::transferFunction(
     const format::VoxLinkFile& file) const {
-  if (!tfPath.empty()) return format::loadTransferFunction(tfPath);
+  if (!tfPath.empty()) return tf::loadTransferFunction(tfPath);
   if (!tfPreset.empty()) {
-    const auto [lo, hi] = viewer::displayRange(file.header().valueMin, file.header().valueMax);
-    return viewer::tfPreset(tfPreset, lo, hi);
+    const auto [lo, hi] = tf::displayRange(file.header().valueMin, file.header().valueMax);
+    return tf::tfPreset(tfPreset, lo, hi);
   }
-  return viewer::defaultTransferFunction(file);
+  return tf::defaultTransferFunction(file);
 }
 
 void SourceOptions::add(CLI::App* cmd) {
@@ -123,8 +124,8 @@ void SourceOptions::add(CLI::App* cmd) {
   cmd->add_option("--source-type", type, "Element type of a raw --source (u8, i16, f32, ...)");
 }
 
-Result<convert::OpenOptions> SourceOptions::openOptions() const {
-  convert::OpenOptions o;
+Result<sources::OpenOptions> SourceOptions::openOptions() const {
+  sources::OpenOptions o;
   if (!dims.empty()) {
     std::array<uint32_t, 3> d{};
     char c1 = 0, c2 = 0, extra = 0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Options that `voxlink render`, `bench-render` and `view` share: image size, camera, transfer
 // function, sampling and shading, turned into the viewer's structs.
 #pragma once
@@ -6,11 +7,11 @@
 #include <memory>
 #include <string>
 
-#include "format/transfer_function.h"
 #include "format/voxlink_file.h"
+#include "render/camera.h"
+#include "render/render_settings.h"
 #include "sources/volume_source.h"
-#include "viewer/core/camera.h"
-#include "viewer/core/render_settings.h"
+#include "tf/transfer_function.h"
 
 namespace voxlink::cli {
 
@@ -33,11 +34,11 @@ struct RenderOptions {
   void add(CLI::App* cmd, bool withSize = true);
   // The settings for `file`: with --effects, a scene file's lights (META scene.lights) replace the
   // frame's directional light.
-  Result<viewer::RenderSettings> settings(const format::VoxLinkFile& file) const;
+  Result<render::RenderSettings> settings(const format::VoxLinkFile& file) const;
   // --camera and --up over the file's own view (a scene's camera), over the defaults.
-  Result<viewer::CameraSpec> cameraSpec(const format::VoxLinkFile& file) const;
+  Result<render::CameraSpec> cameraSpec(const format::VoxLinkFile& file) const;
   // --tf file, else --tf-preset over the file's value range, else the file's default.
-  Result<format::TransferFunction> transferFunction(const format::VoxLinkFile& file) const;
+  Result<tf::TransferFunction> transferFunction(const format::VoxLinkFile& file) const;
 };
 
 // --source PATH [--source-dims X,Y,Z --source-type T]: the dense volume for the reference and the
@@ -48,7 +49,7 @@ struct SourceOptions {
   std::string type;
 
   void add(CLI::App* cmd);
-  Result<convert::OpenOptions> openOptions() const;
+  Result<sources::OpenOptions> openOptions() const;
 };
 
 }  // namespace voxlink::cli

@@ -1,19 +1,19 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli/shared_grids.h"
 
 #include <sstream>
 
 namespace voxlink::cli {
 
-Result<SharedGrids> SharedGrids::open(base::RankGroup& ranks,
-                                      const std::vector<std::string>& paths,
-                                      const kriging::GridFileInfo& info) {
+Result<SharedGrids> SharedGrids::open(base::RankGroup& ranks, const std::vector<std::string>& paths,
+                                      const geostat::GridFileInfo& info) {
   SharedGrids grids;
   grids.ranks_ = &ranks;
   Status created;
   std::string tempNames;  // one a line, in the order of `paths`
   if (ranks.rank() == 0)
     for (const std::string& path : paths) {
-      auto writer = kriging::GridWriter::create(path, info);
+      auto writer = geostat::GridWriter::create(path, info);
       if (!writer) {
         created = writer.status();
         break;
@@ -30,7 +30,7 @@ Result<SharedGrids> SharedGrids::open(base::RankGroup& ranks,
     std::string tempPath;
     for (const std::string& path : paths) {
       std::getline(names, tempPath);
-      auto writer = kriging::GridWriter::attach(path, tempPath, info);
+      auto writer = geostat::GridWriter::attach(path, tempPath, info);
       if (!writer) {
         attached = writer.status();
         break;

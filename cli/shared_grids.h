@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The grid files of `voxlink krige` and `voxlink grf` (geostat/grid_writer.h), written by every
 // rank of an MPI job together (docs/scale.md): rank 0 creates each temporary and tells the
 // others its name, every rank writes its nodes at their places, and rank 0 writes the headers
@@ -18,9 +19,9 @@ class SharedGrids {
   // Collective: every rank gets a writer for each of `paths`, or every rank the error of the
   // lowest failing one (no temporary left).
   static Result<SharedGrids> open(base::RankGroup& ranks, const std::vector<std::string>& paths,
-                                  const kriging::GridFileInfo& info);
+                                  const geostat::GridFileInfo& info);
 
-  kriging::GridWriter& operator[](size_t i) { return *writers_[i]; }
+  geostat::GridWriter& operator[](size_t i) { return *writers_[i]; }
 
   // Collective, after this rank wrote its nodes (`mine`: whether it did): the grids are put in
   // place only when every rank succeeded; every rank gets the same status.
@@ -28,7 +29,7 @@ class SharedGrids {
 
  private:
   base::RankGroup* ranks_ = nullptr;
-  std::vector<std::unique_ptr<kriging::GridWriter>> writers_;
+  std::vector<std::unique_ptr<geostat::GridWriter>> writers_;
 };
 
 }  // namespace voxlink::cli

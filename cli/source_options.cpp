@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "cli/source_options.h"
 
 namespace voxlink::cli {
@@ -23,14 +24,14 @@ void addSourceOptions(CLI::App& cmd, SourceArgs& args) {
   cmd.add_option(
       "--format", args.format, "Force a reader: " + [] {
         std::string names;
-        for (const std::string& n : convert::readerNames())
+        for (const std::string& n : sources::readerNames())
           names += (names.empty() ? "" : ", ") + n;
         return names;
       }());
 }
 
-Result<convert::OpenOptions> toOpenOptions(const SourceArgs& args) {
-  convert::OpenOptions o;
+Result<sources::OpenOptions> toOpenOptions(const SourceArgs& args) {
+  sources::OpenOptions o;
   if (!args.dims.empty())
     o.dims = std::array<uint32_t, 3>{args.dims[0], args.dims[1], args.dims[2]};
   if (!args.type.empty()) {
@@ -40,7 +41,7 @@ Result<convert::OpenOptions> toOpenOptions(const SourceArgs& args) {
                        ": expected u8, i8, u16, i16, u32, i32, f32 or f64");
     o.type = *type;
   }
-  o.endian = args.endian == "big" ? convert::Endian::kBig : convert::Endian::kLittle;
+  o.endian = args.endian == "big" ? sources::Endian::kBig : sources::Endian::kLittle;
   o.headerBytes = args.headerBytes;
   if (!args.spacing.empty()) {
     for (double s : args.spacing)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Command-line options that say how to open a dense source volume (shared by every command
 // that reads one).
 #pragma once
@@ -24,6 +25,6 @@ struct SourceArgs {
 };
 
 void addSourceOptions(CLI::App& cmd, SourceArgs& args);
-Result<convert::OpenOptions> toOpenOptions(const SourceArgs& args);
+Result<sources::OpenOptions> toOpenOptions(const SourceArgs& args);
 
 }  // namespace voxlink::cli

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # What `cmake --install` puts where, besides the targets' own install rules (bin/voxlink,
 # lib/voxlink/libvoxlink_*.so, the Python module), and the Debian package `cpack -G DEB` makes.
 install(FILES ${PROJECT_SOURCE_DIR}/python/paraview/voxlink_reader.py

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Sanitizer builds: VOXLINK_SANITIZE instruments every target (the ASan + UBSan test run in
 # scripts/run-tests.sh); VOXLINK_FUZZ adds libFuzzer's coverage hooks on top of ASan + UBSan
 # (fuzz/, clang only). Undefined behaviour stops the program so a test or fuzz run fails on it.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Warnings for our own targets only (third-party headers are included as SYSTEM).
 # CI builds with VOXLINK_WERROR=ON (scripts/run-tests.sh): a warning there fails the build.
 option(VOXLINK_WERROR "Treat compiler warnings in the project's own code as errors" OFF)

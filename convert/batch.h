@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A batch of conversions (`voxlink convert --batch LIST --out-dir DIR`): the list's inputs, the
 // output each becomes, and the order they are handed out in (largest first, so that a large
 // file taken last does not keep one rank busy while the others wait).
@@ -7,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::convert {
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pass 1 of the converter: how many voxels each brick keeps, templated on the source element
 // type T and the keep rule (keep_rule.h). A job is one row of bricks (fixed bz, by; all bx), so
 // the split of work does not depend on slab size or thread count, and neither does the output.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pass 2 of the converter: encodes the occupied bricks of a row of bricks (row starts, row
 // masks, values, gradients) into the file's sections, templated on the source element type T
 // and the keep rule (keep_rule.h). Jobs are rows of bricks as in pass 1 (brick_count_pass.h),

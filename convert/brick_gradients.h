@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The converter's gradient kernels: central differences of whole interior bricks (vectorized),
 // and the angular error of an encoded direction. Used by the encoding pass
 // (brick_encode_pass.h).

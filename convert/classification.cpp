@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/classification.h"
 
 #include <charconv>
@@ -39,7 +40,7 @@ Result<double> boundFromJson(const nlohmann::json& j, const char* field) {
 bool Classification::keeps(double v) const {
   if (kind == Kind::kAll) return true;
   if (mean && sigma) v = (v - *mean) / *sigma;
-  return format::anyContains(keep, v);
+  return tf::anyContains(keep, v);
 }
 
 std::string Classification::describe() const {
@@ -47,13 +48,13 @@ std::string Classification::describe() const {
     case Kind::kAll:
       return "keep all";
     case Kind::kThreshold:
-      return "threshold " + format::describeIntervals(keep);
+      return "threshold " + tf::describeIntervals(keep);
     case Kind::kTransferFunction:
-      return "transfer function opacity > 0 on " + format::describeIntervals(keep);
+      return "transfer function opacity > 0 on " + tf::describeIntervals(keep);
     case Kind::kKeepOutside:
       return std::string("keep ") +
              (mean && sigma ? cat("z = (v - ", *mean, ") / ", *sigma, " in ") : "") +
-             format::describeIntervals(keep);
+             tf::describeIntervals(keep);
   }
   return "";
 }
@@ -81,7 +82,7 @@ Result<Classification> thresholdClassification(const std::vector<std::string>& s
   return c;
 }
 
-Classification tfClassification(const format::TransferFunction& tf) {
+Classification tfClassification(const tf::TransferFunction& tf) {
   Classification c;
   c.kind = Classification::Kind::kTransferFunction;
   c.keep = tf.visibleIntervals();
@@ -129,13 +130,13 @@ nlohmann::json classificationToJson(const Classification& c) {
       break;
   }
   j["keep"] = nlohmann::ordered_json::array();
-  for (const format::ValueInterval& i : c.keep)
+  for (const tf::ValueInterval& i : c.keep)
     j["keep"].push_back({{"lo", boundToJson(i.lo)},
                          {"hi", boundToJson(i.hi)},
                          {"lo_open", i.loOpen},
                          {"hi_open", i.hiOpen}});
   if (c.mean && c.sigma) j["standardize"] = {{"mean", *c.mean}, {"sigma", *c.sigma}};
-  if (c.tf) j["tf"] = nlohmann::json::parse(format::transferFunctionJson(*c.tf));
+  if (c.tf) j["tf"] = nlohmann::json::parse(tf::transferFunctionJson(*c.tf));
   j["description"] = c.describe();
   return j;
 }
@@ -157,7 +158,7 @@ Result<Classification> classificationFromJson(const nlohmann::json& j) {
     return makeError(ErrorCode::kCorrupt, "classification.kind: unknown '", kind, "'");
   if (j.contains("keep")) {
     for (const auto& i : j["keep"]) {
-      format::ValueInterval interval{};
+      tf::ValueInterval interval{};
       VOXLINK_ASSIGN_OR_RETURN(interval.lo, boundFromJson(i.value("lo", nlohmann::json()), "lo"));
       VOXLINK_ASSIGN_OR_RETURN(interval.hi, boundFromJson(i.value("hi", nlohmann::json()), "hi"));
       interval.loOpen = i.value("lo_open", false);
@@ -170,8 +171,8 @@ Result<Classification> classificationFromJson(const nlohmann::json& j) {
     c.sigma = j["standardize"].value("sigma", 1.0);
   }
   if (j.contains("tf")) {
-    VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf,
-                             format::parseTransferFunction(j["tf"].dump(), "classification.tf"));
+    VOXLINK_ASSIGN_OR_RETURN(tf::TransferFunction tf,
+                             tf::parseTransferFunction(j["tf"].dump(), "classification.tf"));
     c.tf = std::move(tf);
   }
   return c;

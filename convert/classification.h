@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pre-classification: which source values a VoxLink file keeps. Thresholds, a transfer
 // function's visible range, or values outside an interval (confidence intervals) all reduce
 // to a union of value intervals, recorded in the file's META section.
@@ -8,17 +9,17 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
-#include "format/transfer_function.h"
-#include "format/value_interval.h"
+#include "base/error.h"
+#include "tf/transfer_function.h"
+#include "tf/value_interval.h"
 
 namespace voxlink::convert {
 
 struct Classification {
   enum class Kind { kThreshold, kTransferFunction, kKeepOutside, kAll };
   Kind kind = Kind::kAll;
-  std::vector<format::ValueInterval> keep;     // what survives, in source units
-  std::optional<format::TransferFunction> tf;  // when kind == kTransferFunction
+  std::vector<tf::ValueInterval> keep;     // what survives, in source units
+  std::optional<tf::TransferFunction> tf;  // when kind == kTransferFunction
   // Keep-outside may first standardize values: z = (v - mean) / sigma.
   std::optional<double> mean, sigma;
 
@@ -28,7 +29,7 @@ struct Classification {
 
 // `--threshold 60` keeps [60, inf); `--threshold 60,200` keeps [60, 200]; several are a union.
 Result<Classification> thresholdClassification(const std::vector<std::string>& specs);
-Classification tfClassification(const format::TransferFunction& tf);
+Classification tfClassification(const tf::TransferFunction& tf);
 // Keeps values strictly outside [lo, hi] (after standardizing when mean/sigma are given).
 Result<Classification> keepOutsideClassification(double lo, double hi, std::optional<double> mean,
                                                  std::optional<double> sigma);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/converter.h"
 
 #include <bit>
@@ -7,6 +8,7 @@
 #include <future>
 #include <vector>
 
+#include "base/parallel_for.h"
 #include "convert/brick_count_pass.h"
 #include "convert/brick_encode_pass.h"
 #include "convert/converter_meta.h"
@@ -15,9 +17,12 @@
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
 #include "format/file_writer.h"
-#include "format/parallel_for.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeInfo;
+using sources::VolumeSource;
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -39,7 +44,7 @@ struct Passes {
       : source(s),
         options(o),
         ranks(o.ranks ? *o.ranks : base::singleProcess()),
-        workers(format::threadCount(o.threads)) {}
+        workers(base::threadCount(o.threads)) {}
 
   uint64_t rowsPerLayer() const { return shape.grid[1]; }
   uint64_t brickBegin() const { return uint64_t{share.begin} * shape.grid[1] * shape.grid[0]; }
@@ -78,7 +83,7 @@ Result<BrickCensus> Passes::count(const Keep& keep) {
     VOXLINK_RETURN_IF_ERROR(checkCancel());
     const uint32_t bz1 = std::min(share.end, bz0 + slabLayers);
     VOXLINK_RETURN_IF_ERROR(window.load(bz0 * n, std::min(info.dims[2], bz1 * n)));
-    format::parallelFor(
+    base::parallelFor(
         uint64_t{bz1 - bz0} * rowsPerLayer(), workers, [&](uint64_t job, unsigned worker) {
           const uint32_t bz = bz0 + static_cast<uint32_t>(job / rowsPerLayer());
           const uint32_t by = static_cast<uint32_t>(job % rowsPerLayer());
@@ -169,7 +174,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
     b.gradients.resize(v1 - v0);
     const SlabOutput out{
         k0, v0, b.rows.data(), b.masks.data(), b.values.data(), b.gradients.data()};
-    format::parallelFor(rowEnd - rowBegin, workers, [&](uint64_t job, unsigned worker) {
+    base::parallelFor(rowEnd - rowBegin, workers, [&](uint64_t job, unsigned worker) {
       const uint64_t rowOfBricks = rowBegin + job;
       const uint32_t bz = share.begin + static_cast<uint32_t>(rowOfBricks / shape.grid[1]);
       const uint32_t by = static_cast<uint32_t>(rowOfBricks % shape.grid[1]);
@@ -186,7 +191,7 @@ Status Passes::encode(const Keep& keep, const BrickCensus& census, const ValueMa
                          ": data: the source changed between the two passes of the conversion");
     if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
     // Written while the next slab encodes; with one thread, written now.
-    pendingWrite = format::runInBackground(workers, [&writeSlab, &b] { return writeSlab(b); });
+    pendingWrite = base::runInBackground(workers, [&writeSlab, &b] { return writeSlab(b); });
     report(0.25 + 0.75 * done(bz1), "writing");
   }
   if (pendingWrite.valid()) VOXLINK_RETURN_IF_ERROR(pendingWrite.get());
@@ -318,7 +323,7 @@ Result<ConvertSummary> runForType(Passes& passes, const std::string& outputPath)
 Result<ConvertSummary> convertVolume(VolumeSource& source, const ConvertOptions& options,
                                      const std::string& outputPath) {
   const VolumeInfo& info = source.info();
-  VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(options.threads, "--threads"));
+  VOXLINK_RETURN_IF_ERROR(base::checkThreadCount(options.threads, "--threads"));
   if (!format::isValidBrickSize(options.brickSize))
     return makeError(ErrorCode::kInvalidArgument, "--brick ", options.brickSize,
                      ": expected 4, 8, 16 or 32");

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dense volume -> VoxLink file, in two streamed passes over z slabs with bounded memory:
 //   1. classify every voxel, count kept voxels per brick, find the kept value range;
 //   2. classify again, compute central-difference gradients, encode them, write each brick's
@@ -18,6 +19,9 @@
 #include "sources/volume_source.h"
 
 namespace voxlink::convert {
+
+using sources::OpenOptions;
+using sources::VolumeSource;
 
 struct ConvertOptions {
   uint32_t brickSize = 8;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/converter_meta.h"
 
 #include <filesystem>
@@ -5,6 +6,11 @@
 #include <system_error>
 
 namespace voxlink::convert {
+
+using sources::Endian;
+using sources::OpenOptions;
+using sources::VolumeInfo;
+
 namespace {
 
 constexpr const char* kGradientMethod =

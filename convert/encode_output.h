@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What pass 2 of the converter produces besides the bricks' bytes: where a slab's bricks go in
 // the final sections, and what encoding measured (the decoded value range, the value and
 // gradient errors, whether the source changed since pass 1). Threads and ranks each keep their

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/histogram.h"
 
 #include <algorithm>
@@ -6,6 +7,9 @@
 #include "convert/slab_window.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeInfo;
+using sources::VolumeSource;
 
 double Histogram::quantile(double fraction) const {
   uint64_t total = 0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A value histogram of a whole volume, streamed slab by slab: what `voxlink stats` prints to
 // help choose a threshold or a transfer function.
 #pragma once
@@ -9,6 +10,8 @@
 #include "sources/volume_source.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeSource;
 
 struct Histogram {
   double lo = 0, hi = 0;         // bin edges span [lo, hi]

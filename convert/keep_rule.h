@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Fast per-type forms of Classification::keeps(), chosen once per conversion:
 //   RangeKeep  - one closed integer range (thresholds on integer data: vectorizes);
 //   TableKeep  - a lookup table over every value of an 8- or 16-bit type;
@@ -39,7 +40,7 @@ struct GeneralKeep {
 
 // The integer range [lo, hi] of T that `interval` keeps; false when it keeps none of T.
 template <class T>
-bool integerRange(const format::ValueInterval& interval, T& lo, T& hi) {
+bool integerRange(const tf::ValueInterval& interval, T& lo, T& hi) {
   static_assert(std::is_integral_v<T>);
   constexpr double tMin = static_cast<double>(std::numeric_limits<T>::min());
   constexpr double tMax = static_cast<double>(std::numeric_limits<T>::max());

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/moments.h"
 
 #include <algorithm>
@@ -6,6 +7,10 @@
 #include "convert/slab_window.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeInfo;
+using sources::VolumeSource;
+
 namespace {
 
 struct Accumulator {

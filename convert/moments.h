@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Mean, standard deviation and range of a whole volume, streamed slab by slab: what
 // `--keep-outside LO,HI --standardize` needs to classify z = (v - mean) / sigma.
 #pragma once
@@ -8,6 +9,8 @@
 #include "sources/volume_source.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeSource;
 
 struct Moments {
   uint64_t count = 0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/rank_exchange.h"
 
 #include <algorithm>

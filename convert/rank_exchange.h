@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How the ranks of one conversion put their parts together (converter.cpp, docs/scale.md). Each
 // rank counts and encodes a contiguous share of the brick layers; prefix sums over the ranks
 // place its bricks and voxels in the file, and rank 0 writes what spans every rank (BOCC, BRNK,

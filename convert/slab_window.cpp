@@ -1,9 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/slab_window.h"
 
 #include <algorithm>
 #include <cstring>
 
 namespace voxlink::convert {
+
+using sources::VolumeSource;
 
 SlabWindow::SlabWindow(VolumeSource& source, uint32_t halo)
     : source_(source),

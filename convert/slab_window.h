@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A window of consecutive z slices of a source, plus a halo of slices on either side for
 // central differences. Uses the source's zero-copy mapping when it has one, else a buffer that
 // keeps the halo slices it already read, so streamed sources are read exactly once per pass.
@@ -6,10 +7,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "format/check.h"
+#include "base/check.h"
 #include "sources/volume_source.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeSource;
 
 class SlabWindow {
  public:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How source values become stored values: the stored type, scale and offset, and the error
 // that introduces. "Model only what a scene needs": integer sources whose kept range fits in
 // 8 or 16 bits are stored losslessly in that many bits; lossy types are used only when asked
@@ -11,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/half.h"
 #include "format/scalar_type.h"
 

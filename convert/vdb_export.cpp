@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/vdb_export.h"
 
 #include <openvdb/io/Stream.h>
@@ -10,14 +11,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "base/output_file.h"
 #include "format/gradient_codec.h"
-#include "format/output_file.h"
 #include "format/voxel_locator.h"
 
 namespace voxlink::convert {
 
 Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path,
-                                         const format::ProgressCallback& progress) {
+                                         const base::ProgressCallback& progress) {
   if (file.isScene())
     return makeError(
         ErrorCode::kUnsupported, file.path(),
@@ -47,7 +48,7 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
     uint64_t nextReport = 0;
     format::VoxelLocator(file).forEachVoxel([&](uint32_t x, uint32_t y, uint32_t z, uint64_t i) {
       if (i >= nextReport) {
-        format::reportProgress(progress, 0.8 * double(i) / double(voxels), "grids");
+        base::reportProgress(progress, 0.8 * double(i) / double(voxels), "grids");
         nextReport = i + reportEvery;
       }
       const openvdb::Coord ijk{int(x), int(y), int(z)};
@@ -65,8 +66,8 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
     grid->insertMeta("voxlink_gradient_codec", openvdb::StringMetadata("polar16, decoded"));
   }
 
-  format::reportProgress(progress, 0.8, "writing");
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, ".vdb"));
+  base::reportProgress(progress, 0.8, "writing");
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, base::createTempBeside(path, ".vdb"));
   ::close(temp.fd);
   // Through a stream of our own: openvdb::io::File does not check its stream, so a full disk
   // gave a cut-off file and success. The bytes are the same but for the archive's random UUID.
@@ -76,16 +77,16 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
     out.close();
     if (out.fail()) {
       const int e = errno;
-      format::discardTemp(temp.path);
+      base::discardTemp(temp.path);
       return makeError(ErrorCode::kIo, path,
                        ": write failed: ", e ? std::strerror(e) : "I/O error");
     }
   } catch (const std::exception& e) {
-    format::discardTemp(temp.path);
+    base::discardTemp(temp.path);
     return makeError(ErrorCode::kIo, path, ": OpenVDB could not write: ", e.what());
   }
-  VOXLINK_RETURN_IF_ERROR(format::commitTemp(temp.path, path));
-  format::reportProgress(progress, 1.0, "exported");
+  VOXLINK_RETURN_IF_ERROR(base::commitTemp(temp.path, path));
+  base::reportProgress(progress, 1.0, "exported");
   VdbExportSummary summary;
   summary.voxels = values->activeVoxelCount();
   std::error_code ec;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A VoxLink file as an OpenVDB file for Blender, Houdini and vdb_view: a FloatGrid "values" of
 // the stored voxels in source units and a Vec3SGrid "gradient" of their decoded unit gradients,
 // both with the index-to-world transform of the file's spacing and origin and the file's META
@@ -7,8 +8,8 @@
 
 #include <string>
 
-#include "format/error.h"
-#include "format/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::convert {
@@ -22,9 +23,9 @@ struct VdbExportSummary {
 // `progress` (may be empty) hears the validation, every 32nd of the voxels set in the grids,
 // and the writing.
 Result<VdbExportSummary> exportVdb(const format::VoxLinkFile& file, const std::string& path,
-                                   const format::ProgressCallback& progress = {});
+                                   const base::ProgressCallback& progress = {});
 // The plugin's side (links OpenVDB); the file must be valid.
 Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const std::string& path,
-                                         const format::ProgressCallback& progress = {});
+                                         const base::ProgressCallback& progress = {});
 
 }  // namespace voxlink::convert

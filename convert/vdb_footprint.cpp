@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "convert/vdb_footprint.h"
 
 #include <openvdb/openvdb.h>
@@ -8,7 +9,7 @@
 
 namespace voxlink::convert {
 
-Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFile& file) {
+Result<report::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFile& file) {
   openvdb::initialize();
   const auto start = std::chrono::steady_clock::now();
   openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
@@ -23,7 +24,7 @@ Result<format::PeerFootprint> measureVdbFootprintDirect(const format::VoxLinkFil
   grid->pruneGrid();  // as tools::copyFromDense does
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  format::PeerFootprint peer;
+  report::PeerFootprint peer;
   peer.name = "OpenVDB FloatGrid";
   peer.bytes = grid->memUsage();
   peer.bytesPerVoxel = file.voxelCount() ? double(peer.bytes) / file.voxelCount() : 0.0;

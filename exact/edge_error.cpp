@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "exact/edge_error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 
 namespace voxlink::exact {
 
@@ -29,15 +30,15 @@ double psnrOf(double squaredSum, uint64_t samples) {
 
 }  // namespace
 
-FirstHitMap firstHits(const viewer::SceneWalker& scene, const viewer::Camera& camera,
+FirstHitMap firstHits(const render::SceneWalker& scene, const render::Camera& camera,
                       uint32_t width, uint32_t height) {
   FirstHitMap map{width, height, std::vector<int32_t>(size_t{width} * height, kNoHit)};
-  format::parallelFor(height, 0, [&](uint64_t row) {
+  base::parallelFor(height, 0, [&](uint64_t row) {
     const auto y = static_cast<uint32_t>(row);
     for (uint32_t x = 0; x < width; ++x)
       scene.walk(camera.primaryRay(x, y, width, height), 0.0, HUGE_VAL,
-                 [&](const viewer::SceneEvent& e) {
-                   if (e.kind != viewer::SceneEvent::Kind::kSurface) return true;
+                 [&](const render::SceneEvent& e) {
+                   if (e.kind != render::SceneEvent::Kind::kSurface) return true;
                    map.material[size_t{y} * width + x] = int32_t(e.material);
                    return false;
                  });
@@ -45,7 +46,7 @@ FirstHitMap firstHits(const viewer::SceneWalker& scene, const viewer::Camera& ca
   return map;
 }
 
-Result<EdgeError> compareEdges(const viewer::Image& test, const viewer::Image& truth,
+Result<EdgeError> compareEdges(const render::Image& test, const render::Image& truth,
                                const FirstHitMap& a, const FirstHitMap& b) {
   const uint32_t w = truth.width, h = truth.height;
   if (test.width != w || test.height != h || a.width != w || a.height != h || b.width != w ||

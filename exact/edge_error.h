@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What voxelization costs at silhouettes and edges, where PSNR over the whole image hides it:
 // for every pixel, the first surface its primary ray meets (its material, or none). A pixel's
 // first hit differs when the two scenes show a different object or material there, or one shows
@@ -8,10 +9,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "format/error.h"
-#include "viewer/core/camera.h"
-#include "viewer/core/image.h"
-#include "viewer/core/scene_walker.h"
+#include "base/error.h"
+#include "render/camera.h"
+#include "render/image.h"
+#include "render/scene_walker.h"
 
 namespace voxlink::exact {
 
@@ -23,7 +24,7 @@ struct FirstHitMap {
   std::vector<int32_t> material;
 };
 
-FirstHitMap firstHits(const viewer::SceneWalker& scene, const viewer::Camera& camera,
+FirstHitMap firstHits(const render::SceneWalker& scene, const render::Camera& camera,
                       uint32_t width, uint32_t height);
 
 struct EdgeError {
@@ -35,7 +36,7 @@ struct EdgeError {
 };
 
 // `test` and `truth` are the images, `a` and `b` their first-hit maps; all of one size.
-Result<EdgeError> compareEdges(const viewer::Image& test, const viewer::Image& truth,
+Result<EdgeError> compareEdges(const render::Image& test, const render::Image& truth,
                                const FirstHitMap& a, const FirstHitMap& b);
 
 }  // namespace voxlink::exact

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "exact/exact_scene_walker.h"
 
 #include <algorithm>
@@ -6,7 +7,7 @@
 
 #include "exact/sphere_roots.h"
 #include "geometry/voxel_grid.h"
-#include "viewer/core/render_model.h"
+#include "render/render_model.h"
 
 namespace voxlink::exact {
 
@@ -56,7 +57,7 @@ Result<std::unique_ptr<ExactSceneWalker>> ExactSceneWalker::open(
   VOXLINK_ASSIGN_OR_RETURN(
       geometry::VoxelGrid grid,
       geometry::fitGrid(placed.bounds, resolution ? resolution : scene.grid.resolution));
-  viewer::Box box;
+  render::Box box;
   for (int a = 0; a < 3; ++a) {
     box.lo[a] = grid.origin[a] - 0.5 * grid.spacing;
     box.hi[a] = grid.origin[a] + (double(grid.dims[a]) - 0.5) * grid.spacing;
@@ -65,7 +66,7 @@ Result<std::unique_ptr<ExactSceneWalker>> ExactSceneWalker::open(
 }
 
 Result<std::unique_ptr<ExactSceneWalker>> ExactSceneWalker::create(scene::PlacedScene placed,
-                                                                   const viewer::Box& bounds) {
+                                                                   const render::Box& bounds) {
   std::unique_ptr<ExactSceneWalker> w(new ExactSceneWalker());
   w->placed_ = std::move(placed);
   w->box_ = bounds;
@@ -193,11 +194,11 @@ void ExactSceneWalker::skipReported(const RTCFilterFunctionNArguments* args) {
   if (ctx->wasReported(hitKey(geometry, primitive, 0))) args->valid[0] = 0;
 }
 
-viewer::SceneEvent ExactSceneWalker::triangleEvent(uint32_t triangle, const glm::dvec3& o,
+render::SceneEvent ExactSceneWalker::triangleEvent(uint32_t triangle, const glm::dvec3& o,
                                                    const glm::dvec3& d) const {
   const glm::dvec3& n = faceNormals_[triangle];
   const glm::dvec3 a = vertex(placed_.mesh, placed_.mesh.triangles[3 * triangle]);
-  viewer::SceneEvent e;
+  render::SceneEvent e;
   const double dn = glm::dot(d, n);
   e.t = dn != 0 ? glm::dot(a - o, n) / dn : HUGE_VAL;  // edge-on: no surface to report
   e.normal = n;
@@ -206,9 +207,9 @@ viewer::SceneEvent ExactSceneWalker::triangleEvent(uint32_t triangle, const glm:
   return e;
 }
 
-void ExactSceneWalker::walk(const viewer::Ray& ray, double tMin, double tMax,
-                            const std::function<bool(const viewer::SceneEvent&)>& visit) const {
-  auto [t0, t1] = viewer::intersectBox(ray.origin, ray.direction, box_.lo, box_.hi);
+void ExactSceneWalker::walk(const render::Ray& ray, double tMin, double tMax,
+                            const std::function<bool(const render::SceneEvent&)>& visit) const {
+  auto [t0, t1] = render::intersectBox(ray.origin, ray.direction, box_.lo, box_.hi);
   t0 = std::max(t0, tMin);
   t1 = std::min(t1, tMax);
   if (!(t0 < t1)) return;
@@ -222,7 +223,7 @@ void ExactSceneWalker::walk(const viewer::Ray& ray, double tMin, double tMax,
   const float margin = float(epsilon_);
   float tNear = std::max(0.0f, float(t0) - margin);  // Embree asserts tnear >= 0
   const float tFar = float(t1) + margin;
-  viewer::SceneEvent last;
+  render::SceneEvent last;
   unsigned lastGeometry = RTC_INVALID_GEOMETRY_ID;
   for (;;) {
     RTCRayHit rh{};
@@ -243,7 +244,7 @@ void ExactSceneWalker::walk(const viewer::Ray& ray, double tMin, double tMax,
     const unsigned root = geometry == sphereGeometry_ && rh.hit.u > 0.5f ? 1 : 0;
     ctx.reported.push_back(hitKey(geometry, rh.hit.primID, root));
     tNear = std::max(tNear, rh.ray.tfar - margin);
-    viewer::SceneEvent e;
+    render::SceneEvent e;
     if (geometry == meshGeometry_) {
       e = triangleEvent(rh.hit.primID, ray.origin, ray.direction);
     } else {

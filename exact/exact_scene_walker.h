@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // SceneWalker answered from a scene's original geometry: the triangles and spheres that
 // `voxlink scene build` voxelizes (scene/scene_geometry.h), with the same material table, traced
 // with Embree 3. Embree finds candidates in float; every reported distance and normal is
@@ -14,14 +15,14 @@
 #include <memory>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
+#include "render/scene_walker.h"
 #include "scene/scene_description.h"
 #include "scene/scene_geometry.h"
-#include "viewer/core/scene_walker.h"
 
 namespace voxlink::exact {
 
-class ExactSceneWalker : public viewer::SceneWalker {
+class ExactSceneWalker : public render::SceneWalker {
  public:
   // Loads and places the scene's meshes and spheres. bounds(): the grid box `scene build` fits
   // at `resolution` voxels along the longest axis (0: the scene's grid.resolution), so rays
@@ -30,15 +31,15 @@ class ExactSceneWalker : public viewer::SceneWalker {
                                                         uint32_t resolution = 0);
   // Placed geometry and the world box to clip rays to (tests build scenes by hand).
   static Result<std::unique_ptr<ExactSceneWalker>> create(scene::PlacedScene placed,
-                                                          const viewer::Box& bounds);
+                                                          const render::Box& bounds);
   ~ExactSceneWalker() override;
   ExactSceneWalker(const ExactSceneWalker&) = delete;
   ExactSceneWalker& operator=(const ExactSceneWalker&) = delete;
 
-  void walk(const viewer::Ray& ray, double tMin, double tMax,
-            const std::function<bool(const viewer::SceneEvent&)>& visit) const override;
+  void walk(const render::Ray& ray, double tMin, double tMax,
+            const std::function<bool(const render::SceneEvent&)>& visit) const override;
   std::span<const format::MaterialRecord> materials() const override { return placed_.materials; }
-  viewer::Box bounds() const override { return box_; }
+  render::Box bounds() const override { return box_; }
   // Rounding margins only: hits are double precision on float vertices.
   double surfaceOffset() const override { return epsilon_; }
   double shadowStartOffset() const override { return epsilon_; }
@@ -54,12 +55,12 @@ class ExactSceneWalker : public viewer::SceneWalker {
   static void sphereBounds(const RTCBoundsFunctionArguments* args);
   static void sphereIntersect(const RTCIntersectFunctionNArguments* args);
   static void skipReported(const RTCFilterFunctionNArguments* args);
-  viewer::SceneEvent triangleEvent(uint32_t triangle, const glm::dvec3& o,
+  render::SceneEvent triangleEvent(uint32_t triangle, const glm::dvec3& o,
                                    const glm::dvec3& d) const;
 
   scene::PlacedScene placed_;
   std::vector<glm::dvec3> faceNormals_;  // unit, one per triangle (zero for degenerate ones)
-  viewer::Box box_{};
+  render::Box box_{};
   double epsilon_ = 0;  // world units: 1e-6 of the box diagonal
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;

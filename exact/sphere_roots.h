@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Where a ray meets a sphere, in double precision: the one formula the Embree sphere callback
 // and the exact walker both use, so the hit Embree picks and the event reported agree.
 #pragma once

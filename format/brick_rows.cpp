@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/brick_rows.h"
 
 namespace voxlink::format {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Relations inside one brick that writer, reader, validator and shaders share.
 //
 // Row r (= v*n + u) of a brick owns n bits of the brick's MASK words, starting at bit r*n

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/derived_sections.h"
 
 #include <algorithm>
@@ -6,9 +7,9 @@
 #include <cstring>
 #include <vector>
 
+#include "base/parallel_for.h"
 #include "format/brick_rows.h"
 #include "format/layout.h"
-#include "format/parallel_for.h"
 
 namespace voxlink::format {
 namespace {

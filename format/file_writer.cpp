@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/file_writer.h"
 
 #include <fcntl.h>
@@ -13,11 +14,11 @@
 #include <filesystem>
 #include <optional>
 
+#include "base/check.h"
+#include "base/crc32c.h"
+#include "base/mapped_file.h"
+#include "base/output_file.h"
 #include "format/brick_rows.h"
-#include "format/check.h"
-#include "format/crc32c.h"
-#include "format/mapped_file.h"
-#include "format/output_file.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::format {

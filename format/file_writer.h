@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writing VoxLink files. Output goes to a temporary file beside the destination and is renamed
 // into place only by commit(), so a failed or interrupted write never leaves a half-written file.
 #pragma once
@@ -10,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
 
 namespace voxlink::format {
 
-struct TempFile;  // format/output_file.h
+struct TempFile;  // base/output_file.h
 
 // What the header says about a volume, apart from counts and section bookkeeping.
 struct VolumeDescription {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // 16-bit polar encoding of gradient directions (paper, section 4.1).
 //
 //   code = t << 8 | p,   theta = t * pi / 254  (t = 0..254, polar angle from +z)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The VoxLink file layout, versions 1 and 2: plain structs whose every field carries its byte
 // offset. Version 1 holds a sparse volume; version 2 (a scene) adds geometry to the same bricks
 // and rows: surface fragments, sphere references, a material table and masks saying which
@@ -127,7 +128,7 @@ enum class SectionId : uint32_t {
   kSphereRefStart = fourCC("SROF"),  // u32[sphereVoxelCount+1]: slot s references
                                      //   SRID[SROF[s], SROF[s+1])
   kSphereRefs = fourCC("SRID"),      // u32[sphereRefCount]: sphere indices, ascending per voxel
-  // Only in packed files (format/packed_file.h): the original table and each section's codec.
+  // Only in packed files (pack/packed_file.h): the original table and each section's codec.
   kPack = fourCC("PACK"),
 };
 // (B = brick count of the grid, K = occupied bricks, n = brick size.)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Slots of a voxel mask (format/layout.h, version 2): per 32-voxel word, the set bits before it,
 // so the slot of voxel i in a payload indexed by the mask is one table read and a popcount.
 // Derived when a file is opened, never stored: the file keeps only the mask.

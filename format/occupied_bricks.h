@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A walk over the occupied bricks of a file's occupancy bits (BOCC), in brick order, that skips
 // whole zero words: a sparse file's cost follows its occupied bricks, not its grid (one voxel in
 // a 65536 x 32768 x 1 grid of 4-voxel bricks is 134 million bits, 4 million words).

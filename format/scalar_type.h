@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Element types of dense source volumes and of the values stored in a VoxLink file.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/scene_builder.h"
 
 #include <algorithm>

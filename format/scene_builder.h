@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Collects what a scene puts into each voxel — a volume sample, a surface fragment, references
 // to implicit spheres — in any order, merges the contributions per voxel and sorts them into the
 // bricks and rows of a version 2 file (format/layout.h). A builder given volume samples only
@@ -8,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/file_writer.h"
 #include "format/layout.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/scene_index.h"
 
 namespace voxlink::format {

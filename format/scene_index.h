@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Per-voxel access to what a file stores in each voxel, for version 1 (every voxel a volume
 // sample) and version 2 (masks and slots, format/layout.h) alike. Built once per opened file.
 #pragma once

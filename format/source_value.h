@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A decoded voxel value (stored * valueScale + valueOffset) as it comes back in the source's
 // type: what dense exports write and what the converter measures its error against.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/validator.h"
 
 #include <algorithm>
@@ -9,11 +10,11 @@
 #include <span>
 #include <vector>
 
+#include "base/crc32c.h"
+#include "base/parallel_for.h"
 #include "format/brick_rows.h"
-#include "format/crc32c.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
-#include "format/parallel_for.h"
 
 namespace voxlink::format {
 namespace {
@@ -344,18 +345,6 @@ std::vector<uint32_t> sectionChecksums(const VoxLinkFile& f, unsigned threads) {
     crcs[i] = crc32c(bytes.data(), bytes.size());
   });
   return crcs;
-}
-
-Result<VoxLinkFile> openValidatedFile(const std::string& path) {
-  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::open(path));
-  VOXLINK_RETURN_IF_ERROR(validateFile(file).status());
-  return file;
-}
-
-Result<VoxLinkFile> readValidatedFile(const std::string& path) {
-  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, VoxLinkFile::read(path));
-  VOXLINK_RETURN_IF_ERROR(validateFile(file).status());
-  return file;
 }
 
 Result<ValidationReport> validateFile(const VoxLinkFile& f, const ProgressCallback& progress) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Full check of a VoxLink file: every checksum and every structural invariant of docs/format.md.
 // Returns the first problem found, naming file, section and field; it never aborts.
 #pragma once
@@ -6,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
-#include "format/progress.h"
+#include "base/error.h"
+#include "base/progress.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::format {
@@ -32,12 +33,5 @@ Status validateStructure(const VoxLinkFile& file);
 // `threads` threads (0: every core; GRAD alone is about half of it); a smaller one on the calling
 // thread, where starting threads would cost more than it saves.
 std::vector<uint32_t> sectionChecksums(const VoxLinkFile& file, unsigned threads = 0);
-
-// VoxLinkFile::open() then validateFile(): what every command that reads a .vxl (render, view,
-// info, bench-render) uses, so a file `voxlink validate` rejects is refused with the same
-// message and never reaches a renderer that trusts its invariants.
-Result<VoxLinkFile> openValidatedFile(const std::string& path);
-// VoxLinkFile::read() then validateFile(): the same for long-lived handles (a private copy).
-Result<VoxLinkFile> readValidatedFile(const std::string& path);
 
 }  // namespace voxlink::format

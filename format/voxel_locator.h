@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CPU lookups in a VoxLink file, following the same steps as the shaders (see
 // shaders/voxlink_access.glsl): brick bit -> rank -> row start -> bit rank within the row.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/voxlink_file.h"
 
 #include <algorithm>
@@ -7,10 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "format/crc32c.h"
+#include "base/crc32c.h"
 #include "format/half.h"
-#include "format/limits.h"
-#include "format/packed_file.h"
 
 namespace voxlink::format {
 namespace {
@@ -265,8 +264,6 @@ Status checkEveryByteIsDescribed(const std::vector<SectionEntry>& table, const F
 
 Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(path));
-  if (isPackedFile(std::span(mapped.data(), mapped.size())))
-    return unpackFile(std::span(mapped.data(), mapped.size()), path, limits::kMaxUnpackedBytes);
   auto holder = std::make_shared<MappedFile>(std::move(mapped));
   const uint8_t* data = holder->data();
   const uint64_t size = holder->size();
@@ -276,7 +273,6 @@ Result<VoxLinkFile> VoxLinkFile::open(const std::string& path) {
 Result<VoxLinkFile> VoxLinkFile::read(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(MappedFile mapped, MappedFile::open(path));
   const std::span<const uint8_t> bytes(mapped.data(), mapped.size());
-  if (isPackedFile(bytes)) return unpackFile(bytes, path, limits::kMaxUnpackedBytes);
   std::vector<uint8_t> copy;
   try {
     copy.assign(bytes.begin(), bytes.end());
@@ -287,10 +283,16 @@ Result<VoxLinkFile> VoxLinkFile::read(const std::string& path) {
 }
 
 Result<VoxLinkFile> VoxLinkFile::fromBytes(std::vector<uint8_t> bytes, const std::string& name) {
-  if (isPackedFile(bytes)) return unpackFile(bytes, name, limits::kMaxUnpackedBytes);
   auto holder = std::make_shared<std::vector<uint8_t>>(std::move(bytes));
   return parse(std::shared_ptr<const void>(holder, holder.get()), holder->data(), holder->size(),
                name);
+}
+
+Result<VoxLinkFile> VoxLinkFile::parseOwned(std::shared_ptr<const void> owner, const uint8_t* data,
+                                            uint64_t size, std::string path, uint64_t packedBytes) {
+  VOXLINK_ASSIGN_OR_RETURN(VoxLinkFile file, parse(std::move(owner), data, size, std::move(path)));
+  file.packedBytes_ = packedBytes;
+  return file;
 }
 
 Result<VoxLinkFile> VoxLinkFile::parse(std::shared_ptr<const void> owner, const uint8_t* data,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Read access to a VoxLink file: maps it, checks the header and the section table (cheap), and
 // hands out typed views of the sections. Checksums and deep invariants are checked by
 // validateFile() (format/validator.h), which reads every byte.
@@ -10,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
+#include "base/mapped_file.h"
+#include "base/progress.h"
 #include "format/half.h"
 #include "format/layout.h"
-#include "format/mapped_file.h"
-#include "format/progress.h"
 #include "format/scalar_type.h"
 
 namespace voxlink::format {
@@ -28,12 +29,16 @@ class VoxLinkFile {
   static Result<VoxLinkFile> read(const std::string& path);
   // For tests and tools that hold a file in memory; `name` is used in error messages.
   static Result<VoxLinkFile> fromBytes(std::vector<uint8_t> bytes, const std::string& name);
+  // The file in `size` bytes at `data`, which `owner` keeps alive (pack/ hands over what it
+  // unpacked); `packedBytes` is the size on disk of the packed file (0: not packed).
+  static Result<VoxLinkFile> parseOwned(std::shared_ptr<const void> owner, const uint8_t* data,
+                                        uint64_t size, std::string path, uint64_t packedBytes = 0);
 
   const std::string& path() const { return path_; }
   const FileHeader& header() const { return *header_; }
   uint64_t fileBytes() const { return size_; }  // unpacked
   std::span<const uint8_t> bytes() const { return {data_, size_}; }
-  // Size on disk of the packed file this was unpacked from (format/packed_file.h); 0 when the
+  // Size on disk of the packed file this was unpacked from (pack/open_file.h); 0 when the
   // file was not packed.
   uint64_t packedBytes() const { return packedBytes_; }
   const std::vector<SectionEntry>& sectionTable() const { return table_; }
@@ -86,10 +91,6 @@ class VoxLinkFile {
   static Result<VoxLinkFile> parse(std::shared_ptr<const void> owner, const uint8_t* data,
                                    uint64_t size, std::string path);
   std::span<const uint32_t> words32(SectionId id) const;
-
-  friend Result<VoxLinkFile> unpackFile(std::span<const uint8_t> packed, const std::string& name,
-                                        uint64_t maxBytes, unsigned threads,
-                                        const ProgressCallback& progress);
 
   std::shared_ptr<const void> owner_;  // keeps the mapping or the byte vector alive
   const uint8_t* data_ = nullptr;

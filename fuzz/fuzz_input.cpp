@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "fuzz/fuzz_input.h"
 
 #include <unistd.h>
@@ -87,8 +88,8 @@ ScratchDir& scratch() {
   return dir;
 }
 
-Status drainVolume(convert::VolumeSource& source) {
-  const convert::VolumeInfo& info = source.info();
+Status drainVolume(sources::VolumeSource& source) {
+  const sources::VolumeInfo& info = source.info();
   const uint64_t sliceBytes = info.sliceBytes();
   const uint32_t depth = info.dims[2];
   if (sliceBytes == 0 || depth == 0 || sliceBytes > kReadCap) return Status::ok();

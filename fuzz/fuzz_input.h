@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Turns one fuzz input into the files a path-taking reader opens. Readers with detached data
 // (NRRD .nhdr, MetaImage .mhd, Voreen .vvd, numbered file lists) need several files, so an
 // input may carry more than one: the bytes up to the first marker line are the main file, and
@@ -12,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "sources/volume_source.h"
 
 namespace voxlink::fuzz {
@@ -50,6 +51,6 @@ ScratchDir& scratch();
 // Reads what an opened volume serves, the way the converter does, within a memory cap: all
 // slices when the volume is small, else the first and (random access) the last slice that fit.
 // Returns the first error.
-Status drainVolume(convert::VolumeSource& source);
+Status drainVolume(sources::VolumeSource& source);
 
 }  // namespace voxlink::fuzz

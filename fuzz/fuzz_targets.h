@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The fuzz entry points: one per input format, each taking the raw fuzz input and returning the
 // first error the library reported (Ok when the input was accepted and fully read). libFuzzer
 // executables (fuzz/libfuzzer_main.cpp) and the regression tests (tests/fuzz) call the same
@@ -8,7 +9,7 @@
 #include <span>
 #include <string_view>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::fuzz {
 

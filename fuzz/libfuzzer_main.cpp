@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The libFuzzer executable fuzz_<name>: compiled once per target with VOXLINK_FUZZ_TARGET set
 // to the target's name (fuzz/CMakeLists.txt).
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // fuzz_replay TARGET FILE...: runs inputs through a fuzz entry point without libFuzzer (any
 // compiler) and prints each outcome, to check seeds or look at a kept crash input in a debugger.
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An axis-aligned box in world units; empty until a point is added.
 #pragma once
 

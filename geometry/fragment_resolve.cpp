@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/fragment_resolve.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 #include "geometry/normal_error.h"
 
 namespace voxlink::geometry {
@@ -38,10 +39,10 @@ Result<SurfaceVoxelization> resolveVoxelTriangles(const TriangleMesh& mesh, cons
                                                   std::vector<VoxelTriangle> pairs,
                                                   const SurfaceVoxelizeOptions& options) {
   VOXLINK_RETURN_IF_ERROR(validateGrid(grid));
-  format::parallelSort(pairs.begin(), pairs.end(),
-                       [](const VoxelTriangle& a, const VoxelTriangle& b) {
-                         return a.key != b.key ? a.key < b.key : a.triangle < b.triangle;
-                       });
+  base::parallelSort(pairs.begin(), pairs.end(),
+                     [](const VoxelTriangle& a, const VoxelTriangle& b) {
+                       return a.key != b.key ? a.key < b.key : a.triangle < b.triangle;
+                     });
   // Normals and areas of the triangles that occur, computed once each.
   std::vector<int32_t> slot(mesh.triangleCount(), -1);
   std::vector<TriangleInfo> infos;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Turns (voxel, triangle) overlaps found by any voxelizer into one fragment per voxel with the
 // exact surface voxelizer's rules (surface_voxelizer.h: area-weighted normal by default, the
 // largest triangle's material, the same NormalErrorStats). The GL voxelizer uses it so that both
@@ -7,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/surface_voxelizer.h"
 #include "geometry/triangle_mesh.h"
 #include "geometry/voxel_grid.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A surface material as the ray tracer needs it, mapped from the mesh file's own description.
 //
 // MTL (Wavefront OBJ) -> Material, applied by loadMesh (mesh_loader.h):

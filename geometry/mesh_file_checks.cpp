@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/mesh_file_checks.h"
 
 #include <cstdint>
@@ -7,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "format/limits.h"
+#include "base/limits.h"
 
 namespace voxlink::geometry {
 namespace {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks of mesh files that assimp 5.2 does not make, run before it reads them: a PLY header
 // without `end_header` (assimp loops forever), PLY or OFF counts the file cannot hold (assimp
 // reserves them first and fails with a bare std::bad_alloc), and OFF face indices past the
@@ -8,7 +9,7 @@
 #include <cstdint>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::geometry {
 

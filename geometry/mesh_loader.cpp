@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/mesh_loader.h"
 
 #include <assimp/DefaultIOSystem.h>
@@ -18,7 +19,7 @@
 #include <string>
 #include <string_view>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "geometry/mesh_file_checks.h"
 #include "geometry/ply_strips.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Loads a triangle mesh with its materials from OBJ (+ MTL), PLY (ASCII, binary of either byte
 // order), STL, glTF and the other formats assimp reads.
 //
@@ -18,7 +19,7 @@
 #include <cstdint>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/triangle_mesh.h"
 
 namespace voxlink::geometry {

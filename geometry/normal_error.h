@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What keeping one normal per voxel costs, tallied over (voxel, triangle) pairs so that tallies
 // of disjoint voxel sets (threads, MPI ranks) merge into the same statistics in any order: the
 // angle sum is kept in fixed point (2^-20 degree per unit), since a sum of doubles would depend

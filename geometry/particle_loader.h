@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Loads particles (implicit spheres) from PDB files or from a plain text / CSV list.
 //
 // PDB (.pdb, .ent; any case): ATOM and HETATM records, fixed columns (1-based): x 31-38,
@@ -24,7 +25,7 @@
 #include <string_view>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::geometry {
 

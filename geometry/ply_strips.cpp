@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/ply_strips.h"
 
 #include <bit>
@@ -10,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "geometry/mesh_file_checks.h"
 
 namespace voxlink::geometry {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PLY files whose faces are triangle strips (`element tristrips` with a `vertex_indices` list,
 // common in older scanned models). assimp 5.2 writes every triangle of such a file into one face
 // slot, so a 268,686-triangle head loaded as one triangle; these files are read here instead.
@@ -9,7 +10,7 @@
 #include <cstdint>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/triangle_mesh.h"
 
 namespace voxlink::geometry {

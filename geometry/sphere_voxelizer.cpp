@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/sphere_voxelizer.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -37,13 +38,13 @@ Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
   if (spheres.size() > UINT32_MAX)
     return makeError(ErrorCode::kTooLarge, "spheres: ", spheres.size(), " is more than 2^32-1");
 
-  const unsigned workers = format::threadCount(0);
+  const unsigned workers = base::threadCount(0);
   std::vector<std::vector<Overlap>> local(workers);  // one per worker
   std::atomic<uint64_t> total{0};
   std::atomic<bool> tooMany{false};
   constexpr size_t kSpheresPerItem = 64;
   const size_t items = (spheres.size() + kSpheresPerItem - 1) / kSpheresPerItem;
-  format::parallelFor(items, workers, [&](uint64_t item, unsigned worker) {
+  base::parallelFor(items, workers, [&](uint64_t item, unsigned worker) {
     std::vector<Overlap>& out = local[worker];
     const size_t before = out.size();
     const size_t end = std::min(spheres.size(), (item + 1) * kSpheresPerItem);
@@ -95,7 +96,7 @@ Result<SphereVoxelization> voxelizeSpheres(const std::vector<Sphere>& spheres,
     overlaps.insert(overlaps.end(), part.begin(), part.end());
     std::vector<Overlap>().swap(part);
   }
-  format::parallelSort(overlaps.begin(), overlaps.end());
+  base::parallelSort(overlaps.begin(), overlaps.end());
 
   SphereVoxelization result;
   result.sphereIds.resize(overlaps.size());

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Voxelization of implicit spheres (particles): for every sphere exactly the voxels whose box it
 // overlaps, i.e. the squared distance from the centre to the voxel's closed box is <= r^2
 // (evaluated in grid coordinates in double precision; touching counts). Solid: a sphere marks
@@ -12,7 +13,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/particle_loader.h"
 #include "geometry/voxel_grid.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/surface_voxelizer.h"
 
 #include <algorithm>
@@ -6,7 +7,7 @@
 #include <memory>
 #include <mutex>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 #include "geometry/normal_error.h"
 #include "geometry/triangle_box_overlap.h"
 
@@ -118,7 +119,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     std::lock_guard<std::mutex> lock(progressMutex);
     options.progress(0.8 * double(++blocksDone) / double(blockCount));
   };
-  format::parallelFor(blockCount, 0, [&](uint64_t block) {
+  base::parallelFor(blockCount, 0, [&](uint64_t block) {
     std::vector<Overlap>& out = blocks[block];
     uint64_t zero = 0;
     const size_t end = std::min(triangleCount, (block + 1) * blockSize);
@@ -173,7 +174,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   }
   const size_t overlapCount = sliceStart[depth];
   std::unique_ptr<Overlap[]> overlaps(new Overlap[overlapCount]);  // not zero-filled
-  format::parallelFor(blockCount, 0, [&](uint64_t block) {
+  base::parallelFor(blockCount, 0, [&](uint64_t block) {
     uint64_t* at = &perSlice[block * depth];
     for (const Overlap& o : blocks[block]) overlaps[at[o.key >> 32]++] = o;
     std::vector<Overlap>().swap(blocks[block]);
@@ -184,10 +185,10 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     std::vector<Overlap> buffer;
     std::vector<uint32_t> rowStart;
   };
-  const unsigned workers = format::threadCount(0);
+  const unsigned workers = base::threadCount(0);
   std::vector<SliceScratch> scratch(workers);  // one per worker
   const size_t rows = grid.dims[1];
-  format::parallelFor(depth, workers, [&](uint64_t z, unsigned worker) {
+  base::parallelFor(depth, workers, [&](uint64_t z, unsigned worker) {
     Overlap* slice = overlaps.get() + sliceStart[z];
     const size_t count = sliceStart[z + 1] - sliceStart[z];
     if (count < 2) return;
@@ -220,7 +221,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
     starts[c] = s;
   }
   std::vector<size_t> runs(chunkCount, 0);
-  format::parallelFor(chunkCount, 0, [&](uint64_t c) {
+  base::parallelFor(chunkCount, 0, [&](uint64_t c) {
     size_t count = 0;
     for (size_t i = starts[c]; i < starts[c + 1]; ++i)
       count += i == starts[c] || overlaps[i].key != overlaps[i - 1].key;
@@ -233,7 +234,7 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   // them in any order gives the same bits.
   std::vector<std::unique_ptr<NormalErrorTally>> errors(workers);
 
-  format::parallelFor(chunkCount, workers, [&](uint64_t c, unsigned worker) {
+  base::parallelFor(chunkCount, workers, [&](uint64_t c, unsigned worker) {
     if (options.computeNormalError && !errors[worker])
       errors[worker] = std::make_unique<NormalErrorTally>();
     NormalErrorTally* e = errors[worker].get();

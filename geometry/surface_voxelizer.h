@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact CPU surface voxelization (the ground-truth path): every voxel whose box a triangle
 // overlaps (triangle_box_overlap.h: 13-axis SAT in double precision, with its tie rule), one
 // fragment per voxel.
@@ -31,7 +32,7 @@
 #include <memory>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/triangle_mesh.h"
 #include "geometry/voxel_grid.h"
 

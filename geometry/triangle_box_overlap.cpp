@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/triangle_box_overlap.h"
 
 #include <algorithm>

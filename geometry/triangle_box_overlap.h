@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Exact triangle / voxel overlap in grid coordinates (voxel (i, j, k) is the box
 // [i, i+1] x [j, j+1] x [k, k+1]; see voxel_grid.h), evaluated in double precision.
 //

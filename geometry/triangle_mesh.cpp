@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/triangle_mesh.h"
 
 namespace voxlink::geometry {

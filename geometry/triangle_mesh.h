@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An indexed triangle mesh with one material per triangle: what loadMesh returns and what the
 // surface voxelizer reads.
 #pragma once

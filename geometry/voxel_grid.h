@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The voxel grid the voxelizers write into, with the .vxl format's convention (format/layout.h):
 // voxel (i, j, k) has its centre at origin + (i, j, k) * spacing and covers
 // [centre - spacing / 2, centre + spacing / 2] along each axis (cubic voxels).
@@ -9,7 +10,7 @@
 #include <array>
 #include <cstdint>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/bounds.h"
 
 namespace voxlink::geometry {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/voxel_set_compare.h"
 
 #include <algorithm>

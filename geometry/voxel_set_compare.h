@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How a voxelization differs from a reference one (the GL path against the exact path): voxels
 // it misses, voxels it adds, and the angle between the two normals on the voxels both hold.
 #pragma once

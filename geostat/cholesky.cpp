@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/cholesky.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 bool Cholesky::factor(const std::vector<double>& a, size_t n, double jitter) {
   n_ = n;
@@ -96,4 +97,4 @@ double Cholesky::conditionEstimate() const {
   return norm1_ * estimate;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

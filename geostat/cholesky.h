@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dense Cholesky factorization of a symmetric positive definite matrix with a 1-norm condition
 // estimate (Hager/Higham), the solver behind every per-location kriging system (Kriger::predict,
 // cross-validation). Small systems only (neighbourhoods of a few hundred points; global kriging
@@ -12,7 +13,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 class Cholesky {
  public:
@@ -36,4 +37,4 @@ class Cholesky {
   mutable std::vector<double> work_, work2_;
 };
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/cross_validation.h"
 
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 Result<CrossValidation> leaveOneOut(const Kriger& kriger) {
   CrossValidation cv;
@@ -47,4 +48,4 @@ Result<CrossValidation> leaveOneOut(const Kriger& kriger) {
   return cv;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

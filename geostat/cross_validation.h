@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Leave-one-out cross-validation: each sample kriged from the others with the same variogram
 // and neighbourhood. A well-fitted model gives mean error ~ 0 and a mean standardized squared
 // error (error^2 / kriging variance) ~ 1.
@@ -7,7 +8,7 @@
 
 #include "geostat/kriging.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct CrossValidation {
   std::vector<double> predicted, variance;  // per sample after merging (NaN where none in reach)
@@ -22,4 +23,4 @@ struct CrossValidation {
 // pass them in the same order). Samples without any neighbour in reach are not evaluated.
 Result<CrossValidation> leaveOneOut(const Kriger& kriger);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/drift.h"
 
 #include <cmath>
 
 #include "geostat/spd_kernels.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 // A term whose remaining pivot falls below this fraction of its own squared norm lies in the
@@ -97,4 +98,4 @@ void DriftSystem::correct(const double* u, size_t n, const double* y, const doub
   }
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The trend of universal kriging and kriging with an external drift: the value is modelled as
 // sum_j beta_j f_j(x) plus a zero-mean residual with the variogram, the beta_j unknown. f_0 = 1
 // (ordinary kriging is the drift {1}); then the coordinates (linear: x, y[, z]; quadratic adds
@@ -23,7 +24,7 @@
 
 #include "geostat/point_set.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 enum class DriftKind { kNone, kLinear, kQuadratic };
 
@@ -60,4 +61,4 @@ class DriftSystem {
   std::vector<char> kept_;
 };
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

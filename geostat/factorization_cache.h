@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The factorizations local kriging (local_kriging.cpp) keeps per thread: nodes whose
 // neighbour sets agree share one, found by the hash of the set.
 #pragma once
@@ -9,7 +10,7 @@
 
 #include "geostat/drift.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct Factorization {
   std::vector<uint32_t> key;  // sample indices, ascending
@@ -55,4 +56,4 @@ inline uint64_t hashKey(const std::vector<uint32_t>& key) {
   return h ^ (h >> 29);
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

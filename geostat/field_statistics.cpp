@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/field_statistics.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 FieldStatistics::FieldStatistics(std::array<uint32_t, 3> dims, std::vector<uint32_t> lags,
                                  double outsideLow, double outsideHigh)
@@ -82,4 +83,4 @@ double FieldStatistics::gamma(int axis, size_t lagIndex) const {
   return n ? gammaSum_[axis][lagIndex] / double(n) : NAN;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

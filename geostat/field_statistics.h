@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Streaming statistics of a gridded field, fed slab by slab: mean, standard deviation, the
 // fraction outside a two-sided interval, and the semivariogram along each axis at given lags
 // (the last maxLag slices are kept to pair voxels across slabs).
@@ -9,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 class FieldStatistics {
  public:
@@ -41,4 +42,4 @@ class FieldStatistics {
   std::deque<std::vector<double>> recent_;  // previous slices, newest last
 };
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/global_kriging.h"
 
 #include <cblas.h>
@@ -9,12 +10,12 @@
 #include <mutex>
 #include <optional>
 
-#include "format/parallel_for.h"
-#include "format/process_memory.h"
+#include "base/parallel_for.h"
+#include "base/process_memory.h"
 #include "geostat/drift.h"
 #include "geostat/spd_kernels.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 constexpr size_t kBlockNodes = 256;  // nodes per dtrsm: large enough for level-3 speed
@@ -161,16 +162,16 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
 }  // namespace
 
 uint64_t globalKrigingBytes(size_t samples, unsigned threads) {
-  return 8ull * samples * (samples + kBlockNodes * format::threadCount(threads) + 14);
+  return 8ull * samples * (samples + kBlockNodes * base::threadCount(threads) + 14);
 }
 
 Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& grid,
                                        const GridPart& part, const NodeRunSink& sink,
                                        const GridKrigingOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  const unsigned threads = format::threadCount(options.threads);
+  const unsigned threads = base::threadCount(options.threads);
   const size_t n = kriger.sampleCount();
-  const uint64_t need = globalKrigingBytes(n, threads), have = format::memoryForThisProcess();
+  const uint64_t need = globalKrigingBytes(n, threads), have = base::memoryForThisProcess();
   if (need > have)
     return makeError(ErrorCode::kTooLarge, "kriging: global kriging of ", n, " samples needs ",
                      need >> 20, " MiB (the ", n, " x ", n, " factor), this process may use ",
@@ -210,7 +211,7 @@ Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& gri
         std::min(endUnit - batchIndex * batchBlocks, (nodes + kBlockNodes - 1) / kBlockNodes);
     const uint64_t begin = blockBegin * kBlockNodes, end = std::min(nodes, blocks * kBlockNodes);
     std::atomic<uint64_t> next{blockBegin};
-    format::runOnThreads(threads, [&](unsigned) {
+    base::runOnThreads(threads, [&](unsigned) {
       std::vector<double> k(n * kBlockNodes), drift;
       for (uint64_t b; (b = next.fetch_add(1)) < blocks;) {
         const uint64_t first = b * kBlockNodes;
@@ -240,4 +241,4 @@ Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& gri
   return summary;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Global kriging (every sample in every system) of a whole grid with level-3 BLAS: the
 // covariance matrix is built and factored once (LAPACK dpotrf, condition from dpocon, the same
 // jitter ladder as Kriger::predict), then blocks of nodes are solved together: Y = L^-1 K for
@@ -9,7 +10,7 @@
 
 #include "geostat/krige_grid.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 // Bytes global kriging of `samples` samples needs (the factor, and one block per thread).
 uint64_t globalKrigingBytes(size_t samples, unsigned threads);
@@ -18,4 +19,4 @@ Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& gri
                                        const GridPart& part, const NodeRunSink& sink,
                                        const GridKrigingOptions& options);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

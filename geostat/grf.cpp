@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/grf.h"
 
 #include <fftw3.h>
@@ -10,10 +11,10 @@
 #include <mutex>
 #include <sstream>
 
-#include "format/parallel_for.h"
-#include "format/process_memory.h"
+#include "base/parallel_for.h"
+#include "base/process_memory.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 constexpr int64_t kCoordinateBias = int64_t{1} << 20;
@@ -111,7 +112,7 @@ Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
   if (part.count == 0 || part.index >= part.count)
     return makeError(ErrorCode::kInvalidArgument, "random field: share ", part.index, " of ",
                      part.count);
-  VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(spec.threads, "random field: threads"));
+  VOXLINK_RETURN_IF_ERROR(base::checkThreadCount(spec.threads, "random field: threads"));
   for (int a = 0; a < 3; ++a)
     if (spec.dims[a] == 0 || spec.dims[a] > kMaxGrfAxis)
       return makeError(ErrorCode::kInvalidArgument, "random field: dims axis ", a,
@@ -147,7 +148,7 @@ Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
                                    (spec.dims[1] + B[1] - 1) / B[1],
                                    (spec.dims[2] + B[2] - 1) / B[2]};
   unsigned threads =
-      std::max(1u, std::min<unsigned>(format::threadCount(spec.threads), nb[0] * nb[1]));
+      std::max(1u, std::min<unsigned>(base::threadCount(spec.threads), nb[0] * nb[1]));
   // The units of a share: rows of blocks (along y), z block by z block; its slab holds the
   // share's rows only.
   const uint64_t firstRow = part.firstUnit(uint64_t{nb[2]} * nb[1]);
@@ -158,8 +159,7 @@ Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
   // The FFT block must hold the kernel's reach on both sides, so a long range needs large
   // blocks. Fewer threads than asked for when their blocks do not all fit; none fitting is
   // refused now rather than by the OOM killer once the pages are touched.
-  const double memory =
-      double(spec.memoryBytes ? spec.memoryBytes : format::memoryForThisProcess());
+  const double memory = double(spec.memoryBytes ? spec.memoryBytes : base::memoryForThisProcess());
   if (double(slabBytes) > memory)
     return makeError(ErrorCode::kTooLarge, "random field: an output slab of ", spec.dims[0], " x ",
                      slabRows, " x ", B[2], " voxels (", std::round(double(slabBytes) / 1e8) / 10,
@@ -266,7 +266,7 @@ Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
           }
       }
     };
-    format::runOnThreads(threads, work);
+    base::runOnThreads(threads, work);
     status = forEachRowRun(spec.dims, z0, zCount, yBase, yBase + rows,
                            [&](uint64_t first, uint64_t voxels, uint64_t offset) {
                              return sink(first, voxels, slab.data() + offset, nullptr);
@@ -281,4 +281,4 @@ Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
   return report;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

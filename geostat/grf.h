@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Unconditional stationary Gaussian random fields on large voxel grids (the paper's 512^3 and
 // 1024^3 N(0,1) kriging-like volumes), generated slab by slab with bounded memory.
 //
@@ -16,7 +17,7 @@
 #include "geostat/grf_kernel.h"
 #include "geostat/grid_part.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 // Largest field extent per axis: the noise lattice packs each coordinate, which runs a kernel
 // radius beyond the field, into a 21-bit part of its hash key (grf.cpp, kCoordinateBias).
@@ -60,4 +61,4 @@ Result<GrfReport> generateGrfPart(const GrfSpec& spec, const GridPart& part,
 // lie outside the grid, down to -2^20).
 double latticeNoise(uint64_t seed, int64_t x, int64_t y, int64_t z);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

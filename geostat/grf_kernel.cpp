@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/grf_kernel.h"
 
 #include <fftw3.h>
@@ -7,7 +8,7 @@
 #include <memory>
 #include <new>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 struct FftwFree {
@@ -129,4 +130,4 @@ Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> 
   return k;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The convolution kernel of a stationary Gaussian random field on the voxel lattice: the
 // lattice "square root" g of the covariance (g * g = C), computed by circulant embedding on a
 // periodic grid (a DCT-I of the even covariance octant, clipped non-negative, square-rooted,
@@ -11,7 +12,7 @@
 
 #include "geostat/variogram.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct GrfKernel {
   std::array<bool, 3> active{true, true, true};  // axes along which the grid has > 1 voxel
@@ -43,4 +44,4 @@ struct GrfKernelOptions {
 Result<GrfKernel> makeGrfKernel(const Variogram& variogram, std::array<bool, 3> active,
                                 const GrfKernelOptions& options = {});
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/grid_part.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 Status forEachRowRun(
     const std::array<uint32_t, 3>& dims, uint32_t z0, uint32_t slices, uint32_t y0, uint32_t y1,
@@ -16,4 +17,4 @@ Status forEachRowRun(
   return Status::ok();
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

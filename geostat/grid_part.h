@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One share of a grid's nodes among several processes (the ranks of an MPI job,
 // docs/scale.md). The work units of the one-process order (local kriging: rows of bricks of a
 // slab; global kriging: blocks of nodes; random fields: rows of FFT blocks) are numbered in file
@@ -10,9 +11,9 @@
 #include <cstdint>
 #include <functional>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct GridPart {
   uint32_t index = 0, count = 1;  // this share, of `count` (1: the whole grid)
@@ -33,4 +34,4 @@ Status forEachRowRun(
     const std::array<uint32_t, 3>& dims, uint32_t z0, uint32_t slices, uint32_t y0, uint32_t y1,
     const std::function<Status(uint64_t firstNode, uint64_t nodes, uint64_t offset)>& run);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

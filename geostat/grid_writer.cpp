@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/grid_writer.h"
 
 #include <fcntl.h>
@@ -12,10 +13,10 @@
 #include <utility>
 #include <vector>
 
-#include "format/file_name.h"
-#include "format/output_file.h"
+#include "base/file_name.h"
+#include "base/output_file.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 // Shortest text that reads back to the same double: UTM-sized origins survive the header.
@@ -43,7 +44,7 @@ std::string npyHeader(ScalarType type, std::array<uint32_t, 3> dims) {
 }
 
 std::vector<std::string> GridWriter::filesOf(const std::string& path) {
-  if (format::hasExtension(path, ".nhdr")) return {path, path.substr(0, path.size() - 5) + ".raw"};
+  if (base::hasExtension(path, ".nhdr")) return {path, path.substr(0, path.size() - 5) + ".raw"};
   return {path};
 }
 
@@ -55,10 +56,10 @@ Status describe(const std::string& path, const GridFileInfo& info, std::string& 
   if (info.type != ScalarType::kF64 && info.type != ScalarType::kF32)
     return makeError(ErrorCode::kInvalidArgument, path, ": output type must be f32 or f64, got ",
                      scalarName(info.type));
-  if (!format::hasExtension(path, ".nhdr") && !format::hasExtension(path, ".npy"))
+  if (!base::hasExtension(path, ".nhdr") && !base::hasExtension(path, ".npy"))
     return makeError(ErrorCode::kInvalidArgument, path,
                      ": output name must end in .nhdr (raw + NRRD header) or .npy");
-  nrrd = format::hasExtension(path, ".nhdr");
+  nrrd = base::hasExtension(path, ".nhdr");
   dataPath = GridWriter::filesOf(path).back();  // the .raw beside an .nhdr, or the .npy itself
   dataOffset = nrrd ? 0 : npyHeader(info.type, info.dims).size();
   return Status::ok();
@@ -85,10 +86,10 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
   w->info_ = info;
   VOXLINK_RETURN_IF_ERROR(describe(path, info, w->dataPath_, w->nrrd_, w->dataOffset_));
   for (const std::string& file : filesOf(path))
-    VOXLINK_RETURN_IF_ERROR(format::checkOutputTarget(file));
+    VOXLINK_RETURN_IF_ERROR(base::checkOutputTarget(file));
   // A unique O_EXCL temporary (never a fixed name a symlink could be planted at); the data and
   // the header are renamed into place together by finish().
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(w->dataPath_));
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, base::createTempBeside(w->dataPath_));
   w->tempPath_ = temp.path;
   w->fd_ = temp.fd;
   return w;
@@ -112,7 +113,7 @@ Result<std::unique_ptr<GridWriter>> GridWriter::attach(const std::string& path,
 
 GridWriter::~GridWriter() {
   if (fd_ >= 0) ::close(fd_);
-  if (!tempPath_.empty() && !attached_) format::discardTemp(tempPath_);
+  if (!tempPath_.empty() && !attached_) base::discardTemp(tempPath_);
 }
 
 namespace {
@@ -179,7 +180,7 @@ Status GridWriter::finish(uint64_t nodesWrittenByAll) {
     VOXLINK_RETURN_IF_ERROR(writeAt(fd_, header.data(), header.size(), 0, dataPath_));
   }
   VOXLINK_RETURN_IF_ERROR(close());
-  if (!nrrd_) return format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_);
+  if (!nrrd_) return base::commitTemp(std::exchange(tempPath_, std::string()), dataPath_);
   const auto& d = info_.dims;
   const auto& s = info_.spacing;
   const auto& o = info_.origin;
@@ -191,20 +192,20 @@ Status GridWriter::finish(uint64_t nodesWrittenByAll) {
           "space origin: (", num(o[0]), ",", num(o[1]), ",", num(o[2]), ")\n",
           "endian: little\nencoding: raw\n",
           "data file: ", std::filesystem::path(dataPath_).filename().string(), "\n");
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile header, format::createTempBeside(path_));
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile header, base::createTempBeside(path_));
   std::FILE* h = fdopen(header.fd, "w");
   const bool wrote = h && std::fputs(text.c_str(), h) >= 0;
   const bool closed = h ? std::fclose(h) == 0 : ::close(header.fd) == 0;
   if (!wrote || !closed) {
-    format::discardTemp(header.path);
+    base::discardTemp(header.path);
     return makeError(ErrorCode::kIo, path_, ": write failed: ", std::strerror(errno));
   }
   // Both files are complete: the data, then the header that names it, are moved into place.
-  if (Status data = format::commitTemp(std::exchange(tempPath_, std::string()), dataPath_); !data) {
-    format::discardTemp(header.path);
+  if (Status data = base::commitTemp(std::exchange(tempPath_, std::string()), dataPath_); !data) {
+    base::discardTemp(header.path);
     return data;
   }
-  return format::commitTemp(header.path, path_);
+  return base::commitTemp(header.path, path_);
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writes a grid as a file the converter reads: raw data with a detached NRRD header (NAME.nhdr +
 // NAME.raw) or a NumPy .npy (format 1.0, C order, shape (z, y, x)). Chosen by the output name's
 // ending. Values are f64 or f32, little-endian. Nodes go to their places with positioned writes,
@@ -10,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct GridFileInfo {
   std::array<uint32_t, 3> dims{1, 1, 1};
@@ -68,4 +69,4 @@ class GridWriter {
 // so the data starts at a multiple of 64 bytes.
 std::string npyHeader(ScalarType type, std::array<uint32_t, 3> dims);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/kd_tree.h"
 
 #include <algorithm>
@@ -5,7 +6,7 @@
 #include <limits>
 #include <nanoflann.hpp>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 constexpr size_t kLeafSize = 12;
@@ -137,4 +138,4 @@ void KdTree::nearest(const Point3& q, size_t k, double maxDistance,
   for (Neighbour& n : out) n.distance = std::sqrt(n.distance);
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

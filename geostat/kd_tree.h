@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A k-d tree over 3-D points for the k nearest neighbours of a location within a radius:
 // what keeps kriging with 10^4-10^5 samples at O(k^3) per grid node instead of O(n^3).
 // nanoflann (libnanoflann-dev) builds and walks the tree; the result sets in kd_tree.cpp keep
@@ -11,7 +12,7 @@
 
 #include "geostat/point_set.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct Neighbour {
   uint32_t index;   // into the point list the tree was built from
@@ -35,4 +36,4 @@ class KdTree {
   std::unique_ptr<Index> index_;
 };
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

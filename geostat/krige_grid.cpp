@@ -1,13 +1,14 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/krige_grid.h"
 
 #include <algorithm>
 #include <sstream>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 #include "geostat/global_kriging.h"
 #include "geostat/local_kriging.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 std::string KrigingSummary::text() const {
   std::ostringstream out;
@@ -70,7 +71,7 @@ Result<KrigingSummary> krigeGridPart(const Kriger& kriger, const GridSpec& grid,
   if (part.count == 0 || part.index >= part.count)
     return makeError(ErrorCode::kInvalidArgument, "kriging grid: share ", part.index, " of ",
                      part.count);
-  VOXLINK_RETURN_IF_ERROR(format::checkThreadCount(options.threads, "kriging grid: threads"));
+  VOXLINK_RETURN_IF_ERROR(base::checkThreadCount(options.threads, "kriging grid: threads"));
   for (int a = 0; a < 3; ++a)
     if (grid.dims[a] == 0)
       return makeError(ErrorCode::kInvalidArgument, "kriging grid: axis ", a, " has size 0");
@@ -83,4 +84,4 @@ Result<KrigingSummary> krigeGridPart(const Kriger& kriger, const GridSpec& grid,
   return krigeGridLocal(kriger, grid, part, sink, options);
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

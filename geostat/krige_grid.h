@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kriging onto a regular grid, z slice by z slice (x fastest), on all cores, with a summary of
 // what the solver had to do: the numbers a user needs to trust (or distrust) the result.
 #pragma once
@@ -9,7 +10,7 @@
 #include "geostat/grid_part.h"
 #include "geostat/kriging.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct GridSpec {
   std::array<uint32_t, 3> dims{1, 1, 1};
@@ -68,4 +69,4 @@ Result<KrigingSummary> krigeGridPart(const Kriger& kriger, const GridSpec& grid,
                                      const GridPart& part, const NodeRunSink& sink,
                                      const GridKrigingOptions& options = {});
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/kriging.h"
 
 #include <algorithm>
 #include <numeric>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 // Kriger::predict factors one dense system per call: 128 MiB per thread, O(n^3) each. Grids
@@ -278,4 +279,4 @@ Result<Prediction> Kriger::predict(const Point3& p, KrigingWorkspace& ws, int64_
   return out;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Ordinary, simple and universal kriging (drift.h) of scattered samples: one prediction and its
 // kriging variance per location, from all samples (global) or the k nearest within a radius
 // (local).
@@ -24,7 +25,7 @@
 #include "geostat/point_set.h"
 #include "geostat/variogram.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 enum class KrigingKind { kOrdinary, kSimple };
 
@@ -144,4 +145,4 @@ class Kriger {
   std::shared_ptr<KdTree> tree_;
 };
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

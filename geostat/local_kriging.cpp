@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/local_kriging.h"
 
 #include <algorithm>
@@ -6,12 +7,12 @@
 #include <mutex>
 #include <optional>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 #include "geostat/drift.h"
 #include "geostat/factorization_cache.h"
 #include "geostat/spd_kernels.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 constexpr uint32_t kBrickEdge = 16;     // nodes along x and y of a brick before it is split
@@ -391,7 +392,7 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
   const auto start = std::chrono::steady_clock::now();
   const uint32_t depth =
       grid.dims[2] == 1 ? 1 : std::min(grid.dims[2], std::max(kSlabDepth, options.slicesPerBatch));
-  const unsigned threads = format::threadCount(options.threads);
+  const unsigned threads = base::threadCount(options.threads);
   const size_t n = kriger.isGlobal() ? kriger.sampleCount() : kriger.options().maxNeighbours;
   const size_t cacheEntries =
       kCacheBytes / (8 * (spd::paddedSize(n) * n + (3 + kriger.driftBasis().terms()) * n) + 64);
@@ -426,7 +427,7 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
                              options.noData, options.externalDrift);
     std::atomic<uint64_t> next{rowBegin * bricksX};
     std::atomic<bool> stop{false};
-    format::runOnThreads(threads, [&](unsigned t) {
+    base::runOnThreads(threads, [&](unsigned t) {
       ThreadState& ts = states[t];
       for (uint64_t b; !stop && (b = next.fetch_add(1)) < rowEnd * bricksX;) {
         const uint32_t bx = static_cast<uint32_t>(b % bricksX) * kBrickEdge;
@@ -457,4 +458,4 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
   return summary;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

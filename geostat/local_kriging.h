@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Local kriging (the k nearest samples per node) of a whole grid, brick by brick:
 //  - one k-d tree query per brick of nodes finds every sample that can be among the k nearest
 //    of any of its nodes (those within d_k+1(centre) + 2 x the brick's half-diagonal), and each
@@ -15,10 +16,10 @@
 
 #include "geostat/krige_grid.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid,
                                       const GridPart& part, const NodeRunSink& sink,
                                       const GridKrigingOptions& options);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/point_set.h"
 
 #include <algorithm>
@@ -6,9 +7,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "format/regular_file.h"
+#include "base/regular_file.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 constexpr double kSgemsNoData = -9966699.0;
@@ -231,7 +232,7 @@ Result<PointSet> readGeoEasPoints(const std::string& path, const ColumnSelection
 }
 
 Result<std::string> readSampleFile(const std::string& path) {
-  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "sample file"));  // a FIFO would block
+  VOXLINK_RETURN_IF_ERROR(base::requireRegularFile(path, "sample file"));  // a FIFO would block
   std::ifstream in(path, std::ios::binary);
   if (!in) return makeError(ErrorCode::kIo, path, ": cannot open");
   std::ostringstream text;
@@ -253,4 +254,4 @@ Result<PointSet> readPoints(const std::string& path, const ColumnSelection& colu
   return parsePoints(text, path, columns);
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

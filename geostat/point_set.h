@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scattered samples (2-D or 3-D coordinates with one value each) and the readers for the
 // text tables they come in: CSV with a header row, and GEO-EAS / GSLIB point files.
 #pragma once
@@ -6,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 using Point3 = std::array<double, 3>;
 
@@ -50,4 +51,4 @@ Result<std::string> readSampleFile(const std::string& path);
 Result<PointSet> parsePoints(const std::string& text, const std::string& path,
                              const ColumnSelection& columns);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

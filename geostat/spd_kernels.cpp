@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/spd_kernels.h"
 
 #include <algorithm>
@@ -10,7 +11,7 @@
 #define VOXLINK_VECTOR_CLONES
 #endif
 
-namespace voxlink::kriging::spd {
+namespace voxlink::geostat::spd {
 
 namespace {
 
@@ -130,4 +131,4 @@ double inverseNormEstimate(const double* l, size_t n, size_t ld, double* work) {
   return std::max(estimate, 2.0 * norm1(y) / (3.0 * static_cast<double>(n)));
 }
 
-}  // namespace voxlink::kriging::spd
+}  // namespace voxlink::geostat::spd

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Cholesky kernels for the small symmetric positive definite systems of local kriging (tens of
 // unknowns), column-major so every inner loop is an axpy or a split-accumulator dot product that
 // the compiler vectorizes; on x86-64 they are also built for x86-64-v3 (AVX2 + FMA) and picked
@@ -6,7 +7,7 @@
 
 #include <cstddef>
 
-namespace voxlink::kriging::spd {
+namespace voxlink::geostat::spd {
 
 // Leading dimension for an n x n column-major matrix: n rounded up to whole 32-byte rows.
 constexpr size_t paddedSize(size_t n) { return (n + 3) & ~size_t{3}; }
@@ -25,4 +26,4 @@ double dot(const double* a, const double* b, size_t n);
 // factor of 3); `work` holds 3 n doubles. Times ||A||_1 it is the 1-norm condition estimate.
 double inverseNormEstimate(const double* l, size_t n, size_t ld, double* work);
 
-}  // namespace voxlink::kriging::spd
+}  // namespace voxlink::geostat::spd

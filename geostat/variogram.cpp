@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/variogram.h"
 
 #include <cmath>
@@ -5,7 +6,7 @@
 #include <optional>
 #include <sstream>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 // exp(-3) ~ 0.0498: the factor 3 of the usual exponential and Gaussian practical ranges.
@@ -149,4 +150,4 @@ Result<VariogramParams> parseVariogram(const std::string& text) {
   return p;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

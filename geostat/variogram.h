@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Isotropic variogram models with nugget, partial sill and range, and the covariance each one
 // implies (C(h) = nugget + psill - gamma(h) for h > 0, C(0) = nugget + psill).
 //
@@ -13,9 +14,9 @@
 
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 enum class VariogramType { kExponential, kSpherical, kGaussian, kMatern };
 
@@ -59,4 +60,4 @@ class Variogram {
 // sill, the total), range, nu. Example: "sph:nugget=0.1,psill=0.9,range=40".
 Result<VariogramParams> parseVariogram(const std::string& text);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

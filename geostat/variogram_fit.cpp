@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/variogram_fit.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 struct LinearFit {
@@ -165,4 +166,4 @@ Result<VariogramParams> fitVariogram(const std::vector<VariogramBin>& bins,
   return fitted;
 }
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

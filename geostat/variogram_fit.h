@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The experimental (sample) variogram and a weighted least-squares fit of a model to it.
 #pragma once
 
@@ -6,7 +7,7 @@
 #include "geostat/point_set.h"
 #include "geostat/variogram.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 
 struct VariogramBin {
   double lag = 0;    // mean pair distance in the bin
@@ -37,4 +38,4 @@ struct VariogramFitOptions {
 Result<VariogramParams> fitVariogram(const std::vector<VariogramBin>& bins,
                                      const VariogramFitOptions& options);
 
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "imageio/image_io.h"
 
 #include <unistd.h>
@@ -5,18 +6,18 @@
 #include <filesystem>
 #include <vector>
 
-#include "format/output_file.h"
-#include "format/stderr_capture.h"
-#include "plugins/imageio_plugin_api.h"
-#include "plugins/plugin_loader.h"
+#include "base/output_file.h"
+#include "base/plugin_loader.h"
+#include "base/stderr_capture.h"
+#include "imageio/imageio_plugin_api.h"
 
 namespace voxlink::imageio {
 namespace {
 
-using Plugin = plugins::ImageIoPluginApi;
+using Plugin = imageio::ImageIoPluginApi;
 
 Result<const Plugin*> plugin() {
-  return plugins::pluginApi<Plugin>(plugins::kImageIoPlugin, plugins::kImageIoPluginEntry);
+  return base::pluginApi<Plugin>(imageio::kImageIoPlugin, imageio::kImageIoPluginEntry);
 }
 
 }  // namespace
@@ -24,7 +25,7 @@ Result<const Plugin*> plugin() {
 // libpng (under OpenImageIO) prints warnings such as "libpng warning: iCCP: known incorrect
 // sRGB profile" to stderr: captured, so our messages stay one line; a failure quotes it.
 template <class R>
-R quoting(const format::StderrCapture& capture, R result) {
+R quoting(const base::StderrCapture& capture, R result) {
   if (result) return result;
   const std::string said = capture.firstLine();
   if (said.empty()) return result;
@@ -33,19 +34,19 @@ R quoting(const format::StderrCapture& capture, R result) {
 
 Result<ImageSpec> probe(const std::string& path, int subimage) {
   VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
-  format::StderrCapture capture;
+  base::StderrCapture capture;
   return quoting(capture, p->probe(path, subimage));
 }
 
 Result<int> subimageCount(const std::string& path) {
   VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
-  format::StderrCapture capture;
+  base::StderrCapture capture;
   return quoting(capture, p->subimageCount(path));
 }
 
 Status read(const std::string& path, int subimage, int channels, ScalarType as, void* dst) {
   VOXLINK_ASSIGN_OR_RETURN(const Plugin* p, plugin());
-  format::StderrCapture capture;
+  base::StderrCapture capture;
   return quoting(capture, p->read(path, subimage, channels, as, dst));
 }
 
@@ -56,10 +57,10 @@ Status write(const std::string& path, int width, int height, int channels, Scala
   // extension (it picks the format), then renamed: a failed write never leaves a partial image
   // at `path`. The plugin checks every write and the close (a full disk fails there).
   const std::string extension = std::filesystem::path(path).extension().string();
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, format::createTempBeside(path, extension));
+  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, base::createTempBeside(path, extension));
   ::close(temp.fd);  // the backend opens the file by name
   const std::string tempPath = temp.path;
-  format::StderrCapture capture;
+  base::StderrCapture capture;
   Status written = p->write(tempPath, width, height, channels, from, pixels, halfFloat, colorSpace);
   if (written) {
     // Image libraries do not all report a short write (a full disk left truncated PNGs behind
@@ -71,13 +72,13 @@ Status write(const std::string& path, int width, int height, int channels, Scala
                           "back (disk full?)");
   }
   if (!written) {
-    format::discardTemp(tempPath);
+    base::discardTemp(tempPath);
     std::string message = written.message();
     for (size_t at; (at = message.find(tempPath)) != std::string::npos;)
       message.replace(at, tempPath.size(), path);
     return makeError(written.code(), message);
   }
-  return format::commitTemp(tempPath, path);
+  return base::commitTemp(tempPath, path);
 }
 
 }  // namespace voxlink::imageio

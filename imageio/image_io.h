@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // 2-D image files (TIFF/PNG/EXR/...) for slice stacks and screenshots, through OpenImageIO.
 //
 // OpenImageIO drags about 250 shared libraries into a process (OpenCV, ffmpeg, libheif, ...),
@@ -8,7 +9,7 @@
 
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 
 namespace voxlink::imageio {

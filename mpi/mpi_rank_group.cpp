@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "mpi/mpi_rank_group.h"
 
 #include <mpi.h>

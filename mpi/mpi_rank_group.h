@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ranks of an MPI job as a base::RankGroup. MPI is initialized only when a launcher
 // (mpirun, mpiexec, srun) started this process, so a plain `voxlink` never touches MPI.
 #pragma once

@@ -1,11 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libvoxlink_imageio_oiio.so: every call to OpenImageIO in VoxLink is in this file.
 #include <OpenImageIO/imageio.h>
 
 #include <string>
 
-#include "plugins/imageio_plugin_api.h"
+#include "imageio/imageio_plugin_api.h"
 
-namespace voxlink::imageio {
+namespace voxlink::plugins {
+
+using imageio::ImageSpec;
+
 namespace {
 
 using OIIO::TypeDesc;
@@ -137,11 +141,11 @@ Status oiioWrite(const std::string& path, int width, int height, int channels, S
 }
 
 }  // namespace
-}  // namespace voxlink::imageio
+}  // namespace voxlink::plugins
 
-const voxlink::plugins::ImageIoPluginApi* voxlink_imageio_plugin() {
-  namespace io = voxlink::imageio;
-  static const voxlink::plugins::ImageIoPluginApi api{&io::oiioProbe, &io::oiioSubimageCount,
-                                                      &io::oiioRead, &io::oiioWrite};
+const voxlink::imageio::ImageIoPluginApi* voxlink_imageio_plugin() {
+  namespace plugin = voxlink::plugins;
+  static const voxlink::imageio::ImageIoPluginApi api{
+      &plugin::oiioProbe, &plugin::oiioSubimageCount, &plugin::oiioRead, &plugin::oiioWrite};
   return &api;
 }

@@ -1,11 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libvoxlink_vdb.so: the OpenVDB grid reader, the OpenVDB footprint peer and the export.
 #include "convert/vdb_export.h"
 #include "convert/vdb_footprint.h"
-#include "plugins/plugin_api.h"
+#include "sources/plugin_api.h"
 #include "sources/readers/vdb_reader.h"
 
-const voxlink::plugins::VdbPluginApi* voxlink_vdb_plugin() {
-  static const voxlink::plugins::VdbPluginApi api{&voxlink::convert::openVdbDirect,
+const voxlink::sources::VdbPluginApi* voxlink_vdb_plugin() {
+  static const voxlink::sources::VdbPluginApi api{&voxlink::sources::openVdbDirect,
                                                   &voxlink::convert::measureVdbFootprintDirect,
                                                   &voxlink::convert::exportVdbDirect};
   return &api;

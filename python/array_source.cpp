@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "python/array_source.h"
 
 #include <cstring>
 
 namespace voxlink::python {
 
-ArraySource::ArraySource(convert::VolumeInfo info, const void* data)
+ArraySource::ArraySource(sources::VolumeInfo info, const void* data)
     : data_(static_cast<const uint8_t*>(data)) {
   info_ = std::move(info);
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Pieces of the `voxlink` Python module, one file per concept: the File class, convert(),
 // render(). Library errors become voxlink.Error with the library's one-line message.
 #pragma once
@@ -6,7 +7,7 @@
 
 #include <memory>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/voxlink_file.h"
 
 namespace voxlink::python {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink.convert(): a NumPy array or a file path -> a .vxl file, through the same converter
 // and classification as `voxlink convert` (the same options give the same bytes).
 #include <pybind11/numpy.h>
@@ -10,13 +11,13 @@
 #include <filesystem>
 #include <optional>
 
+#include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "convert/converter.h"
-#include "format/output_file.h"
-#include "format/parallel_for.h"
-#include "format/transfer_function.h"
 #include "python/array_source.h"
 #include "python/bindings.h"
 #include "sources/readers/reader_common.h"
+#include "tf/transfer_function.h"
 
 namespace voxlink::python {
 namespace {
@@ -52,7 +53,7 @@ convert::Classification classificationFrom(const py::object& threshold, const py
     return valueOrRaise(convert::thresholdClassification(specs));
   }
   if (!tf.is_none())
-    return convert::tfClassification(valueOrRaise(format::loadTransferFunction(pathArgument(tf))));
+    return convert::tfClassification(valueOrRaise(tf::loadTransferFunction(pathArgument(tf))));
   if (!keepOutside.is_none()) {
     auto range = keepOutside.cast<std::vector<double>>();
     if (range.size() != 2) throw py::value_error("keep_outside must be (LO, HI)");
@@ -83,7 +84,7 @@ std::optional<ScalarType> scalarTypeOfDtype(const py::dtype& dtype) {
 }
 
 // The NumPy array as a volume a[z][y][x]; refuses what the converter cannot read in place.
-std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
+std::unique_ptr<sources::VolumeSource> arraySource(const py::array& a,
                                                    const std::array<double, 3>& spacing,
                                                    const std::array<double, 3>& origin) {
   if (a.ndim() != 3)
@@ -94,7 +95,7 @@ std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
   std::array<uint64_t, 3> dims{};
   for (int axis = 0; axis < 3; ++axis)
     dims[axis] = uint64_t(std::max<py::ssize_t>(a.shape(2 - axis), 0));
-  raiseIfError(convert::checkDims(dims, "numpy array", "shape"));
+  raiseIfError(sources::checkDims(dims, "numpy array", "shape"));
   if (!(a.flags() & py::array::c_style))
     throw py::value_error(
         "convert: the array is not C-contiguous; pass numpy.ascontiguousarray(a)");
@@ -102,7 +103,7 @@ std::unique_ptr<convert::VolumeSource> arraySource(const py::array& a,
   if (!type)
     throw py::type_error("convert: dtype " + py::str(a.dtype()).cast<std::string>() +
                          " is not supported (uint8/16/32, int8/16/32, float32/64, native order)");
-  convert::VolumeInfo info;
+  sources::VolumeInfo info;
   for (int axis = 0; axis < 3; ++axis) info.dims[axis] = static_cast<uint32_t>(dims[axis]);
   info.type = *type;
   info.spacing = spacing;
@@ -169,7 +170,7 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     throw py::value_error("brick must be 4, 8, 16 or 32");
   if (axis != "x" && axis != "y" && axis != "z") throw py::value_error("axis must be x, y or z");
   // The reader's and the converter's parallel work, for this call: the same limit as --threads.
-  const format::ThreadLimit limit(threads);
+  const base::ThreadLimit limit(threads);
   convert::ConvertOptions options;
   options.brickSize = brick;
   options.axis = static_cast<format::Axis>(axis[0] - 'x');
@@ -191,7 +192,7 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
     outPath = pathArgument(output);
   }
 
-  std::unique_ptr<convert::VolumeSource> source;
+  std::unique_ptr<sources::VolumeSource> source;
   py::array array;  // keeps the buffer alive while the GIL is released
   std::vector<std::string> inputs;
   if (py::isinstance<py::array>(input)) {
@@ -200,15 +201,15 @@ PyFile convertAny(const py::object& input, const py::object& output, const py::o
   } else {
     const std::string path = pathArgument(input);
     inputs.push_back(path);
-    Result<std::unique_ptr<convert::VolumeSource>> opened = [&] {
+    Result<std::unique_ptr<sources::VolumeSource>> opened = [&] {
       py::gil_scoped_release release;
-      return convert::openVolume(path, options.sourceOptions);
+      return sources::openVolume(path, options.sourceOptions);
     }();
     source = valueOrRaise(std::move(opened));
   }
-  raiseIfError(format::checkOutputTarget(outPath, inputs));
+  raiseIfError(base::checkOutputTarget(outPath, inputs));
   if (!inputs.empty())
-    raiseIfError(format::checkOutputTarget(outPath, inputs.back(), source->info().files));
+    raiseIfError(base::checkOutputTarget(outPath, inputs.back(), source->info().files));
   {
     // Ctrl-C: the converter reports after every slab; the report takes the GIL back for a
     // moment and runs Python's signal handlers. One that raises (KeyboardInterrupt) cancels the

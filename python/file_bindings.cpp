@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink.File: info(), voxels(), to_dense(), validate() over a validated .vxl file.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
@@ -6,14 +7,15 @@
 #include <limits>
 
 #include "convert/vdb_footprint.h"
-#include "format/dense_export.h"
-#include "format/footprint.h"
 #include "format/gradient_codec.h"
-#include "format/packed_file.h"
 #include "format/source_value.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
+#include "pack/open_file.h"
+#include "pack/packed_file.h"
 #include "python/bindings.h"
+#include "report/dense_export.h"
+#include "report/footprint.h"
 
 namespace voxlink::python {
 namespace {
@@ -30,9 +32,9 @@ void requireVolumeFile(const format::VoxLinkFile& f, const char* what) {
 }
 
 py::dict info(const PyFile& self, bool vdb) {
-  format::FootprintReport report = format::computeFootprint(*self.file);
+  report::FootprintReport report = report::computeFootprint(*self.file);
   if (vdb) {
-    Result<format::PeerFootprint> peer = [&] {
+    Result<report::PeerFootprint> peer = [&] {
       py::gil_scoped_release release;
       return convert::measureVdbFootprint(*self.file);
     }();
@@ -40,7 +42,7 @@ py::dict info(const PyFile& self, bool vdb) {
       raise(makeError(peer.code(), peer.message(), " (info(vdb=False) reports without it)"));
     report.peer = *peer;
   }
-  return jsonLoads(format::footprintJson(report));
+  return jsonLoads(report::footprintJson(report));
 }
 
 py::tuple voxels(const PyFile& self) {
@@ -70,7 +72,7 @@ py::tuple voxels(const PyFile& self) {
 
 template <class T>
 py::array denseOf(const format::VoxLinkFile& f, double fill) {
-  raiseIfError(format::checkFill(f.sourceType(), fill, f.path(), "fill"));
+  raiseIfError(report::checkFill(f.sourceType(), fill, f.path(), "fill"));
   const uint32_t* dims = f.header().dims;
   py::array_t<T> out(std::vector<py::ssize_t>{dims[2], dims[1], dims[0]});
   T* d = out.mutable_data();
@@ -125,11 +127,11 @@ py::dict validate(const PyFile& self) {
 
 py::dict pack(const PyFile& self, const py::object& path, bool fast) {
   const std::string out = pathArgument(path);
-  Result<format::PackReport> report = [&] {
+  Result<pack::PackReport> report = [&] {
     py::gil_scoped_release release;
-    format::PackOptions options;
+    pack::PackOptions options;
     options.predictGradients = !fast;
-    return format::packFile(*self.file, out, options);
+    return pack::packFile(*self.file, out, options);
   }();
   if (!report) raise(report.error());
   py::dict d;
@@ -152,7 +154,7 @@ std::string pathArgument(const py::object& path) {
 PyFile openFile(const std::string& path) {
   Result<format::VoxLinkFile> file = [&] {
     py::gil_scoped_release release;
-    return format::readValidatedFile(path);  // a copy: the file may change on disk later
+    return pack::readValidatedFile(path);  // a copy: the file may change on disk later
   }();
   if (!file) raise(file.error());
   return PyFile{std::make_shared<const format::VoxLinkFile>(std::move(*file))};

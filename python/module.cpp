@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The `voxlink` Python module: open, convert and render VoxLink files from NumPy code.
 #include "python/bindings.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink.render(): one frame of a .vxl file through EGL, as `voxlink render` makes it (the
 // same option parsing: cli/render_options), returned as an HxWx4 float32 array.
 #include <pybind11/numpy.h>
@@ -15,15 +16,15 @@
 namespace voxlink::python {
 namespace {
 
-Result<viewer::Image> renderFrame(const format::VoxLinkFile& file,
+Result<render::Image> renderFrame(const format::VoxLinkFile& file,
                                   const cli::RenderOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(viewer::RenderSettings settings, options.settings(file));
-  VOXLINK_ASSIGN_OR_RETURN(viewer::CameraSpec spec, options.cameraSpec(file));
-  VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf, options.transferFunction(file));
+  VOXLINK_ASSIGN_OR_RETURN(render::RenderSettings settings, options.settings(file));
+  VOXLINK_ASSIGN_OR_RETURN(render::CameraSpec spec, options.cameraSpec(file));
+  VOXLINK_ASSIGN_OR_RETURN(tf::TransferFunction tf, options.transferFunction(file));
   VOXLINK_ASSIGN_OR_RETURN(auto context, viewer::createHeadlessContext());
   VOXLINK_ASSIGN_OR_RETURN(auto renderer, viewer::VoxLinkRenderer::create(file));
   renderer->setTransferFunction(tf);
-  const viewer::Camera camera = viewer::Camera::framing(renderer->geometry().worldBox(), spec);
+  const render::Camera camera = render::Camera::framing(renderer->geometry().worldBox(), spec);
   viewer::RenderTarget target;
   VOXLINK_RETURN_IF_ERROR(renderer->render(camera, settings, target));
   return target.read();
@@ -58,7 +59,7 @@ py::array_t<float> render(const py::object& fileOrPath, const py::object& size,
                           const py::object& tf, const std::string& tfPreset) {
   const PyFile file = py::isinstance<PyFile>(fileOrPath) ? fileOrPath.cast<PyFile>()
                                                          : openFile(pathArgument(fileOrPath));
-  if (!viewer::parseSampling(sampling))  // the CLI checks this in its option parser
+  if (!render::parseSampling(sampling))  // the CLI checks this in its option parser
     throw py::value_error("sampling must be voxel or trilinear, not '" + sampling + "'");
   cli::RenderOptions options;
   options.size = sizeArgument(size);
@@ -66,7 +67,7 @@ py::array_t<float> render(const py::object& fileOrPath, const py::object& size,
   options.sampling = sampling;
   if (!tf.is_none()) options.tfPath = pathArgument(tf);
   options.tfPreset = tfPreset;
-  Result<viewer::Image> image = [&] {
+  Result<render::Image> image = [&] {
     py::gil_scoped_release release;
     return renderFrame(*file.file, options);
   }();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "scene/build_estimate.h"
 
 #include <algorithm>

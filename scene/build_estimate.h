@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How many voxels a scene build will store, and how much memory building them takes, estimated
 // before any voxelizing: a resolution the machine cannot hold is refused at once with the field
 // to change, instead of after minutes of work by std::bad_alloc or the kernel's OOM killer.
@@ -6,9 +7,9 @@
 #include <cstdint>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
+#include "base/process_memory.h"
 #include "format/file_writer.h"
-#include "format/process_memory.h"
 #include "scene/scene_geometry.h"
 
 namespace voxlink::scene {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "scene/scene_assembly.h"
 
 #include <algorithm>
@@ -74,7 +75,7 @@ Result<format::VolumeDescription> describeGrid(const SceneDescription& scene,
   VOXLINK_RETURN_IF_ERROR(format::checkDescription(d));
   const SceneBuildEstimate estimate =
       estimateSceneBuild(placed, d, volume ? volume->voxelCount() : 0);
-  VOXLINK_RETURN_IF_ERROR(checkSceneBuildFits(estimate, format::memoryForThisProcess(), scene.path,
+  VOXLINK_RETURN_IF_ERROR(checkSceneBuildFits(estimate, base::memoryForThisProcess(), scene.path,
                                               scene.grid.resolution, volume != nullptr));
   return d;
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Turns a scene description into one VoxLink buffer: loads every mesh, particle file and volume
 // it names, places them with their transforms, voxelizes the geometry exactly on the CPU
 // (geometry/surface_voxelizer.h, geometry/sphere_voxelizer.h) and merges everything into the
@@ -13,8 +14,8 @@
 #include <functional>
 #include <string>
 
+#include "base/error.h"
 #include "base/rank_group.h"
-#include "format/error.h"
 #include "format/file_writer.h"
 #include "geometry/surface_voxelizer.h"
 #include "scene/scene_description.h"

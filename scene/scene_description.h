@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The scene file (docs/scene.md): which meshes, spheres and volume go into one VoxLink buffer,
 // their transforms and materials, the grid they are voxelized into, lights and a camera. This
 // file only reads and checks the JSON; scene_assembly.h loads and voxelizes what it names.
@@ -8,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/layout.h"
 #include "geometry/material.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A scene's geometry placed in world space: every mesh and sphere its file names, loaded, moved by
 // its transform and given its index in the scene's one material table. `voxlink scene build`
 // voxelizes this; the exact tracer (exact/) ray traces it, so both see the same triangles,
@@ -7,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/layout.h"
 #include "geometry/bounds.h"
 #include "geometry/sphere_voxelizer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "scene/scene_input_files.h"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ std::vector<std::string> sceneInputFiles(const SceneDescription& scene) {
     const bool denseVolume = object.kind == ObjectKind::kVolume &&
                              (!object.thresholds.empty() || !object.tfPath.empty());
     if (denseVolume) {
-      auto source = convert::openVolume(object.path);  // headers only: cheap
+      auto source = sources::openVolume(object.path);  // headers only: cheap
       if (source) {
         const std::vector<std::string>& read = (*source)->info().files;
         files.insert(files.end(), read.begin(), read.end());

@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "scene/scene_ranks.h"
 
 #include <cstring>
 #include <type_traits>
 
-#include "format/crc32c.h"
+#include "base/crc32c.h"
 
 namespace voxlink::scene {
 namespace {
@@ -31,17 +32,16 @@ struct GeometryPrint {
 };
 
 GeometryPrint printOf(const PlacedScene& p) {
-  uint32_t crc = format::crc32c(p.mesh.positions.data(), p.mesh.positions.size() * sizeof(float));
-  crc = format::crc32c(p.mesh.triangles.data(), p.mesh.triangles.size() * sizeof(uint32_t), crc);
-  crc = format::crc32c(p.mesh.triangleMaterials.data(),
-                       p.mesh.triangleMaterials.size() * sizeof(uint16_t), crc);
+  uint32_t crc = base::crc32c(p.mesh.positions.data(), p.mesh.positions.size() * sizeof(float));
+  crc = base::crc32c(p.mesh.triangles.data(), p.mesh.triangles.size() * sizeof(uint32_t), crc);
+  crc = base::crc32c(p.mesh.triangleMaterials.data(),
+                     p.mesh.triangleMaterials.size() * sizeof(uint16_t), crc);
   for (const geometry::Sphere& s : p.spheres) {  // field by field: Sphere has padding
-    crc = format::crc32c(s.center.data(), sizeof s.center, crc);
-    crc = format::crc32c(&s.radius, sizeof s.radius, crc);
-    crc = format::crc32c(&s.material, sizeof s.material, crc);
+    crc = base::crc32c(s.center.data(), sizeof s.center, crc);
+    crc = base::crc32c(&s.radius, sizeof s.radius, crc);
+    crc = base::crc32c(&s.material, sizeof s.material, crc);
   }
-  crc =
-      format::crc32c(p.materials.data(), p.materials.size() * sizeof(format::MaterialRecord), crc);
+  crc = base::crc32c(p.materials.data(), p.materials.size() * sizeof(format::MaterialRecord), crc);
   return {p.mesh.triangleCount(), p.spheres.size(), p.materials.size(), crc};
 }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink scene build` on several MPI ranks (docs/scale.md, "Scene builds"): every rank loads
 // the scene's meshes and particle files itself, voxelizes only the triangles and spheres that
 // reach its slab of brick layers, and sends its voxels to rank 0, which merges them with the
@@ -9,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "base/error.h"
 #include "base/rank_group.h"
-#include "format/error.h"
 #include "format/file_writer.h"
 #include "geometry/normal_error.h"
 #include "geometry/voxel_grid.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "scene/scene_volume.h"
 
 #include <unistd.h>
@@ -6,8 +7,9 @@
 #include <filesystem>
 
 #include "convert/converter.h"
-#include "format/transfer_function.h"
+#include "pack/open_file.h"
 #include "sources/volume_source.h"
+#include "tf/transfer_function.h"
 
 namespace voxlink::scene {
 
@@ -15,7 +17,7 @@ Result<format::VoxLinkFile> openSceneVolume(
     const SceneObject& object, const SceneGrid& grid,
     const std::function<void(double fraction, const char* stage)>& progress) {
   if (object.thresholds.empty() && object.tfPath.empty()) {
-    auto file = format::VoxLinkFile::open(object.path);
+    auto file = pack::openFile(object.path);
     if (!file && file.code() == ErrorCode::kNotAVoxLinkFile)
       return makeError(ErrorCode::kInvalidArgument, object.path,
                        ": not a .vxl; a dense volume in a scene needs \"threshold\" or \"tf\"");
@@ -25,22 +27,21 @@ Result<format::VoxLinkFile> openSceneVolume(
   options.brickSize = grid.brickSize;
   options.axis = grid.axis;
   if (!object.tfPath.empty()) {
-    VOXLINK_ASSIGN_OR_RETURN(format::TransferFunction tf,
-                             format::loadTransferFunction(object.tfPath));
+    VOXLINK_ASSIGN_OR_RETURN(tf::TransferFunction tf, tf::loadTransferFunction(object.tfPath));
     options.classification = convert::tfClassification(tf);
   } else {
     VOXLINK_ASSIGN_OR_RETURN(options.classification,
                              convert::thresholdClassification(object.thresholds));
   }
   options.progress = progress;
-  VOXLINK_ASSIGN_OR_RETURN(auto source, convert::openVolume(object.path, options.sourceOptions));
+  VOXLINK_ASSIGN_OR_RETURN(auto source, sources::openVolume(object.path, options.sourceOptions));
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path temp =
       std::filesystem::temp_directory_path() /
       cat("voxlink-scene-volume-", ::getpid(), "-", counter++, ".vxl");
   auto converted = convert::convertVolume(*source, options, temp.string());
   if (!converted) return converted.error();
-  auto file = format::VoxLinkFile::open(temp.string());
+  auto file = pack::openFile(temp.string());
   std::error_code ignored;
   std::filesystem::remove(temp, ignored);  // an open file stays readable
   return file;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A scene's volume object: a .vxl as it is, or a dense source (any file `voxlink convert`
 // reads) classified with the object's threshold or transfer function by the converter itself,
 // so that a scene holding only that volume has the voxels `voxlink convert` gives.
@@ -5,7 +6,7 @@
 
 #include <functional>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/voxlink_file.h"
 #include "scene/scene_description.h"
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Configures and builds VoxLink in ./build (Release). Extra arguments go to cmake.
 # VOXLINK_TARGETS="voxlink voxlink_vdb" builds only those targets (default: all). Options such
 # as VOXLINK_BUILD_TESTS stay in ./build's cache: pass them again to change them back.

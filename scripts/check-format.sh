@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Fails, naming the files, when a tracked C++ file differs from what clang-format 14 makes of it
 # (.clang-format: Google, 100 columns). Fix with: clang-format-14 -i FILE...
 set -euo pipefail

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Fails, naming file and line, when C++ outside format/parallel_for.* starts threads or calls a
-# parallel library itself: every parallel path goes through format/parallel_for.h so that
+# SPDX-License-Identifier: BSD-3-Clause
+# Fails, naming file and line, when C++ outside base/parallel_for.* starts threads or calls a
+# parallel library itself: every parallel path goes through base/parallel_for.h so that
 # --threads bounds it (docs/parallelism.md). Tests and benchmarks may do as they like.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,15 +12,15 @@ allowed=(
 )
 pattern='tbb::|<tbb/|std::thread[^:_]|std::thread$|std::jthread|std::async|pthread_create|#pragma omp'
 hits=$(git ls-files '*.h' '*.cpp' ':!:tests/' ':!:bench/' ':!:fuzz/' \
-         ':!:format/parallel_for.h' ':!:format/parallel_for.cpp' |
+         ':!:base/parallel_for.h' ':!:base/parallel_for.cpp' |
        xargs grep -nE "$pattern" || true)
 for path in "${allowed[@]}"; do
   hits=$(printf '%s\n' "$hits" | grep -v "^$path" || true)
 done
 hits=$(printf '%s\n' "$hits" | sed '/^$/d')
 if [ -n "$hits" ]; then
-  echo "check-parallel-paths: parallel code outside format/parallel_for.h:" >&2
+  echo "check-parallel-paths: parallel code outside base/parallel_for.h:" >&2
   printf '%s\n' "$hits" >&2
   exit 1
 fi
-echo "check-parallel-paths: every parallel path goes through format/parallel_for.h"
+echo "check-parallel-paths: every parallel path goes through base/parallel_for.h"

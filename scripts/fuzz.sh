@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds the libFuzzer targets (fuzz/, clang 14, ASan + UBSan) in ./build-fuzz and runs each for
 # SECONDS (default 60). Seeds come from ../shared/data (fuzz/make_seeds.py) and the kept crash
 # inputs in tests/data/fuzz-regressions; new corpus entries stay in build-fuzz/fuzz-corpus.

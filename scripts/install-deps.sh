@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the Debian 12 packages for one or both jobs; run as root, safe to run again.
 #   bash scripts/install-deps.sh sample        # the main job (scripts/run-sample.sh)
 #   bash scripts/install-deps.sh sample tests  # everything: build all, run every test

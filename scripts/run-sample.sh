@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # The main job on the bundled sample, from a fresh Debian 12 machine (as root):
 # installs packages, builds, converts samples/headsq, prints the footprint report, validates
 # the file and renders a PNG headless (EGL on Mesa's llvmpipe: no GPU or display needed),

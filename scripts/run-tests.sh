@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs packages, builds and runs every test (GoogleTest via ctest), from a fresh Debian 12
 # machine as root. It first checks clang-format and builds with -Werror. Then it pip-installs
 # the Python module into a venv and uses it from outside the checkout. GL tests render headless

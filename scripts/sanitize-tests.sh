@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Builds everything with AddressSanitizer + UndefinedBehaviorSanitizer (LeakSanitizer comes with
 # ASan) in ./build-asan and runs the whole test suite there. Any sanitizer report fails the
 # test it happens in. Benchmarks are not built (no test runs them). Leaks inside libraries that

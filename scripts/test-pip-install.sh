@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Installs the checkout with `pip install --no-build-isolation` into a new venv that sees the
 # system's packages (docs/python.md), then, from a folder outside the checkout, converts
 # samples/headsq through the installed module and compares its report with the executable's

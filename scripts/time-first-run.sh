@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Times the README's main job (scripts/run-sample.sh) as a new user meets it: a fresh clone of
 # this checkout's HEAD, no compiler cache (CCACHE_DISABLE=1). Prints the seconds. Run as root.
 #   bash scripts/time-first-run.sh            # packages already installed on this machine

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Primary rays, built exactly as viewer::Camera::primaryRay() builds them, and the move into
 // index space, where voxel i spans [i, i+1) and t stays a world distance.
 

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Constants and small helpers shared by every VoxLink shader.
-// Mirrors viewer/core/render_model.h (float64 on the CPU side).
+// Mirrors render/render_model.h (float64 on the CPU side).
 
 const float kBig = 1e30;
 // Direction components smaller than this count as zero: the ray never crosses those planes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Trilinear sampling shared by the sparse and the dense traversals: the cell's classified
 // corners, their blend, and the shading and compositing of a sample. Included after the
 // traversal's shadowTransmittance().

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Amanatides-Woo grid walk, used for bricks, dual bricks and voxels alike. Cells are unit cubes
 // of the grid the caller scaled o and d into; t stays the caller's ray parameter.
 

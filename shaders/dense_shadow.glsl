@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shadow rays through the dense volume: transmittance towards the light with voxel (nearest)
 // sampling over every cell (dense_walk.glsl). Mirrors ReferenceRenderer::shadowTransmittance.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The dense 3D-texture ray caster the benchmark compares against: the same sampling, shading,
 // transfer function and step as the VoxLink traversals, reading every voxel from 3D textures
 // (stored value bits and gradient codes) and skipping no empty space (dense_walk.glsl).

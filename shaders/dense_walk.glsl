@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The dense peer's walk over every voxel the ray crosses, which its primary rays
 // (dense_traversal.glsl) and shadow rays (dense_shadow.glsl) share:
 //

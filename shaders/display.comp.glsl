@@ -1,4 +1,5 @@
 #version 450
+// SPDX-License-Identifier: BSD-3-Clause
 // Turns a rendered image (linear RGBA32F, row 0 at the top) into what the window shows: sRGB
 // encoded (as PNG screenshots are) and flipped for GL's bottom-up framebuffer.
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ray-traced scene mode's last pass: the per-pixel fixed-point sums of all rays
 // (render_effects.comp.glsl) to the RGBA32F target: colour plus the background times the share
 // that reached it; alpha = 1 - that share.

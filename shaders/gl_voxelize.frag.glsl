@@ -1,4 +1,5 @@
 #version 450
+// SPDX-License-Identifier: BSD-3-Clause
 // GL voxelization, fragment stage. Each fragment is appended to its (u, v) column's list,
 // per-pixel-linked-list style: an atomic counter hands out the slot, an atomic exchange on the
 // column's head pointer links it. The host sorts each list by depth.

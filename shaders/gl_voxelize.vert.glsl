@@ -1,4 +1,5 @@
 #version 450
+// SPDX-License-Identifier: BSD-3-Clause
 // GL voxelization, vertex stage: one orthographic view per dominant axis (the paper's swizzle).
 // The host draws the triangles whose normal is dominant along uAxis; this stage projects their
 // grid coordinates onto the plane of the other two axes (u = axis + 1, v = axis + 2, mod 3) so

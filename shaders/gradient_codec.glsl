@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Decodes 16-bit polar gradient codes (format/gradient_codec.h): code = t << 8 | p,
 // theta = t pi / 254, phi = p pi / 128, t = 255 reserved (zero gradient).
 // The sin/cos tables come from format::decodeGradient on the CPU, so decoding is bit-identical.

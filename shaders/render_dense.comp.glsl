@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The dense 3D-texture ray caster (the benchmark's peer): same model, every voxel in textures.
 #version 450
 layout(local_size_x = 8, local_size_y = 8) in;

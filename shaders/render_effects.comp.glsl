@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ray-traced scene mode (paper, section 5.2.2): one pass of rays. The primary pass
 // (VXL_EFFECTS_PRIMARY 1) traces one ray per pixel from the camera and writes the pixel's
 // accumulator; each later pass traces the rays the pass before spawned into the ray buffer

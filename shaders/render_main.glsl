@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The pixel loop shared by render_voxlink.comp.glsl and render_dense.comp.glsl, included after
 // the traversal that defines traceVoxels() and traceTrilinear().
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Renders a VoxLink file: one thread per pixel, a primary ray composited front to back.
 #version 450
 layout(local_size_x = 8, local_size_y = 8) in;

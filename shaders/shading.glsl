@@ -1,4 +1,5 @@
-// Phong shading and opacity correction, as viewer/core/render_model.h states them.
+// SPDX-License-Identifier: BSD-3-Clause
+// Phong shading and opacity correction, as render/render_model.h states them.
 
 uniform float uUnit;             // smallest voxel spacing: the length TF opacities refer to
 uniform vec3 uToLight;           // world, unit
@@ -17,7 +18,7 @@ float correctedAlpha(float alpha, float len) {
 // Phong terms of a sample with (premultiplied) colour c and opacity alpha: colour = ambient +
 // shadow * lit. `gradient` is the opacity-weighted sum of unit gradient directions; the normal
 // is -gradient, and shading is weighted by m = |gradient| / alpha, so a sample whose blended
-// normals cancel fades to unlit colour. Mirrors shadeSample() in viewer/core/render_model.h.
+// normals cancel fades to unlit colour. Mirrors shadeSample() in render/render_model.h.
 void shadeSampleToward(vec3 c, float alpha, vec3 gradient, vec3 toEye, vec3 toLight,
                        out vec3 ambient, out vec3 lit) {
   float len = length(gradient);

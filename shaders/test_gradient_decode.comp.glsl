@@ -1,4 +1,5 @@
 #version 450
+// SPDX-License-Identifier: BSD-3-Clause
 // Test shader (tests/viewer/glsl_layout_test.cpp): decodes every 16-bit gradient code so the
 // test can compare the GLSL decoder with format::decodeGradient bit for bit.
 layout(local_size_x = 64) in;

@@ -1,4 +1,5 @@
 #version 450
+// SPDX-License-Identifier: BSD-3-Clause
 // Test shader (tests/viewer/glsl_layout_test.cpp): looks up every cell of the volume the way
 // the renderer does, so the test can compare with format::VoxelLocator and the file's arrays.
 layout(local_size_x = 64) in;

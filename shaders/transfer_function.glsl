@@ -1,4 +1,5 @@
-// Transfer function lookup by stored value bits (viewer/core/tf_table.h). Indexed tables hold
+// SPDX-License-Identifier: BSD-3-Clause
+// Transfer function lookup by stored value bits (tf/tf_table.h). Indexed tables hold
 // one RGBA per stored value (u8, u16, f16 files); f32 files evaluate the TF's breakpoints.
 
 layout(std430, binding = VXL_TF_BINDING) readonly restrict buffer VxlTransferFunction {

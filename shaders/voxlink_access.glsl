@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Lookups in a VoxLink file on the GPU (format/layout.h, the same steps as format::VoxelLocator):
 // brick -> occupied index -> row start -> bit rank within the row mask. The generated
 // voxlink_sections.glsl declares the buffers (viewer/gl/section_buffers.h: the voxel sections
@@ -11,7 +12,7 @@
 uniform ivec3 uBrickGrid;
 
 // Index of the brick at cell b among the occupied bricks, or -1 when it is empty
-// (viewer/core/brick_lookup.h). The table covers the box of the occupied bricks
+// (render/brick_lookup.h). The table covers the box of the occupied bricks
 // (kVxlIndexLo/kVxlIndexSize, generated): outside it every brick is empty, without a read.
 int occupiedIndex(ivec3 b) {
   ivec3 r = b - kVxlIndexLo;

@@ -1,4 +1,5 @@
-// The box each occupied brick's stored voxels fill (viewer/core/brick_bounds.h), derived when
+// SPDX-License-Identifier: BSD-3-Clause
+// The box each occupied brick's stored voxels fill (render/brick_bounds.h), derived when
 // the file is loaded. Rays clip an occupied brick to it before walking rows, so they skip the
 // empty part of a sparse brick, and the brick altogether when they miss its voxels. The box is
 // the first word of the brick's entry (brickEntry(k)), its first voxel the second: one read

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The walk over the brick grid that voxel sampling (voxlink_voxels.glsl) and shadow rays
 // (voxlink_shadow.glsl) share: it steps from brick to brick (crossing runs of empty ones in an
 // inner loop where asked), clips each occupied brick to the box of its stored voxels

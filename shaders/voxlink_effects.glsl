@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ray-traced scene mode (paper, section 5.2): lights, shadow rays towards each of them, and
 // at every surface hit the reflected and refracted rays spawned into the ray buffer with their
 // share of the ray's weight (opacity transport). Included when VXL_EFFECTS is 1, after
-// voxlink_scene_shading.glsl. Mirrors viewer/core/effects_tracer.cpp and light_transport.h.
+// voxlink_scene_shading.glsl. Mirrors render/effects_tracer.cpp and light_transport.h.
 #if VXL_EFFECTS
 
 uniform bool uReflect;

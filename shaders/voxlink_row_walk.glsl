@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The walk inside one occupied brick (paper, section 3.1.4), row by row. A ray stays in a row
 // (list) until it crosses a u or v plane; within that stretch the stored voxels it meets are the
 // row's set mask bits between its entry and exit depths, taken in travel order, so the walk

@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Geometry in a VoxLink scene (format version 2; paper, sections 3.1.1-3.1.2): per voxel a
 // surface fragment (polar normal + material), references to implicit spheres intersected
 // exactly, and a bit saying whether the voxel also carries a volume sample. Included when
 // VXL_SCENE is 1; the sections come through voxlink_sections.glsl (surfWord, vmskWord,
 // matlWord and, with VXL_SPHERES, sphrWord, srofWord, sridWord).
-// Mirrors viewer/core/voxel_scene_walker.cpp; docs/scene.md states the model. Shading of
+// Mirrors render/voxel_scene_walker.cpp; docs/scene.md states the model. Shading of
 // hits, which needs shadowTransmittance(), is in voxlink_scene_shading.glsl.
 #if VXL_SCENE
 

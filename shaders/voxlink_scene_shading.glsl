@@ -1,15 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shading and compositing of the geometry hits of voxlink_scene.glsl; included after
-// voxlink_shadow.glsl. Mirrors viewer/core/effects_tracer.cpp (with every effect off) over
-// viewer/core/voxel_scene_walker.cpp.
+// voxlink_shadow.glsl. Mirrors render/effects_tracer.cpp (with every effect off) over
+// render/voxel_scene_walker.cpp.
 #if VXL_SCENE
 
 // Surface hits cast their shadow rays from this many voxels off the surface along the normal:
 // a voxelized surface is one to two voxels thick, and a ray started inside it would shadow
-// the surface itself. kSurfaceShadowBias in viewer/core/render_model.h.
+// the surface itself. kSurfaceShadowBias in render/render_model.h.
 const float kSurfaceShadowBias = 2.0;
 
 // Phong terms of a surface hit with unit normal n facing the eye; mirrors shadeSurface() in
-// viewer/core/render_model.h. Ambient and diffuse weights are the frame's, the highlight the
+// render/render_model.h. Ambient and diffuse weights are the frame's, the highlight the
 // material's.
 void shadeSurfaceToward(Material m, vec3 n, vec3 toEye, vec3 toLight, out vec3 ambient,
                         out vec3 lit) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shadow rays through a VoxLink file: transmittance towards the light with voxel (nearest)
 // sampling, skipping empty bricks and walking rows (voxlink_brick_walk.glsl). Mirrors
 // ReferenceRenderer::shadowTransmittance.

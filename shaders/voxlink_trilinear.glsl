@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Trilinear sampling of a VoxLink file. A sample at index-space point p blends the 8 voxels
 // around q = p - 1/2 (voxel centres at integers). Samples are grouped by dual bricks (bricks
 // shifted by half a voxel): dual brick D covers q in [D n, D n + n) and reads voxels of bricks
@@ -148,7 +149,7 @@ void loadCorners(ivec3 cell) {
 
 // Whether the ray's samples in [t0, t1) can meet a stored voxel in the dual brick at cell c of
 // the dual grid (dual brick c - 1): one word of the table derived at load time
-// (viewer/core/brick_lookup.h), the box of the dual brick's cells that can.
+// (render/brick_lookup.h), the box of the dual brick's cells that can.
 bool dualBrickHit(vec3 o, vec3 d, ivec3 c, float t0, float t1) {
   // The table covers the dual cells around the occupied bricks (kVxlDualLo/kVxlDualSize).
   ivec3 r = c - kVxlDualLo;

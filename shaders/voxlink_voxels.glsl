@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Voxel (nearest) sampling of a VoxLink file (paper, section 3.1.4): a walk over bricks skips
 // unoccupied ones (voxlink_brick_walk.glsl); inside an occupied brick the row walk
 // (voxlink_row_walk.glsl) visits the stored voxels along the lists. Each stored voxel

@@ -1,14 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/volume_source.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "format/regular_file.h"
+#include "base/regular_file.h"
 #include "sources/readers/raw_reader.h"
 #include "sources/readers/reader_common.h"
 #include "sources/readers/reader_registry.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Status VolumeSource::checkSliceRange(uint32_t z0, uint32_t count) const {
   if (uint64_t{z0} + count > info_.dims[2])
@@ -92,7 +93,7 @@ Result<std::unique_ptr<VolumeSource>> openWithReader(const std::string& path,
   // Folders hold DICOM series and image stacks; anything else must be a regular file (a FIFO
   // or device would block the readers' probes forever).
   if (!std::filesystem::is_directory(path, ec))
-    VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "volume"));
+    VOXLINK_RETURN_IF_ERROR(base::requireRegularFile(path, "volume"));
   const auto& registry = readerRegistry();
   if (!options.format.empty()) {
     for (const ReaderEntry& r : registry)
@@ -120,4 +121,4 @@ Result<std::unique_ptr<VolumeSource>> openVolume(const std::string& path,
   return checked(path, openWithReader(path, options));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A dense source volume read slice by slice (z slices, x fastest), so a converter never needs
 // the whole volume in memory. Readers for each file format implement this interface.
 #pragma once
@@ -9,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // How a reader mapped stored numbers to the values it serves (DICOM RescaleSlope/Intercept,
 // DoseGridScaling): value = stored * slope + intercept, slope and intercept per slice within
@@ -108,4 +109,4 @@ std::vector<std::string> readerNames();
 // Reads the whole volume into memory (tests, small inputs, the reference renderer).
 Result<std::vector<uint8_t>> readAll(VolumeSource& source);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

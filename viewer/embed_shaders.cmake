@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # cmake -DOUTPUT=file.cpp -DSHADER_DIR=dir -P embed_shaders.cmake
 # Writes a C++ file holding every shaders/*.glsl as a string, keyed by file name, so the
 # library carries its shaders (shader_program.cpp: embeddedShaderFiles()).

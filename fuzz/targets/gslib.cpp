@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GSLIB / GEO-EAS grids: plain text, or (zip magic "PK") the single member of a .zip.
 #include "fuzz/targets/volume_readers.h"
 #include "sources/readers/gslib_reader.h"
@@ -6,7 +7,7 @@ namespace voxlink::fuzz {
 
 Status fuzzGslib(Input input) {
   return openAndDrain(input, startsWithZip(input) ? "input.gslib.zip" : "input.gslib",
-                      convert::openGslib);
+                      sources::openGslib);
 }
 
 }  // namespace voxlink::fuzz

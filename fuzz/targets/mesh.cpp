@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Meshes through assimp (geometry/mesh_loader.h): OBJ (+ MTL files given as extra fuzz files),
 // PLY, OFF and STL. The extension, which picks assimp's importer, follows the content: "ply"
 // starts a PLY file, "OFF", "COFF" or "NOFF" an OFF file, "solid" or a NUL byte in the 84-byte

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Particles (geometry/particle_loader.h): an input with an ATOM or HETATM line is read as PDB,
 // anything else as the text list `x y z r [material]`. Loaded spheres must be finite, have a
 // positive radius and a material that exists; a broken set aborts (a finding).

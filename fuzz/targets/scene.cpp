@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The scene JSON (scene/scene_description.h), parsed in memory as `voxlink scene build` reads
 // it; an accepted scene's transforms are applied and its material names looked up, the way
 // scene assembly uses them. Files the scene names are not loaded (the mesh and particles

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The TF JSON (docs/transfer-function.md); an accepted TF is evaluated the way the converter
 // and the viewer use it.
-#include "format/transfer_function.h"
+#include "tf/transfer_function.h"
 
 #include "fuzz/targets/volume_readers.h"
 
@@ -8,14 +9,14 @@ namespace voxlink::fuzz {
 
 Status fuzzTransferFunction(Input input) {
   const std::string text(input.begin(), input.end());
-  auto tf = format::parseTransferFunction(text, "fuzz.json");
+  auto tf = tf::parseTransferFunction(text, "fuzz.json");
   if (!tf) return tf.status();
   volatile double sum = 0;
   for (const auto& interval : tf->visibleIntervals()) {
     sum = sum + tf->opacityAt(interval.lo) + tf->colorAt(interval.hi)[0];
   }
   // Written back and read again, a TF must survive unchanged in shape.
-  auto again = format::parseTransferFunction(format::transferFunctionJson(*tf), "again.json");
+  auto again = tf::parseTransferFunction(tf::transferFunctionJson(*tf), "again.json");
   if (!again) return again.status();
   return Status::ok();
 }

@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "fuzz/targets/volume_readers.h"
 
 namespace voxlink::fuzz {
 
 Status openAndDrain(Input input, const std::string& mainName, const OpenFn& open,
-                    const convert::OpenOptions& options, bool openDir) {
+                    const sources::OpenOptions& options, bool openDir) {
   const std::string path = scratch().write(splitFuzzFiles(input, mainName));
   auto source = open(openDir ? scratch().path().string() : path, options);
   if (!source) return source.status();

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 """ParaView reader plugin for VoxLink (.vxl) files, on the `voxlink` Python module.
 
 Load it in ParaView with Tools > Manage Plugins > Load New (this file), or in pvpython with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Fixtures for the voxlink module tests: the real data folder, the CLI beside the module.
 import os
 import pathlib

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Run by pvpython (test_paraview.py): opens a dense file `voxlink export` wrote (NRRD, or a
 # detached .nhdr header with its .raw) with ParaView's own readers, no plugin, and prints its
 # shape, spacing, origin, scalar type and the values at the given voxels as JSON.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Run by the ParaView GUI at start-up (`paraview --script`, test_paraview.py): loads the reader
 # plugin as a user would from the Python shell, then, whenever a proxy is registered (the
 # reader when the open dialog picks the file, its representation after Apply), writes what the

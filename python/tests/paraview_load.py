@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Run by pvpython (test_paraview.py): loads the reader plugin, opens a .vxl through ParaView's
 # own file-type lookup, prints what the output holds as JSON and renders a contour to a PNG.
 import inspect

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # voxlink.convert(): the same bytes as the CLI, NumPy arrays in the right axis order, and
 # clear errors for what it cannot take.
 import hashlib

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # `voxlink export -o out.vdb` checked with OpenVDB's own Python module (python3-openvdb):
 # the grids, their values and gradients, transform and metadata; converting the export
 # again with the same threshold gives the same voxels and values.

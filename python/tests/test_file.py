@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # voxlink.open(), validate() and to_dense() on files: corrupt files refused with the
 # validator's message, fills that do not fit the source type refused.
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The GIL is released while the library converts and renders: another Python thread keeps
 # running meanwhile. While a call holds the GIL the other thread gets no turn at all, so the
 # longest pause between its turns is most of the call (measured: 83-85 % of a bytes

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # voxlink.convert() on arrays applies the command line's size limits before reading anything
 # (a memmap of shape (512, 65536, 65536) ran for hours; `voxlink convert` refuses the same dims
 # at once), and Ctrl-C (SIGINT) stops a long conversion between slabs with KeyboardInterrupt,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # The ParaView reader plugin (python/paraview/voxlink_reader.py) in ParaView's own pvpython,
 # headless under Xvfb: .vxl is found by ParaView's file-type lookup and loads as vtkImageData
 # with the values, a hidden-point ghost array for removed voxels and the gradient vectors; a

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Python arguments take Python values (docs/python.md): every path argument takes str, bytes or
 # any os.PathLike (not only pathlib), and render's size takes (width, height) as well as "WxH".
 import os

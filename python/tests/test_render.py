@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # voxlink.render(): headless EGL frames, the same pixels as the CLI's EXR output.
 import subprocess
 

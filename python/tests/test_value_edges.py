@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: BSD-3-Clause
 # Values at the edges of their types, and VTK image data with vector arrays and reversed
 # directions (issue 30, item 8): inputs written by numpy (raw NRRD) and by VTK's own writer,
 # converted and exported by the CLI, the exports read back with numpy and compared by value.
@@ -9,7 +10,7 @@ import pytest
 
 import voxlink
 
-# The type names voxlink export writes (format/dense_export.cpp).
+# The type names voxlink export writes (report/dense_export.cpp).
 NRRD_TYPES = {"uint8": "<u1", "int8": "<i1", "uint16": "<u2", "int16": "<i2", "uint32": "<u4",
               "int32": "<i4", "float": "<f4", "double": "<f8"}
 

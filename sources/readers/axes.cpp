@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/axes.h"
 
 #include <cmath>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 double length(const Vec3& v) { return std::sqrt(dot(v, v)); }
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -40,4 +41,4 @@ AxesSummary summarizeAxes(const std::array<Vec3, 3>& axes, std::string_view sour
   return s;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

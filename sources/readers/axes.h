@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // World-space axis vectors of a grid (NRRD space directions, DICOM orientation, NIfTI sform,
 // MetaImage TransformMatrix). VoxLink serves voxels in index order with a spacing per axis, so a
 // reader keeps the vector lengths and says in a note when the axes are not +x, +y, +z.
@@ -7,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 using Vec3 = std::array<double, 3>;
 
@@ -24,4 +25,4 @@ double length(const Vec3& v);
 double dot(const Vec3& a, const Vec3& b);
 Vec3 cross(const Vec3& a, const Vec3& b);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/axis_reorder.h"
 
 #include <cmath>
 #include <cstring>
 #include <new>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 bool AxisOrder::identity() const {
   for (int a = 0; a < 3; ++a)
@@ -66,4 +67,4 @@ Result<std::vector<uint8_t>> reorderToWorldAxes(const std::vector<uint8_t>& data
   return out;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

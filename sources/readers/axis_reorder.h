@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Grids whose axes are the coordinate axes in another order or direction (a VTK Direction of
 // diag(-1, 1, 1), axis 0 along y, ...) reordered in memory so that index i, j, k runs along +x,
 // +y, +z: VoxLink grids have positive spacing along x, y, z, so this keeps every voxel's world
@@ -10,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "sources/readers/axes.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct AxisOrder {
   std::array<int, 3> worldAxis{0, 1, 2};  // world axis (0 = x) that grid axis a runs along
@@ -32,4 +33,4 @@ Result<std::vector<uint8_t>> reorderToWorldAxes(const std::vector<uint8_t>& data
                                                 std::array<uint32_t, 3>& dims, size_t elementSize,
                                                 const AxisOrder& order, const std::string& file);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/byte_order.h"
 
 #include <cstring>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 uint16_t byteSwapped(uint16_t v) { return __builtin_bswap16(v); }
@@ -39,4 +40,4 @@ void swapBytesInPlace(void* data, size_t count, size_t elementBytes) {
   }
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/child_probe.h"
 
 #include <fcntl.h>
@@ -18,7 +19,7 @@
 // callback here that saves the current input as a crash when the sanitizer ends the process.
 extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 namespace {
 
@@ -151,4 +152,4 @@ std::string describeDeath(const ProbeOutcome& outcome) {
   return "exit status " + std::to_string(outcome.exitStatus);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

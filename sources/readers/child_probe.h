@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Some libraries end the process on damaged input (GDCM asserts, OpenVDB corrupts its heap)
 // instead of reporting an error. A reader can first run the same library calls in a forked
 // child: if the child dies, the input is refused with a clear error and never read in-process.
@@ -8,7 +9,7 @@
 #include <optional>
 #include <string>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct ProbeOutcome {
   // Killed by a signal, or ended with a failure status before finishing (a sanitizer's report
@@ -35,4 +36,4 @@ std::string describeDeath(const ProbeOutcome& outcome);
 ProbeOutcome probeInChild(const std::function<void(const MarkFn& mark)>& work,
                           uint64_t memoryBytes = 0);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

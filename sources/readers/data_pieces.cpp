@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/data_pieces.h"
 
 #include <fcntl.h>
@@ -6,12 +7,12 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "format/regular_file.h"
+#include "base/regular_file.h"
 #include "sources/readers/byte_order.h"
 #include "sources/readers/inflate_stream.h"
 #include "sources/readers/raw_reader.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 namespace fs = std::filesystem;
@@ -38,7 +39,7 @@ Error missingFile(const std::string& label, const std::string& path) {
 // Byte offset just after `lines` newlines, counted from `from`.
 Result<uint64_t> skipLines(const std::string& path, uint64_t from, uint64_t lines,
                            const std::string& label) {
-  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "data file"));
+  VOXLINK_RETURN_IF_ERROR(base::requireRegularFile(path, "data file"));
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) return makeError(ErrorCode::kIo, label, ": cannot open ", path);
   uint64_t offset = from;
@@ -120,7 +121,7 @@ class PieceSource final : public VolumeSource {
     const ResolvedPiece& rp = pieces_[p];
     if (fdPiece_ != p) {
       closeFile();
-      VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(rp.piece.path, "data file"));
+      VOXLINK_RETURN_IF_ERROR(base::requireRegularFile(rp.piece.path, "data file"));
       fd_ = ::open(rp.piece.path.c_str(), O_RDONLY | O_CLOEXEC);
       if (fd_ < 0) return makeError(ErrorCode::kIo, layout_.label, ": cannot open ", rp.piece.path);
       fdPiece_ = p;
@@ -221,7 +222,7 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
     const auto size = fs::file_size(p.path, ec);
     if (ec) {
       if (!fs::exists(p.path, ec)) return missingFile(layout.label, p.path);
-      VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(p.path, "data file"));  // a FIFO...
+      VOXLINK_RETURN_IF_ERROR(base::requireRegularFile(p.path, "data file"));  // a FIFO...
       return makeError(ErrorCode::kIo, layout.label, ": cannot read ", p.path);
     }
     ResolvedPiece rp{p, p.startOffset, first};
@@ -268,4 +269,4 @@ Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayou
       new PieceSource(std::move(info), std::move(resolved), std::move(layout)));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The data part of header-described volumes (NRRD, MetaImage, NIfTI, Voreen): one or more
 // files, each holding a run of whole z slices, raw or deflate-compressed. A single raw file is
 // memory-mapped (zero-copy map()); several raw files are read with pread (random access);
@@ -12,7 +13,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 enum class PieceEncoding { kRaw, kDeflate };  // kDeflate: zlib or gzip framing
 
@@ -52,4 +53,4 @@ Status addDataFilePieces(const DataPiece& base, const std::vector<std::string>& 
 // `info` must be complete (dims, type, spacing, path, format).
 Result<std::unique_ptr<VolumeSource>> openDataPieces(VolumeInfo info, PieceLayout layout);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_frames.h"
 
 #include <cmath>
 
 #include "sources/readers/dicom_tags.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 constexpr const char* kEnhancedCt = "1.2.840.10008.5.1.4.1.1.2.1";
@@ -178,4 +179,4 @@ Status readFrames(const gdcm::DataSet& ds, const DicomSlice& first, DicomFileHea
   return Status::ok();
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The frames of a multi-frame DICOM file: RT Dose (GridFrameOffsetVector along the slice normal,
 // DoseGridScaling) and Enhanced CT/MR (Shared and Per-frame Functional Groups: plane position,
 // plane orientation, pixel measures, pixel value transformation).
@@ -7,7 +8,7 @@
 
 #include "sources/readers/dicom_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // Fills h.frames from `first` (the image-level values) and the file's per-frame information;
 // frames without a position of their own leave h.hasPosition false. kCorrupt when the per-frame
@@ -15,4 +16,4 @@ namespace voxlink::convert {
 // kUnsupported when frames differ in orientation or pixel spacing. Messages name the tag.
 Status readFrames(const gdcm::DataSet& ds, const DicomSlice& first, DicomFileHeader& h);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_header.h"
 
 #include <gdcmReader.h>
@@ -5,14 +6,14 @@
 #include <cmath>
 #include <filesystem>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "sources/readers/dicom_frames.h"
 #include "sources/readers/dicom_pixel_encoding.h"
 #include "sources/readers/dicom_tags.h"
 #include "sources/readers/gdcm_messages.h"
 #include "sources/readers/text_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 namespace fs = std::filesystem;
@@ -162,4 +163,4 @@ Result<DicomFileHeader> readDicomFileHeader(const std::string& file) {
   return h;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The header of one DICOM file as the series scan needs it: identity (series, modality), pixel
 // format, and one DicomSlice per frame with its position and rescale. Multi-frame files get
 // their frames from GridFrameOffsetVector (RT Dose) or the functional groups (Enhanced CT/MR).
@@ -8,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "sources/readers/axes.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct DicomSlice {
   std::string path;
@@ -60,4 +61,4 @@ struct DicomFileHeader {
 // (uncompressed pixel data shorter than Rows x Columns x BitsAllocated x NumberOfFrames).
 Result<DicomFileHeader> readDicomFileHeader(const std::string& file);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

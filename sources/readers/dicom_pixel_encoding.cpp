@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_pixel_encoding.h"
 
 #include <gdcmTransferSyntax.h>
@@ -7,7 +8,7 @@
 
 #include "sources/readers/dicom_tags.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 // The standard's names of the image syntaxes (GDCM's own strings are the UIDs).
@@ -150,4 +151,4 @@ void swapEachValue(void* values, size_t elementBytes, uint64_t count) {
   for (uint64_t i = 0; i < count; ++i, p += elementBytes) std::reverse(p, p + elementBytes);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

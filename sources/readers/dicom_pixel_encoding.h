@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // How a DICOM file's pixels are encoded, decided from its header before any pixel is decoded
 // (GDCM aborts the process on some encodings, and spends seconds and gigabytes on others before
 // failing), and the corrections the reader applies to what GDCM decodes.
@@ -9,10 +10,10 @@
 #include <cstdint>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // TransferSyntaxUID (0002,0010) of the file meta information; empty when absent (ACR-NEMA).
 std::string transferSyntaxUid(const gdcm::FileMetaInformation& meta);
@@ -39,4 +40,4 @@ void extendSign(void* values, ScalarType type, uint64_t count, int bitsStored);
 // Reverses the bytes of each `elementBytes`-byte value (big-endian pixels), in place.
 void swapEachValue(void* values, size_t elementBytes, uint64_t count);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

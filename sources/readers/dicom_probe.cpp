@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_probe.h"
 
 #include <fstream>
@@ -5,7 +6,7 @@
 
 #include "sources/readers/text_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 namespace fs = std::filesystem;
 
@@ -38,4 +39,4 @@ bool fileIsDicom(const std::string& path) {
   return fs::is_regular_file(path, ec) && looksLikeDicom(path);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

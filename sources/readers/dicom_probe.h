@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Recognizing DICOM files without a DICOM library (so the registry can route folders without
 // loading the DICOM plugin).
 #pragma once
@@ -5,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // A .dcm file, or a file with "DICM" at byte 128 (DICOMDIR, an index, is not an image).
 bool looksLikeDicom(const std::filesystem::path& p);
@@ -15,4 +16,4 @@ bool folderHoldsDicom(const std::string& dir);
 // True for one DICOM file (a multi-frame file is a volume by itself).
 bool fileIsDicom(const std::string& path);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

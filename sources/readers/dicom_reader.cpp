@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_reader.h"
 
 #include <gdcmBoxRegion.h>
@@ -18,7 +19,7 @@
 #include "sources/readers/reader_common.h"
 #include "sources/readers/rescale.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 class DicomSource final : public VolumeSource {
@@ -212,4 +213,4 @@ Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& d
       new DicomSource(std::move(info), std::move(series), !identity));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

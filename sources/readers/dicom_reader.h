@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DICOM volumes (GDCM 3) from a folder (searched recursively; one series picked with
 // OpenOptions::dicomSeries) or one file: single-frame files and the frames of multi-frame files
 // (RT Dose, Enhanced CT/MR) ordered by position along the slice normal, RescaleSlope/
@@ -10,7 +11,7 @@
 #include "sources/readers/dicom_series.h"
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // Through the DICOM plugin (libvoxlink_dicom.so, GDCM), loaded on first use.
 Result<std::unique_ptr<VolumeSource>> openDicomSeries(const std::string& dir,
@@ -21,4 +22,4 @@ Result<DicomFolderListing> listDicomFolder(const std::string& path);
 Result<std::unique_ptr<VolumeSource>> openDicomSeriesDirect(const std::string& dir,
                                                             const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

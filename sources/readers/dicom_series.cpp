@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_series.h"
 
 #include <algorithm>
@@ -5,13 +6,13 @@
 #include <filesystem>
 #include <map>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "sources/readers/dicom_pixel_encoding.h"
 #include "sources/readers/dicom_probe.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/gdcm_guard.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 namespace fs = std::filesystem;
@@ -357,4 +358,4 @@ Result<DicomSeries> scanDicomSeries(const std::string& path, const std::string& 
   return s;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

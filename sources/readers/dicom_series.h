@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Finding the DICOM series under a folder (recursive; headers only, read with GDCM), listing
 // them, and ordering the slices of one: single-frame files and the frames of multi-frame files
 // sorted by position along the slice normal, geometry checked for consistency.
@@ -8,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 #include "sources/readers/dicom_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct DicomSeries {
   std::vector<DicomSlice> slices;  // increasing `along`
@@ -53,4 +54,4 @@ Result<DicomFolderListing> listDicomSeries(const std::string& path);
 // slices at one position. Messages name the file (and frame) and the tag.
 Result<DicomSeries> scanDicomSeries(const std::string& path, const std::string& choice = {});
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

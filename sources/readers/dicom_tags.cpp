@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/dicom_tags.h"
 
 #include <gdcmSequenceOfItems.h>
@@ -6,7 +7,7 @@
 
 #include "sources/readers/text_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 std::string stringValue(const gdcm::DataSet& ds, uint16_t group, uint16_t element) {
   const gdcm::Tag tag(group, element);
@@ -59,4 +60,4 @@ std::optional<gdcm::DataSet> functionalGroup(const gdcm::DataSet* perFrame,
   return std::nullopt;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reading single DICOM elements and functional-group items from a GDCM data set, with errors
 // that name the file and the tag.
 #pragma once
@@ -10,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // The text of a string-valued element (DS, IS, UI, CS, LO), trailing padding removed; empty
 // when absent.
@@ -48,4 +49,4 @@ std::optional<gdcm::DataSet> functionalGroup(const gdcm::DataSet* perFrame,
                                              const gdcm::DataSet* shared, uint16_t group,
                                              uint16_t element);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,13 +1,14 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/file_list.h"
 
 #include <cctype>
 #include <filesystem>
 
-#include "format/checked_math.h"
-#include "format/limits.h"
+#include "base/checked_math.h"
+#include "base/limits.h"
 #include "sources/readers/text_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 struct NumberFormat {
@@ -140,4 +141,4 @@ bool naturalLess(std::string_view a, std::string_view b) {
   return a.size() - i < b.size() - j;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Lists of data files named by a header: the numbered form "quarter.%d 1 93 1" (NRRD
 // `data file:`, MetaImage `ElementDataFile`) and natural (number-aware) ordering of file names
 // for image stacks.
@@ -7,9 +8,9 @@
 #include <string_view>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // Expands "<format> <min> <max> <step>" where <format> holds exactly one integer conversion
 // (%d, %i, %u, with optional 0 flag and width, e.g. %03d; "%%" is a literal %). The step may be
@@ -29,4 +30,4 @@ std::string besideHeader(const std::string& headerPath, const std::string& name)
 // "slice2.png" < "slice10.png": digit runs compare by value, the rest byte by byte.
 bool naturalLess(std::string_view a, std::string_view b);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

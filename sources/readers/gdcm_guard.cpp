@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/gdcm_guard.h"
 
 #include <gdcmAttribute.h>
@@ -13,12 +14,12 @@
 #include <system_error>
 #include <vector>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "sources/readers/child_probe.h"
 #include "sources/readers/dicom_pixel_encoding.h"
 #include "sources/readers/dicom_tags.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 bool multiFrame(const gdcm::DataSet& ds) {
@@ -134,4 +135,4 @@ Status checkGdcmSurvives(const std::vector<std::string>& files) {
   return Status::ok();
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

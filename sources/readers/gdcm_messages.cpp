@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/gdcm_messages.h"
 
 #include <gdcmTrace.h>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 GdcmMessages::GdcmMessages()
     : warning_(&gdcm::Trace::GetWarningStream()), error_(&gdcm::Trace::GetErrorStream()) {
@@ -26,4 +27,4 @@ std::string GdcmMessages::reason() const {
   return {};
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

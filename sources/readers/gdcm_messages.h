@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GDCM reports problems by printing several lines to stderr. While one of these lives, its
 // warnings and errors go to a buffer instead, so a failed read can name GDCM's reason in our
 // own one-line error. GDCM's streams are global: DICOM files are read on one thread.
@@ -7,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 class GdcmMessages {
  public:
@@ -26,4 +27,4 @@ class GdcmMessages {
   std::ostream* error_;
 };
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

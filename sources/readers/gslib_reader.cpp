@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/gslib_reader.h"
 
 #include <algorithm>
@@ -9,7 +10,7 @@
 #include "sources/readers/reader_common.h"
 #include "sources/readers/text_stream.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 std::string lowerCopy(std::string s) {
@@ -236,4 +237,4 @@ Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
       new GslibSource(std::move(info), std::move(stream), std::move(header), column));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

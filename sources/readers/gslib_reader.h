@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GSLIB / GEO-EAS grids as SGeMS and the GSLIB programs write them: a title line, the number
 // of variables, one name per line, then one row per node (x fastest, then y, then z) with a
 // value per variable. Plain text, or the single member of a .zip archive (libzip).
@@ -14,7 +15,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
                                                 const OpenOptions& options);
@@ -22,4 +23,4 @@ Result<std::unique_ptr<VolumeSource>> openGslib(const std::string& path,
 // True for names ending in .sgems, .gslib, .geoeas, .gslib.zip or .sgems.zip (any case).
 bool looksLikeGslib(const std::string& path);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,17 +1,18 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/image_stack_reader.h"
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
-#include "format/limits.h"
-#include "format/regular_file.h"
+#include "base/limits.h"
+#include "base/regular_file.h"
 #include "imageio/image_io.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/reader_common.h"
 #include "sources/readers/reader_registry.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 namespace fs = std::filesystem;
@@ -94,7 +95,7 @@ class ImageStackSource final : public VolumeSource {
 Status checkNetpbmHeader(const std::string& file) {
   const std::string ext = lowerExtension(file);
   if (ext != ".pgm" && ext != ".pnm" && ext != ".ppm") return Status::ok();
-  VOXLINK_ASSIGN_OR_RETURN(std::string head, format::readRegularFilePrefix(file, 1024));
+  VOXLINK_ASSIGN_OR_RETURN(std::string head, base::readRegularFilePrefix(file, 1024));
   if (head.size() < 2 || head[0] != 'P' || head[1] < '1' || head[1] > '6') return Status::ok();
   if (head[1] == '1' || head[1] == '4') return Status::ok();  // bitmaps have no maxval
   size_t at = 2;
@@ -191,4 +192,4 @@ Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
       new ImageStackSource(std::move(info), std::move(files), !folder));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

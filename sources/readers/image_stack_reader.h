@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image stacks through OpenImageIO: a folder of 2-D slices (TIFF, PNG, ...) ordered by the
 // numbers in their names ("slice2" before "slice10"), or one multi-page TIFF.
 #pragma once
@@ -7,7 +8,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // File name endings treated as 2-D slice images.
 bool isSliceImageName(const std::string& path);
@@ -15,4 +16,4 @@ bool isSliceImageName(const std::string& path);
 Result<std::unique_ptr<VolumeSource>> openImageStack(const std::string& path,
                                                      const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

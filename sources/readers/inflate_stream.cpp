@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/inflate_stream.h"
 
 #include <zlib.h>
@@ -5,9 +6,9 @@
 #include <algorithm>
 #include <cstring>
 
-#include "format/regular_file.h"
+#include "base/regular_file.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct InflateStream::ZState {
   z_stream s{};
@@ -28,7 +29,7 @@ Result<std::unique_ptr<InflateStream>> InflateStream::open(const std::string& pa
   stream->path_ = path;
   stream->label_ = std::move(label);
   stream->offset_ = offset;
-  VOXLINK_RETURN_IF_ERROR(format::requireRegularFile(path, "data file"));
+  VOXLINK_RETURN_IF_ERROR(base::requireRegularFile(path, "data file"));
   stream->file_ = std::fopen(path.c_str(), "rb");
   if (!stream->file_) return makeError(ErrorCode::kIo, stream->label_, ": cannot open ", path);
   stream->input_.resize(kInputChunk);
@@ -173,4 +174,4 @@ Status InflateStream::expectEnd() {
                    got == 0 ? "" : "more than ", at + extra, " bytes, the header describes ", at);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sequential zlib/gzip decoding of one file region with bounded memory: the compressed data of
 // gzip NRRD files, zlib MetaImage files and .nii.gz files, decoded slice by slice.
 #pragma once
@@ -8,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 class InflateStream {
  public:
@@ -59,4 +60,4 @@ class InflateStream {
   uint64_t expected_ = 0;
 };
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

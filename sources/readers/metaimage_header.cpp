@@ -1,14 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/metaimage_header.h"
 
 #include <cmath>
 #include <map>
 #include <set>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/text_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 constexpr size_t kMaxHeaderBytes = limits::kMaxTextHeaderBytes;
@@ -185,4 +186,4 @@ Result<MetaImageHeader> parseMetaImageHeader(const std::string& path) {
   return MetaImageParser(path).parse();
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

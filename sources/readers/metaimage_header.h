@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A hand parser for MetaImage headers (.mhd detached, .mha with LOCAL data): "Key = Value" lines
 // ending with ElementDataFile. Keys MetaIO uses for things a scalar volume does not need
 // (AnatomicalOrientation, CenterOfRotation, ElementMin, ...) are ignored.
@@ -7,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 #include "sources/readers/axes.h"
 #include "sources/readers/data_pieces.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct MetaImageHeader {
   int ndims = 0;
@@ -33,4 +34,4 @@ struct MetaImageHeader {
 
 Result<MetaImageHeader> parseMetaImageHeader(const std::string& path);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

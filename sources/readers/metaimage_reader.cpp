@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/metaimage_reader.h"
 
 #include <filesystem>
@@ -6,7 +7,7 @@
 #include "sources/readers/metaimage_header.h"
 #include "sources/readers/reader_common.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
                                                     const OpenOptions& options) {
@@ -66,4 +67,4 @@ Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
   return openDataPieces(std::move(info), std::move(layout));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

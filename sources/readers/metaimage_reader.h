@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MetaImage volumes (.mhd + data file(s), .mha with LOCAL data), raw or zlib-compressed.
 #pragma once
 
@@ -6,9 +7,9 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Result<std::unique_ptr<VolumeSource>> openMetaImage(const std::string& path,
                                                     const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/nifti_reader.h"
 
 #include <nifti2_io.h>
@@ -10,14 +11,14 @@
 #include <mutex>
 #include <optional>
 
-#include "format/stderr_capture.h"
+#include "base/stderr_capture.h"
 #include "sources/readers/axes.h"
 #include "sources/readers/data_pieces.h"
 #include "sources/readers/reader_common.h"
 #include "sources/readers/reader_registry.h"
 #include "sources/readers/rescale.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 // nifti_image::byteorder values; nifti2_io.h defines MSB_FIRST only for its own .c file.
@@ -126,7 +127,7 @@ Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path,
   std::string reason;
   {
     // libnifti prints its complaints to stderr; they become part of our one line instead.
-    format::StderrCapture capture;
+    base::StderrCapture capture;
     nim.reset(nifti_image_read(path.c_str(), 0));
     reason = capture.firstLine();
   }
@@ -219,4 +220,4 @@ Result<std::unique_ptr<VolumeSource>> openNifti(const std::string& path,
   return rescaleSource(std::move(source), slope, intercept, served, "scl_slope/scl_inter");
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,14 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/npy_reader.h"
 
 #include <cstring>
 #include <fstream>
 
-#include "format/mapped_file.h"
+#include "base/mapped_file.h"
 #include "sources/readers/byte_order.h"
 #include "sources/readers/raw_reader.h"
 #include "sources/readers/reader_common.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 constexpr char kMagic[] = "\x93NUMPY";
@@ -163,7 +164,7 @@ Result<std::pair<ScalarType, Endian>> parseDescr(const std::string& descr,
 // Serves a Fortran-order array: element (x, y, z) lies at z + nz * (y + ny * x).
 class FortranNpySource final : public VolumeSource {
  public:
-  FortranNpySource(VolumeInfo info, format::MappedFile file, uint64_t offset, bool swap)
+  FortranNpySource(VolumeInfo info, base::MappedFile file, uint64_t offset, bool swap)
       : file_(std::move(file)), offset_(offset), swap_(swap) {
     info_ = std::move(info);
   }
@@ -187,7 +188,7 @@ class FortranNpySource final : public VolumeSource {
   }
 
  private:
-  format::MappedFile file_;
+  base::MappedFile file_;
   uint64_t offset_;
   bool swap_;
 };
@@ -264,7 +265,7 @@ Result<NpyHeader> parseNpyHeader(const uint8_t* bytes, uint64_t size, const std:
 }
 
 Result<std::unique_ptr<VolumeSource>> openNpy(const std::string& path, const OpenOptions& options) {
-  VOXLINK_ASSIGN_OR_RETURN(format::MappedFile file, format::MappedFile::open(path));
+  VOXLINK_ASSIGN_OR_RETURN(base::MappedFile file, base::MappedFile::open(path));
   VOXLINK_ASSIGN_OR_RETURN(const NpyHeader h, parseNpyHeader(file.data(), file.size(), path));
   VolumeInfo info;
   info.dims = h.dims;
@@ -303,4 +304,4 @@ Result<std::unique_ptr<VolumeSource>> openNpy(const std::string& path, const Ope
       new FortranNpySource(std::move(info), std::move(file), h.dataOffset, swap));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

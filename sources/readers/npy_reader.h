@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NumPy .npy arrays (format versions 1.0, 2.0 and 3.0), 1-D to 3-D (leading axes of size 1
 // are allowed beyond that), dtypes u1 i1 u2 i2 u4 i4 f4 f8 in either byte order.
 //
@@ -15,7 +16,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct NpyHeader {
   int majorVersion = 1, minorVersion = 0;
@@ -37,4 +38,4 @@ Result<std::unique_ptr<VolumeSource>> openNpy(const std::string& path, const Ope
 // True when the file starts with the .npy magic string.
 bool hasNpyMagic(const std::string& path);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

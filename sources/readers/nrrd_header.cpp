@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/nrrd_header.h"
 
 #include <algorithm>
@@ -7,11 +8,11 @@
 #include <map>
 #include <set>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "sources/readers/file_list.h"
 #include "sources/readers/text_header.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 constexpr size_t kMaxHeaderBytes = limits::kMaxTextHeaderBytes;
@@ -413,4 +414,4 @@ std::optional<ScalarType> nrrdTypeFromName(const std::string& name) {
 
 Result<NrrdHeader> parseNrrdHeader(const std::string& path) { return NrrdParser(path).parse(); }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A strict hand parser for NRRD headers (NRRD0001..NRRD0005, attached or detached), after the
 // teem format specification: field names in all the spellings teem accepts, data file lists,
 // line/byte skips. Only what a 3-D scalar volume needs is kept; fields that would change the
@@ -9,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "format/scalar_type.h"
 #include "sources/readers/axes.h"
 #include "sources/readers/data_pieces.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct NrrdHeader {
   int version = 0;  // the digit of NRRD000X
@@ -42,4 +43,4 @@ Result<NrrdHeader> parseNrrdHeader(const std::string& path);
 // nullopt for unknown names; kUnsupported for 64-bit integers and "block" is the caller's job.
 std::optional<ScalarType> nrrdTypeFromName(const std::string& name);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/nrrd_reader.h"
 
 #include <cmath>
@@ -8,7 +9,7 @@
 #include "sources/readers/nrrd_header.h"
 #include "sources/readers/reader_common.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 // Spacing and origin from 'spacings' or 'space directions' (axes `first`..`first+2`).
@@ -84,4 +85,4 @@ Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path,
   return openDataPieces(std::move(info), std::move(layout));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NRRD volumes (.nrrd attached, .nhdr detached): raw or gzip data in one file, one file per
 // slice ("data file: quarter.%d 1 93 1") or a LIST of files.
 #pragma once
@@ -7,8 +8,8 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Result<std::unique_ptr<VolumeSource>> openNrrd(const std::string& path, const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

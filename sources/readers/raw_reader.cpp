@@ -1,17 +1,18 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/raw_reader.h"
 
 #include <cstring>
 
-#include "format/mapped_file.h"
+#include "base/mapped_file.h"
 #include "sources/readers/byte_order.h"
 #include "sources/readers/reader_common.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 class RawSource final : public VolumeSource {
  public:
-  RawSource(VolumeInfo info, format::MappedFile file, uint64_t offset, bool swap)
+  RawSource(VolumeInfo info, base::MappedFile file, uint64_t offset, bool swap)
       : file_(std::move(file)), offset_(offset), swap_(swap) {
     info_ = std::move(info);
   }
@@ -42,7 +43,7 @@ class RawSource final : public VolumeSource {
   }
 
  private:
-  format::MappedFile file_;
+  base::MappedFile file_;
   uint64_t offset_;
   bool swap_;
 };
@@ -53,7 +54,7 @@ Result<std::unique_ptr<VolumeSource>> openRawData(const std::string& dataPath, V
                                                   Endian endian, uint64_t headerBytes,
                                                   bool exactSize) {
   VOXLINK_RETURN_IF_ERROR(checkVolumeShape(info, "dims"));
-  VOXLINK_ASSIGN_OR_RETURN(format::MappedFile file, format::MappedFile::open(dataPath));
+  VOXLINK_ASSIGN_OR_RETURN(base::MappedFile file, base::MappedFile::open(dataPath));
   const uint64_t needed = info.voxelCount() * scalarSize(info.type);  // bounded by checkVolumeShape
   const uint64_t available = file.size() > headerBytes ? file.size() - headerBytes : 0;
   const std::string shape =
@@ -89,4 +90,4 @@ Result<std::unique_ptr<VolumeSource>> openRaw(const std::string& path, const Ope
   return openRawData(path, std::move(info), options.endian, options.headerBytes, true);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Headerless raw volumes: dims, type and byte order come from the caller. Also the data part
 // of formats with a detached header (NRRD, MetaImage, Voreen .vvd) whose data is one raw file.
 #pragma once
@@ -7,7 +8,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // Maps `dataPath` and serves slices from bytes [headerBytes, headerBytes + volume size).
 // `info.path` names the volume in messages; the file must hold at least that many bytes.
@@ -20,4 +21,4 @@ Result<std::unique_ptr<VolumeSource>> openRawData(const std::string& dataPath, V
 // A raw file named on the command line (needs options.dims and options.type).
 Result<std::unique_ptr<VolumeSource>> openRaw(const std::string& path, const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

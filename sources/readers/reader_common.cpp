@@ -1,11 +1,12 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/reader_common.h"
 
 #include <cmath>
 #include <fstream>
 
-#include "format/regular_file.h"
+#include "base/regular_file.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file,
                  std::string_view field) {
@@ -64,7 +65,7 @@ Status applyOpenOptions(VolumeInfo& info, const OpenOptions& options) {
 }
 
 bool fileStartsWith(const std::string& path, std::string_view magic) {
-  if (!format::requireRegularFile(path)) return false;  // a FIFO would block the read
+  if (!base::requireRegularFile(path)) return false;  // a FIFO would block the read
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
   std::string head(magic.size(), '\0');
@@ -72,4 +73,4 @@ bool fileStartsWith(const std::string& path, std::string_view magic) {
   return in.gcount() == static_cast<std::streamsize>(magic.size()) && head == magic;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

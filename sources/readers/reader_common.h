@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Checks every header-driven reader applies to the VolumeInfo it built: sane dims, and the
 // command line's --dims/--type (must agree with the header) and --spacing (overrides it).
 #pragma once
@@ -7,14 +8,14 @@
 #include <string>
 #include <string_view>
 
-#include "format/checked_math.h"
-#include "format/limits.h"
+#include "base/checked_math.h"
+#include "base/limits.h"
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // kCorrupt for a zero axis, kTooLarge for an axis beyond limits::kMaxAxis or a volume beyond
-// limits::kMaxVoxels (format/limits.h); `field` names the header field or option.
+// limits::kMaxVoxels (base/limits.h); `field` names the header field or option.
 Status checkDims(const std::array<uint64_t, 3>& dims, const std::string& file,
                  std::string_view field);
 
@@ -37,4 +38,4 @@ Status checkOrigin(const std::array<double, 3>& origin, const std::string& file,
 // True when the first bytes of `path` are `magic` (false for unreadable files and directories).
 bool fileStartsWith(const std::string& path, std::string_view magic);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/reader_registry.h"
 
 #include <algorithm>
@@ -18,7 +19,7 @@
 #include "sources/readers/vti_reader.h"
 #include "sources/readers/vvd_reader.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 std::string lowerExtension(const std::string& path) {
   std::string name = std::filesystem::path(path).filename().string();
@@ -78,4 +79,4 @@ const std::vector<ReaderEntry>& readerRegistry() {
   return registry;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

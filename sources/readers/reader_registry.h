@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The table of volume readers that openVolume() consults in order.
 #pragma once
 
@@ -8,7 +9,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct ReaderEntry {
   std::string name;                                 // --format value
@@ -22,4 +23,4 @@ const std::vector<ReaderEntry>& readerRegistry();
 // Lower-case file name ending, with ".gz" kept: "x.nii.gz" -> ".nii.gz".
 std::string lowerExtension(const std::string& path);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

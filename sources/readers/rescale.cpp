@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/rescale.h"
 
 #include <algorithm>
@@ -6,7 +7,7 @@
 #include <type_traits>
 #include <vector>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 bool integral(double v) { return std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 1e15; }
@@ -104,4 +105,4 @@ std::unique_ptr<VolumeSource> rescaleSource(std::unique_ptr<VolumeSource> inner,
                                           std::move(note));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // value = stored * slope + intercept, applied while slices stream (DICOM RescaleSlope/Intercept,
 // NIfTI scl_slope/scl_inter).
 #pragma once
@@ -6,7 +7,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // The type the rescaled values are served as. With an integral slope and intercept, the
 // smallest of u8, i8, u16, i16, u32, i32 that holds [storedMin, storedMax] mapped through the
@@ -28,4 +29,4 @@ std::unique_ptr<VolumeSource> rescaleSource(std::unique_ptr<VolumeSource> inner,
                                             double intercept, ScalarType outType,
                                             const std::string& fieldNames);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/text_header.h"
 
 #include <algorithm>
@@ -5,9 +6,9 @@
 #include <charconv>
 #include <fstream>
 
-#include "format/regular_file.h"
+#include "base/regular_file.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 std::string_view trim(std::string_view text) {
   const auto isSpace = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
@@ -44,7 +45,7 @@ bool equalsIgnoreCase(std::string_view a, std::string_view b) {
 }
 
 Result<std::string> readFilePrefix(const std::string& path, size_t maxBytes) {
-  return format::readRegularFilePrefix(path, maxBytes);  // never blocks on a FIFO
+  return base::readRegularFilePrefix(path, maxBytes);  // never blocks on a FIFO
 }
 
 std::optional<std::string_view> LineCursor::next(bool acceptUnterminated) {
@@ -118,4 +119,4 @@ Result<bool> parseBool(std::string_view text, const std::string& file, std::stri
   return badField(file, field, "True or False", t);
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

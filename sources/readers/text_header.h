@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small text helpers shared by the hand-written header parsers (NRRD, MetaImage, Voreen .vvd):
 // line splitting that keeps byte offsets, trimming, and number lists whose errors name the
 // file, the field and the offending text.
@@ -9,9 +10,9 @@
 #include <string_view>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 std::string_view trim(std::string_view text);
 std::string toLower(std::string_view text);
@@ -56,4 +57,4 @@ Result<bool> parseBool(std::string_view text, const std::string& file, std::stri
 Error badField(const std::string& file, std::string_view field, std::string_view expected,
                std::string_view got);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/text_stream.h"
 
 #include <zip.h>
@@ -7,9 +8,9 @@
 #include <cstring>
 #include <vector>
 
-#include "format/mapped_file.h"
+#include "base/mapped_file.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 bool endsWithZip(const std::string& path) {
@@ -27,7 +28,7 @@ std::string_view stripCr(std::string_view s) {
 
 class MappedTextStream final : public TextStream {
  public:
-  MappedTextStream(format::MappedFile file, std::string name) : file_(std::move(file)) {
+  MappedTextStream(base::MappedFile file, std::string name) : file_(std::move(file)) {
     name_ = std::move(name);
   }
   Result<bool> nextLine(std::string_view& line) override {
@@ -47,7 +48,7 @@ class MappedTextStream final : public TextStream {
   }
 
  private:
-  format::MappedFile file_;
+  base::MappedFile file_;
   size_t pos_ = 0;
 };
 
@@ -136,8 +137,8 @@ class ZipTextStream final : public TextStream {
 
 Result<std::unique_ptr<TextStream>> openTextStream(const std::string& path) {
   if (endsWithZip(path)) return ZipTextStream::open(path);
-  VOXLINK_ASSIGN_OR_RETURN(format::MappedFile file, format::MappedFile::open(path));
+  VOXLINK_ASSIGN_OR_RETURN(base::MappedFile file, base::MappedFile::open(path));
   return std::unique_ptr<TextStream>(new MappedTextStream(std::move(file), path));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Line-by-line reading of a text file, plain or the single member of a .zip archive (libzip),
 // with rewind; what the GSLIB/GEO-EAS reader streams from.
 #pragma once
@@ -6,9 +7,9 @@
 #include <string>
 #include <string_view>
 
-#include "format/error.h"
+#include "base/error.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 class TextStream {
  public:
@@ -28,4 +29,4 @@ class TextStream {
 // Opens `path`; a name ending in .zip opens its only file member.
 Result<std::unique_ptr<TextStream>> openTextStream(const std::string& path);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

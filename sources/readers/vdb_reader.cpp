@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/vdb_reader.h"
 
 #include <openvdb/io/File.h>
@@ -10,7 +11,7 @@
 #include "sources/readers/child_probe.h"
 #include "sources/readers/reader_common.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 using openvdb::Coord;
@@ -191,4 +192,4 @@ Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path,
   return std::unique_ptr<VolumeSource>(new VdbSource(std::move(info), grid, box));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // OpenVDB .vdb float grids served as a dense volume over the active voxel bounding box, slab by
 // slab, so memory stays bounded by the grid itself plus the slabs asked for.
 #pragma once
@@ -7,7 +8,7 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 // The grid is options.vdbGrid, or the first float grid in the file.
 // Through the OpenVDB plugin (libvoxlink_vdb.so), loaded on first use.
@@ -16,4 +17,4 @@ Result<std::unique_ptr<VolumeSource>> openVdb(const std::string& path, const Ope
 Result<std::unique_ptr<VolumeSource>> openVdbDirect(const std::string& path,
                                                     const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/vti_reader.h"
 
 #include <zlib.h>
@@ -7,8 +8,8 @@
 #include <map>
 #include <vector>
 
-#include "format/checked_math.h"
-#include "format/limits.h"
+#include "base/checked_math.h"
+#include "base/limits.h"
 #include "sources/readers/axes.h"
 #include "sources/readers/axis_reorder.h"
 #include "sources/readers/byte_order.h"
@@ -16,7 +17,7 @@
 #include "sources/readers/text_header.h"
 #include "sources/readers/xml_tags.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 Result<std::vector<uint8_t>> decodeBase64(std::string_view text, const std::string& file) {
@@ -438,4 +439,4 @@ Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const Ope
   return std::unique_ptr<VolumeSource>(new MemorySource(std::move(info), std::move(data)));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

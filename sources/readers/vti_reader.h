@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK XML image data (.vti): one piece, one scalar point-data array, inline base64 or appended
 // (raw or base64) data, optionally zlib-compressed in blocks. The array is decoded whole at open
 // (VTK XML keeps it inside the XML) and then served from memory.
@@ -8,8 +9,8 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Result<std::unique_ptr<VolumeSource>> openVti(const std::string& path, const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

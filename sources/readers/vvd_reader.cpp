@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/vvd_reader.h"
 
 #include <map>
 
-#include "format/limits.h"
+#include "base/limits.h"
 #include "sources/readers/axes.h"
 #include "sources/readers/data_pieces.h"
 #include "sources/readers/file_list.h"
@@ -10,7 +11,7 @@
 #include "sources/readers/text_header.h"
 #include "sources/readers/xml_tags.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 constexpr size_t kMaxHeaderBytes = limits::kMaxVvdHeaderBytes;
@@ -134,4 +135,4 @@ Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const Ope
   return openDataPieces(std::move(info), std::move(layout));
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Voreen .vvd volumes: an XML header naming one little-endian raw file (RawData filename,
 // format, x, y, z) with Spacing and Offset meta items.
 #pragma once
@@ -7,8 +8,8 @@
 
 #include "sources/volume_source.h"
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 Result<std::unique_ptr<VolumeSource>> openVvd(const std::string& path, const OpenOptions& options);
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sources/readers/xml_tags.h"
 
 #include <algorithm>
 #include <pugixml.hpp>
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 namespace {
 
 // Escapes and CDATA as XML defines them; attribute whitespace kept as written (the readers
@@ -111,4 +112,4 @@ size_t XmlHeader::find(std::string_view name, size_t from, size_t until) const {
   return kNone;
 }
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

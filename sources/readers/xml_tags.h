@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The elements of an XML header (Voreen .vvd, VTK .vti), parsed by pugixml: names, attributes
 // and the text each holds, in document order. The readers look elements up by name and range.
 #pragma once
@@ -8,13 +9,13 @@
 #include <string_view>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace pugi {
 class xml_document;
 }
 
-namespace voxlink::convert {
+namespace voxlink::sources {
 
 struct XmlTag {
   std::string name;
@@ -62,4 +63,4 @@ class XmlHeader {
   bool endedOpen_ = false;
 };
 
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bad input through the command line: one line on stderr naming the file and the field, a
 // non-zero exit status, and no output file (not even a temporary one) left behind.
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <random>
 
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -172,7 +174,7 @@ TEST_F(CliBadInput, DamagedVoxLinkFilesForInfoAndValidate) {
   // Voxel bases pointing past the voxels: the header and table are fine, so the file opens,
   // and the OpenVDB comparison (which walks every voxel) must refuse it rather than crash.
   {
-    auto file = format::VoxLinkFile::open(out);
+    auto file = pack::openFile(out);
     ASSERT_TRUE(file) << file.message();
     const format::SectionEntry* bvox = file->findSection(format::SectionId::kBrickVoxelBase);
     ASSERT_NE(bvox, nullptr);
@@ -254,7 +256,7 @@ TEST_F(CliBadInput, RandomDamageNeverCrashesInfoOrValidate) {
   const std::string out = convertedFile(rawVolume());
   ASSERT_FALSE(out.empty());
   const auto original = readBytes(out);
-  auto file = format::VoxLinkFile::open(out);
+  auto file = pack::openFile(out);
   ASSERT_TRUE(file) << file.message();
   const std::vector<format::SectionEntry> sections = file->sectionTable();
   std::mt19937 rng(2026);

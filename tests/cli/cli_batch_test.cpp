@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink convert --batch LIST --out-dir DIR` in one process: one JSON line per file, a failed
 // file reported while the others are converted, a summary, --resume, and outputs that are the
 // bytes a single `voxlink convert` writes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DICOM through the command line: `dicom list` (table and JSON) on a folder holding the CT head
 // series and the RT Dose file, `convert --series`, and `info` reporting the dose scaling.
 #include <gtest/gtest.h>

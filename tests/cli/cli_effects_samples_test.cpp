@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every sample scene of docs/effects.md built as a user builds it (at its file's resolution) and
 // ray traced at 64x64 through the executable with every effect on: the GL ray tracer against the
 // float64 tracer over the same voxel scene, at the 45 dB target, with no ray dropped. The sample

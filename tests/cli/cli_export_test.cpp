@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink export to dense NRRD: read back by the project's NRRD reader, the source's type and
 // spacing kept, removed voxels = the fill, and converting the export again with the same
 // threshold gives the same voxels and values; bad fills and paths leave no file.
@@ -12,6 +13,7 @@
 #include "format/file_writer.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "sources/volume_source.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
@@ -26,7 +28,7 @@ struct Voxel {
 };
 
 std::vector<Voxel> voxelsOf(const std::string& path) {
-  auto file = format::VoxLinkFile::open(path);
+  auto file = pack::openFile(path);
   EXPECT_TRUE(file.isOk()) << path;
   std::vector<Voxel> out;
   if (!file) return out;
@@ -65,13 +67,13 @@ TEST(CliExport, DenseNrrdKeepsTypeSpacingAndFill) {
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("filled with -999"), std::string::npos) << r.out;
 
-  auto volume = convert::openVolume(dir.file("v.nrrd"));
+  auto volume = sources::openVolume(dir.file("v.nrrd"));
   ASSERT_TRUE(volume.isOk()) << volume.message();
-  const convert::VolumeInfo& info = (*volume)->info();
+  const sources::VolumeInfo& info = (*volume)->info();
   EXPECT_EQ(info.type, ScalarType::kI16);
   EXPECT_EQ(info.dims, (std::array<uint32_t, 3>{20, 18, 16}));
   EXPECT_EQ(info.spacing, (std::array<double, 3>{0.5, 1, 2}));
-  auto bytes = convert::readAll(**volume);
+  auto bytes = sources::readAll(**volume);
   ASSERT_TRUE(bytes.isOk());
   ASSERT_EQ(bytes->size(), source.size() * 2);
   const auto* dense = reinterpret_cast<const int16_t*>(bytes->data());
@@ -114,13 +116,13 @@ TEST(CliExport, RawPlusDetachedHeaderHoldsTheSameVolume) {
   EXPECT_NE(r.out.find("(header + .raw)"), std::string::npos) << r.out;
   // The .raw is the bare data: exactly the attached file's data, readable with dims and type.
   EXPECT_EQ(std::filesystem::file_size(dir.file("kept.raw")), source.size() * 2);
-  auto attached = convert::openVolume(dir.file("a.nrrd"));
-  auto detached = convert::openVolume(dir.file("kept.nhdr"));
+  auto attached = sources::openVolume(dir.file("a.nrrd"));
+  auto detached = sources::openVolume(dir.file("kept.nhdr"));
   ASSERT_TRUE(attached.isOk()) << attached.message();
   ASSERT_TRUE(detached.isOk()) << detached.message();
   EXPECT_EQ((*detached)->info().spacing, (std::array<double, 3>{0.5, 1, 2}));
-  EXPECT_EQ(*convert::readAll(**detached), *convert::readAll(**attached));
-  EXPECT_EQ(*convert::readAll(**detached), readBytes(dir.file("kept.raw")));
+  EXPECT_EQ(*sources::readAll(**detached), *sources::readAll(**attached));
+  EXPECT_EQ(*sources::readAll(**detached), readBytes(dir.file("kept.raw")));
   // A raw name that is the input itself is refused, and nothing is written.
   std::filesystem::copy_file(dir.file("v.vxl"), dir.file("x.raw"));
   r = runVoxlink({"export", dir.file("x.raw"), "-o", dir.file("x.nhdr")});

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Faults during a conversion: the process killed (SIGKILL, SIGTERM), an output folder it may not
 // write, and a file past 4 GiB (64-bit offsets). Whatever happens, the output path holds either
 // nothing or a complete file, and no temporary is left where the OS lets us avoid one.
@@ -18,6 +19,7 @@
 #include <thread>
 
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -159,7 +161,7 @@ TEST(CliFaults, FileBeyondFourGiBRoundTrips) {
   EXPECT_GT(fs::file_size(vxl), uint64_t{1} << 32);
   r = runVoxlink({"validate", vxl});
   EXPECT_EQ(r.status, 0) << r.err;
-  auto file = format::VoxLinkFile::open(vxl);
+  auto file = pack::openFile(vxl);
   ASSERT_TRUE(file) << file.message();
   EXPECT_EQ(file->voxelCount(), kSide * kSide * kSide);
   EXPECT_GT(file->header().sectionTableOffset, uint64_t{1} << 32);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hostile input through the command line, one test per class of defect: sizes that overflow,
 // .vxl files that fail validation, outputs that must not be overwritten, non-regular inputs,
 // and messages. Every failure is one line on stderr and a non-zero exit status.
@@ -16,8 +17,9 @@
 #include <limits>
 #include <thread>
 
-#include "format/crc32c.h"
+#include "base/crc32c.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -92,7 +94,7 @@ TEST(CliHardening, ReadersRefuseFilesThatFailValidation) {
   TempDir dir;
   const std::string file = convertedFile(dir);
   auto bytes = readBytes(file);
-  auto parsed = format::VoxLinkFile::fromBytes(bytes, "x");
+  auto parsed = pack::fileFromBytes(bytes, "x");
   ASSERT_TRUE(parsed) << parsed.message();
   const auto table = parsed->sectionTable();
   const uint64_t tableOffset = parsed->header().sectionTableOffset;
@@ -112,7 +114,7 @@ TEST(CliHardening, ReadersRefuseFilesThatFailValidation) {
   auto damaged = bytes;
   std::memset(damaged.data() + table[bocc].offset, 0xff, table[bocc].bytes);
   format::SectionEntry entry = table[bocc];
-  entry.crc = format::crc32c(damaged.data() + entry.offset, entry.bytes);
+  entry.crc = base::crc32c(damaged.data() + entry.offset, entry.bytes);
   std::memcpy(damaged.data() + tableOffset + bocc * sizeof(entry), &entry, sizeof(entry));
   writeBytes(dir.file("bocc.vxl"), damaged);
   expectRefusedLikeValidate(dir, dir.file("bocc.vxl"));
@@ -138,7 +140,7 @@ TEST(CliHardening, ValidFilesWithExtremeValueRangesRender) {
     ASSERT_EQ(h.voxelCount, 0u);
     h.valueMin = h.valueMax = std::numeric_limits<double>::quiet_NaN();
     h.headerCrc = 0;
-    h.headerCrc = format::crc32c(&h, sizeof h);
+    h.headerCrc = base::crc32c(&h, sizeof h);
     std::memcpy(bytes.data(), &h, sizeof h);
     writeBytes(dir.file("nan.vxl"), bytes);
   }
@@ -168,7 +170,7 @@ TEST(CliHardening, F64BeyondFloatRangeConvertsToAValidFile) {
   ASSERT_EQ(r.status, 0) << r.err;
   r = runVoxlink({"validate", dir.file("huge.vxl")});
   EXPECT_EQ(r.status, 0) << r.err;
-  auto file = format::VoxLinkFile::open(dir.file("huge.vxl"));
+  auto file = pack::openFile(dir.file("huge.vxl"));
   ASSERT_TRUE(file) << file.message();
   // Stored as f32 (scaled): the relative rounding error of f32.
   EXPECT_NEAR(file->header().valueMax, 1e300, 1e300 * 0x1p-24);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink info` says where the grid is: origin, spacing, world bounds, slicing axis and brick
 // grid, in the text report and in --json, for a converted CT and for a scene.
 #include <gtest/gtest.h>
@@ -6,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -59,7 +61,7 @@ TEST(CliInfoGrid, SceneBoundsHoldItsObjectsAndMatchTheHeader) {
   r = runVoxlink({"info", vxl, "--json", "--no-vdb"});
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  auto file = format::VoxLinkFile::open(vxl);
+  auto file = pack::openFile(vxl);
   ASSERT_TRUE(file) << file.message();
   const format::FileHeader& h = file->header();
   const auto origin = triple(j["origin"]), spacing = triple(j["spacing"]);

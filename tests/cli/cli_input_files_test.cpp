@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // -o may not name any file an input reads, not only the path on the command line: a detached
 // NRRD's or MetaImage's data files (one or a list), a DICOM folder's slices, the data file of a
 // scene's volume object, an image of a stack, a VVD's raw file, the source `render --reference`

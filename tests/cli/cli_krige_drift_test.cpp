@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink krige --drift` and `--external-drift COLUMN --external-drift-grid FILE` as a user
 // runs them: a trend inside the drift's span is reproduced exactly at every node (also beyond
 // the samples), and bad drift input fails in one line with nothing written.
@@ -50,9 +51,9 @@ std::string writeSamples(TempDir& dir) {
 }
 
 std::vector<double> readGrid(const std::string& path) {
-  auto source = convert::openVolume(path);
+  auto source = sources::openVolume(path);
   EXPECT_TRUE(source) << source.message();
-  auto bytes = convert::readAll(**source);
+  auto bytes = sources::readAll(**source);
   std::vector<double> out(bytes->size() / sizeof(double));
   std::memcpy(out.data(), bytes->data(), bytes->size());
   return out;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxlink pack / unpack as a user runs them: the unpacked file is the original byte for byte
 // (a CT volume and a scene with surfaces and spheres), every command reads the packed file, and
 // damage or misuse ends with one line, a non-zero exit and no output file.
@@ -6,7 +7,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "format/crc32c.h"
+#include "base/crc32c.h"
 #include "format/layout.h"
 #include "format/voxlink_file.h"
 #include "tests/cli/run_command.h"
@@ -182,7 +183,7 @@ TEST(CliPack, DamagedTableAndReservedWordsNameTheirCause) {
   format::SectionEntry original;
   std::memcpy(&original, packed.data() + firstPackEntry, sizeof original);
   std::memcpy(reservedPack.data() + firstPackEntry + 36, &five, 4);  // codec at 32, reserved 36
-  pack.crc = format::crc32c(reservedPack.data() + pack.offset, pack.bytes);
+  pack.crc = base::crc32c(reservedPack.data() + pack.offset, pack.bytes);
   std::memcpy(reservedPack.data() + header.sectionTableOffset + packIndex * sizeof pack, &pack,
               sizeof pack);
   EXPECT_EQ(unpackMessage(reservedPack, "reserved_pack.vxl"),

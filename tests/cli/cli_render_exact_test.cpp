@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink render-exact` as a user runs it: a scene built and compared with its exact image, and
 // the inputs it refuses (a volume scene, a .vxl built from another scene, bad effects) with one
 // line naming the file and no image left behind.

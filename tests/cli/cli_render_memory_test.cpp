@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Memory that follows what a file stores, not its grid (issue 30): a valid file holding one
 // voxel in a 65536 x 32768 x 1 grid of 4-voxel bricks took 72 s and 14.3 GB to render 64x64
 // (brick tables over all 134 million bricks) and a dense export of a one-slice volume allocated

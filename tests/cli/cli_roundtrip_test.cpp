@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The main job through the command line: convert, info (text and JSON), validate.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink scene build` on the real meshes and particles, as a user runs it: the Cornell box's
 // axis-aligned walls, a molecule beside a mesh, a CT volume with geometry inside it, and the
 // rule that a scene holding only a volume keeps exactly the converter's voxels.
@@ -15,6 +16,7 @@
 #include "format/validator.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 
@@ -32,7 +34,7 @@ TEST(CliScene, CornellBoxWallsAreOneVoxelThick) {
   auto r = runVoxlink({"scene", "build", scene, "-o", dir.file("cornell.vxl")});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("surface from 36 triangles"), std::string::npos) << r.out;
-  auto f = format::VoxLinkFile::open(dir.file("cornell.vxl"));
+  auto f = pack::openFile(dir.file("cornell.vxl"));
   ASSERT_TRUE(f) << f.message();
   ASSERT_TRUE(format::validateFile(*f));
   EXPECT_TRUE(f->isScene());
@@ -65,7 +67,7 @@ TEST(CliScene, MoleculeBesideBunnyWithExactSpheres) {
        "transform": {"scale": 4, "translate": [60, -60, 20]}}]})");
   auto r = runVoxlink({"scene", "build", scene, "-o", dir.file("mol.vxl")});
   ASSERT_EQ(r.status, 0) << r.err;
-  auto f = format::VoxLinkFile::open(dir.file("mol.vxl"));
+  auto f = pack::openFile(dir.file("mol.vxl"));
   ASSERT_TRUE(f) << f.message();
   ASSERT_TRUE(format::validateFile(*f));
   EXPECT_EQ(f->header().sphereCount, 6315u);
@@ -87,8 +89,8 @@ TEST(CliScene, VolumeOnlySceneKeepsTheConvertersVoxels) {
   writeText(dir.file("t.scene.json"), R"({"objects": [{"type": "volume", "file": "tooth.vxl"}]})");
   auto r = runVoxlink({"scene", "build", dir.file("t.scene.json"), "-o", dir.file("scene.vxl")});
   ASSERT_EQ(r.status, 0) << r.err;
-  auto a = format::VoxLinkFile::open(dir.file("tooth.vxl"));
-  auto b = format::VoxLinkFile::open(dir.file("scene.vxl"));
+  auto a = pack::openFile(dir.file("tooth.vxl"));
+  auto b = pack::openFile(dir.file("scene.vxl"));
   ASSERT_TRUE(a && b);
   EXPECT_FALSE(b->isScene());  // volume only: a version 1 file
   for (format::SectionId id : format::kRequiredSections) {
@@ -115,8 +117,8 @@ TEST(CliScene, GeometryInsideACtVolume) {
       {"type": "sphere", "center": [20, 20, 20], "radius": 8}]})");
   auto r = runVoxlink({"scene", "build", dir.file("t.scene.json"), "-o", dir.file("scene.vxl")});
   ASSERT_EQ(r.status, 0) << r.err;
-  auto tooth = format::VoxLinkFile::open(dir.file("tooth.vxl"));
-  auto f = format::VoxLinkFile::open(dir.file("scene.vxl"));
+  auto tooth = pack::openFile(dir.file("tooth.vxl"));
+  auto f = pack::openFile(dir.file("scene.vxl"));
   ASSERT_TRUE(tooth && f);
   ASSERT_TRUE(format::validateFile(*f)) << format::validateFile(*f).message();
   EXPECT_EQ(f->header().volumeVoxelCount, tooth->voxelCount());
@@ -206,7 +208,7 @@ TEST(CliScene, OverlappingObjectsShareVoxels) {
   EXPECT_GE(c2[1], c1[1]) << two.out;
   EXPECT_LE(c2[1], c1[1] + 2 * 40u) << two.out;
   EXPECT_LT(c2[0], c2[1] + c2[2]) << two.out;
-  auto f = format::VoxLinkFile::open(dir.file("two.vxl"));
+  auto f = pack::openFile(dir.file("two.vxl"));
   ASSERT_TRUE(f) << f.message();
   EXPECT_TRUE(format::validateFile(*f));
 }

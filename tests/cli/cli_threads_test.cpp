@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // --threads 1 runs every command that takes it on one thread, and --threads 2 gives the same bytes.
-// The count comes from the parallel facility itself (format/parallel_for.h): with
+// The count comes from the parallel facility itself (base/parallel_for.h): with
 // VOXLINK_THREAD_CENSUS set it writes each thread that does its work to that file once, so the
 // test sees the real dispatch path, not a thread list that MPI or a plugin may add idle threads to.
 #include <gtest/gtest.h>

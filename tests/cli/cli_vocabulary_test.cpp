@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The options every subcommand shares (docs/cli.md): each one `voxlink --help` lists accepts
 // -q/--quiet, the commands that report progress accept --progress, and -q leaves stdout and
 // stderr empty on success while errors still print.

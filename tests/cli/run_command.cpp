@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/cli/run_command.h"
 
 #include <fcntl.h>

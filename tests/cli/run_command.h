@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs the `voxlink` executable as a user would and captures its exit status and output.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Bad input to the converter: one clear error, the right code, and no output file left.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,9 @@
 #include "tests/support/test_util.h"
 
 namespace voxlink::convert {
+
+using sources::VolumeSource;
+
 namespace {
 
 TEST(ConverterBadInput, NaNAndInfinityNameTheVoxel) {

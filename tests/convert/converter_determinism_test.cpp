@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The output is byte-identical for any slab size, thread count and access path.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Conversion against brute force: every kept voxel is present with its exact value, nothing
 // else is stored, and every gradient is the central difference of the dense source.
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include "format/gradient_codec.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
+#include "pack/open_file.h"
 #include "tests/convert/volume_fixtures.h"
 #include "tests/support/test_util.h"
 
@@ -50,7 +52,7 @@ void checkConversion(const testing::MemorySource& src, const ConvertOptions& opt
   auto& source = const_cast<testing::MemorySource&>(src);
   auto summary = convertVolume(source, options, out);
   ASSERT_TRUE(summary) << summary.message();
-  auto file = format::VoxLinkFile::open(out);
+  auto file = pack::openFile(out);
   ASSERT_TRUE(file) << file.message();
   auto report = format::validateFile(*file);
   ASSERT_TRUE(report) << report.message();
@@ -116,7 +118,7 @@ TEST(ConverterRoundTrip, UnionOfIntervalsAndTransferFunction) {
   ConvertOptions o;
   o.classification = *thresholdClassification({"20,40", "150,200"});
   checkConversion<uint8_t>(*ball, o);
-  auto tf = format::parseTransferFunction(
+  auto tf = tf::parseTransferFunction(
       R"({"opacity":[[0,0],[60,0],[80,0.5],[160,0],[200,0],[230,1]]})", "tf");
   ASSERT_TRUE(tf);
   o.classification = tfClassification(*tf);
@@ -173,7 +175,7 @@ TEST(ConverterRoundTrip, ValueTypeFollowsTheKeptRange) {
   s = convertVolume(*ct, o, dir.file("b.vxl"));
   ASSERT_TRUE(s);
   EXPECT_EQ(s->storedType, StoredType::kU8);
-  auto file = format::VoxLinkFile::open(dir.file("b.vxl"));
+  auto file = pack::openFile(dir.file("b.vxl"));
   ASSERT_TRUE(file);
   EXPECT_EQ(file->header().valueOffset, 1000.0);
   EXPECT_EQ(file->header().valueMin, 1000.0);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Sources with inactive voxels (OpenVDB): the converter keeps a voxel only where the source says
 // it is active and the classification keeps its value, on every code path (8-bit counting in
 // narrow lanes, table and range keeps, floats, brick sizes, slab sizes, threads). Values and
@@ -10,6 +11,7 @@
 #include "convert/converter.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
+#include "pack/open_file.h"
 #include "tests/convert/volume_fixtures.h"
 #include "tests/support/test_util.h"
 
@@ -32,10 +34,10 @@ void expectOnlyActiveKept(testing::MemorySource& values, const ConvertOptions& o
   testing::PartlyActiveSource masked(values, blob);
   auto summary = convertVolume(masked, options, dir.file("masked.vxl"));
   ASSERT_TRUE(summary) << summary.message();
-  auto file = format::VoxLinkFile::open(dir.file("masked.vxl"));
+  auto file = pack::openFile(dir.file("masked.vxl"));
   ASSERT_TRUE(file) << file.message();
   ASSERT_TRUE(format::validateFile(*file));
-  auto reference = format::VoxLinkFile::open(dir.file("whole.vxl"));
+  auto reference = pack::openFile(dir.file("whole.vxl"));
   ASSERT_TRUE(reference) << reference.message();
   const format::VoxelLocator locator(*file), referenceLocator(*reference);
   const auto& info = values.info();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The converter's fast keep rules agree with Classification::keeps() on every value.
 #include "convert/keep_rule.h"
 
@@ -13,7 +14,7 @@ std::vector<Classification> classifications() {
   cs.push_back(*thresholdClassification({"-20,-3.5", "100,100", "30000,70000"}));
   cs.push_back(*keepOutsideClassification(-1.96, 1.96, std::nullopt, std::nullopt));
   cs.push_back(*keepOutsideClassification(-1.96, 1.96, 100.0, 15.0));
-  auto tf = format::parseTransferFunction(
+  auto tf = tf::parseTransferFunction(
       R"({"opacity":[[0,0],[60,0],[61,0.5],[90,0],[90,1],[120,0]]})", "tf");
   cs.push_back(tfClassification(*tf));
   cs.push_back(keepAllClassification());

@@ -1,28 +1,42 @@
-// Packed files (format/packed_file.h) on converted real CT: they unpack to the original bytes,
+// SPDX-License-Identifier: BSD-3-Clause
+// Packed files (pack/packed_file.h) on converted real CT: they unpack to the original bytes,
 // are much smaller, and every kind of damage is refused with a message naming the section.
-#include "format/packed_file.h"
+#include "pack/packed_file.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
 
+#include "base/crc32c.h"
+#include "base/parallel_for.h"
 #include "convert/converter.h"
-#include "format/crc32c.h"
-#include "format/dense_brick_rows.h"
 #include "format/derived_sections.h"
 #include "format/file_writer.h"
 #include "format/gradient_codec.h"
-#include "format/gradient_predictor.h"
-#include "format/parallel_for.h"
 #include "format/scene_builder.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
+#include "pack/dense_brick_rows.h"
+#include "pack/gradient_predictor.h"
+#include "pack/open_file.h"
 #include "sources/volume_source.h"
 #include "tests/convert/volume_fixtures.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::format {
+
+using pack::addPredictedGradientCodes;
+using pack::denseBrickRowsAvailable;
+using pack::GradientPrediction;
+using pack::GradientRangePredictor;
+using pack::kPackChunkBytes;
+using pack::packFile;
+using pack::PackOptions;
+using pack::predictGradientCodes;
+using pack::predictGradientCodesPerVoxel;
+using pack::unpackFile;
+
 namespace {
 
 using ::voxlink::testing::TempDir;
@@ -33,7 +47,7 @@ constexpr const char* kCarp = "ct/openscivis_lossy/carp_128x128x256_uint16_lossy
 std::string convertReal(const TempDir& dir, const std::string& relative, const char* threshold,
                         const char* valueType = nullptr, uint32_t brickSize = 8,
                         Axis axis = Axis::kZ) {
-  auto source = convert::openVolume(testing::dataPath(relative), {});
+  auto source = sources::openVolume(testing::dataPath(relative), {});
   EXPECT_TRUE(source) << source.message();
   convert::ConvertOptions options;
   options.brickSize = brickSize;
@@ -55,7 +69,7 @@ struct Packed {
 
 Packed packReal(const TempDir& dir, const std::string& path, bool predict = true) {
   Packed out;
-  auto file = openValidatedFile(path);
+  auto file = pack::openValidatedFile(path);
   EXPECT_TRUE(file) << file.message();
   PackOptions options;
   options.predictGradients = predict;
@@ -94,7 +108,7 @@ TEST(PackedFile, RealCtUnpacksToTheSameBytesAndIsSmaller) {
           << p.packed.size() << " of " << p.original.size();
       sizes[predict] = p.packed.size();
       // Every reader opens it: open() unpacks, the validator accepts what comes out.
-      auto opened = openValidatedFile(dir.file("packed.vxl"));
+      auto opened = pack::openValidatedFile(dir.file("packed.vxl"));
       ASSERT_TRUE(opened) << opened.message();
       EXPECT_EQ(opened->packedBytes(), p.packed.size());
     }
@@ -113,7 +127,7 @@ TEST(PackedFile, GradientsOfSeveralChunksUnpackToTheSameBytes) {
   for (uint32_t brick : {8u, 32u}) {
     SCOPED_TRACE("brick " + std::to_string(brick));
     const std::string path = convertReal(dir, kFoot, "5", nullptr, brick, Axis::kY);
-    auto file = openValidatedFile(path);
+    auto file = pack::openValidatedFile(path);
     ASSERT_TRUE(file) << file.message();
     ASSERT_GT(file->gradientCodes().size_bytes(), 2 * kPackChunkBytes);  // three chunks or more
     const Packed p = packReal(dir, path);
@@ -145,7 +159,7 @@ TEST(PackedFile, FilesPackedByEarlierBuildsStillUnpack) {
 TEST(PackedFile, PredictionFindsTheConvertersGradientsForMostVoxels) {
   VOXLINK_REQUIRE_DATA(kFoot);
   TempDir dir;
-  auto file = openValidatedFile(convertReal(dir, kFoot, "60"));
+  auto file = pack::openValidatedFile(convertReal(dir, kFoot, "60"));
   ASSERT_TRUE(file);
   const auto stored = file->gradientCodes();
   const VoxelLocator locator(*file);
@@ -175,7 +189,7 @@ TEST(PackedFile, PredictionFindsTheConvertersGradientsForMostVoxels) {
   }
 }
 
-// The eight-cell kernels (format/dense_brick_rows.h) must predict the per-voxel codes bit for
+// The eight-cell kernels (pack/dense_brick_rows.h) must predict the per-voxel codes bit for
 // bit, or a file packed on a CPU that has them would not unpack on one that has not: every
 // brick size they take, every depth axis, 8- and 16-bit, half and float values.
 TEST(PackedFile, DenseBrickKernelsPredictThePerVoxelCodes) {
@@ -197,8 +211,8 @@ TEST(PackedFile, DenseBrickKernelsPredictThePerVoxelCodes) {
         Case{kCarp, "1250", "f32", 8, Axis::kZ}}) {
     SCOPED_TRACE(std::string(c.data) + " " + (c.valueType ? c.valueType : "") + " brick " +
                  std::to_string(c.brickSize) + " axis " + std::to_string(int(c.axis)));
-    auto file =
-        openValidatedFile(convertReal(dir, c.data, c.threshold, c.valueType, c.brickSize, c.axis));
+    auto file = pack::openValidatedFile(
+        convertReal(dir, c.data, c.threshold, c.valueType, c.brickSize, c.axis));
     ASSERT_TRUE(file) << file.message();
     std::vector<uint16_t> perVoxel(file->voxelCount());
     predictGradientCodesPerVoxel(*file, perVoxel, GradientPrediction::kPortable);
@@ -255,7 +269,7 @@ std::vector<std::string> ballVolumeAndScene(const TempDir& dir) {
 TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
   TempDir dir;
   for (const std::string& path : ballVolumeAndScene(dir)) {
-    auto file = openValidatedFile(path);
+    auto file = pack::openValidatedFile(path);
     ASSERT_TRUE(file) << file.message();
     ASSERT_GT(file->occupiedBrickCount(), 256u);  // more than one batch of bricks
     const uint64_t slots = sampleSlots(file->header());
@@ -285,7 +299,7 @@ TEST(PackedFile, AddingThePredictionInPlaceEqualsAddingItAfterwards) {
 TEST(PackedFile, RangePredictionsEqualTheWholeSections) {
   TempDir dir;
   for (const std::string& path : ballVolumeAndScene(dir)) {
-    auto file = openValidatedFile(path);
+    auto file = pack::openValidatedFile(path);
     ASSERT_TRUE(file) << file.message();
     const uint64_t slots = sampleSlots(file->header());
     for (GradientPrediction kind : {GradientPrediction::kExact, GradientPrediction::kPortable}) {
@@ -460,7 +474,7 @@ TEST(PackedFile, PackingRefusesItsInputAsOutput) {
   VOXLINK_REQUIRE_DATA(kFoot);
   TempDir dir;
   const std::string path = convertReal(dir, kFoot, "60");
-  auto file = openValidatedFile(path);
+  auto file = pack::openValidatedFile(path);
   ASSERT_TRUE(file);
   auto report = packFile(*file, path);
   ASSERT_FALSE(report);
@@ -473,14 +487,14 @@ TEST(PackedFile, RowStartsAndBrickBasesFollowFromTheMasks) {
   TempDir dir;
   for (const char* brick : {"4", "16", "32"}) {
     SCOPED_TRACE(brick);
-    auto source = convert::openVolume(testing::dataPath(kCarp), {});
+    auto source = sources::openVolume(testing::dataPath(kCarp), {});
     ASSERT_TRUE(source) << source.message();
     convert::ConvertOptions options;
     options.classification = convert::thresholdClassification({"1250"}).value();
     options.brickSize = static_cast<uint32_t>(std::stoul(brick));
     const std::string path = dir.file(std::string("b") + brick + ".vxl");
     ASSERT_TRUE(convert::convertVolume(**source, options, path));
-    auto file = openValidatedFile(path);
+    auto file = pack::openValidatedFile(path);
     ASSERT_TRUE(file) << file.message();
     const uint32_t n = file->header().brickSize;
     const auto masks = file->sectionBytes(SectionId::kRowMask);

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/convert/volume_fixtures.h"
 
 #include <cmath>
 
 namespace voxlink::testing {
 
-MemorySource::MemorySource(convert::VolumeInfo info, std::vector<uint8_t> bytes, bool sequential)
+MemorySource::MemorySource(sources::VolumeInfo info, std::vector<uint8_t> bytes, bool sequential)
     : bytes_(std::move(bytes)), sequential_(sequential) {
   info_ = std::move(info);
 }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small dense volumes for converter tests: an in-memory VolumeSource and raw-file helpers.
 #pragma once
 
@@ -13,9 +14,9 @@ namespace voxlink::testing {
 
 // A dense volume held in memory. `sequential` makes it refuse backward reads like a
 // compressed stream would, to exercise the converter's streaming path.
-class MemorySource final : public convert::VolumeSource {
+class MemorySource final : public sources::VolumeSource {
  public:
-  MemorySource(convert::VolumeInfo info, std::vector<uint8_t> bytes, bool sequential);
+  MemorySource(sources::VolumeInfo info, std::vector<uint8_t> bytes, bool sequential);
   Status read(uint32_t z0, uint32_t count, void* dst) override;
   Status rewind() override;
   bool randomAccess() const override { return !sequential_; }
@@ -29,7 +30,7 @@ class MemorySource final : public convert::VolumeSource {
 
 // A memory volume plus active flags from a function of the voxel position (like OpenVDB's
 // inactive voxels).
-class PartlyActiveSource final : public convert::VolumeSource {
+class PartlyActiveSource final : public sources::VolumeSource {
  public:
   PartlyActiveSource(MemorySource& values, std::function<bool(uint32_t, uint32_t, uint32_t)> active)
       : values_(values), active_(std::move(active)) {
@@ -61,7 +62,7 @@ std::unique_ptr<MemorySource> makeVolume(std::array<uint32_t, 3> dims,
                                          const std::function<T(uint32_t, uint32_t, uint32_t)>& f,
                                          bool sequential = false,
                                          std::array<double, 3> spacing = {1, 1, 1}) {
-  convert::VolumeInfo info;
+  sources::VolumeInfo info;
   info.dims = dims;
   info.type = scalarTypeOf<T>();
   info.spacing = spacing;

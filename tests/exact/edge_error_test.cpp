@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The silhouette/edge measure on small hand-made maps and images.
 #include "exact/edge_error.h"
 
@@ -16,15 +17,15 @@ FirstHitMap halves(uint32_t split) {
   return m;
 }
 
-viewer::Image grey(float v) {
-  viewer::Image image(4, 4);
+render::Image grey(float v) {
+  render::Image image(4, 4);
   for (float& c : image.rgba) c = v;
   return image;
 }
 
 TEST(EdgeError, CountsMismatchesAndSeparatesEdgesFromInterior) {
   const FirstHitMap a = halves(2), b = halves(1);
-  viewer::Image test = grey(0.5f), truth = grey(0.5f);
+  render::Image test = grey(0.5f), truth = grey(0.5f);
   // The pixels of column 1 differ in colour (one scene covers them, the other does not).
   for (uint32_t y = 0; y < 4; ++y)
     for (int c = 0; c < 3; ++c) test.pixel(1, y)[c] = 0.6f;
@@ -44,7 +45,7 @@ TEST(EdgeError, IdenticalMapsHaveNoMismatch) {
   ASSERT_TRUE(e);
   EXPECT_EQ(e->firstHitMismatch, 0);
   EXPECT_EQ(e->coverageMismatch, 0);
-  EXPECT_FALSE(compareEdges(grey(0.2f), viewer::Image(2, 2), a, a));
+  EXPECT_FALSE(compareEdges(grey(0.2f), render::Image(2, 2), a, a));
 }
 
 }  // namespace

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // EffectsTracer over the exact walker on scenes whose pixels are known: a mirror shows a diffuse
 // quad exactly as a direct ray from the mirrored direction sees it, and semi-transparent
 // surfaces composite front to back.
@@ -5,30 +6,30 @@
 
 #include <cmath>
 
+#include "render/effects_tracer.h"
 #include "tests/exact/exact_fixtures.h"
-#include "viewer/core/effects_tracer.h"
 
 namespace voxlink::exact {
 namespace {
 
+using render::Ray;
 using testing::addQuad;
 using testing::makeWalker;
 using testing::material;
-using viewer::Ray;
 
-viewer::RenderSettings settingsWith(bool reflect, bool shadows) {
-  viewer::RenderSettings s;
+render::RenderSettings settingsWith(bool reflect, bool shadows) {
+  render::RenderSettings s;
   s.effects.reflect = reflect;
   s.effects.shadows = shadows;
   s.background = {0.1, 0.2, 0.3};
   // One directional light, so shading depends on the normal and the view direction only; it
   // lights the wall (x = 2, facing -x) from the front, so diffuse, highlight and shadow rays count.
   const glm::dvec3 l = glm::normalize(glm::dvec3(-0.6, -0.3, 0.74));
-  s.lights = {viewer::Light{{l.x, l.y, l.z}, {1, 1, 1}, /*directional=*/true}};
+  s.lights = {render::Light{{l.x, l.y, l.z}, {1, 1, 1}, /*directional=*/true}};
   return s;
 }
 
-const viewer::Camera kCamera = viewer::Camera::lookAt({0, -5, 1}, {0, 0, 0}, {0, 0, 1}, 30);
+const render::Camera kCamera = render::Camera::lookAt({0, -5, 1}, {0, 0, 0}, {0, 0, 1}, 30);
 
 // A mirror floor z = 0 and a diffuse wall x = 2 facing -x. The ray that reaches wall point P
 // with direction dr after bouncing off the floor must see what a direct ray along dr sees.
@@ -41,7 +42,7 @@ TEST(EffectsOverExact, MirrorShowsWhatADirectRaySees) {
   addQuad(s, {2, -4, 0}, {2, -4, 4}, {2, 4, 4}, {2, 4, 0}, 1);    // wall, normal -x
   const auto w = makeWalker(std::move(s));
   ASSERT_TRUE(w);
-  const viewer::EffectsTracer tracer(*w, format::TransferFunction{});
+  const render::EffectsTracer tracer(*w, tf::TransferFunction{});
   for (bool shadows : {false, true}) {
     const auto settings = settingsWith(/*reflect=*/true, shadows);
     for (const glm::dvec3 p : {glm::dvec3(2, 0.5, 1.5), glm::dvec3(2, -1, 0.7)}) {
@@ -71,7 +72,7 @@ TEST(EffectsOverExact, SemiTransparentSurfacesComposite) {
   addQuad(s, {-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, 1);
   const auto w = makeWalker(std::move(s));
   ASSERT_TRUE(w);
-  const viewer::EffectsTracer tracer(*w, format::TransferFunction{});
+  const render::EffectsTracer tracer(*w, tf::TransferFunction{});
   auto settings = settingsWith(false, false);
   settings.shading.enabled = false;
   const auto c = tracer.traceRay(Ray{{0.3, 0.2, 3}, {0, 0, -1}}, kCamera, settings);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/exact/exact_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -35,7 +36,7 @@ void addSphere(scene::PlacedScene& s, const std::array<float, 3>& center, float 
 }
 
 std::unique_ptr<ExactSceneWalker> makeWalker(scene::PlacedScene s, double extent) {
-  const viewer::Box box{glm::dvec3(-extent), glm::dvec3(extent)};
+  const render::Box box{glm::dvec3(-extent), glm::dvec3(extent)};
   auto walker = ExactSceneWalker::create(std::move(s), box);
   EXPECT_TRUE(walker.isOk()) << (walker ? "" : walker.message());
   return walker ? std::move(*walker) : nullptr;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hand-built scenes for the exact walker's tests: quads (two triangles each) and spheres with
 // their own materials.
 #pragma once

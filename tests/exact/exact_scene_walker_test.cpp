@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The exact walker against analytic answers: sphere hits and normals to 1e-9, a unit quad, every
 // surface along a ray in front-to-back order, early stop and the [tMin, tMax] window.
 #include "exact/exact_scene_walker.h"
@@ -16,12 +17,12 @@
 namespace voxlink::exact {
 namespace {
 
+using render::Ray;
+using render::SceneEvent;
 using testing::addQuad;
 using testing::addSphere;
 using testing::makeWalker;
 using testing::material;
-using viewer::Ray;
-using viewer::SceneEvent;
 
 std::vector<SceneEvent> allEvents(const ExactSceneWalker& w, const Ray& ray, double tMin = 0,
                                   double tMax = HUGE_VAL) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The real Cornell box with a mirror sphere and a glass sphere (shared/data), voxelized by scene
 // build at two resolutions and traced with every effect: the voxel image approaches the exact
 // one as the voxels shrink, and neither has a non-finite pixel.
@@ -10,10 +11,11 @@
 #include "exact/scene_view.h"
 #include "format/file_writer.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
+#include "render/effects_tracer.h"
+#include "render/voxel_scene_walker.h"
 #include "scene/scene_assembly.h"
 #include "tests/support/test_util.h"
-#include "viewer/core/effects_tracer.h"
-#include "viewer/core/voxel_scene_walker.h"
 
 namespace voxlink::exact {
 namespace {
@@ -34,10 +36,10 @@ Agreement voxelAgainstExact(const scene::SceneDescription& description, uint32_t
   const auto path = std::filesystem::temp_directory_path() /
                     ("voxlink_exact_cornell_" + std::to_string(resolution) + ".vxl");
   EXPECT_TRUE(format::writeBrickedVolume(path.string(), built->volume));
-  auto file = format::VoxLinkFile::open(path.string());
+  auto file = pack::openFile(path.string());
   EXPECT_TRUE(file) << file.message();
   if (!file) return {};
-  const viewer::VoxelSceneWalker voxels(*file);
+  const render::VoxelSceneWalker voxels(*file);
   auto exact = ExactSceneWalker::open(d);
   EXPECT_TRUE(exact) << exact.message();
   if (!exact) return {};
@@ -45,15 +47,15 @@ Agreement voxelAgainstExact(const scene::SceneDescription& description, uint32_t
   EXPECT_NEAR(glm::length(voxels.bounds().lo - (*exact)->bounds().lo), 0, 1e-9);
   EXPECT_NEAR(glm::length(voxels.bounds().hi - (*exact)->bounds().hi), 0, 1e-9);
 
-  viewer::RenderSettings settings;
+  render::RenderSettings settings;
   settings.width = settings.height = 48;
-  settings.effects = *viewer::parseEffects("all", 4);
+  settings.effects = *render::parseEffects("all", 4);
   settings.lights = sceneLights(d);
-  const viewer::Camera camera = viewer::Camera::framing((*exact)->bounds(), sceneCameraSpec(d));
-  const format::TransferFunction noVolume;
-  const viewer::Image a = viewer::EffectsTracer(voxels, noVolume).render(camera, settings);
-  const viewer::Image b = viewer::EffectsTracer(**exact, noVolume).render(camera, settings);
-  auto error = viewer::compareImages(a, b);
+  const render::Camera camera = render::Camera::framing((*exact)->bounds(), sceneCameraSpec(d));
+  const tf::TransferFunction noVolume;
+  const render::Image a = render::EffectsTracer(voxels, noVolume).render(camera, settings);
+  const render::Image b = render::EffectsTracer(**exact, noVolume).render(camera, settings);
+  auto error = render::compareImages(a, b);
   EXPECT_TRUE(error);
   EXPECT_EQ(error->nonFinite, 0u);
   auto edges =

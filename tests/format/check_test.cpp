@@ -1,14 +1,15 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VOXLINK_CHECK holds in release builds: misusing Status or Result stops the process with a
 // message instead of reading an empty optional. The comparison checks print both operands;
 // VOXLINK_DCHECK evaluates nothing in NDEBUG builds.
-#include "format/check.h"
+#include "base/check.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink {
 namespace {

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The overflow-checked size arithmetic every reader and writer uses for sizes from files.
-#include "format/checked_math.h"
+#include "base/checked_math.h"
 
 #include <gtest/gtest.h>
 

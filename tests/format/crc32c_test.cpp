@@ -1,4 +1,5 @@
-#include "format/crc32c.h"
+// SPDX-License-Identifier: BSD-3-Clause
+#include "base/crc32c.h"
 
 #include <gtest/gtest.h>
 

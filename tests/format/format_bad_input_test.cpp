@@ -1,14 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Damaged and hostile files: each gives the exact error code and a message naming the field.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <filesystem>
 
-#include "format/crc32c.h"
+#include "base/crc32c.h"
 #include "format/file_writer.h"
 #include "format/gradient_codec.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::format {
@@ -39,7 +41,7 @@ class FormatBadInput : public ::testing::Test {
       if (table[i].id == static_cast<uint32_t>(id)) return &table[i];
     return nullptr;
   }
-  Result<VoxLinkFile> reopen() { return VoxLinkFile::fromBytes(bytes_, "bad.vxl"); }
+  Result<VoxLinkFile> reopen() { return pack::fileFromBytes(bytes_, "bad.vxl"); }
 
   testing::TempDir dir_;
   std::string path_;
@@ -97,7 +99,7 @@ TEST_F(FormatBadInput, ValueOutsideTheHeadersRangeIsNamed) {
 TEST_F(FormatBadInput, TruncatedAnywhere) {
   for (size_t keep : {size_t{0}, size_t{10}, size_t{255}, bytes_.size() / 2, bytes_.size() - 1}) {
     std::vector<uint8_t> cut(bytes_.begin(), bytes_.begin() + static_cast<long>(keep));
-    auto f = VoxLinkFile::fromBytes(cut, "cut.vxl");
+    auto f = pack::fileFromBytes(cut, "cut.vxl");
     ASSERT_FALSE(f) << keep;
     EXPECT_EQ(f.code(), ErrorCode::kTruncated) << keep << ": " << f.message();
     EXPECT_NE(f.message().find("cut.vxl"), std::string::npos);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Round trip of every section: build random sparse volumes, write, read back, compare.
 #include <gtest/gtest.h>
 
@@ -12,6 +13,7 @@
 #include "format/validator.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::format {
@@ -64,7 +66,7 @@ TEST_P(FormatRoundTrip, EverySectionAndVoxelSurvives) {
   testing::TempDir dir;
   const std::string path = dir.file("roundtrip.vxl");
   ASSERT_TRUE(writeBrickedVolume(path, *volume).isOk());
-  auto file = VoxLinkFile::open(path);
+  auto file = pack::openFile(path);
   ASSERT_TRUE(file) << file.message();
   auto report = validateFile(*file);
   ASSERT_TRUE(report) << report.message();
@@ -123,7 +125,7 @@ TEST(FormatRoundTrip, EmptyVolumeIsAValidFile) {
   ASSERT_TRUE(volume);
   testing::TempDir dir;
   ASSERT_TRUE(writeBrickedVolume(dir.file("empty.vxl"), *volume).isOk());
-  auto file = VoxLinkFile::open(dir.file("empty.vxl"));
+  auto file = pack::openFile(dir.file("empty.vxl"));
   ASSERT_TRUE(file) << file.message();
   EXPECT_EQ(file->voxelCount(), 0u);
   EXPECT_TRUE(validateFile(*file));
@@ -142,7 +144,7 @@ TEST(FormatRoundTrip, FullyOccupiedVolume) {
   ASSERT_TRUE(volume);
   testing::TempDir dir;
   ASSERT_TRUE(writeBrickedVolume(dir.file("full.vxl"), *volume).isOk());
-  auto file = VoxLinkFile::open(dir.file("full.vxl"));
+  auto file = pack::openFile(dir.file("full.vxl"));
   ASSERT_TRUE(file);
   EXPECT_TRUE(validateFile(*file));
   EXPECT_EQ(file->voxelCount(), 17u * 8 * 9);
@@ -199,7 +201,7 @@ TEST(FormatRoundTrip, ChecksumsDoNotDependOnWriteOrder) {
 
   EXPECT_EQ(testing::readBytes(dir.file("shuffled.vxl")),
             testing::readBytes(dir.file("in_order.vxl")));
-  auto file = VoxLinkFile::open(dir.file("shuffled.vxl"));
+  auto file = pack::openFile(dir.file("shuffled.vxl"));
   ASSERT_TRUE(file) << file.message();
   auto report = validateFile(*file);
   EXPECT_TRUE(report) << report.message();

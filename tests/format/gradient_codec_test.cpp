@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "format/gradient_codec.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The gradient prediction of packed files: its code is decided by exact comparisons only, so it
 // does not depend on the starting guess (which the vectorized encoder supplies and which may
 // differ between CPUs), and it agrees with the reference encoder except on cell boundaries.
-#include "format/gradient_predictor.h"
+#include "pack/gradient_predictor.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +13,12 @@
 #include "format/gradient_codec.h"
 
 namespace voxlink::format {
+
+using pack::azimuthBoundaryCosines;
+using pack::azimuthBoundarySines;
+using pack::exactGradientCode;
+using pack::polarBoundaryCosines;
+
 namespace {
 
 TEST(GradientPredictor, BoundaryTablesAreTheCosinesAndSines) {

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // parallelFor runs every index once; thread counts above kMaxThreads are refused by
 // checkThreadCount and capped by threadCount, so a caller that skipped the check still cannot
 // start tens of thousands of threads. A ThreadLimit bounds every call while it lives, nested
 // calls stay on their thread, parallelSort sorts like std::sort.
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,9 @@
-// The float encoder packed files predict with (format/portable_gradient_code.h): it agrees with
+// SPDX-License-Identifier: BSD-3-Clause
+// The float encoder packed files predict with (pack/portable_gradient_code.h): it agrees with
 // the float64 reference except within its arithmetic's error of a cell border, a batch gives the
 // same codes as one direction at a time (the vectorized loop and its scalar remainder), and
 // zero, non-finite, tiny and huge input behave.
-#include "format/portable_gradient_code.h"
+#include "pack/portable_gradient_code.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +16,9 @@
 #include "format/gradient_codec.h"
 
 namespace voxlink::format {
+
+using pack::portableGradientCodes;
+
 namespace {
 
 uint16_t portableCode(float x, float y, float z) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Version 2 (scene) files: geometry and volume samples in one brick/row structure. Round trips,
 // the builder's merge rules, and damaged scene sections against the validator's exact messages.
 #include <gtest/gtest.h>
@@ -6,18 +7,26 @@
 #include <cmath>
 #include <cstring>
 
-#include "format/crc32c.h"
+#include "base/crc32c.h"
 #include "format/file_writer.h"
-#include "format/footprint.h"
 #include "format/gradient_codec.h"
-#include "format/packed_file.h"
 #include "format/scene_builder.h"
 #include "format/scene_index.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
+#include "pack/packed_file.h"
+#include "report/footprint.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::format {
+
+using pack::packFile;
+using pack::unpackFile;
+using report::computeFootprint;
+using report::FootprintReport;
+using report::footprintTable;
+
 namespace {
 
 MaterialRecord material(float r, float g, float b) {
@@ -72,7 +81,7 @@ TEST(SceneFormat, RoundTripKeepsEveryKindPerVoxel) {
     testing::TempDir dir;
     const std::string path = dir.file("scene.vxl");
     ASSERT_TRUE(writeBrickedVolume(path, *built).isOk());
-    auto f = VoxLinkFile::open(path);
+    auto f = pack::openFile(path);
     ASSERT_TRUE(f) << f.message();
     ASSERT_TRUE(validateFile(*f)) << validateFile(*f).message();
     EXPECT_TRUE(f->isScene());
@@ -138,7 +147,7 @@ TEST(SceneFormat, GeometryWithoutSpheresHasNoSphereSections) {
   ASSERT_TRUE(built);
   testing::TempDir dir;
   ASSERT_TRUE(writeBrickedVolume(dir.file("s.vxl"), *built).isOk());
-  auto f = VoxLinkFile::open(dir.file("s.vxl"));
+  auto f = pack::openFile(dir.file("s.vxl"));
   ASSERT_TRUE(f) << f.message();
   EXPECT_TRUE(validateFile(*f));
   EXPECT_EQ(f->findSection(SectionId::kSpheres), nullptr);
@@ -155,7 +164,7 @@ TEST(SceneFormat, EmptySceneIsValid) {
   ASSERT_TRUE(built);
   testing::TempDir dir;
   ASSERT_TRUE(writeBrickedVolume(dir.file("e.vxl"), *built).isOk());
-  auto f = VoxLinkFile::open(dir.file("e.vxl"));
+  auto f = pack::openFile(dir.file("e.vxl"));
   ASSERT_TRUE(f) << f.message();
   EXPECT_TRUE(validateFile(*f));
   EXPECT_EQ(f->voxelCount(), 0u);
@@ -222,7 +231,7 @@ class SceneBadInput : public ::testing::Test {
   }
   std::string problem() {
     reseal();
-    auto f = VoxLinkFile::fromBytes(bytes_, "bad.vxl");
+    auto f = pack::fileFromBytes(bytes_, "bad.vxl");
     if (!f) return f.message();
     auto v = validateFile(*f);
     return v ? "" : v.message();
@@ -309,7 +318,7 @@ TEST(SceneFormat, PackedSceneWithTooManyVolumeBitsIsRefused) {
   const std::string path = dir.file("scene.vxl");
   ASSERT_TRUE(writeBrickedVolume(path, *built).isOk());
   auto bytes = testing::readBytes(path);
-  auto good = VoxLinkFile::fromBytes(bytes, "scene.vxl");
+  auto good = pack::fileFromBytes(bytes, "scene.vxl");
   ASSERT_TRUE(good) << good.message();
   const auto vmsk = good->sectionBytes(SectionId::kVolumeMask);
   const uint64_t at = static_cast<uint64_t>(vmsk.data() - good->bytes().data());
@@ -318,7 +327,7 @@ TEST(SceneFormat, PackedSceneWithTooManyVolumeBitsIsRefused) {
   ASSERT_EQ(std::popcount(word), 2);
   word = 0xF;  // all four voxels, two of which hold only geometry
   std::memcpy(bytes.data() + at, &word, 4);
-  auto damaged = VoxLinkFile::fromBytes(bytes, "damaged.vxl");
+  auto damaged = pack::fileFromBytes(bytes, "damaged.vxl");
   ASSERT_TRUE(damaged) << damaged.message();
   ASSERT_TRUE(packFile(*damaged, dir.file("packed.vxl")));
   auto unpacked = unpackFile(testing::readBytes(dir.file("packed.vxl")), "packed.vxl", 1u << 30);

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Library chatter on stderr is captured while a StderrCapture lives, and only then.
-#include "format/stderr_capture.h"
+#include "base/stderr_capture.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,4 +1,5 @@
-#include "format/transfer_function.h"
+// SPDX-License-Identifier: BSD-3-Clause
+#include "tf/transfer_function.h"
 
 #include <gtest/gtest.h>
 
@@ -6,6 +7,13 @@
 #include <limits>
 
 namespace voxlink::format {
+
+using tf::anyContains;
+using tf::describeIntervals;
+using tf::parseTransferFunction;
+using tf::TransferFunction;
+using tf::transferFunctionJson;
+
 namespace {
 
 TransferFunction parse(const std::string& json) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The fuzz input's file bundle (fuzz/fuzz_input.h): how one input becomes several files.
 #include "fuzz/fuzz_input.h"
 

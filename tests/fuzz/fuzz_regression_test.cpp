@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kept fuzz findings replay as errors; real inputs through the same entry points are accepted
 // (so "gives an error" is not what every input gets).
 #include <gtest/gtest.h>

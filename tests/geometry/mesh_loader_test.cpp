@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // loadMesh on the real meshes in ../shared/data/mesh and on small files written here.
 #include "geometry/mesh_loader.h"
 

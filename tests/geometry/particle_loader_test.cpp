@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // loadParticles on the PDB files in ../shared/data/particles, the text format and bad input.
 #include "geometry/particle_loader.h"
 

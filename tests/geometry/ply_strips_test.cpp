@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // PLY triangle strips (`element tristrips`): assimp 5.2 kept one triangle of them (a
 // 268,686-triangle head became a scene "from 1 triangles"). A strip mesh must voxelize to the
 // voxels of the same surface stored as triangles; a mesh that lost faces is refused.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxelizeSpheres against the brute force (every voxel x every sphere).
 #include "geometry/sphere_voxelizer.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // voxelizeSurface against the brute force (every voxel x every triangle, plain SAT), the hard
 // cases, and real meshes.
 #include "geometry/surface_voxelizer.h"
@@ -9,7 +10,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "format/parallel_for.h"
+#include "base/parallel_for.h"
 #include "geometry/mesh_loader.h"
 #include "tests/geometry/voxel_test_util.h"
 #include "tests/support/test_util.h"
@@ -265,7 +266,7 @@ TEST(SurfaceVoxelizer, BunnyIsStableAcrossThreadCountsAndFileFormats) {
   const SurfaceVoxelization a = voxelize(*ply, *grid);
   SurfaceVoxelization b;
   {
-    format::ThreadLimit one(1);
+    base::ThreadLimit one(1);
     b = voxelize(*ply, *grid);
   }
   ASSERT_EQ(a.voxels.size(), b.voxels.size());

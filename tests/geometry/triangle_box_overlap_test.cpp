@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The fast triangle/voxel test against the plain 13-axis SAT, and the tie rule.
 #include "geometry/triangle_box_overlap.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // fitGrid and the grid convention (voxel centres at origin + index * spacing).
 #include "geometry/voxel_grid.h"
 

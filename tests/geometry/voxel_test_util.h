@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Brute-force references for the voxelizer tests: every voxel of the grid against every
 // triangle or sphere, with the plain 13-axis SAT and the plain distance test.
 #pragma once

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/cholesky.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 TEST(Cholesky, SolvesAndEstimatesTheConditionOfADiagonalMatrix) {
@@ -54,4 +55,4 @@ TEST(Cholesky, RefusesIndefiniteAndSingularMatrices) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

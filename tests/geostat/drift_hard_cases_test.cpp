@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Universal kriging's hard cases (drift.h): a drift that is degenerate over a neighbourhood
 // (samples on a line under a linear drift, an external drift with one value) is reduced, never
 // NaN, through Kriger::predict and both grid solvers; UTM-sized coordinates lose nothing.
@@ -9,7 +10,7 @@
 #include "geostat/krige_grid.h"
 #include "tests/geostat/kriging_test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 using test::kriger;
@@ -204,4 +205,4 @@ TEST(DriftHardCases, SimpleKrigingWithADriftAndAMissingDriftColumnAreRefused) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

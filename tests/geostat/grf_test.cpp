@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Random fields: the empirical mean, variance and axis variograms must match the model within
 // tolerances derived from the sample size and the model's own correlation (a correlated
 // field's statistics fluctuate far more than N independent draws would).
@@ -9,7 +10,7 @@
 
 #include "geostat/field_statistics.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 struct Collected {
@@ -215,4 +216,4 @@ TEST(RandomField, LatticeNoiseIsStandardNormal) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shares of a grid (geostat/grid_part.h), the split the MPI ranks use: every share count gives,
 // share by share, byte for byte the nodes of one whole-grid run, each node exactly once, for
 // local and global kriging (2-D and 3-D, with a drift) and random fields; shares may be empty.
@@ -9,7 +10,7 @@
 #include "geostat/krige_grid.h"
 #include "tests/geostat/kriging_test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 using test::kriger;
@@ -103,4 +104,4 @@ TEST(GridPart, RandomFields) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // krigeGrid's block solvers (local bricks with shared factorizations, global level-3 BLAS) must
 // give what Kriger::predict gives node by node: the same neighbour sets, the same estimates and
 // variances to rounding, whatever the threads, slab depth, radius or kind.
@@ -9,7 +10,7 @@
 #include "tests/geostat/kriging_test_util.h"
 #include "tests/geostat/walker_lake_data.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 using test::kriger;
@@ -107,4 +108,4 @@ TEST(GridPaths, CrowdedSamplesFarFromTheGridSplitBricksDownToSingleNodes) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

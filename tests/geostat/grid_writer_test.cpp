@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/grid_writer.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +11,7 @@
 #include "sources/volume_source.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 TEST(GridWriter, WritesRawDataWithADetachedNrrdHeader) {
@@ -30,12 +31,12 @@ TEST(GridWriter, WritesRawDataWithADetachedNrrdHeader) {
   EXPECT_NE(header.str().find("space origin: (512345.678901,4250000,-7)\n"), std::string::npos)
       << header.str();
   EXPECT_NE(header.str().find("data file: k.raw\n"), std::string::npos);
-  convert::OpenOptions o;
+  sources::OpenOptions o;
   o.dims = info.dims;
   o.type = ScalarType::kF64;
-  auto raw = convert::openVolume(dir.file("k.raw"), o);
+  auto raw = sources::openVolume(dir.file("k.raw"), o);
   ASSERT_TRUE(raw) << raw.message();
-  auto all = convert::readAll(**raw);
+  auto all = sources::readAll(**raw);
   ASSERT_TRUE(all);
   EXPECT_EQ(std::memcmp(all->data(), v.data(), 24 * sizeof(double)), 0);
 }
@@ -52,7 +53,7 @@ TEST(GridWriter, EndingsIgnoreCase) {
     ASSERT_TRUE((*w)->finish());
   }
   EXPECT_EQ(testing::listDir(dir.path()), (std::vector<std::string>{"F.Npy", "K.NHDR", "K.raw"}));
-  auto npy = convert::openVolume(dir.file("F.Npy"));
+  auto npy = sources::openVolume(dir.file("F.Npy"));
   ASSERT_TRUE(npy) << npy.message();
   EXPECT_EQ((*npy)->info().dims, (std::array<uint32_t, 3>{2, 2, 1}));
 }
@@ -105,4 +106,4 @@ TEST(GridWriter, RefusesValuesThatAreNotFiniteInTheFilesType) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // R's gstat as an independent oracle: the same samples, variogram and neighbourhood must give
 // the same predictions and kriging variances (and the same experimental variogram). Skipped
 // when Rscript or gstat is missing (scripts/install-deps.sh installs r-cran-gstat).
@@ -12,7 +13,7 @@
 #include "geostat/variogram_fit.h"
 #include "tests/geostat/walker_lake_data.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 // Relative tolerances: both sides solve the same double-precision systems.
@@ -301,4 +302,4 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/kd_tree.h"
 
 #include <gtest/gtest.h>
@@ -6,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 std::vector<Neighbour> bruteForce(const std::vector<Point3>& pts, const Point3& q, size_t k,
@@ -120,4 +121,4 @@ TEST(KdTree, HandlesCoincidentPointsAndEmptyInput) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

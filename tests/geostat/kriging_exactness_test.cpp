@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The defining properties of kriging: exact interpolation, zero variance at samples, unbiased
 // weights, symmetry, and local == global when the neighbourhood holds every sample.
 #include <gtest/gtest.h>
@@ -6,7 +7,7 @@
 
 #include "tests/geostat/kriging_test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 using test::kriger;
@@ -117,4 +118,4 @@ TEST(Kriging, ReducesToTheTextbookSinglePointAnswer) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

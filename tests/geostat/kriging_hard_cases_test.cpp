@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The hard cases of issue 27 through the grid solvers (local bricks, global BLAS): each must
 // give the answer Kriger::predict gives, finite, with its condition reported.
 #include <gtest/gtest.h>
@@ -7,7 +8,7 @@
 #include "geostat/krige_grid.h"
 #include "tests/geostat/kriging_test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 using test::kriger;
@@ -134,9 +135,9 @@ TEST(KrigingHardCases, AMillionSamplesInATinyAreaFarFromTheOrigin) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 TEST(KrigingHardCases, AnisotropyOf1000To1IsIsotropicKrigingInRotatedStretchedSpace) {
@@ -175,4 +176,4 @@ TEST(KrigingHardCases, AnisotropyOf1000To1IsIsotropicKrigingInRotatedStretchedSp
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

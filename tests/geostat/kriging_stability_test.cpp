@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hard cases: each must give a stable, finite answer with its condition reported, or a clear
 // refusal. Never a silent NaN.
 #include <gtest/gtest.h>
@@ -7,7 +8,7 @@
 #include "geostat/krige_grid.h"
 #include "tests/geostat/kriging_test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 using test::kriger;
@@ -189,9 +190,9 @@ TEST(KrigingStability, RejectsNonFiniteInputAndSimpleKrigingWithoutMean) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 TEST(KrigingStability, PointByPointGlobalKrigingIsRefusedBeyondItsLimit) {
@@ -211,4 +212,4 @@ TEST(KrigingStability, PointByPointGlobalKrigingIsRefusedBeyondItsLimit) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

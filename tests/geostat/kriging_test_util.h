@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small point sets for the kriging tests.
 #pragma once
 
@@ -5,7 +6,7 @@
 
 #include "geostat/kriging.h"
 
-namespace voxlink::kriging::test {
+namespace voxlink::geostat::test {
 
 inline PointSet randomPoints(size_t n, uint32_t seed, double extent = 100.0, int dimension = 2) {
   std::mt19937_64 rng(seed);
@@ -31,4 +32,4 @@ inline Kriger kriger(const PointSet& s, const Variogram& v, KrigingOptions o = {
   return std::move(k).value();
 }
 
-}  // namespace voxlink::kriging::test
+}  // namespace voxlink::geostat::test

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/point_set.h"
 
 #include <gtest/gtest.h>
@@ -6,7 +7,7 @@
 
 #include "tests/support/test_util.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 TEST(PointSet, ReadsWalkerLakeCsvSkippingNA) {
@@ -78,4 +79,4 @@ TEST(PointSet, CoordinatesWhoseDistancesOverflowAreRefused) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

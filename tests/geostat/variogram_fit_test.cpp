@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/variogram_fit.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 TEST(VariogramFit, RecoversTheModelFromItsOwnBins) {
@@ -56,4 +57,4 @@ TEST(VariogramFit, RefusesFlatDataWithAMessage) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "geostat/variogram.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 Variogram make(VariogramType type, double nugget, double psill, double range, double nu = 0.5) {
@@ -70,4 +71,4 @@ TEST(Variogram, ParsesModelsAndRejectsBadOnes) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

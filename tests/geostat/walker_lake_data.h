@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Walker Lake (gstat's walker.csv and walker.exh.csv): 470 samples of V and the exhaustive
 // 260 x 300 grid they were drawn from.
 #pragma once
@@ -5,7 +6,7 @@
 #include "geostat/point_set.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::kriging::test {
+namespace voxlink::geostat::test {
 
 constexpr const char* kWalkerSamples = "geostat/gstat_csv/walker.csv";
 constexpr const char* kWalkerExhaustive = "geostat/gstat_csv/walker.exh.csv";
@@ -26,4 +27,4 @@ inline std::vector<double> walkerExhaustive() {
   return grid;
 }
 
-}  // namespace voxlink::kriging::test
+}  // namespace voxlink::geostat::test

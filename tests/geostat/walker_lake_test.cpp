@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Kriging the 470 Walker Lake samples against the exhaustive truth: kriging must beat the
 // simple estimators it is meant to beat, and its cross-validation must be consistent with
 // its own variance. (The measured numbers are in docs/kriging.md.)
@@ -10,7 +11,7 @@
 #include "geostat/variogram_fit.h"
 #include "tests/geostat/walker_lake_data.h"
 
-namespace voxlink::kriging {
+namespace voxlink::geostat {
 namespace {
 
 struct Errors {
@@ -93,4 +94,4 @@ TEST(WalkerLake, LeaveOneOutIsConsistentWithTheKrigingVariance) {
 }
 
 }  // namespace
-}  // namespace voxlink::kriging
+}  // namespace voxlink::geostat

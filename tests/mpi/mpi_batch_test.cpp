@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `mpirun -n 3 voxlink convert --batch LIST --out-dir DIR`: every file converted once by some
 // rank, to the bytes one process writes; a bad file reported, the others converted.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `mpirun -n N voxlink convert ...` (docs/scale.md): the file N ranks write together is byte for
 // byte the file one process writes, for 1 to 4 ranks, u8/u16/f32 sources, thresholds, a transfer
 // function, --keep-outside, --keep-all, bricks of 8 and 16 and slice counts that do not divide.

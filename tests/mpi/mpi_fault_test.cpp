@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One rank failing under mpirun (docs/scale.md): a bad value in its slab, a slab it cannot read,
 // a full disk (a file size limit on that rank), the rank killed. Every rank ends, the exit
 // status is non-zero, stderr names the rank and the cause, and the output folder stays empty:
@@ -91,7 +92,7 @@ TEST(MpiFaults, DiskFullOnOneRank) {
 // Rank `victim` of 3 killed with SIGKILL `delayMs` after the output's temporary appears: mpirun
 // ends the others (SIGTERM; or Open MPI's own _exit() in a rank waiting inside MPI) and reports
 // the rank and the signal; the temporary is removed by rank 0's signal handler or, when rank 0
-// cannot run one, by its helper process (format/temp_janitor.h).
+// cannot run one, by its helper process (base/temp_janitor.h).
 void expectKilledRankLeavesNothing(int victim, int delayMs) {
   TempDir in, out;
   // Large enough that no rank is done `delayMs` after the temporary appears on a quiet machine

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `mpirun -n N voxlink krige|grf ...` (docs/scale.md): the grids N ranks write together are
 // byte for byte the grids one process writes, for 1 to 4 ranks: local and global kriging, 2-D
 // and 3-D, with a drift, grid sizes that do not divide among the ranks, ranks with no block;

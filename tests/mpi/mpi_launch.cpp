@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/mpi/mpi_launch.h"
 
 #include <sys/wait.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Runs `voxlink` under mpirun (Open MPI, quiet, oversubscribed: this machine may have fewer cores
 // than ranks; as root when the tests run as root) and without it, capturing status and output.
 #pragma once

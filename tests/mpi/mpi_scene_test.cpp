@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `mpirun -n N voxlink scene build ...` (docs/scale.md, "Scene builds"): each rank voxelizes the
 // triangles and spheres of its brick layers, rank 0 merges and writes; the file is byte for byte
 // the one process's for 1 to 4 ranks, on real meshes, a PDB, a Cornell box with materials, a CT

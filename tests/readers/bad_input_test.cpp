@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Damaged and hostile inputs: each gives the exact ErrorCode and a message naming the file and
 // the field. Every input is made here, in a temp folder (no shared data needed).
 #include <gtest/gtest.h>
@@ -7,6 +8,10 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+
 namespace {
 
 std::string nrrd(const std::string& fields) { return "NRRD0004\n" + fields + "\n"; }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // probeInChild (sources/readers/child_probe.h): a crash in the child is seen as a crash even when
 // the parent has crash handlers of its own that would exit instead (libFuzzer, crash reporters).
 #include "sources/readers/child_probe.h"
@@ -22,6 +23,12 @@
 extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
 
 namespace voxlink::convert {
+
+using sources::describeDeath;
+using sources::MarkFn;
+using sources::probeInChild;
+using sources::ProbeOutcome;
+
 namespace {
 
 void exitQuietly(int) { _exit(3); }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DICOM encodings that other libraries read differently from what voxlink did: 32-bit
 // big-endian frames, signed pixels in JPEG-LS and JPEG 2000, deflated files, an RT Dose of one
 // frame; and files refused from their header before GDCM decodes (or aborts on) them: HTJ2K,
@@ -16,6 +17,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeSource;
+
 namespace {
 
 constexpr const char* kHead = "ct/slicer_CTHeadAxialDicom/CTHead1.dcm";

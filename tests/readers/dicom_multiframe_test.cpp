@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DICOM multi-frame files and folders as scanners and planning systems write them: the shared
 // RT Dose grid against its own pixel bytes; Enhanced CT rewrites of the CT head series (built
 // here with GDCM; uncompressed, RLE, JPEG-LS, JPEG 2000) against the series itself; several series
@@ -19,6 +20,14 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::DicomSeriesSummary;
+using sources::listDicomFolder;
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 namespace fs = std::filesystem;

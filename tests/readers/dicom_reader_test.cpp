@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // DICOM: the Slicer CT head series is the VTK headsq volume with z reversed (README), voxel for
 // voxel; damaged copies (written with GDCM into a temp folder) give named errors.
 #include <gdcmAttribute.h>
@@ -12,6 +13,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 namespace fs = std::filesystem;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GSLIB / GEO-EAS grids: the real SGeMS exports (zipped) and files written here.
 #include "sources/readers/gslib_reader.h"
 
@@ -10,6 +11,12 @@
 #include "tests/support/test_util.h"
 
 namespace voxlink::convert {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 void writeText(const std::string& path, const std::string& text) {

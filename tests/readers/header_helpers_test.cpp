@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The small shared pieces: number lists, file lists, natural order, axis notes, rescale types,
 // the gzip stream across concatenated members.
 #include <gtest/gtest.h>
@@ -12,6 +13,19 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::AxesSummary;
+using sources::convertRescaled;
+using sources::expandNumberedFiles;
+using sources::InflateStream;
+using sources::naturalLess;
+using sources::parseBool;
+using sources::parseDoubles;
+using sources::parseIntegers;
+using sources::rescaledType;
+using sources::summarizeAxes;
+using sources::Vec3;
+
 namespace {
 
 TEST(HeaderHelpers, NumberListsNameFileAndField) {

@@ -1,4 +1,5 @@
-// Sizes from files and options that overflow 64-bit arithmetic or exceed format/limits.h: each
+// SPDX-License-Identifier: BSD-3-Clause
+// Sizes from files and options that overflow 64-bit arithmetic or exceed base/limits.h: each
 // must fail with a one-line error before anything is allocated or written. Synthetic files only.
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -10,6 +11,12 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::expandNumberedFiles;
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+
 namespace {
 
 void appendU64(std::vector<uint8_t>& out, uint64_t v) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Image stacks: slices of real volumes written here with OpenImageIO (PNG files with unpadded
 // numbers, a multi-page 16-bit TIFF) must read back identical.
 #include <OpenImageIO/imageio.h>
@@ -8,6 +9,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 using OIIO::ImageOutput;

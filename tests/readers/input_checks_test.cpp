@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Inputs that used to be accepted silently or to hang: non-finite origins, gzip data followed by
 // garbage, Netpbm maxval 0, and FIFOs named as volumes or data files. Synthetic files only.
 #include <gtest/gtest.h>
@@ -8,6 +9,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+
 namespace {
 
 std::string nrrd(const std::string& fields) { return "NRRD0004\n" + fields + "\n"; }

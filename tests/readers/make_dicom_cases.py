@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes DICOM files that other libraries read differently, and what each one holds.
 
 Usage: make_dicom_cases.py OUT_DIR DATA_DIR

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // MetaImage on the real files, values checked against zlib's own decoding of the same bytes
 // or the raw file itself.
 #include <gtest/gtest.h>
@@ -8,6 +9,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 // The header names "HeadMRVolume.raw"; the shared data holds it as vtk_HeadMRVolume.raw.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NIfTI: the header facts are decoded here by hand (NIfTI-1 field offsets, big-endian file),
 // the voxels are the gunzipped bytes after vox_offset; written files test scl_slope/scl_inter.
 #include <gtest/gtest.h>
@@ -8,6 +9,12 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 template <class T>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every .npy variant the reader accepts, written here per the specification, must load as
 // the same volume: logical a[z][y][x] = 100 z + 10 y + x (mod the type's range).
 #include "sources/readers/npy_reader.h"
@@ -10,6 +11,13 @@
 #include "tests/support/test_util.h"
 
 namespace voxlink::convert {
+
+using sources::openNpy;
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 using testing::appendValue;
@@ -231,8 +239,8 @@ TEST(NpyReader, OptionsMustAgreeWithTheHeader) {
 
 TEST(NpyReader, ReadsWhatTheKrigeCommandWrites) {
   testing::TempDir dir;
-  kriging::GridFileInfo info{{3, 2, 2}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF32};
-  auto w = kriging::GridWriter::create(dir.file("g.npy"), info);
+  geostat::GridFileInfo info{{3, 2, 2}, {0, 0, 0}, {1, 1, 1}, ScalarType::kF32};
+  auto w = geostat::GridWriter::create(dir.file("g.npy"), info);
   ASSERT_TRUE(w) << w.message();
   std::vector<double> values(12);
   for (int i = 0; i < 12; ++i) values[i] = i * 0.5;
@@ -246,7 +254,7 @@ TEST(NpyReader, ReadsWhatTheKrigeCommandWrites) {
   ASSERT_TRUE(all);
   const auto* f = reinterpret_cast<const float*>(all->data());
   for (int i = 0; i < 12; ++i) EXPECT_EQ(f[i], float(i * 0.5));
-  EXPECT_EQ(kriging::npyHeader(ScalarType::kF64, {3, 2, 2}).size() % 64, 0u);
+  EXPECT_EQ(geostat::npyHeader(ScalarType::kF64, {3, 2, 2}).size() % 64, 0u);
 }
 
 }  // namespace

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Writes .npy files byte by byte from the format's specification (numpy is not installed):
 // magic, version, little-endian header length, a padded dict literal ending in '\n', data.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // NRRD on the real files: every value checked against an independent decoding of the same
 // bytes (the slice files themselves, zlib's gz API), geometry against the header text.
 #include <gtest/gtest.h>
@@ -9,6 +10,10 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 TEST(NrrdReader, HeadsqOneRawFilePerSliceEqualsTheSlicesConcatenated) {

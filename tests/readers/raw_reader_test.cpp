@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Headerless raw volumes: the bytes come back as the file holds them, mapped in place.
 #include <gtest/gtest.h>
 
@@ -6,6 +7,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+
 namespace {
 
 OpenOptions rawOptions(uint32_t x, uint32_t y, uint32_t z, ScalarType type) {

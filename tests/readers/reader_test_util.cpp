@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/readers/reader_test_util.h"
 
 #include <zlib.h>
@@ -5,6 +6,12 @@
 #include <algorithm>
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+using sources::VolumeSource;
 
 std::unique_ptr<VolumeSource> openOrDie(const std::string& path, const OpenOptions& options) {
   auto r = openVolume(path, options);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Helpers for the reader tests: opening with a readable failure, reading a whole volume in
 // slabs of any size, and independent decoders (zlib's own gz API) for expected bytes.
 #pragma once
@@ -14,6 +15,9 @@
 
 namespace voxlink::convert::testing {
 
+using sources::OpenOptions;
+using sources::VolumeInfo;
+using sources::VolumeSource;
 using ::voxlink::testing::dataPath;
 using ::voxlink::testing::readBytes;
 using ::voxlink::testing::TempDir;

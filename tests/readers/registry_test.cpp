@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // openVolume() picks the reader by name ending, folder content or magic bytes.
 #include <gtest/gtest.h>
 
@@ -8,6 +9,12 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::lowerExtension;
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readerNames;
+
 namespace {
 
 TEST(ReaderRegistry, EveryReaderIsRegistered) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every reader serves the same bytes whatever the slab size; rewind() starts over; compressed
 // (sequential) sources refuse to go backwards without it.
 #include <gtest/gtest.h>
@@ -5,6 +6,10 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 const char* const kInputs[] = {

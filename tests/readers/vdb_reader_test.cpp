@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // OpenVDB: a float grid built here from the neghip volume (active where the value >= 40, at an
 // index offset, with an active tile and an inactive voxel holding a non-background value) must
 // read back as the dense box of its active voxels, background elsewhere.
@@ -11,6 +12,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::VolumeInfo;
+
 namespace {
 
 using openvdb::Coord;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // VTK XML image data: the hydrogen file written by VTK (zlib blocks, inline base64), and small
 // files written here in the other layouts (uncompressed inline, appended raw with UInt64 headers,
 // big-endian).
@@ -9,6 +10,12 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::OpenOptions;
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 std::string base64(const std::vector<uint8_t>& bytes) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Voreen .vvd: the walnut header's RawData and meta items, values = the raw file's bytes.
 #include <gtest/gtest.h>
 
@@ -6,6 +7,11 @@
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {
+
+using sources::openVolume;
+using sources::readAll;
+using sources::VolumeInfo;
+
 namespace {
 
 TEST(VvdReader, WalnutMatchesItsRawFile) {

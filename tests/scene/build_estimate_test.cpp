@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The scene build's memory estimate against what the voxelizers really store, on the real bunny
 // and an implicit sphere, and the one-line refusal when the estimate exceeds the memory.
 #include "scene/build_estimate.h"
@@ -96,7 +97,7 @@ TEST(SceneBuildEstimate, RefusesWhatExceedsTheMemoryInOneLine) {
 }
 
 TEST(SceneBuildEstimate, MemoryForThisProcessIsPositive) {
-  EXPECT_GT(format::memoryForThisProcess(), uint64_t{64} << 20);
+  EXPECT_GT(base::memoryForThisProcess(), uint64_t{64} << 20);
 }
 
 }  // namespace

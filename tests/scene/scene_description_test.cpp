@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The scene file: what it accepts, and the one-line errors naming the JSON path of a bad field.
 #include "scene/scene_description.h"
 

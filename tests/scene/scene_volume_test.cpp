@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A scene's volume given as a dense source with a threshold or transfer function: the scene's
 // voxels are the ones `voxlink convert` keeps (same converter), checked on the foot CT.
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include "convert/converter.h"
 #include "format/file_writer.h"
 #include "format/voxlink_file.h"
+#include "pack/open_file.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 #include "sources/volume_source.h"
@@ -30,12 +32,12 @@ TEST(SceneVolume, DenseSourceWithThresholdGivesConvertsVoxels) {
   const auto dir = std::filesystem::temp_directory_path() / "voxlink-scene-volume-test";
   std::filesystem::create_directories(dir);
   // The reference: what `voxlink convert foot.nrrd --threshold 60` writes.
-  auto source = convert::openVolume(foot, {});
+  auto source = sources::openVolume(foot, {});
   ASSERT_TRUE(source) << source.message();
   convert::ConvertOptions options;
   options.classification = convert::thresholdClassification({"60"}).value();
   ASSERT_TRUE(convert::convertVolume(**source, options, (dir / "convert.vxl").string()));
-  auto reference = format::VoxLinkFile::open((dir / "convert.vxl").string());
+  auto reference = pack::openFile((dir / "convert.vxl").string());
   ASSERT_TRUE(reference) << reference.message();
 
   const std::string json =
@@ -45,7 +47,7 @@ TEST(SceneVolume, DenseSourceWithThresholdGivesConvertsVoxels) {
   auto built = buildScene(*description);
   ASSERT_TRUE(built) << built.message();
   ASSERT_TRUE(format::writeBrickedVolume((dir / "scene.vxl").string(), built->volume));
-  auto scene = format::VoxLinkFile::open((dir / "scene.vxl").string());
+  auto scene = pack::openFile((dir / "scene.vxl").string());
   ASSERT_TRUE(scene) << scene.message();
 
   EXPECT_EQ(built->report.volumeVoxels, reference->voxelCount());

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A SceneWalker over exact planes and spheres, for testing the ray-traced scene mode against
 // optics worked out by hand. It also records every ray it is asked to walk.
 #pragma once
@@ -7,9 +8,14 @@
 #include <mutex>
 #include <vector>
 
-#include "viewer/core/scene_walker.h"
+#include "render/scene_walker.h"
 
 namespace voxlink::viewer::testing {
+
+using render::Box;
+using render::Ray;
+using render::SceneEvent;
+using render::SceneWalker;
 
 struct AnalyticPlane {
   glm::dvec3 point, normal;  // unit normal; the plane is infinite unless halfSize > 0

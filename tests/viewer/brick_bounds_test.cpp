@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The per-brick boxes of stored voxels the ray tracer clips to, against brute force over every
 // cell, for every predominant axis and brick size.
-#include "viewer/core/brick_bounds.h"
+#include "render/brick_bounds.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,13 @@
 #include "tests/viewer/volume_fixtures.h"
 
 namespace voxlink::viewer {
+
+using render::brickBounds;
+using render::BrickBox;
+using render::DenseVolume;
+using render::packBrickBox;
+using render::unpackBrickBox;
+
 namespace {
 
 TEST(BrickBounds, PackingRoundTrips) {

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The brick tables the ray tracers read instead of the occupancy and rank sections, against
 // brute force over every voxel, for every brick size and predominant axis.
-#include "viewer/core/brick_lookup.h"
+#include "render/brick_lookup.h"
 
 #include <gtest/gtest.h>
 
@@ -9,11 +10,26 @@
 
 #include "format/file_writer.h"
 #include "format/voxel_locator.h"
+#include "pack/open_file.h"
+#include "render/brick_bounds.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/core/brick_bounds.h"
 
 namespace voxlink::viewer {
+
+using render::brickBounds;
+using render::BrickBox;
+using render::BrickRange;
+using render::DenseVolume;
+using render::dualBrickBoxes;
+using render::dualBrickGrid;
+using render::dualBrickRange;
+using render::kEmptyBrick;
+using render::kEmptyDualBrick;
+using render::occupiedBrickRange;
+using render::occupiedIndexByBrick;
+using render::unpackBrickBox;
+
 namespace {
 
 // Scattered voxels and a thin shell, dims no multiple of any brick size, and a corner voxel so
@@ -214,7 +230,7 @@ TEST(BrickLookup, TablesFollowTheOccupiedBricksNotTheGrid) {
   ASSERT_TRUE(volume) << volume.message();
   voxlink::testing::TempDir dir;
   ASSERT_TRUE(format::writeBrickedVolume(dir.file("one.vxl"), *volume).isOk());
-  auto file = format::VoxLinkFile::open(dir.file("one.vxl"));
+  auto file = pack::openFile(dir.file("one.vxl"));
   ASSERT_TRUE(file) << file.message();
   const BrickRange range = occupiedBrickRange(*file);
   EXPECT_EQ(range.lo, (std::array<uint32_t, 3>{10000, 5000, 0}));

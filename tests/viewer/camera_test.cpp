@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Camera framing, primary rays, orbit/pan/zoom and the controller that maps input onto them.
-#include "viewer/core/camera.h"
+#include "render/camera.h"
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,14 @@
 #include "viewer/app/camera_controller.h"
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::CameraSpec;
+using render::parseCameraSpec;
+using render::parseUpAxis;
+using render::Ray;
+
 namespace {
 
 const Box kBox{{-1, -2, -3}, {5, 4, 9}};

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
 # Smoke test of the viewer's commands through the executable: convert the tooth CT, render PNG
 # and EXR headless (EGL) with the reference comparison, a tiny benchmark, and the interactive
 # viewer for a few frames under Xvfb. Exit 77 (skipped) when the data is missing.

@@ -1,19 +1,31 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ray-traced scene mode's optics in float64 (EffectsTracer) against cases worked out by
 // hand: a perfect mirror, the lateral shift of a ray through a glass slab (Snell's law), total
 // internal reflection, a half-reflective half-refractive surface whose two rays must add up to
 // one unsplit ray, no NaN or value above 1 where every input lies in [0, 1], and termination
 // between parallel mirrors and with the camera inside glass.
-#include "viewer/core/effects_tracer.h"
+#include "render/effects_tracer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
+#include "render/light_transport.h"
 #include "tests/viewer/analytic_scene.h"
-#include "viewer/core/light_transport.h"
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::CameraSpec;
+using render::Effects;
+using render::EffectsTracer;
+using render::Image;
+using render::Ray;
+using render::refractDirection;
+using render::RenderSettings;
+
 namespace {
 
 using testing::analyticMaterial;
@@ -21,7 +33,7 @@ using testing::AnalyticPlane;
 using testing::AnalyticScene;
 using testing::AnalyticSphere;
 
-const format::TransferFunction kNoVolume{};
+const tf::TransferFunction kNoVolume{};
 
 RenderSettings unlit(Effects effects) {
   RenderSettings s;

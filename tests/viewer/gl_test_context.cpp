@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/viewer/gl_test_context.h"
 
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // One headless EGL context per test binary, made on first use. GL tests fail (not skip) when
 // none can be made: CI renders on llvmpipe, so a missing context is a broken setup.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The GL surface voxelizer against the exact CPU path: known voxel sets on synthetic triangles,
 // and on the real meshes a subset of the exact voxels with close normals.
 #include "viewer/gl/gl_voxelizer.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Keeps the GLSL side in step with the C++ layout: the shaders' gradient decoder against
 // format::decodeGradient, and their voxel lookups against format::VoxelLocator, for every brick
 // size, predominant axis and stored type, with sections split into several buffer textures.
@@ -18,6 +19,9 @@
 #include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::DenseVolume;
+
 namespace {
 
 // Storage-buffer bindings of the test shaders' result arrays (VXL_RESULTS_BINDING in

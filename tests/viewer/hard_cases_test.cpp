@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Hard cases for the GL ray tracer, each held to the float64 reference: rays exactly parallel to
 // each axis (zero direction components), the camera inside the volume, rays along brick faces
 // and edges, 1-voxel-thick shells, dims that are no multiple of the brick size, a file without
@@ -13,13 +14,24 @@
 #include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::CameraSpec;
+using render::DenseVolume;
+using render::Image;
+using render::ReferenceRenderer;
+using render::RenderSettings;
+using render::Sampling;
+using render::samplingName;
+
 namespace {
 
 // A sphere shell one voxel thick in a 37x21x50 volume (no multiple of any brick size) with
 // anisotropic spacing; opaque enough that every voxel counts.
 struct Scene {
   DenseVolume dense;
-  format::TransferFunction tf;
+  tf::TransferFunction tf;
   voxlink::testing::TempDir dir;
   std::optional<format::VoxLinkFile> file;
   std::unique_ptr<VoxLinkRenderer> renderer;

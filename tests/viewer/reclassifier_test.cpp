@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Re-classification from the source a file records: a TF that asks for removed values is
 // noticed, the background job re-converts the tooth CT keeping what the TF shows, and the new
 // file holds what the TF asks for.
@@ -8,11 +9,15 @@
 #include <chrono>
 #include <thread>
 
+#include "pack/open_file.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
 #include "viewer/app/classification_check.h"
 
 namespace voxlink::viewer {
+
+using render::DenseVolume;
+
 namespace {
 
 TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
@@ -23,7 +28,7 @@ TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
   ASSERT_TRUE(file) << file.message();
   const FileClassification before = fileClassification(*file);
   ASSERT_TRUE(before.recorded);
-  format::TransferFunction tf;
+  tf::TransferFunction tf;
   tf.opacity = {{119.5, 0.0}, {140, 0.2}, {255, 0.8}};
   tf.color = {{0, {1, 1, 1}}};
   const auto missing = visibleButRemoved(tf, before);
@@ -41,7 +46,7 @@ TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
   auto result = job.takeResult();
   ASSERT_TRUE(result.has_value());
   ASSERT_TRUE(*result) << result->message();
-  auto reloaded = format::VoxLinkFile::open(result->value());
+  auto reloaded = pack::openFile(result->value());
   ASSERT_TRUE(reloaded) << reloaded.message();
   EXPECT_GT(reloaded->voxelCount(), file->voxelCount());
   EXPECT_GE(reloaded->header().valueMin, 120.0);
@@ -58,7 +63,7 @@ TEST(Reclassifier, RefusesFilesWithoutARecordedSource) {
   auto file = testing::writeAndOpen(*sparse, dir.file("bare.vxl"));
   ASSERT_TRUE(file);
   Reclassifier job;
-  format::TransferFunction tf;
+  tf::TransferFunction tf;
   tf.opacity = {{0, 1.0}};
   EXPECT_FALSE(job.start(*file, tf, dir.file("out.vxl")));
   EXPECT_FALSE(job.running());

@@ -1,18 +1,33 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The float64 reference against closed-form answers, and image metrics.
-#include "viewer/core/reference_renderer.h"
+#include "render/reference_renderer.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "render/render_model.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/core/render_model.h"
 
 namespace voxlink::viewer {
+
+using render::Camera;
+using render::compareImages;
+using render::DenseVolume;
+using render::Image;
+using render::intersectBox;
+using render::Ray;
+using render::ReferenceRenderer;
+using render::RenderSettings;
+using render::Sampling;
+using render::shadeSample;
+using render::Shading;
+using render::walkVoxels;
+
 namespace {
 
-format::TransferFunction constantTf(double alpha, std::array<double, 3> rgb) {
-  format::TransferFunction tf;
+tf::TransferFunction constantTf(double alpha, std::array<double, 3> rgb) {
+  tf::TransferFunction tf;
   tf.opacity = {{0, 0.0}, {1, alpha}};
   tf.color = {{0, rgb}};
   return tf;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The GL ray tracer against the float64 reference at default settings: a synthetic shell, and
 // real CT (tooth, LIDC chest) converted by the project's converter and rendered with the
 // transfer function the file opens with. Target: PSNR >= 45 dB in both sampling modes.
@@ -6,15 +7,26 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/recorded_source.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/core/recorded_source.h"
-#include "viewer/core/tf_presets.h"
+#include "tf/tf_presets.h"
 #include "viewer/gl/dense_renderer.h"
 #include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::Camera;
+using render::CameraSpec;
+using render::DenseVolume;
+using render::loadSourceVolume;
+using render::ReferenceRenderer;
+using render::RenderSettings;
+using render::Sampling;
+using render::samplingName;
+using tf::defaultTransferFunction;
+
 namespace {
 
 constexpr double kTargetPsnr = 45.0;
@@ -24,7 +36,7 @@ constexpr double kTargetPsnr = 45.0;
 void checkFile(const format::VoxLinkFile& file, uint32_t size, const CameraSpec& spec) {
   auto dense = loadSourceVolume(file, "", {});
   ASSERT_TRUE(dense) << dense.message();
-  const format::TransferFunction tf = defaultTransferFunction(file);
+  const tf::TransferFunction tf = defaultTransferFunction(file);
   auto renderer = VoxLinkRenderer::create(file);
   ASSERT_TRUE(renderer) << renderer.message();
   (*renderer)->setTransferFunction(tf);
@@ -68,7 +80,7 @@ TEST(RenderAgreement, SphereShellMatchesReference) {
   ASSERT_TRUE(file) << file.message();
   auto renderer = VoxLinkRenderer::create(*file);
   ASSERT_TRUE(renderer) << renderer.message();
-  const format::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
+  const tf::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
   (*renderer)->setTransferFunction(tf);
   const ReferenceRenderer reference(dense, tf);
   for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // parseImageSize, fuzzed in process: random strings over the characters a size is made of (and
 // a few that are not) either fail or are exactly "W" + 'x'/'X' + "H" with both sides in
 // [1, 2^32 - 1] written in digits; accepted sizes round-trip.
-#include "viewer/core/render_settings.h"
+#include "render/render_settings.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,9 @@
 #include <string>
 
 namespace voxlink::viewer {
+
+using render::parseImageSize;
+
 namespace {
 
 // The reference rule, written independently: digits only on each side of one x or X.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A render target GL cannot allocate fails at once, in one line naming the size, instead of a
 // compute pass writing into nothing for a minute and then reporting a bare GL error code; the
 // target stays usable at a size that fits.

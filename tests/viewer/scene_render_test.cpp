@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Scenes (format version 2) through the GL ray tracer against the float64 scene reference:
 // surface fragments on an axis-aligned floor and an oblique semi-transparent wall, exact
 // spheres (one emissive, one overlapping the wall), and a volume blob, in one file. Every
@@ -12,14 +13,28 @@
 
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
+#include "render/scene_reference_renderer.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/core/scene_reference_renderer.h"
 #include "viewer/gl/render_target.h"
 #include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::Camera;
+using render::CameraSpec;
+using render::compareImages;
+using render::Effects;
+using render::Image;
+using render::ImageError;
+using render::Light;
+using render::Ray;
+using render::RenderSettings;
+using render::Sampling;
+using render::SceneReferenceRenderer;
+using render::UpAxis;
+
 namespace {
 
 constexpr double kTargetPsnr = 45.0;
@@ -134,7 +149,7 @@ Rendered renderScene(const format::VoxLinkFile& file, const CameraSpec& spec,
   auto renderer = VoxLinkRenderer::create(file);
   EXPECT_TRUE(renderer) << renderer.message();
   if (!renderer) return out;
-  const format::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
+  const tf::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
   (*renderer)->setTransferFunction(tf);
   const SceneReferenceRenderer reference(file, tf);
   const Camera camera = Camera::framing((*renderer)->geometry().worldBox(), spec);
@@ -259,7 +274,7 @@ TEST(SceneRender, ReferenceSpheresAreExact) {
   voxlink::testing::TempDir dir;
   auto file = testing::writeAndOpen(*scene, dir.file("spheres.vxl"));
   ASSERT_TRUE(file) << file.message();
-  const format::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
+  const tf::TransferFunction tf = testing::rampTf(100, 60, 0.6, 100, 255);
   const SceneReferenceRenderer reference(*file, tf);
   RenderSettings s;
   s.width = 120;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shader loading: includes resolved once each, defines placed after #version, compiler messages
 // mapped back to the file and line they came from, and every shipped program compiling.
 #include "viewer/gl/shader_program.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The transfer function as shaders see it (tables), presets, ParaView import, and the interval
 // arithmetic that says which values a TF asks for that a file's classification removed.
 #include <gtest/gtest.h>
@@ -5,27 +6,36 @@
 #include <random>
 
 #include "format/half.h"
-#include "format/value_interval.h"
+#include "tf/tf_presets.h"
+#include "tf/tf_table.h"
+#include "tf/value_interval.h"
 #include "viewer/app/classification_check.h"
-#include "viewer/core/tf_presets.h"
-#include "viewer/core/tf_table.h"
 
 namespace voxlink::viewer {
+
+using tf::buildTfTable;
+using tf::evaluateBreakpoints;
+using tf::ParaViewImport;
+using tf::parseParaViewPreset;
+using tf::tfPreset;
+using tf::tfPresetNames;
+using tf::TfTable;
+
 namespace {
 
-using format::complementIntervals;
-using format::intersectIntervals;
-using format::mergeIntervals;
+using tf::complementIntervals;
+using tf::intersectIntervals;
+using tf::mergeIntervals;
 
-format::TransferFunction stepTf() {
-  format::TransferFunction tf;
+tf::TransferFunction stepTf() {
+  tf::TransferFunction tf;
   tf.opacity = {{10, 0.0}, {20, 0.5}, {20, 0.1}, {35, 0.9}, {35.5, 0.2}};
   tf.color = {{0, {0, 0, 1}}, {20, {1, 0, 0}}, {20, {0, 1, 0}}, {50, {1, 1, 1}}};
   return tf;
 }
 
 TEST(TfTable, IndexedTablesHoldTheTfAtEveryStoredValue) {
-  const format::TransferFunction tf = stepTf();
+  const tf::TransferFunction tf = stepTf();
   const TfTable u8 = buildTfTable(tf, StoredType::kU8, 0.25, 3.0);
   ASSERT_EQ(u8.entries, 256u);
   for (uint32_t i = 0; i < 256; ++i) {
@@ -42,7 +52,7 @@ TEST(TfTable, IndexedTablesHoldTheTfAtEveryStoredValue) {
 }
 
 TEST(TfTable, BreakpointsReproduceTheTfIncludingSteps) {
-  const format::TransferFunction tf = stepTf();
+  const tf::TransferFunction tf = stepTf();
   const TfTable t = buildTfTable(tf, StoredType::kF32, 1.0, 0.0);
   EXPECT_EQ(t.kind, TfTable::Kind::kBreakpoints);
   std::mt19937 rng(7);
@@ -94,7 +104,7 @@ TEST(ParaViewImport, ReadsRgbAndOpacityPointsAndRescales) {
 }
 
 TEST(ClassificationCheck, IntervalArithmetic) {
-  using I = format::ValueInterval;
+  using I = tf::ValueInterval;
   const auto merged =
       mergeIntervals({{5, 10, false, true}, {10, 12, false, false}, {1, 2, false, false}});
   ASSERT_EQ(merged.size(), 2u);
@@ -120,7 +130,7 @@ TEST(ClassificationCheck, TfOpacityOnRemovedValuesIsFound) {
   FileClassification c;
   c.recorded = true;
   c.keep = {{60, HUGE_VAL, false, true}};  // --threshold 60
-  format::TransferFunction tf;
+  tf::TransferFunction tf;
   tf.opacity = {{70, 0.0}, {90, 0.5}};
   EXPECT_TRUE(visibleButRemoved(tf, c).empty());
   tf.opacity = {{40, 0.0}, {90, 0.5}};  // opacity from just above 40

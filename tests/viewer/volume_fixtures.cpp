@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "tests/viewer/volume_fixtures.h"
 
 #include <gtest/gtest.h>
@@ -8,9 +9,17 @@
 #include "convert/converter.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
+#include "pack/open_file.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::viewer::testing {
+
+using render::Camera;
+using render::compareImages;
+using render::DenseVolume;
+using render::loadDenseVolume;
+using render::ReferenceRenderer;
+using render::RenderSettings;
 
 Result<format::BrickedVolume> sparsify(const DenseVolume& v,
                                        const std::function<bool(double)>& keep,
@@ -61,7 +70,7 @@ Result<format::BrickedVolume> sparsify(const DenseVolume& v,
 Result<format::VoxLinkFile> writeAndOpen(const format::BrickedVolume& sparse,
                                          const std::string& path) {
   VOXLINK_RETURN_IF_ERROR(format::writeBrickedVolume(path, sparse));
-  return format::VoxLinkFile::open(path);
+  return pack::openFile(path);
 }
 
 Result<format::VoxLinkFile> thresholdedFile(const DenseVolume& volume, double threshold, uint32_t n,
@@ -88,9 +97,8 @@ DenseVolume makeVolume(std::array<uint32_t, 3> dims, std::array<double, 3> spaci
   return v;
 }
 
-format::TransferFunction rampTf(double threshold, double width, double alpha, double lo,
-                                double hi) {
-  format::TransferFunction tf;
+tf::TransferFunction rampTf(double threshold, double width, double alpha, double lo, double hi) {
+  tf::TransferFunction tf;
   tf.opacity = {{threshold, 0.0}, {threshold + width, alpha}};
   tf.color = {{lo, {0.9, 0.35, 0.2}}, {0.5 * (lo + hi), {0.95, 0.85, 0.6}}, {hi, {1.0, 1.0, 1.0}}};
   return tf;
@@ -98,8 +106,8 @@ format::TransferFunction rampTf(double threshold, double width, double alpha, do
 
 std::string toothPath() { return voxlink::testing::dataPath("ct/tooth_103x94x161_uint8.raw"); }
 
-convert::OpenOptions toothOpenOptions() {
-  convert::OpenOptions options;
+sources::OpenOptions toothOpenOptions() {
+  sources::OpenOptions options;
   options.dims = std::array<uint32_t, 3>{103, 94, 161};
   options.type = ScalarType::kU8;
   options.format = "raw";
@@ -109,11 +117,11 @@ convert::OpenOptions toothOpenOptions() {
 Result<DenseVolume> loadTooth() { return loadDenseVolume(toothPath(), toothOpenOptions()); }
 
 Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
-                                                 const convert::OpenOptions& open,
+                                                 const sources::OpenOptions& open,
                                                  const std::string& threshold,
                                                  const std::string& output, uint32_t brickSize,
                                                  format::Axis axis) {
-  VOXLINK_ASSIGN_OR_RETURN(auto volume, convert::openVolume(source, open));
+  VOXLINK_ASSIGN_OR_RETURN(auto volume, sources::openVolume(source, open));
   convert::ConvertOptions options;
   options.brickSize = brickSize;
   options.axis = axis;
@@ -121,7 +129,7 @@ Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
   options.sourceOptions = open;
   VOXLINK_ASSIGN_OR_RETURN(options.classification, convert::thresholdClassification({threshold}));
   VOXLINK_RETURN_IF_ERROR(convert::convertVolume(*volume, options, output).status());
-  return format::VoxLinkFile::open(output);
+  return pack::openFile(output);
 }
 
 RenderPair renderBoth(VolumeRenderer& renderer, const ReferenceRenderer& reference,

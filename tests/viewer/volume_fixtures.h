@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Small volumes for viewer tests: dense volumes built from formulas, and VoxLink files made from
 // them by keeping the voxels a predicate keeps, with gradients computed exactly as the
 // reference renderer computes them (DenseVolume::gradient). This stands in for the converter
@@ -9,14 +10,21 @@
 #include <string>
 
 #include "format/file_writer.h"
-#include "format/transfer_function.h"
 #include "format/voxlink_file.h"
-#include "viewer/core/dense_volume.h"
-#include "viewer/core/image.h"
-#include "viewer/core/reference_renderer.h"
+#include "render/dense_volume.h"
+#include "render/image.h"
+#include "render/reference_renderer.h"
+#include "tf/transfer_function.h"
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer::testing {
+
+using render::Camera;
+using render::DenseVolume;
+using render::Image;
+using render::ImageError;
+using render::ReferenceRenderer;
+using render::RenderSettings;
 
 struct SparseOptions {
   uint32_t brickSize = 8;
@@ -44,16 +52,16 @@ DenseVolume makeVolume(std::array<uint32_t, 3> dims, std::array<double, 3> spaci
 
 // A TF that is transparent below `threshold` and ramps to `alpha` over `width` above it, with
 // a colour ramp over [lo, hi].
-format::TransferFunction rampTf(double threshold, double width, double alpha, double lo, double hi);
+tf::TransferFunction rampTf(double threshold, double width, double alpha, double lo, double hi);
 
 // The tooth CT (103x94x161 u8) from the shared data, or an error when it is missing.
 Result<DenseVolume> loadTooth();
-convert::OpenOptions toothOpenOptions();
+sources::OpenOptions toothOpenOptions();
 std::string toothPath();
 
 // Runs the project's converter (convert::convertVolume) on a source, keeping values >= threshold.
 Result<format::VoxLinkFile> convertWithThreshold(const std::string& source,
-                                                 const convert::OpenOptions& open,
+                                                 const sources::OpenOptions& open,
                                                  const std::string& threshold,
                                                  const std::string& output, uint32_t brickSize = 8,
                                                  format::Axis axis = format::Axis::kZ);

@@ -1,11 +1,14 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Mouse and key input -> camera: orbit (left drag, arrows), pan (right or middle drag, shift +
 // left drag, shift + arrows), zoom (wheel, +/-), reset (R). Independent of GLFW so tests can
 // drive it with synthetic input.
 #pragma once
 
-#include "viewer/core/camera.h"
+#include "render/camera.h"
 
 namespace voxlink::viewer {
+
+using render::Camera;
 
 struct InputFrame {
   double mouseX = 0, mouseY = 0;  // pixels, origin top left

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/classification_check.h"
 
 #include <cmath>
@@ -8,7 +9,7 @@
 namespace voxlink::viewer {
 namespace {
 
-using format::ValueInterval;
+using tf::ValueInterval;
 
 ValueInterval everything() { return {-HUGE_VAL, HUGE_VAL, true, true}; }
 
@@ -36,17 +37,17 @@ FileClassification fileClassification(const format::VoxLinkFile& file) {
       i.lo = i.lo * *c->sigma + *c->mean;
       i.hi = i.hi * *c->sigma + *c->mean;
     }
-  out.keep = format::mergeIntervals(std::move(keep));
+  out.keep = tf::mergeIntervals(std::move(keep));
   return out;
 }
 
 std::vector<ValueInterval> removedValues(const FileClassification& c) {
-  return format::complementIntervals(c.keep);
+  return tf::complementIntervals(c.keep);
 }
 
-std::vector<ValueInterval> visibleButRemoved(const format::TransferFunction& tf,
+std::vector<ValueInterval> visibleButRemoved(const tf::TransferFunction& tf,
                                              const FileClassification& c) {
-  return format::intersectIntervals(tf.visibleIntervals(), removedValues(c));
+  return tf::intersectIntervals(tf.visibleIntervals(), removedValues(c));
 }
 
 }  // namespace voxlink::viewer

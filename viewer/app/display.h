@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Shows a render target in the window, scaled to the framebuffer (a reduced-resolution frame
 // while the user drags fills the window too).
 #pragma once

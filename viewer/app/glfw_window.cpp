@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/glfw_window.h"
 
 #include <epoxy/gl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The interactive viewer's window: GLFW with an OpenGL 4.5 core context (needs an X server or
 // Xvfb; headless rendering uses EGL instead, see viewer/gl/gl_context.h).
 #pragma once

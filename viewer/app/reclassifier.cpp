@@ -1,12 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/reclassifier.h"
 
 #include <filesystem>
 
 #include "convert/classification.h"
 #include "convert/converter.h"
-#include "viewer/core/recorded_source.h"
+#include "render/recorded_source.h"
 
 namespace voxlink::viewer {
+
+using render::RecordedSource;
+using render::recordedSource;
 
 Reclassifier::~Reclassifier() {
   cancel();
@@ -42,7 +46,7 @@ std::optional<Result<std::string>> Reclassifier::takeResult() {
   return r;
 }
 
-Status Reclassifier::start(const format::VoxLinkFile& file, const format::TransferFunction& tf,
+Status Reclassifier::start(const format::VoxLinkFile& file, const tf::TransferFunction& tf,
                            const std::string& outputPath) {
   if (running_.load())
     return makeError(ErrorCode::kInvalidArgument, "re-classification is already running");
@@ -69,7 +73,7 @@ Status Reclassifier::start(const format::VoxLinkFile& file, const format::Transf
       stage_ = stage;
     };
     Result<std::string> result = [&]() -> Result<std::string> {
-      VOXLINK_ASSIGN_OR_RETURN(auto volume, convert::openVolume(source.path, source.options));
+      VOXLINK_ASSIGN_OR_RETURN(auto volume, sources::openVolume(source.path, source.options));
       VOXLINK_RETURN_IF_ERROR(convert::convertVolume(*volume, options, outputPath).status());
       return outputPath;
     }();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Re-classification in a background thread (paper, section 3.1.3): when a transfer function
 // gives opacity to values the file's pre-classification removed, the viewer re-converts the
 // source recorded in META, keeping what the new transfer function shows, and reloads.
@@ -9,8 +10,8 @@
 #include <string>
 #include <thread>
 
-#include "format/transfer_function.h"
 #include "format/voxlink_file.h"
+#include "tf/transfer_function.h"
 
 namespace voxlink::viewer {
 
@@ -26,7 +27,7 @@ class Reclassifier {
 
   // Starts converting the file's recorded source, keeping the values `tf` shows. Fails at once
   // when the source is not recorded or cannot be found; later failures come from result().
-  Status start(const format::VoxLinkFile& file, const format::TransferFunction& tf,
+  Status start(const format::VoxLinkFile& file, const tf::TransferFunction& tf,
                const std::string& outputPath);
   bool running() const { return running_.load(); }
   double progress() const { return progress_.load(); }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/tf_editor.h"
 
 #include <imgui.h>
@@ -5,10 +6,17 @@
 #include <algorithm>
 #include <cmath>
 
-#include "viewer/core/image.h"
-#include "viewer/core/tf_presets.h"
+#include "render/image.h"
+#include "tf/tf_presets.h"
 
 namespace voxlink::viewer {
+
+using render::srgbEncode;
+using render::ValueHistogram;
+using tf::importParaViewPreset;
+using tf::tfPreset;
+using tf::tfPresetNames;
+
 namespace {
 
 constexpr float kPointRadius = 5.0f;
@@ -79,7 +87,7 @@ bool editPoints(std::vector<Point>& pts, int hovered, int& selected, int& draggi
 
 }  // namespace
 
-bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context) {
+bool TfEditor::draw(tf::TransferFunction& tf, const TfEditorContext& context) {
   bool changed = false;
   ImGui::PushID(this);
   float alphaMax = alphaMax_;
@@ -103,7 +111,7 @@ bool TfEditor::draw(format::TransferFunction& tf, const TfEditorContext& context
   return changed;
 }
 
-bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& context) {
+bool TfEditor::drawOpacity(tf::TransferFunction& tf, const TfEditorContext& context) {
   const ValueStrip strip("opacity", 150.0f, viewLo_, viewHi_);
   const ImVec2 origin = strip.origin, size = strip.size;
   ImDrawList* draw = ImGui::GetWindowDrawList();
@@ -159,14 +167,14 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
       pts, hovered, selectedOpacity_, draggingOpacity_, selectedColor_,
       [&](int i) {
         auto& p = pts[i];
-        const format::OpacityPoint moved{clampBetween(pts, i, strip.valueOf(mouse.x)),
-                                         alphaOf(mouse.y)};
+        const tf::OpacityPoint moved{clampBetween(pts, i, strip.valueOf(mouse.x)),
+                                     alphaOf(mouse.y)};
         const bool moves = moved.value != p.value || moved.alpha != p.alpha;
         p = moved;
         return moves;
       },
       [&] {
-        return format::OpacityPoint{strip.valueOf(mouse.x), alphaOf(mouse.y)};
+        return tf::OpacityPoint{strip.valueOf(mouse.x), alphaOf(mouse.y)};
       });
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
@@ -175,7 +183,7 @@ bool TfEditor::drawOpacity(format::TransferFunction& tf, const TfEditorContext& 
   return changed;
 }
 
-bool TfEditor::drawColorBar(format::TransferFunction& tf) {
+bool TfEditor::drawColorBar(tf::TransferFunction& tf) {
   const ValueStrip strip("colors", 22.0f, viewLo_, viewHi_);
   const ImVec2 origin = strip.origin, size = strip.size;
   ImDrawList* draw = ImGui::GetWindowDrawList();
@@ -207,11 +215,11 @@ bool TfEditor::drawColorBar(format::TransferFunction& tf) {
       },
       [&] {
         const double v = strip.valueOf(mouse.x);
-        return format::ColorPoint{v, tf.colorAt(v)};
+        return tf::ColorPoint{v, tf.colorAt(v)};
       });
 }
 
-bool TfEditor::drawSelection(format::TransferFunction& tf) {
+bool TfEditor::drawSelection(tf::TransferFunction& tf) {
   bool changed = false;
   if (selectedOpacity_ >= int(tf.opacity.size())) selectedOpacity_ = -1;
   if (selectedColor_ >= int(tf.color.size())) selectedColor_ = -1;
@@ -249,7 +257,7 @@ bool TfEditor::drawSelection(format::TransferFunction& tf) {
   return changed;
 }
 
-bool TfEditor::drawFiles(format::TransferFunction& tf, const TfEditorContext& context) {
+bool TfEditor::drawFiles(tf::TransferFunction& tf, const TfEditorContext& context) {
   bool changed = false;
   ImGui::SetNextItemWidth(160);
   if (ImGui::BeginCombo("preset", tf.name.empty() ? "(custom)" : tf.name.c_str())) {
@@ -268,7 +276,7 @@ bool TfEditor::drawFiles(format::TransferFunction& tf, const TfEditorContext& co
   ImGui::SetNextItemWidth(300);
   ImGui::InputText("file", path_, sizeof path_);
   if (ImGui::Button("Load TF")) {
-    auto loaded = format::loadTransferFunction(path_);
+    auto loaded = tf::loadTransferFunction(path_);
     message_ = loaded ? std::string("loaded ") + path_ : loaded.message();
     if (loaded) {
       tf = *loaded;
@@ -277,7 +285,7 @@ bool TfEditor::drawFiles(format::TransferFunction& tf, const TfEditorContext& co
   }
   ImGui::SameLine();
   if (ImGui::Button("Save TF")) {
-    Status s = format::saveTransferFunction(tf, path_);
+    Status s = tf::saveTransferFunction(tf, path_);
     message_ = s ? std::string("saved ") + path_ : s.message();
   }
   ImGui::SameLine();

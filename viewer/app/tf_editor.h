@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The transfer function editor (Dear ImGui): opacity points over a histogram of the stored
 // values, a colour bar with colour points, the value ranges the file's pre-classification
 // removed shaded, presets, and load/save of TF JSON and ParaView colour-map presets.
@@ -6,22 +7,24 @@
 #include <string>
 #include <vector>
 
-#include "format/transfer_function.h"
-#include "format/value_interval.h"
-#include "viewer/core/value_histogram.h"
+#include "render/value_histogram.h"
+#include "tf/transfer_function.h"
+#include "tf/value_interval.h"
 
 namespace voxlink::viewer {
 
+using render::ValueHistogram;
+
 struct TfEditorContext {
   const ValueHistogram* histogram = nullptr;
-  std::vector<format::ValueInterval> removed;  // values the file does not hold
-  double valueMin = 0, valueMax = 1;           // stored range, for presets
+  std::vector<tf::ValueInterval> removed;  // values the file does not hold
+  double valueMin = 0, valueMax = 1;       // stored range, for presets
 };
 
 class TfEditor {
  public:
   // Draws into the current ImGui window; true when `tf` changed.
-  bool draw(format::TransferFunction& tf, const TfEditorContext& context);
+  bool draw(tf::TransferFunction& tf, const TfEditorContext& context);
   // The value range the editor shows; the app sets it once from the file.
   void setView(double lo, double hi) {
     viewLo_ = lo;
@@ -29,10 +32,10 @@ class TfEditor {
   }
 
  private:
-  bool drawOpacity(format::TransferFunction& tf, const TfEditorContext& context);
-  bool drawColorBar(format::TransferFunction& tf);
-  bool drawSelection(format::TransferFunction& tf);
-  bool drawFiles(format::TransferFunction& tf, const TfEditorContext& context);
+  bool drawOpacity(tf::TransferFunction& tf, const TfEditorContext& context);
+  bool drawColorBar(tf::TransferFunction& tf);
+  bool drawSelection(tf::TransferFunction& tf);
+  bool drawFiles(tf::TransferFunction& tf, const TfEditorContext& context);
 
   double viewLo_ = 0, viewHi_ = 1;
   float alphaMax_ = 1.0f;

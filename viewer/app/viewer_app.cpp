@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/viewer_app.h"
 
 #include <epoxy/gl.h>
@@ -17,6 +18,14 @@
 #include "viewer/app/viewer_state.h"
 
 namespace voxlink::viewer {
+
+using render::Camera;
+using render::Image;
+using render::RenderSettings;
+using render::Sampling;
+using render::srgbDecode;
+using render::writeImage;
+
 namespace {
 
 double nowMs() {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // `voxlink view FILE.vxl`: the interactive viewer. A GLFW window, the VoxLink ray tracer, the
 // transfer function editor, camera control, reduced resolution while the user drags, frame time
 // and GPU memory on screen, screenshots, re-classification from the recorded source.
@@ -6,18 +7,21 @@
 #include <optional>
 #include <string>
 
-#include "format/transfer_function.h"
-#include "viewer/core/camera.h"
-#include "viewer/core/render_settings.h"
+#include "render/camera.h"
+#include "render/render_settings.h"
+#include "tf/transfer_function.h"
 
 namespace voxlink::viewer {
+
+using render::CameraSpec;
+using render::RenderSettings;
 
 struct ViewerOptions {
   std::string path;
   int windowWidth = 1100, windowHeight = 800;
   RenderSettings settings;  // width and height follow the window
   CameraSpec camera;
-  std::optional<format::TransferFunction> tf;
+  std::optional<tf::TransferFunction> tf;
   // Smoke tests: quit after this many frames (0: run until the window closes), writing a
   // full-resolution screenshot of the last view first when a path is given.
   int maxFrames = 0;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/viewer_state.h"
 
 #include <imgui.h>
@@ -7,15 +8,25 @@
 #include <tuple>
 
 #include "format/validator.h"
-#include "viewer/core/tf_presets.h"
+#include "pack/open_file.h"
+#include "tf/tf_presets.h"
 
 namespace voxlink::viewer {
 
+using render::kMaxBouncesLimit;
+using render::Light;
+using render::RenderSettings;
+using render::Sampling;
+using render::sceneLights;
+using render::valueHistogram;
+using tf::defaultTransferFunction;
+using tf::displayRange;
+
 Status ViewerState::load(const std::string& path, bool keepTf) {
-  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, format::openValidatedFile(path));
+  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, pack::openValidatedFile(path));
   auto next = std::make_unique<format::VoxLinkFile>(std::move(opened));
   VOXLINK_ASSIGN_OR_RETURN(auto r, VoxLinkRenderer::create(*next));
-  VOXLINK_ASSIGN_OR_RETURN(std::vector<Light> lights, viewer::sceneLights(next->metaJson()));
+  VOXLINK_ASSIGN_OR_RETURN(std::vector<Light> lights, render::sceneLights(next->metaJson()));
   file = std::move(next);
   renderer = std::move(r);
   sceneLights = std::move(lights);
@@ -139,7 +150,7 @@ bool drawTransferFunctionPanel(ViewerState& s) {
     ImGui::TextWrapped(
         "The transfer function gives opacity to %s, which this file's pre-classification "
         "removed: those voxels cannot show.",
-        format::describeIntervals(s.visibleButRemoved).c_str());
+        tf::describeIntervals(s.visibleButRemoved).c_str());
     ImGui::PopStyleColor();
   }
   if (s.reclassifier.running()) {

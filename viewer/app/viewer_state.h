@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the viewer holds between frames: the open file and its renderer, the transfer function
 // and what the file's classification says about it, and the panels that edit them.
 #pragma once
@@ -7,21 +8,26 @@
 #include <vector>
 
 #include "format/voxlink_file.h"
+#include "render/value_histogram.h"
 #include "viewer/app/classification_check.h"
 #include "viewer/app/reclassifier.h"
 #include "viewer/app/tf_editor.h"
-#include "viewer/core/value_histogram.h"
 #include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
 
+using render::Light;
+using render::RenderSettings;
+using render::sceneLights;
+using render::ValueHistogram;
+
 struct ViewerState {
   std::unique_ptr<format::VoxLinkFile> file;
   std::unique_ptr<VoxLinkRenderer> renderer;
-  format::TransferFunction tf;
+  tf::TransferFunction tf;
   FileClassification classification;
-  std::vector<format::ValueInterval> removed;            // what the file does not hold
-  std::vector<format::ValueInterval> visibleButRemoved;  // what the TF asks for in vain
+  std::vector<tf::ValueInterval> removed;            // what the file does not hold
+  std::vector<tf::ValueInterval> visibleButRemoved;  // what the TF asks for in vain
   ValueHistogram histogram;
   TfEditor editor;
   Reclassifier reclassifier;

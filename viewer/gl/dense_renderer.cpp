@@ -1,13 +1,17 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/dense_renderer.h"
 
 #include <cmath>
 #include <cstring>
 
+#include "base/parallel_for.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
-#include "format/parallel_for.h"
 
 namespace voxlink::viewer {
+
+using render::DenseVolume;
+
 namespace {
 
 constexpr GLint kValuesUnit = 2;
@@ -63,7 +67,7 @@ Result<std::unique_ptr<DenseRenderer>> DenseRenderer::create(const DenseVolume& 
   std::unique_ptr<DenseRenderer> r(new DenseRenderer(g));
   const size_t n = volume.values.size();
   std::vector<uint16_t> codes(n);
-  format::parallelFor(volume.dims[2], 0, [&](uint64_t z64) {
+  base::parallelFor(volume.dims[2], 0, [&](uint64_t z64) {
     const auto z = static_cast<uint32_t>(z64);
     for (uint32_t y = 0; y < volume.dims[1]; ++y)
       for (uint32_t x = 0; x < volume.dims[0]; ++x) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The benchmark's peer: a dense 3D-texture ray caster with the same model (sampling, shading,
 // transfer function, step) as VoxLinkRenderer. It reads every voxel of the dense source from
 // two 3D textures (stored value bits in the file's stored type, polar16 gradient codes) and
@@ -6,10 +7,12 @@
 
 #include <memory>
 
-#include "viewer/core/dense_volume.h"
+#include "render/dense_volume.h"
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::DenseVolume;
 
 class DenseRenderer : public VolumeRenderer {
  public:

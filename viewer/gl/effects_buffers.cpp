@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/effects_buffers.h"
 
 #include <algorithm>

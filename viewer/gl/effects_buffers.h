@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GPU buffers of the ray-traced scene mode (paper, section 5.2.2): two ray buffers (one pass
 // reads the rays the previous pass spawned into the other), an atomic counter pair (rays
 // spawned, rays dropped for want of room) and the per-pixel fixed-point accumulator.
@@ -5,7 +6,7 @@
 
 #include <cstdint>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "viewer/gl/gl_objects.h"
 
 namespace voxlink::viewer {

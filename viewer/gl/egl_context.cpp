@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/gl_allocation.h"
 
 #include <epoxy/gl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GL reports a failed allocation (a texture or buffer too large for the driver) only through
 // glGetError. Renderers check right after allocating, so that a frame is not dispatched into
 // nothing for a minute and then reported as a bare error code.
@@ -5,7 +6,7 @@
 
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::viewer {
 

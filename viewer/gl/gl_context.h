@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // An OpenGL 4.5 core context made current on the calling thread: headless through EGL (no X
 // server; what `voxlink render`, the benchmark and the tests use) or a GLFW window (the
 // interactive viewer, viewer/app/glfw_window.h). Function pointers come from libepoxy.
@@ -6,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::viewer {
 

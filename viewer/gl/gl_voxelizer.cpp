@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/gl_voxelizer.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's GL surface voxelization (sections 3.1.1 and 4.1), headless on any GL 4.5 context
 // (llvmpipe included). Each non-degenerate triangle is rasterized once, in the orthographic view
 // along its dominant normal axis (the per-triangle swizzle: three draws, one per axis, depth test
@@ -19,7 +20,7 @@
 
 #include <cstdint>
 
-#include "format/error.h"
+#include "base/error.h"
 #include "geometry/surface_voxelizer.h"
 #include "geometry/triangle_mesh.h"
 #include "geometry/voxel_grid.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/render_benchmark.h"
 
 #include <algorithm>
@@ -8,6 +9,17 @@
 #include <map>
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::compareImages;
+using render::Image;
+using render::ImageError;
+using render::RenderSettings;
+using render::Sampling;
+using render::samplingName;
+using render::writeImage;
+
 namespace {
 
 double seconds() {

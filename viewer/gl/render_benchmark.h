@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper's rendering protocol (section 6): a 360 degree turn about the y axis, then one about
 // the x axis, mean frame rate over both. Renderers run interleaved frame by frame, so a load
 // change on a shared machine hits them alike; each gets its PSNR against the float64 reference.
@@ -7,13 +8,20 @@
 #include <string>
 #include <vector>
 
-#include "viewer/core/camera.h"
-#include "viewer/core/image.h"
-#include "viewer/core/reference_renderer.h"
-#include "viewer/core/render_settings.h"
+#include "render/camera.h"
+#include "render/image.h"
+#include "render/reference_renderer.h"
+#include "render/render_settings.h"
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::CameraSpec;
+using render::Image;
+using render::RenderSettings;
+using render::Sampling;
 
 struct BenchmarkOptions {
   uint32_t framesPerTurn = 36;

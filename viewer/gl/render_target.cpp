@@ -1,8 +1,11 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/render_target.h"
 
 #include "viewer/gl/gl_allocation.h"
 
 namespace voxlink::viewer {
+
+using render::Image;
 
 Status RenderTarget::resize(uint32_t width, uint32_t height) {
   if (texture_ && width == width_ && height == height_) return Status::ok();

@@ -1,13 +1,16 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The RGBA32F texture a renderer writes (one texel per pixel, row 0 = top row of the image).
 #pragma once
 
 #include <cstdint>
 
-#include "format/error.h"
-#include "viewer/core/image.h"
+#include "base/error.h"
+#include "render/image.h"
 #include "viewer/gl/gl_objects.h"
 
 namespace voxlink::viewer {
+
+using render::Image;
 
 class RenderTarget {
  public:

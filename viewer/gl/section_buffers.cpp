@@ -1,14 +1,23 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/section_buffers.h"
 
 #include <algorithm>
 #include <bit>
 
-#include "format/process_memory.h"
+#include "base/process_memory.h"
 #include "format/scene_index.h"
-#include "viewer/core/brick_bounds.h"
-#include "viewer/core/brick_lookup.h"
+#include "render/brick_bounds.h"
+#include "render/brick_lookup.h"
 
 namespace voxlink::viewer {
+
+using render::brickBounds;
+using render::BrickRange;
+using render::dualBrickBoxes;
+using render::dualBrickRange;
+using render::occupiedBrickRange;
+using render::occupiedIndexByBrick;
+
 namespace {
 
 // An array to upload: a section of the file, or a table derived from it.
@@ -57,7 +66,7 @@ Status checkUploadFits(const format::VoxLinkFile& file, const BrickRange& occupi
   for (const format::SectionEntry& e : file.sectionTable())
     if (e.id != uint32_t(format::SectionId::kMeta)) sections += e.bytes;
   const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections;
-  const uint64_t available = format::memoryForThisProcess();
+  const uint64_t available = base::memoryForThisProcess();
   if (needed > available)
     return makeError(ErrorCode::kTooLarge, file.path(), ": rendering needs ", needed,
                      " bytes (its sections and brick tables over the ", occupied.size[0], " x ",

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A VoxLink file in GPU buffers: its voxel sections (ROWS, MASK, VALU, GRAD) unchanged, and in
 // place of its brick sections (BOCC, BRNK, BVOX) brick tables derived from them when it is
-// loaded (viewer/core/brick_lookup.h, brick_bounds.h): an occupied index per brick, the box of
+// loaded (render/brick_lookup.h, brick_bounds.h): an occupied index per brick, the box of
 // cells samples can meet voxels in per dual brick, and per occupied brick its box and first
 // voxel. The shaders read a brick's occupied index, box and first voxel in two reads instead of
 // four.

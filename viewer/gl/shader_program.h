@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // GLSL programs built from shaders/*.glsl. The files are compiled into the library as strings
 // at build time (viewer/embed_shaders.cmake), so an installed `voxlink` needs no shader files;
 // setting VOXLINK_SHADER_DIR makes the library read them from that directory instead (shader
@@ -12,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "format/error.h"
+#include "base/error.h"
 
 namespace voxlink::viewer {
 

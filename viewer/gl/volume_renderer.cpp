@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/volume_renderer.h"
 
 #include <algorithm>
@@ -6,6 +7,15 @@
 #include "format/gradient_codec.h"
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::checkSettings;
+using render::kMaxLights;
+using render::RenderSettings;
+using render::Sampling;
+using tf::buildTfTable;
+
 namespace {
 
 // sin/cos tables taken from format::decodeGradient, so the shader decodes bit-identically:
@@ -54,13 +64,13 @@ double VolumeGeometry::minSpacing() const { return std::min({spacing[0], spacing
 VolumeRenderer::VolumeRenderer(const VolumeGeometry& geometry) : geometry_(geometry) {
   const std::vector<float> table = gradientTable();
   gradientTable_ = createStorageBuffer(table.data(), table.size() * sizeof(float));
-  format::TransferFunction identity;
+  tf::TransferFunction identity;
   identity.opacity = {{0.0, 0.0}};
   identity.color = {{0.0, {1, 1, 1}}};
   setTransferFunction(identity);
 }
 
-void VolumeRenderer::setTransferFunction(const format::TransferFunction& tf) {
+void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   tf_ = tf;
   table_ = buildTfTable(tf, geometry_.valueType, geometry_.valueScale, geometry_.valueOffset);
   // A texture buffer may not be empty.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // What the GL ray casters share: the frame's uniforms (camera, settings, volume geometry), the
 // transfer-function and gradient-decoding tables, a cache of compiled program variants and the
 // dispatch. VoxLinkRenderer (the sparse file) and DenseRenderer (3D textures) fill in the data.
@@ -9,17 +10,22 @@
 #include <tuple>
 #include <vector>
 
-#include "format/transfer_function.h"
 #include "format/voxlink_file.h"
-#include "viewer/core/camera.h"
-#include "viewer/core/render_settings.h"
-#include "viewer/core/tf_table.h"
+#include "render/camera.h"
+#include "render/render_settings.h"
+#include "tf/tf_table.h"
+#include "tf/transfer_function.h"
 #include "viewer/gl/effects_buffers.h"
 #include "viewer/gl/gl_objects.h"
 #include "viewer/gl/render_target.h"
 #include "viewer/gl/shader_program.h"
 
 namespace voxlink::viewer {
+
+using render::Box;
+using render::Camera;
+using render::RenderSettings;
+using tf::TfTable;
 
 // The geometry and value mapping both renderers need, in the file's terms.
 struct VolumeGeometry {
@@ -43,8 +49,8 @@ class VolumeRenderer {
  public:
   virtual ~VolumeRenderer() = default;
 
-  void setTransferFunction(const format::TransferFunction& tf);
-  const format::TransferFunction& transferFunction() const { return tf_; }
+  void setTransferFunction(const tf::TransferFunction& tf);
+  const tf::TransferFunction& transferFunction() const { return tf_; }
   // Renders into `target` (resized to the settings' size). Returns once the work is queued;
   // call glFinish() or target.read() to wait for it.
   Status render(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
@@ -89,7 +95,7 @@ class VolumeRenderer {
                         uint32_t width, uint32_t height) const;
 
   VolumeGeometry geometry_;
-  format::TransferFunction tf_;
+  tf::TransferFunction tf_;
   TfTable table_;
   GlStorageBuffer tfBuffer_;
   uint64_t tfBytes_ = 0;

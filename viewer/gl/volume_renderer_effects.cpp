@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ray-traced scene mode's frame (paper, section 5.2.2): a primary pass, then passes over the
 // rays the previous pass spawned (their count read back from the atomic counter, as the paper's
 // host starts each batch) until none is left or the bounce limit is reached, then the resolve.
@@ -5,10 +6,16 @@
 #include <cmath>
 #include <vector>
 
-#include "viewer/core/render_model.h"
+#include "render/render_model.h"
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::Camera;
+using render::kSurfaceShadowBias;
+using render::Light;
+using render::RenderSettings;
+using render::Sampling;
 
 void VolumeRenderer::setEffectsUniforms(const ComputeProgram& p, const Camera& camera,
                                         const RenderSettings& s) const {

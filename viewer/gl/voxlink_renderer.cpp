@@ -1,8 +1,13 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/gl/voxlink_renderer.h"
 
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::RenderSettings;
+using render::Sampling;
+using render::samplingName;
 
 std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
   return {{"VXL_N", std::to_string(h.brickSize)},

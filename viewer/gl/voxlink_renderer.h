@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The GL ray tracer over a VoxLink file (paper, sections 3.1.4 and 5.1): the file's sections in
 // storage buffers, brick skipping and per-row voxel traversal in shaders/voxlink_*.glsl.
 #pragma once
@@ -9,6 +10,8 @@
 #include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::RenderSettings;
 
 class VoxLinkRenderer : public VolumeRenderer {
  public:

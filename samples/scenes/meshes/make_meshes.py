@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: BSD-3-Clause
 """Writes the small meshes the sample scenes use beside the real data: a unit quad, a unit box
 and a house with glass windows (walls, gable roof, ground; materials in house.mtl).
 Run from this folder: python3 make_meshes.py (the outputs are committed)."""

@@ -1,0 +1,105 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/voxel_scene_walker.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "format/gradient_codec.h"
+#include "render/render_model.h"
+
+namespace voxlink::render {
+
+namespace {
+
+glm::dvec3 decoded(uint16_t code) {
+  const auto v = format::decodeGradient(code);
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+VoxelSceneWalker::VoxelSceneWalker(const format::VoxLinkFile& file)
+    : file_(file), locator_(file), index_(file) {
+  const format::FileHeader& h = file.header();
+  for (int a = 0; a < 3; ++a) {
+    dims_[a] = h.dims[a];
+    origin_[a] = h.origin[a];
+    spacing_[a] = h.spacing[a];
+    box_.lo[a] = origin_[a] - 0.5 * spacing_[a];
+    box_.hi[a] = origin_[a] + (double(dims_[a]) - 0.5) * spacing_[a];
+  }
+  unit_ = std::min({spacing_.x, spacing_.y, spacing_.z});
+}
+
+std::span<const format::MaterialRecord> VoxelSceneWalker::materials() const {
+  const auto m = file_.materials();
+  return {m.data(), m.size()};
+}
+
+double VoxelSceneWalker::surfaceOffset() const { return kSurfaceShadowBias * unit_; }
+
+void VoxelSceneWalker::walk(const Ray& ray, double tMin, double tMax,
+                            const std::function<bool(const SceneEvent&)>& visit) const {
+  auto [t0, t1] = intersectBox(ray.origin, ray.direction, box_.lo, box_.hi);
+  t0 = std::max(t0, tMin);
+  t1 = std::min(t1, tMax);
+  if (!(t0 < t1)) return;
+  // Index space: voxel i spans [i, i + 1); t stays the world distance along the unit ray.
+  const glm::dvec3 o = (ray.origin - origin_) / spacing_ + 0.5;
+  const glm::dvec3 d = ray.direction / spacing_;
+  const bool scene = file_.isScene();
+  const auto spheres = file_.spheres();
+  const auto refs = file_.sphereRefs();
+  walkVoxels(o, d, t0, t1, dims_, [&](const glm::ivec3& c, double ta, double tb) {
+    const int64_t found = locator_.find(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z));
+    if (found < 0) return true;
+    const uint64_t i = uint64_t(found);
+    if (scene) {
+      const uint32_t word = index_.surfaceWord(i);
+      if (word != format::kNoSurface) {
+        SceneEvent e;
+        e.t = ta;
+        e.normal = glm::normalize(decoded(format::surfaceNormal(word)));
+        e.material = format::surfaceMaterial(word);
+        if (!visit(e)) return false;
+      }
+      // The nearest hit t >= max(ta, 0) of the voxel's spheres that lies inside its chord, so
+      // each hit is met in exactly one voxel.
+      const auto [begin, end] = index_.sphereRefs(i);
+      SceneEvent hit;
+      hit.t = HUGE_VAL;
+      for (uint32_t r = begin; r < end; ++r) {
+        const format::SphereRecord& s = spheres[refs[r]];
+        const glm::dvec3 centre =
+            (glm::dvec3(s.center[0], s.center[1], s.center[2]) - origin_) / spacing_ + 0.5;
+        const double radius = s.radius / spacing_.x;
+        // Closest-approach form of the discriminant, as the GL ray tracer computes it.
+        const glm::dvec3 oc = o - centre;
+        const double a = glm::dot(d, d), b = glm::dot(oc, d) / a;
+        const glm::dvec3 perp = oc - b * d;
+        const double disc = radius * radius - glm::dot(perp, perp);
+        if (disc < 0) continue;
+        const double root = std::sqrt(disc / a), tLow = std::max(ta, 0.0);
+        const double tNear = -b - root, tFar = -b + root;
+        const double t = tNear >= tLow ? tNear : (tFar >= tLow ? tFar : HUGE_VAL);
+        if (t >= ta && t < tb && t < hit.t) {
+          hit.t = t;
+          hit.normal = glm::normalize(o + t * d - centre);
+          hit.material = s.material;
+        }
+      }
+      if (hit.t < HUGE_VAL && !visit(hit)) return false;
+    }
+    const int64_t slot = index_.volumeSlot(i);
+    if (slot < 0) return true;
+    SceneEvent e;
+    e.kind = SceneEvent::Kind::kVolume;
+    e.t = ta;
+    e.tEnd = tb;
+    e.value = file_.value(uint64_t(slot));
+    e.gradient = decoded(file_.gradientCodes()[uint64_t(slot)]);
+    return visit(e);
+  });
+}
+
+}  // namespace voxlink::render
