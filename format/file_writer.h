@@ -12,12 +12,11 @@
 #include <vector>
 
 #include "base/error.h"
+#include "base/output_file.h"
 #include "format/layout.h"
 #include "format/scalar_type.h"
 
 namespace voxlink::format {
-
-struct TempFile;  // base/output_file.h
 
 // What the header says about a volume, apart from counts and section bookkeeping.
 struct VolumeDescription {
