@@ -8,15 +8,13 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "format/layout.h"
-
 namespace voxlink {
 inline namespace base {
 namespace limits {
 
-// Voxels along one axis of any dense input; the .vxl format's own per-axis limit, so `stats`
-// and `convert` accept the same inputs.
-inline constexpr uint64_t kMaxAxis = format::kMaxDim;
+// Voxels along one axis of any dense input; the .vxl format's own per-axis limit (format::kMaxDim,
+// which format/layout.h asserts equal), so `stats` and `convert` accept the same inputs.
+inline constexpr uint64_t kMaxAxis = uint64_t{1} << 16;
 // Voxels of any dense input (2^40): hostile headers fail before allocating.
 inline constexpr uint64_t kMaxVoxels = uint64_t{1} << 40;
 // Bytes of a file that a reader holds in memory whole (VTK XML image data).

@@ -2,8 +2,6 @@
 #include "cli/render_options.h"
 
 #include <cstdio>
-#include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "tf/tf_presets.h"
 
@@ -43,78 +41,6 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
       ->capture_default_str();
   cmd->add_option("--background", background, "Background colour R,G,B in [0, 1] (linear)")
       ->capture_default_str();
-}
-
-Result<render::RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) const {
-  render::RenderSettings s;
-  VOXLINK_ASSIGN_OR_RETURN(s.effects, render::parseEffects(effects, maxBounces));
-  s.effects.stepsPerPass = stepsPerPass;
-  if (s.effects.any()) {
-    auto lights = render::sceneLights(file.metaJson());
-    if (!lights) return makeError(lights.error().code, file.path(), ": ", lights.message());
-    s.lights = std::move(*lights);
-  }
-  VOXLINK_ASSIGN_OR_RETURN(auto wh, render::parseImageSize(size));
-  s.width = wh[0];
-  s.height = wh[1];
-  s.sampling = *render::parseSampling(sampling);
-  s.stepVoxels = step;
-  s.shading.shadows = shadows;
-  s.shading.enabled = !noShading;
-  std::stringstream in(background);
-  std::string item;
-  for (int i = 0; i < 3; ++i) {
-    if (!std::getline(in, item, ','))
-      return makeError(ErrorCode::kInvalidArgument, "--background: expected R,G,B, got '",
-                       background, "'");
-    try {
-      s.background[i] = std::stod(item);
-    } catch (const std::exception&) {
-      return makeError(ErrorCode::kInvalidArgument, "--background: '", item, "' is not a number");
-    }
-  }
-  VOXLINK_RETURN_IF_ERROR(render::checkSettings(s, "render"));
-  return s;
-}
-
-Result<render::CameraSpec> RenderOptions::cameraSpec(const format::VoxLinkFile& file) const {
-  render::CameraSpec defaults;
-  // A scene's camera (META scene.camera, from its scene file) is the default view.
-  const auto meta = nlohmann::json::parse(file.metaJson(), nullptr, /*allow_exceptions=*/false);
-  const nlohmann::json* sceneCamera = nullptr;
-  if (meta.is_object() && meta.contains("scene") && meta["scene"].is_object() &&
-      meta["scene"].contains("camera"))
-    sceneCamera = &meta["scene"]["camera"];
-  if (sceneCamera && sceneCamera->is_object()) {
-    const nlohmann::json& c = *sceneCamera;
-    auto number = [&](const char* key, double& out) {
-      if (c.contains(key) && c[key].is_number()) out = c[key].get<double>();
-    };
-    number("azimuth", defaults.azimuthDeg);
-    number("elevation", defaults.elevationDeg);
-    number("distance", defaults.distanceScale);
-    number("fov", defaults.fovYDeg);
-    if (c.contains("up") && c["up"].is_string())
-      defaults.up = render::parseUpAxis(c["up"].get<std::string>()).value_or(render::UpAxis::kZ);
-  }
-  if (!up.empty()) {
-    auto axis = render::parseUpAxis(up);
-    if (!axis)
-      return makeError(ErrorCode::kInvalidArgument, "--up: \"", up, "\" is not y, z, -y or -z");
-    defaults.up = *axis;
-  }
-  if (camera.empty()) return defaults;
-  return render::parseCameraSpec(camera, defaults);
-}
-
-Result<tf::TransferFunction> RenderOptions::transferFunction(
-    const format::VoxLinkFile& file) const {
-  if (!tfPath.empty()) return tf::loadTransferFunction(tfPath);
-  if (!tfPreset.empty()) {
-    const auto [lo, hi] = tf::displayRange(file.header().valueMin, file.header().valueMax);
-    return tf::tfPreset(tfPreset, lo, hi);
-  }
-  return tf::defaultTransferFunction(file);
 }
 
 void SourceOptions::add(CLI::App* cmd) {

@@ -2,6 +2,7 @@
 // The executables' side of the OpenVDB export: validates, loads libvoxlink_vdb.so, forwards.
 #include "base/plugin_loader.h"
 #include "convert/vdb_export.h"
+#include "convert/vdb_plugin_api.h"
 #include "format/validator.h"
 #include "sources/plugin_api.h"
 
@@ -13,8 +14,8 @@ Result<VdbExportSummary> exportVdb(const format::VoxLinkFile& file, const std::s
   VOXLINK_RETURN_IF_ERROR(
       format::validateFile(file, base::progressPart(progress, 0, 0.2)).status());
   VOXLINK_ASSIGN_OR_RETURN(
-      const sources::VdbPluginApi* vdb,
-      base::pluginApi<sources::VdbPluginApi>(sources::kVdbPlugin, sources::kVdbPluginEntry));
+      const VdbExportPluginApi* vdb,
+      base::pluginApi<VdbExportPluginApi>(sources::kVdbPlugin, kVdbExportPluginEntry));
   return vdb->exportVdb(file, path, base::progressPart(progress, 0.2, 1));
 }
 

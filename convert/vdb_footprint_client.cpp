@@ -2,6 +2,7 @@
 // The footprint comparison's side of the OpenVDB plugin: loads libvoxlink_vdb.so and forwards.
 #include "base/plugin_loader.h"
 #include "convert/vdb_footprint.h"
+#include "convert/vdb_plugin_api.h"
 #include "format/validator.h"
 #include "sources/plugin_api.h"
 
@@ -13,8 +14,8 @@ Result<report::PeerFootprint> measureVdbFootprint(const format::VoxLinkFile& fil
   if (auto valid = format::validateFile(file); !valid)
     return makeError(valid.code(), valid.message(), "; the OpenVDB comparison needs a valid file");
   VOXLINK_ASSIGN_OR_RETURN(
-      const sources::VdbPluginApi* vdb,
-      base::pluginApi<sources::VdbPluginApi>(sources::kVdbPlugin, sources::kVdbPluginEntry));
+      const VdbExportPluginApi* vdb,
+      base::pluginApi<VdbExportPluginApi>(sources::kVdbPlugin, kVdbExportPluginEntry));
   return vdb->measureFootprint(file);
 }
 

@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <string_view>
 
+#include "base/limits.h"
+
 namespace voxlink::format {
 
 inline constexpr char kMagic[8] = {'V', 'O', 'X', 'L', 'I', 'N', 'K', '\0'};
@@ -34,6 +36,8 @@ inline constexpr uint32_t kMaxBrickSize = 32;
 inline constexpr uint64_t kMaxVoxels = 0xFFFFFFFFull;
 // Largest extent per axis; keeps brick counts and products far from 64-bit overflow.
 inline constexpr uint32_t kMaxDim = 1u << 16;
+static_assert(kMaxDim == limits::kMaxAxis,
+              "base/limits.h: dense inputs take what the format holds");
 
 enum class Axis : uint8_t { kX = 0, kY = 1, kZ = 2 };
 

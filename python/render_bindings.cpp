@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // voxlink.render(): one frame of a .vxl file through EGL, as `voxlink render` makes it (the
-// same option parsing: cli/render_options), returned as an HxWx4 float32 array.
+// same option handling: render/render_options.h), returned as an HxWx4 float32 array.
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "cli/render_options.h"
 #include "python/bindings.h"
+#include "render/render_options.h"
 #include "viewer/gl/gl_context.h"
 #include "viewer/gl/voxlink_renderer.h"
 
@@ -17,7 +17,7 @@ namespace voxlink::python {
 namespace {
 
 Result<render::Image> renderFrame(const format::VoxLinkFile& file,
-                                  const cli::RenderOptions& options) {
+                                  const render::RenderOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(render::RenderSettings settings, options.settings(file));
   VOXLINK_ASSIGN_OR_RETURN(render::CameraSpec spec, options.cameraSpec(file));
   VOXLINK_ASSIGN_OR_RETURN(tf::TransferFunction tf, options.transferFunction(file));
@@ -61,7 +61,7 @@ py::array_t<float> render(const py::object& fileOrPath, const py::object& size,
                                                          : openFile(pathArgument(fileOrPath));
   if (!render::parseSampling(sampling))  // the CLI checks this in its option parser
     throw py::value_error("sampling must be voxel or trilinear, not '" + sampling + "'");
-  cli::RenderOptions options;
+  render::RenderOptions options;
   options.size = sizeArgument(size);
   options.camera = camera;
   options.sampling = sampling;

@@ -9,9 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "convert/vdb_export.h"
 #include "format/voxlink_file.h"
-#include "report/footprint.h"
 #include "sources/readers/dicom_series.h"
 #include "sources/volume_source.h"
 
@@ -26,15 +24,11 @@ struct DicomPluginApi {
 inline constexpr const char* kDicomPlugin = "libvoxlink_dicom.so";
 inline constexpr const char* kDicomPluginEntry = "voxlink_dicom_plugin";
 
-// libvoxlink_vdb.so: .vdb grids (sources/readers/vdb_reader.h) and the OpenVDB footprint peer
-// (convert/vdb_footprint.h), the OpenVDB export (convert/vdb_export.h).
+// libvoxlink_vdb.so: .vdb grids (sources/readers/vdb_reader.h). The same module serves the
+// OpenVDB footprint peer and export to convert/ from a second entry (convert/vdb_plugin_api.h).
 struct VdbPluginApi {
   Result<std::unique_ptr<sources::VolumeSource>> (*open)(const std::string& path,
                                                          const sources::OpenOptions& options);
-  Result<report::PeerFootprint> (*measureFootprint)(const format::VoxLinkFile& file);
-  Result<convert::VdbExportSummary> (*exportVdb)(const format::VoxLinkFile& file,
-                                                 const std::string& path,
-                                                 const base::ProgressCallback& progress);
 };
 inline constexpr const char* kVdbPlugin = "libvoxlink_vdb.so";
 inline constexpr const char* kVdbPluginEntry = "voxlink_vdb_plugin";
