@@ -24,7 +24,7 @@
 #include <thread>
 #include <vector>
 
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "geometry/mesh_loader.h"
 #include "geometry/surface_voxelizer.h"
 #include "geometry/voxel_set_compare.h"

@@ -10,7 +10,7 @@
 #include "cli/output_options.h"
 #include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 #include "scene/scene_input_files.h"

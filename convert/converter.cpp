@@ -16,6 +16,7 @@
 #include "convert/rank_exchange.h"
 #include "convert/slab_window.h"
 #include "convert/value_mapping.h"
+#include "format/bricked_volume.h"
 #include "format/file_writer.h"
 
 namespace voxlink::convert {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "base/error.h"
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/layout.h"
 
 namespace voxlink::format {

@@ -16,6 +16,7 @@
 
 #include "base/error.h"
 #include "base/rank_group.h"
+#include "format/bricked_volume.h"
 #include "format/file_writer.h"
 #include "geometry/surface_voxelizer.h"
 #include "scene/scene_description.h"

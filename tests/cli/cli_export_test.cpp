@@ -10,7 +10,7 @@
 #include <fstream>
 #include <vector>
 
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
 #include "pack/open_file.h"

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <vector>
 
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "tests/cli/run_command.h"
 #include "tests/support/test_util.h"
 

@@ -9,7 +9,7 @@
 #include "exact/edge_error.h"
 #include "exact/exact_scene_walker.h"
 #include "exact/scene_view.h"
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/voxlink_file.h"
 #include "pack/open_file.h"
 #include "render/effects_tracer.h"

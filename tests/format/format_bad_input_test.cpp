@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "base/crc32c.h"
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/gradient_codec.h"
 #include "format/validator.h"
 #include "format/voxlink_file.h"

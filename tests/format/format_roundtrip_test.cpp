@@ -7,7 +7,7 @@
 #include <random>
 #include <tuple>
 
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/validator.h"

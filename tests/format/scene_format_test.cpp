@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "base/crc32c.h"
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
 #include "format/scene_index.h"

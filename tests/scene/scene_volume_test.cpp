@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "convert/converter.h"
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/voxlink_file.h"
 #include "pack/open_file.h"
 #include "scene/scene_assembly.h"

@@ -8,7 +8,7 @@
 #include <array>
 #include <cmath>
 
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/voxel_locator.h"
 #include "pack/open_file.h"
 #include "render/brick_bounds.h"

@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "format/file_writer.h"
+#include "format/bricked_volume.h"
 #include "format/voxlink_file.h"
 #include "render/dense_volume.h"
 #include "render/image.h"
