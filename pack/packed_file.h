@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Packed VoxLink files: the same file with every section compressed losslessly, for storage and
 // transfer (docs/format.md, "Packed files"). A packed file unpacks to the exact bytes of the
-// file it was made from; VoxLinkFile::open() unpacks one in memory, so every command reads both.
+// file it was made from; pack::openFile() (pack/open_file.h) unpacks one in memory, so every
+// command reads both.
 //
 //   header (256, magic "VOXLINKZ") | packed sections | PACK | section table
 //
