@@ -67,7 +67,7 @@ Result<VdbExportSummary> exportVdbDirect(const format::VoxLinkFile& file, const 
   }
 
   base::reportProgress(progress, 0.8, "writing");
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, base::createTempBeside(path, ".vdb"));
+  VOXLINK_ASSIGN_OR_RETURN(base::TempFile temp, base::createTempBeside(path, ".vdb"));
   ::close(temp.fd);
   // Through a stream of our own: openvdb::io::File does not check its stream, so a full disk
   // gave a cut-off file and success. The bytes are the same but for the archive's random UUID.

@@ -89,7 +89,7 @@ Result<std::unique_ptr<GridWriter>> GridWriter::create(const std::string& path,
     VOXLINK_RETURN_IF_ERROR(base::checkOutputTarget(file));
   // A unique O_EXCL temporary (never a fixed name a symlink could be planted at); the data and
   // the header are renamed into place together by finish().
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, base::createTempBeside(w->dataPath_));
+  VOXLINK_ASSIGN_OR_RETURN(base::TempFile temp, base::createTempBeside(w->dataPath_));
   w->tempPath_ = temp.path;
   w->fd_ = temp.fd;
   return w;
@@ -192,7 +192,7 @@ Status GridWriter::finish(uint64_t nodesWrittenByAll) {
           "space origin: (", num(o[0]), ",", num(o[1]), ",", num(o[2]), ")\n",
           "endian: little\nencoding: raw\n",
           "data file: ", std::filesystem::path(dataPath_).filename().string(), "\n");
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile header, base::createTempBeside(path_));
+  VOXLINK_ASSIGN_OR_RETURN(base::TempFile header, base::createTempBeside(path_));
   std::FILE* h = fdopen(header.fd, "w");
   const bool wrote = h && std::fputs(text.c_str(), h) >= 0;
   const bool closed = h ? std::fclose(h) == 0 : ::close(header.fd) == 0;

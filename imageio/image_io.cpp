@@ -57,7 +57,7 @@ Status write(const std::string& path, int width, int height, int channels, Scala
   // extension (it picks the format), then renamed: a failed write never leaves a partial image
   // at `path`. The plugin checks every write and the close (a full disk fails there).
   const std::string extension = std::filesystem::path(path).extension().string();
-  VOXLINK_ASSIGN_OR_RETURN(format::TempFile temp, base::createTempBeside(path, extension));
+  VOXLINK_ASSIGN_OR_RETURN(base::TempFile temp, base::createTempBeside(path, extension));
   ::close(temp.fd);  // the backend opens the file by name
   const std::string tempPath = temp.path;
   base::StderrCapture capture;
