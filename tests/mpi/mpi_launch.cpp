@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "tests/mpi/mpi_launch.h"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -72,6 +74,16 @@ Launch runLauncher(const std::string& tail, bool quiet) {
   for (size_t at; (at = expanded.find("VOXLINK")) != std::string::npos;)
     expanded.replace(at, 7, quote(VOXLINK_EXECUTABLE));
   return runShell(launcherPrefix(quiet) + " " + expanded);
+}
+
+size_t lineCount(const std::string& text) {
+  return static_cast<size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+void expectOneLineFromRank(const Launch& r, int rank, const std::string& cause) {
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_EQ(r.err.rfind("voxlink: rank " + std::to_string(rank) + ": ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(cause), std::string::npos) << r.err;
 }
 
 }  // namespace voxlink::testing

@@ -3,6 +3,7 @@
 // than ranks; as root when the tests run as root) and without it, capturing status and output.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,11 @@ Launch runLauncher(const std::string& tail, bool quiet = true);
 
 // The launcher's options used by the calls above.
 std::string launcherPrefix(bool quiet = true);
+
+// Lines in `text` (newlines counted).
+size_t lineCount(const std::string& text);
+
+// A fault's report: stderr is one line, from rank `rank`, naming `cause`.
+void expectOneLineFromRank(const Launch& r, int rank, const std::string& cause);
 
 }  // namespace voxlink::testing
