@@ -14,7 +14,8 @@ far are left out (either neighbour set is right) and counted.
 --drift linear|quadratic runs universal kriging instead (gstat's V ~ X + Y, or with
 I(X^2) + I(X*Y) + I(Y^2)). --neighbours 8,32,0 picks the neighbourhood sizes (0: all samples;
 default 32,0). Both sides' RMSE against the exhaustive grid (walker.exh.csv, the true V at
-every node) is printed too; --json FILE writes the rows for bench/report.py.
+every node) is printed too; --json FILE writes the rows for bench/report.py. VOXLINK_RSCRIPT
+names the Rscript to run (default: Rscript on PATH).
 
 Usage: kriging_vs_gstat.py VOXLINK [DATA_DIR] [--runs N] [--gstat-runs N] [--threads N]
                            [--drift none|linear|quadratic] [--neighbours K,...] [--json FILE]
@@ -38,7 +39,7 @@ TRENDS = {"none": "1", "linear": "X + Y", "quadratic": "X + Y + I(X^2) + I(X*Y) 
 
 
 def gstat(script, samples, nmax, runs, out, drift):
-    cmd = ["Rscript", script, samples, "V", "Sph", repr(NUGGET), repr(PSILL), repr(RANGE),
+    cmd = [os.environ.get("VOXLINK_RSCRIPT", "Rscript"), script, samples, "V", "Sph", repr(NUGGET), repr(PSILL), repr(RANGE),
            str(nmax), str(runs), out, TRENDS[drift]]
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
