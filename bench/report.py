@@ -23,6 +23,7 @@ import subprocess
 import sys
 import tempfile
 
+import report_docs
 import report_sections
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -78,11 +79,27 @@ def caption(m):
             f"end; commit {m['commit']}; {m['date']}")
 
 
+def is_time(quantity):
+    return quantity.endswith(" s") or quantity.endswith(" ms")
+
+
+def agreement(quantity, docs, ours):
+    """Sizes and errors should be equal (same inputs); times are shown as this run / docs."""
+    if is_time(quantity):
+        d, o = report_docs.number(docs), report_docs.number(ours)
+        return f"{o / d:.2f}x" if d and o is not None else "-"
+    return "equal" if report_docs.numbers(docs) == report_docs.numbers(ours) else "**differs**"
+
+
 def comparison_table(rows):
     if not rows:
         return "No row of the hand table matches this preset's inputs.\n"
-    out = ["| hand table row | quantity | docs | this run |", "|---|---|---:|---:|"]
-    out += [f"| {r[0]} | {r[1]} | {r[2]} | {r[3]} |" for r in rows]
+    values = [r for r in rows if not is_time(r[1])]
+    equal = sum(agreement(*r[1:4]) == "equal" for r in values)
+    out = [f"{equal} of {len(values)} sizes and errors equal the docs'; times: this run / docs "
+           "(the load differs).", "",
+           "| hand table row | quantity | docs | this run | agreement |", "|---|---|---:|---:|---|"]
+    out += [f"| {r[0]} | {r[1]} | {r[2]} | {r[3]} | {agreement(*r[1:4])} |" for r in rows]
     return "\n".join(out) + "\n"
 
 

@@ -35,6 +35,12 @@ def first_table_after(doc, heading_regex):
     return tables[0] if tables else []
 
 
+def numbers(cell):
+    """Every number in a table cell ("0.332 / 0.780" -> [0.332, 0.78])."""
+    return [float(n) for n in re.findall(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?",
+                                         (cell or "").replace(",", ""))]
+
+
 def number(cell):
     """The first number in a table cell ("0.71 (0.69)" -> 0.71), None when there is none."""
     m = re.search(r"-?[\d.]+(?:e[-+]?\d+)?", cell.replace(",", "")) if cell else None

@@ -149,12 +149,13 @@ def pack(rows, caption):
     """rows: pack_bench.py's rows (file, bytes_per_voxel, make_s, load_s)."""
     fig, (ax,) = _figure(caption)
     made = [r for r in rows if r["make_s"] is not None]
-    ax.scatter([r["bytes_per_voxel"] for r in made], [r["make_s"] for r in made], marker="o",
-               label="pack / compress time")
-    ax.scatter([r["bytes_per_voxel"] for r in rows], [r["load_s"] for r in rows], marker="s",
-               label="load time")
+    ax.scatter([r["bytes_per_voxel"] for r in made], [max(r["make_s"], 0.005) for r in made],
+               marker="o", label="pack / compress time")
+    # Times print with 2 decimals: a 0.00 is drawn at 0.005, not dropped by the log axis.
+    ax.scatter([r["bytes_per_voxel"] for r in rows], [max(r["load_s"], 0.005) for r in rows],
+               marker="s", label="load time")
     for r in rows:
-        y = r["make_s"] if r["make_s"] is not None else r["load_s"]
+        y = max(r["make_s"] if r["make_s"] is not None else r["load_s"], 0.005)
         ax.annotate(r["file"].replace("`", ""), (r["bytes_per_voxel"], y), fontsize=6,
                     textcoords="offset points", xytext=(3, 3))
     ax.set_yscale("log")
