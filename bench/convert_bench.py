@@ -3,7 +3,12 @@
 """Conversion benchmark: speed, memory, footprint and error of `voxlink convert`, against the
 same job done with OpenVDB (copyFromDense + Blosc write), run in this script on this machine.
 
-usage: convert_bench.py VOXLINK UPSAMPLE VDB_PEER DATA_DIR [--quick]
+usage: convert_bench.py VOXLINK UPSAMPLE VDB_PEER DATA_DIR [--quick] [--grf N] [--cases A,B]
+                        [--json FILE]
+
+--grf N runs the random-field cases (value types and error bounds) on an N^3 field, also with
+--quick (default 512, left out by --quick); --cases keeps only the named cases; --json writes
+the rows for bench/report.py.
 
 Prints a Markdown table (paste into docs/benchmarks.md) and the commands that made each row.
 Work files go to $VOXLINK_BENCH_DIR (default /tmp/voxlink-bench): the 1024^3 input is 1 GiB.
@@ -19,6 +24,15 @@ from bench_timing import fresh, run, warm
 
 voxlink, upsample, vdb_peer, data = sys.argv[1:5]
 quick = "--quick" in sys.argv
+
+
+def option(name, default=None):
+    return sys.argv[sys.argv.index(name) + 1] if name in sys.argv else default
+
+
+grf_dims = int(option("--grf", "0" if quick else "512"))
+only = option("--cases")
+only = set(only.split(",")) if only else None
 work = os.environ.get("VOXLINK_BENCH_DIR", "/tmp/voxlink-bench")
 os.makedirs(work, exist_ok=True)
 REPEATS = 1 if quick else 3
@@ -39,10 +53,13 @@ commands = []
 
 
 def bench_convert(name, source, open_args, keep_args, peer=None):
+    if only is not None and name not in only:
+        return
     if os.path.isfile(source):
         warm(source)
     out_vxl = os.path.join(work, name + ".vxl")
-    cmd = [voxlink, "convert", source, *open_args, *keep_args, "-o", out_vxl, "-q"]
+    # Not -q: the gradient errors come from the summary line.
+    cmd = [voxlink, "convert", source, *open_args, *keep_args, "-o", out_vxl]
     times, rss, stdout = [], 0.0, ""
     for _ in range(REPEATS):
         fresh(out_vxl)
@@ -91,7 +108,7 @@ foot1024 = os.path.join(work, "foot1024.raw")
 if not os.path.exists(foot1024):
     subprocess.run([upsample, foot, "4", foot1024], check=True)
 raw1024 = ["--dims", "1024,1024,1024", "--type", "u8"]
-if not quick:
+if not quick and (only is None or "foot1024" in only):
     bench_convert("foot1024", foot1024, raw1024, ["--threshold", "60"], ["1024", "1024", "1024", "60"])
 foot256 = os.path.join(work, "foot256.raw")
 if not os.path.exists(foot256):
@@ -121,16 +138,19 @@ for name, rel, open_args, keep in CASES:
 # The paper's geostatistics case (section 6.2): a 512^3 N(0,1) field in double precision, of
 # which only the values outside the 95 % interval are kept; stored as f32 (default) and at two
 # error bounds that let the converter pick u16 and u8.
-if not quick:
-    grf = os.path.join(work, "grf512.nhdr")
+if grf_dims:
+    g = f"grf{grf_dims}"
+    grf = os.path.join(work, g + ".nhdr")
     if not os.path.exists(grf):
-        subprocess.run([voxlink, "grf", "--dims", "512,512,512", "--variogram", "exp:range=32", "--seed", "7",
-                        "-o", grf], check=True, stdout=subprocess.DEVNULL)
+        subprocess.run([voxlink, "grf", "--dims", ",".join([str(grf_dims)] * 3), "--variogram",
+                        "exp:range=32", "--seed", "7", "-o", grf], check=True,
+                       stdout=subprocess.DEVNULL)
     keep = ["--keep-outside", "-1.96,1.96"]
-    bench_convert("grf512", grf, [], keep)
-    bench_convert("grf512-e1e-3", grf, [], keep + ["--error-bound", "1e-3"])
-    bench_convert("grf512-e0.02", grf, [], keep + ["--error-bound", "0.02"])
-    bench_convert("grf512-b16", grf, [], keep + ["--error-bound", "1e-3", "--brick", "16"])
+    bench_convert(g, grf, [], keep)
+    bench_convert(g + "-f16", grf, [], keep + ["--value-type", "f16"])
+    bench_convert(g + "-e1e-3", grf, [], keep + ["--error-bound", "1e-3"])
+    bench_convert(g + "-e0.02", grf, [], keep + ["--error-bound", "0.02"])
+    bench_convert(g + "-b16", grf, [], keep + ["--error-bound", "1e-3", "--brick", "16"])
 
 cpu = subprocess.run(["sh", "-c", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2; nproc"],
                      capture_output=True, text=True).stdout.split("\n")
@@ -148,6 +168,9 @@ for r in rows:
 for r in rows:
     if r.get("peer_line"):
         print(f"\nOpenVDB peer, {r['name']} (peak RSS {r['peer_rss']:.0f} MiB): {r['peer_line']}")
+if option("--json"):
+    with open(option("--json"), "w") as f:
+        json.dump({"repeats": REPEATS, "rows": rows, "commands": commands}, f, indent=1)
 print("\ncommands:")
 for c in commands:
     print("    " + c)

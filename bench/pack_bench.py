@@ -4,11 +4,13 @@
 OpenVDB file of the same voxels (Blosc, what a user would share instead) and plain zstd of the
 .vxl file (what a user would otherwise run), all made in this script on this machine.
 
-usage: pack_bench.py VOXLINK UPSAMPLE VDB_PEER DATA_DIR
+usage: pack_bench.py VOXLINK UPSAMPLE VDB_PEER DATA_DIR [--cases foot256,foot1024] [--repeats N]
+                     [--json FILE]
 
 Prints a Markdown table (docs/benchmarks.md, "Packed files") and the commands behind it. Work
 files go to $VOXLINK_BENCH_DIR (default /tmp/voxlink-bench), shared with convert_bench.py.
 """
+import json
 import os
 import re
 import statistics
@@ -20,8 +22,16 @@ from bench_timing import fresh, run, warm
 voxlink, upsample, vdb_peer, data = sys.argv[1:5]
 work = os.environ.get("VOXLINK_BENCH_DIR", "/tmp/voxlink-bench")
 os.makedirs(work, exist_ok=True)
-REPEATS = 3
+
+
+def option(name, default):
+    return sys.argv[sys.argv.index(name) + 1] if name in sys.argv else default
+
+
+REPEATS = int(option("--repeats", "3"))
+CASES = option("--cases", "foot1024,foot256").split(",")
 commands = []
+results = []
 
 
 def timed(make, output):
@@ -108,11 +118,13 @@ def case(name, raw, dims, threshold):
         else:
             speed = "- | - | -"
         print(f"| {label} | {size / 1e6:.2f} | {bpv:.3f} | {vs:.2f} | {speed} | {load:.2f} |")
+        results.append({"case": name, "file": label, "bytes": size, "bytes_per_voxel": bpv,
+                        "make_s": make[0] if make else None, "load_s": load})
 
 
 foot = os.path.join(data, "ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd")
 foot1024 = os.path.join(work, "foot1024.raw")
-if not os.path.exists(foot1024):
+if "foot1024" in CASES and not os.path.exists(foot1024):
     subprocess.run([upsample, foot, "4", foot1024], check=True)
 foot256 = os.path.join(work, "foot256.raw")
 if not os.path.exists(foot256):
@@ -120,8 +132,13 @@ if not os.path.exists(foot256):
 print(f"CPU: {os.cpu_count()} cores; median of {REPEATS} runs, inputs in the page cache. "
       "Load: `voxlink validate` (read, unpack, validate every section; whole process), "
       "`zstd -d` to /dev/null, pyopenvdb.readAll (in-process, without Python's start).")
-case("foot1024", foot1024, (1024, 1024, 1024), 60)
-case("foot256", foot256, (256, 256, 256), 60)
+if "foot1024" in CASES:
+    case("foot1024", foot1024, (1024, 1024, 1024), 60)
+if "foot256" in CASES:
+    case("foot256", foot256, (256, 256, 256), 60)
+if option("--json", None):
+    with open(option("--json", None), "w") as f:
+        json.dump({"repeats": REPEATS, "rows": results, "commands": commands}, f, indent=1)
 print("\nCommands:")
 for c in dict.fromkeys(commands):
     print("   ", c)

@@ -6,9 +6,16 @@
 # dense 3D-texture ray caster, interleaved frame by frame, each with its PSNR against the float64
 # reference.
 # usage: bench/render_bench.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN] [SIZES...]
-# BRICK=N (environment) sets the files' brick size, 8 (the converter's default) unless given.
+# BRICK=N (environment) sets the files' brick size, 8 (the converter's default) unless given;
+# STEP=S passes --step S (trilinear step in voxels, default 0.5), SAMPLINGS="voxel trilinear"
+# picks the sampling modes, DATASETS="foot tooth" the data sets (default all three), NO_DENSE=1
+# leaves the dense caster out (bench/report.py sweeps steps with these).
 set -euo pipefail
 brick=${BRICK:-8}
+read -ra samplings <<< "${SAMPLINGS:-voxel trilinear}"
+datasets=" ${DATASETS:-lidc foot tooth} "
+extra=(--step "${STEP:-0.5}")
+[[ -n ${NO_DENSE:-} ]] && extra+=(--no-dense)
 voxlink=$1
 data=$2
 out=$3
@@ -22,10 +29,12 @@ mkdir -p "$out"
 run() {  # name source tf [convert options...]
   local name=$1 source=$2 tf=$3
   shift 3
+  [[ $datasets == *" $name "* ]] || return 0
   if [[ ! -e $source ]]; then echo "skipped $name: $source missing"; return; fi
   "$voxlink" convert "$source" --tf "$tf" --brick "$brick" -o "$out/$name.vxl" -q "$@" | tee "$out/$name.convert.txt"
   "$voxlink" bench-render "$out/$name.vxl" --tf "$tf" --sizes "${sizes[@]}" \
-      --frames-per-turn "$frames" --pictures "$out/$name" | tee "$out/$name.md"
+      --frames-per-turn "$frames" --samplings "${samplings[@]}" "${extra[@]}" \
+      --pictures "$out/$name" | tee "$out/$name.md"
 }
 
 run lidc "$data/ct/vtkjs_LIDC2/LIDC2.nhdr" "$here/tf/lidc-bone.tf.json"

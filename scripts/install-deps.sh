@@ -10,6 +10,7 @@
 # headers, nanoflann for Kriging's k-d tree, Imath for half floats. `tests` adds the test
 # frameworks, tools the tests call, Python, ParaView, clang, R and Open MPI (the build enables
 # MPI when it finds Open MPI; without it `voxlink` is the same program minus mpirun support).
+# matplotlib and the zstd tool are for bench/report.py and its ctest (docs/report.md).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 sample=(
@@ -40,6 +41,7 @@ tests=(
   paraview python3-paraview
   clang-14 libclang-rt-14-dev clang-format-14
   r-cran-gstat
+  python3-matplotlib zstd
 )
 if [ $# -eq 0 ]; then
   echo "usage: $0 sample [tests]" >&2
