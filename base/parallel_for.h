@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // VoxLink's one way to run in parallel: every parallel loop, sort and background task goes
 // through this header, and a process-wide limit (ThreadLimit, set once from --threads or a
-// Python call's threads=) bounds all of them, TBB inside libraries included. The engine is
-// plain threads started per call rather than TBB's pool because TBB aborts the process when the
-// system refuses a thread (ulimit -v, a task limit), and here such a thread is left out and the
-// others do its share. Nested calls run on the thread that makes them, so a limit of N means at
-// most N threads working at once per top-level call.
+// Python call's threads=) bounds all of them, TBB inside libraries included. The engine is a
+// small pool of plain threads of its own, kept between calls, rather than TBB's, because TBB
+// aborts the process when the system refuses a thread (ulimit -v, a task limit), and here such a
+// thread is left out and the others do its share. Nested calls run on the thread that makes them,
+// so a limit of N means at most N threads working at once per top-level call.
 #pragma once
 
 #include <algorithm>
@@ -83,7 +83,8 @@ class WorkerScope {
 }  // namespace detail
 
 namespace detail {
-// runOnThreads without the template: starts the helpers, runs work(0), waits (parallel_for.cpp).
+// runOnThreads without the template: lends the pool's helpers, runs work(0), waits
+// (parallel_for.cpp).
 void runOnThreadsErased(unsigned threads, const std::function<void(unsigned)>& work);
 }  // namespace detail
 

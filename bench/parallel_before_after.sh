@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Times two voxlink builds on the same jobs, runs alternated, medians of 5, and compares the
-# outputs byte for byte (docs/parallelism.md). Usage: bench/parallel_before_after.sh BEFORE AFTER
+# outputs byte for byte (docs/parallelism.md).
+#   bench/parallel_before_after.sh BEFORE AFTER [FOOT1024_RAW]
+# FOOT1024_RAW (the 1024^3 u8 foot, bench/upsample_volume.cpp; docs/benchmarks.md) adds its
+# conversion on 2 threads, with the default slab and --slab 8. VOXLINK_BENCH_JOBS="job ..." runs
+# only those jobs.
 set -euo pipefail
-before=$1; after=$2
+before=$1; after=$2; foot1024=${3:-}
 data=${VOXLINK_DATA_DIR:-$(cd "$(dirname "$0")/../.." && pwd)/shared/data}
 scenes=$(cd "$(dirname "$0")/../samples/scenes" && pwd)
 out=/tmp/bench-parallel; mkdir -p $out
@@ -13,8 +17,16 @@ declare -A jobs=(
   [scene-dragon512]="scene build $scenes/dragon.scene.json -q -o"
   [scene-bunny-molecule]="scene build $scenes/bunny-molecule.scene.json -q -o"
 )
+order="convert-foot convert-foot-slab8 scene-dragon512 scene-bunny-molecule"
+if [ -n "$foot1024" ]; then
+  big="convert $foot1024 --dims 1024,1024,1024 --type u8 --threshold 60 --threads 2"
+  jobs[convert-foot1024-t2]="$big -q -o"
+  jobs[convert-foot1024-t2-slab8]="$big --slab 8 -q -o"
+  order="$order convert-foot1024-t2 convert-foot1024-t2-slab8"
+  cat "$foot1024" > /dev/null  # page cache
+fi
 echo "uptime at start: $(uptime)"
-for job in convert-foot convert-foot-slab8 scene-dragon512 scene-bunny-molecule; do
+for job in ${VOXLINK_BENCH_JOBS:-$order}; do
   declare -a tb=() ta=()
   for i in 1 2 3 4 5; do
     for which in before after; do

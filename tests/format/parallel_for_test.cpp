@@ -2,10 +2,14 @@
 // parallelFor runs every index once; thread counts above kMaxThreads are refused by
 // checkThreadCount and capped by threadCount, so a caller that skipped the check still cannot
 // start tens of thousands of threads. A ThreadLimit bounds every call while it lives, nested
-// calls stay on their thread, parallelSort sorts like std::sort.
+// calls stay on their thread, parallelSort sorts like std::sort. Helper threads are kept between
+// calls (no more distinct threads than the limit however many calls), serve callers on several
+// threads at once, and a forked child gets helpers of its own.
 #include "base/parallel_for.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -115,6 +119,63 @@ TEST(RunInBackground, RunsOnTheCallerWithOneThreadAndElsewhereWithMore) {
   ThreadLimit one(1);
   auto limited = runInBackground(2, [] { return std::this_thread::get_id(); });
   EXPECT_EQ(limited.get(), caller);
+}
+
+// In a process whose pool is empty, with a limit of 3: 0 when a call whose items wait for each
+// other gets its two helpers (three threads) and 300 calls use no more than three threads in all
+// (a thread started per call would give hundreds); 1 or 2 naming which failed.
+int helpersKeptBetweenCalls() {
+  const ThreadLimit limit(3);
+  std::mutex mutex;
+  std::set<pid_t> threads;
+  std::atomic<int> arrived{0};
+  parallelFor(3, 3, [&](uint64_t) {
+    {
+      std::lock_guard lock(mutex);
+      threads.insert(gettid());
+    }
+    ++arrived;
+    const auto end = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (arrived < 3 && std::chrono::steady_clock::now() < end) std::this_thread::yield();
+  });
+  if (threads.size() != 3) return 1;
+  threads.clear();
+  for (int call = 0; call < 300; ++call)
+    parallelFor(3, 3, [&](uint64_t) {
+      std::lock_guard lock(mutex);
+      threads.insert(gettid());
+    });
+  return threads.size() <= 3 ? 0 : 2;
+}
+
+TEST(ParallelFor, HelpersAreKeptBetweenCallsAndAForkedChildGetsItsOwn) {
+  parallelFor(100, 4, [](uint64_t) {});  // helpers in this process now; the child has none
+  const pid_t child = fork();
+  if (child == 0) {
+    alarm(30);  // a child that hangs dies
+    _exit(helpersKeptBetweenCalls());
+  }
+  ASSERT_GT(child, 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child died of signal " << WTERMSIG(status);
+  EXPECT_NE(WEXITSTATUS(status), 1) << "a call whose items wait for each other got no helpers";
+  EXPECT_NE(WEXITSTATUS(status), 2) << "300 calls used more than 3 threads";
+}
+
+TEST(ParallelFor, CallersOnSeveralThreadsEachGetEveryIndexOnce) {
+  std::vector<std::thread> callers;
+  std::atomic<int> wrong{0};
+  for (int c = 0; c < 3; ++c)
+    callers.emplace_back([&wrong] {
+      for (int call = 0; call < 100; ++call) {
+        std::vector<std::atomic<int>> seen(257);
+        parallelFor(seen.size(), 3, [&](uint64_t i) { seen[i].fetch_add(1); });
+        for (const std::atomic<int>& s : seen) wrong += s.load() != 1;
+      }
+    });
+  for (std::thread& t : callers) t.join();
+  EXPECT_EQ(wrong.load(), 0);
 }
 
 }  // namespace

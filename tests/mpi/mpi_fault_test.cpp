@@ -1,26 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // One rank failing under mpirun (docs/scale.md): a bad value in its slab, a slab it cannot read,
-// a full disk (a file size limit on that rank), the rank killed. Every rank ends, the exit
-// status is non-zero, stderr names the rank and the cause, and the output folder stays empty:
-// no output, no temporary.
+// a full disk (a file size limit on that rank). Every rank ends, the exit status is non-zero,
+// stderr names the rank and the cause, and the output folder stays empty: no output, no
+// temporary. A killed rank: mpi_killed_rank_test.cpp.
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
-#include <thread>
 
 #include "tests/mpi/mpi_launch.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::testing {
 namespace {
-
-namespace fs = std::filesystem;
 
 std::vector<uint8_t> noise(size_t bytes) {
   std::vector<uint8_t> v(bytes);
@@ -78,60 +71,6 @@ TEST(MpiFaults, DiskFullOnOneRank) {
   expectOneLineFromRank(r, 1, "write failed: File too large");
   EXPECT_TRUE(listDir(out.path()).empty());
 }
-
-// Rank `victim` of 3 killed with SIGKILL `delayMs` after the output's temporary appears: mpirun
-// ends the others (SIGTERM; or Open MPI's own _exit() in a rank waiting inside MPI) and reports
-// the rank and the signal; the temporary is removed by rank 0's signal handler or, when rank 0
-// cannot run one, by its helper process (base/temp_janitor.h).
-void expectKilledRankLeavesNothing(int victim, int delayMs) {
-  TempDir in, out;
-  // Large enough that no rank is done `delayMs` after the temporary appears on a quiet machine
-  // (one process converts it in about 1.6 s on one thread here).
-  writeBytes(in.file("n.raw"), noise(512 * 512 * 512));
-  const std::string args = "convert " + in.file("n.raw") +
-                           " --dims 512,512,512 --type u8 --keep-all --threads 1 -q -o " +
-                           out.file("n.vxl");
-  const std::string pidFile = in.file("victim.pid");
-  const std::string victimApp =
-      "-n 1 sh -c \"echo \\$\\$ > " + pidFile + "; exec \\$0 " + args + "\" VOXLINK";
-  const std::string plainApp = "-n 1 VOXLINK " + args;
-  std::string apps;
-  for (int rank = 0; rank < 3; ++rank)
-    apps += (rank ? " : " : "") + (rank == victim ? victimApp : plainApp);
-  Launch r;
-  std::thread launch([&] { r = runLauncher(apps, false); });
-  pid_t pid = 0;
-  for (int i = 0; i < 3000 && pid == 0; ++i) {
-    std::ifstream(pidFile) >> pid;
-    if (pid == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  for (int i = 0; i < 3000 && listDir(out.path()).empty(); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  ASSERT_GT(pid, 0);
-  EXPECT_FALSE(listDir(out.path()).empty()) << "the conversion never opened its output";
-  std::this_thread::sleep_for(std::chrono::milliseconds(delayMs));
-  kill(pid, SIGKILL);
-  launch.join();
-  EXPECT_EQ(r.status, 128 + SIGKILL);
-  EXPECT_NE(r.err.find("process rank " + std::to_string(victim) + " with PID"), std::string::npos)
-      << r.err;
-  EXPECT_NE(r.err.find("exited on signal 9 (Killed)"), std::string::npos) << r.err;
-  std::vector<std::string> left = listDir(out.path());
-  for (int i = 0; i < 200 && !left.empty(); ++i) {  // the helper runs once rank 0 is gone
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    left = listDir(out.path());
-  }
-  EXPECT_TRUE(left.empty()) << left.front();
-}
-
-TEST(MpiFaults, KilledRankInsideTheEncoding) { expectKilledRankLeavesNothing(1, 100); }
-
-// Rank 0 waits inside MPI for rank 1 right after creating the temporary: Open MPI ends it with
-// _exit(), no handler runs.
-TEST(MpiFaults, KilledRankWhileRankZeroWaitsInMpi) { expectKilledRankLeavesNothing(1, 0); }
-
-// Rank 0, which created the temporary, killed outright.
-TEST(MpiFaults, KilledRankZero) { expectKilledRankLeavesNothing(0, 100); }
 
 }  // namespace
 }  // namespace voxlink::testing
