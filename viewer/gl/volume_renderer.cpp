@@ -47,6 +47,8 @@ VolumeGeometry VolumeGeometry::of(const format::FileHeader& h) {
   g.valueType = static_cast<StoredType>(h.valueType);
   g.valueScale = h.valueScale;
   g.valueOffset = h.valueOffset;
+  if (h.surfaceMode != uint32_t(format::SurfaceMode::kMean))
+    g.surfaceOffsetVoxels = render::kListSurfaceOffset;
   return g;
 }
 
