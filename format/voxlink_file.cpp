@@ -9,40 +9,13 @@
 #include <vector>
 
 #include "base/crc32c.h"
+#include "format/detail/fragment_validator.h"
 #include "format/half.h"
 
 namespace voxlink::format {
 namespace {
 
 uint64_t ceilDiv(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
-
-// The version 2.1 counts: zero unless the file has fragment lists; then each surface voxel has
-// 1..kMaxFragmentsPerVoxel entries.
-Status checkFragmentCounts(const FileHeader& h, const std::string& where) {
-  const auto mode = static_cast<SurfaceMode>(h.surfaceMode);
-  if (mode != SurfaceMode::kMean && mode != SurfaceMode::kPlanes && mode != SurfaceMode::kTriangles)
-    return makeError(ErrorCode::kUnsupported, where, ": header.surfaceMode: ", h.surfaceMode,
-                     " is not a known surface mode (0 mean, 1 planes, 2 triangles)");
-  if (mode == SurfaceMode::kMean) {
-    if (h.triangleCount || h.fragmentCount)
-      return makeError(ErrorCode::kCorrupt, where,
-                       ": header.triangleCount/fragmentCount: not zero with surfaceMode 0");
-    return Status::ok();
-  }
-  if (h.versionMinor < kVersionMinorFragments)
-    return makeError(ErrorCode::kCorrupt, where, ": header.versionMinor: ", h.versionMinor,
-                     " but surfaceMode ", h.surfaceMode, " needs version 2.",
-                     kVersionMinorFragments);
-  if (h.fragmentCount < h.surfaceVoxelCount ||
-      h.fragmentCount > h.surfaceVoxelCount * kMaxFragmentsPerVoxel || h.fragmentCount > kMaxVoxels)
-    return makeError(ErrorCode::kCorrupt, where, ": header.fragmentCount: ", h.fragmentCount,
-                     " does not give the ", h.surfaceVoxelCount, " surface voxels 1..",
-                     kMaxFragmentsPerVoxel, " fragments each");
-  if ((mode == SurfaceMode::kTriangles) != (h.triangleCount > 0))
-    return makeError(ErrorCode::kCorrupt, where, ": header.triangleCount: ", h.triangleCount,
-                     " with surfaceMode ", h.surfaceMode);
-  return Status::ok();
-}
 
 // The version 2 counts: zero in version 1; in version 2 bounded by the voxel count.
 Status checkSceneCounts(const FileHeader& h, const std::string& where) {

@@ -41,13 +41,21 @@ std::span<const format::MaterialRecord> VoxelSceneWalker::materials() const {
 }
 
 // A voxel's single fragment stands for a surface anywhere in the voxel, so rays it spawns start
-// voxels away; a plane or triangle hit lies on the stored surface (kListSurfaceOffset).
+// voxels away; a plane or triangle hit lies on the stored surface (render_model.h).
 double VoxelSceneWalker::surfaceOffset() const {
-  return (mode_ == format::SurfaceMode::kMean ? kSurfaceShadowBias : kListSurfaceOffset) * unit_;
+  switch (mode_) {
+    case format::SurfaceMode::kMean:
+      return kSurfaceShadowBias * unit_;
+    case format::SurfaceMode::kPlanes:
+      return kListSurfaceOffset * unit_;
+    case format::SurfaceMode::kTriangles:
+      break;
+  }
+  return kTriangleSurfaceOffset * unit_;
 }
 
 double VoxelSceneWalker::shadowStartOffset() const {
-  return mode_ == format::SurfaceMode::kMean ? unit_ : kListSurfaceOffset * unit_;
+  return mode_ == format::SurfaceMode::kMean ? unit_ : surfaceOffset();
 }
 
 SceneEvent VoxelSceneWalker::listHit(const Ray& ray, const glm::ivec3& cell, uint32_t slot,

@@ -8,11 +8,14 @@
 // a voxelized surface is one to two voxels thick, and a ray started inside it would shadow
 // the surface itself. kSurfaceShadowBias in render/render_model.h.
 // A plane or triangle hit lies on the stored surface: 0.3 voxel clears the neighbouring voxels'
-// planes yet stays inside the voxel (kListSurfaceOffset in render/render_model.h).
+// planes yet stays inside the voxel; a triangle needs a rounding margin only
+// (kListSurfaceOffset, kTriangleSurfaceOffset in render/render_model.h).
 #if VXL_SURFACE_MODE == 0
 const float kSurfaceShadowBias = 2.0;
-#else
+#elif VXL_SURFACE_MODE == 1
 const float kSurfaceShadowBias = 0.3;
+#else
+const float kSurfaceShadowBias = 0.01;  // kTriangleSurfaceOffset
 #endif
 
 // Phong terms of a surface hit with unit normal n facing the eye; mirrors shadeSurface() in

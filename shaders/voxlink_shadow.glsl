@@ -7,11 +7,13 @@
 
 // Transmittance from worldPoint towards unit direction toLight, over at most `distance` (world;
 // kBig for a directional light). The ray starts one voxel (uUnit) along its way, or
-// kListSurfaceOffset of one with fragment lists (VoxelSceneWalker::shadowStartOffset).
+// the surface offset of fragment lists (VoxelSceneWalker::shadowStartOffset).
 #if VXL_SURFACE_MODE == 0
 const float kShadowStartVoxels = 1.0;
-#else
+#elif VXL_SURFACE_MODE == 1
 const float kShadowStartVoxels = 0.3;
+#else
+const float kShadowStartVoxels = 0.01;
 #endif
 float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
   float start = kShadowStartVoxels * uUnit;
