@@ -141,7 +141,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
     if (r.surfaceMode == format::SurfaceMode::kPlanes)
       o->out.print(
           "%s: planes: %llu fragments (%.3f per surface voxel, merged within %.1f deg; %llu "
-          "voxel/triangle pairs under %.1f of a voxel face given no plane, not in the normal "
+          "voxel/triangle pairs under %.2f of a voxel face given no plane, not in the normal "
           "error); plane offsets rounded by at most %.2e voxel\n",
           o->output.c_str(), (unsigned long long)r.fragments,
           r.surfaceVoxels ? double(r.fragments) / double(r.surfaceVoxels) : 0.0, o->fragmentAngle,

@@ -31,7 +31,7 @@ namespace voxlink::geometry {
 // `scene build --fragment-angle`'s default (docs/geometry.md, "Fragment lists", measures it).
 inline constexpr double kDefaultMergeAngleDegrees = 5.0;
 // Smallest area (in voxel faces) of a group's triangles inside the voxel that gets a fragment.
-inline constexpr double kMinFragmentArea = 0.2;
+inline constexpr double kMinFragmentArea = 0.35;
 // fragmentOfPair of a triangle whose group was left out.
 inline constexpr uint32_t kLeftOut = UINT32_MAX;
 
