@@ -11,6 +11,8 @@
 #include "cli/process_ranks.h"
 #include "cli/progress_bar.h"
 #include "format/bricked_volume.h"
+#include "format/surface_mode.h"
+#include "geometry/fragment_planes.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 #include "scene/scene_input_files.h"
@@ -32,6 +34,8 @@ CommandRunner addSceneCommand(CLI::App& app) {
     uint32_t resolution = 0, brick = 0;
     OutputOptions out;
     std::string voxelizer = "exact";
+    std::string surface = "mean";
+    double fragmentAngle = geometry::kDefaultMergeAngleDegrees;
   };
   auto o = std::make_shared<Options>();
   build->add_option("scene", o->input, "scene file (JSON)")->required();
@@ -48,6 +52,18 @@ CommandRunner addSceneCommand(CLI::App& app) {
                    "mesh voxelizer: exact (CPU, every overlapped voxel) or gl (the paper's "
                    "rasterization, headless; may miss sliver voxels, docs/geometry.md)")
       ->check(CLI::IsMember({"exact", "gl"}));
+  build
+      ->add_option("--surface", o->surface,
+                   "what a surface voxel keeps: mean (one fragment, version 2.0 files), planes "
+                   "(a list of planes merged by --fragment-angle) or triangles (references to "
+                   "the triangles, stored in the file); docs/format.md")
+      ->check(CLI::IsMember(std::vector<std::string>(format::kSurfaceModeNames.begin(),
+                                                     format::kSurfaceModeNames.end())));
+  build
+      ->add_option("--fragment-angle", o->fragmentAngle,
+                   "planes: triangles of a voxel share a fragment when their normals differ by "
+                   "at most this many degrees")
+      ->check(CLI::Range(0.0, 180.0));
   o->out.add(build, true);
   return [o, build] {
     if (!build->parsed()) return 2;
@@ -66,6 +82,14 @@ CommandRunner addSceneCommand(CLI::App& app) {
     if (Status all = base::agree(ranks, ready); !all) return reportOnRankZero(all);
     if (o->resolution) description->grid.resolution = o->resolution;
     if (o->brick) description->grid.brickSize = o->brick;
+    description->grid.surface = *format::parseSurfaceMode(o->surface);
+    description->grid.fragmentAngleDegrees = o->fragmentAngle;
+    if (o->voxelizer == "gl" && description->grid.surface != format::SurfaceMode::kMean)
+      return reportOnRankZero(
+          makeError(ErrorCode::kUnsupported,
+                    "--voxelizer gl keeps one fragment per voxel; use --voxelizer "
+                    "exact with --surface ",
+                    o->surface));
     scene::SurfaceVoxelizer voxelizer;  // empty: the exact CPU path
 #ifdef VOXLINK_WITH_VIEWER
     std::unique_ptr<viewer::GlContext> context;
@@ -114,6 +138,20 @@ CommandRunner addSceneCommand(CLI::App& app) {
         (unsigned long long)r.materials, r.normalError.meanDegrees, r.normalError.p95Degrees,
         r.normalError.maxDegrees, r.loadSeconds, r.voxelizeSeconds, o->voxelizer.c_str(),
         r.mergeSeconds);
+    if (r.surfaceMode == format::SurfaceMode::kPlanes)
+      o->out.print(
+          "%s: planes: %llu fragments (%.3f per surface voxel, merged within %.1f deg; %llu "
+          "voxel/triangle pairs under %.2f of a voxel face given no plane, not in the normal "
+          "error); plane offsets rounded by at most %.2e voxel\n",
+          o->output.c_str(), (unsigned long long)r.fragments,
+          r.surfaceVoxels ? double(r.fragments) / double(r.surfaceVoxels) : 0.0, o->fragmentAngle,
+          (unsigned long long)r.planePairsLeftOut, geometry::kMinFragmentArea,
+          r.maxPlaneOffsetError);
+    if (r.surfaceMode == format::SurfaceMode::kTriangles)
+      o->out.print("%s: triangles: %llu references (%.3f per surface voxel) to %llu triangles\n",
+                   o->output.c_str(), (unsigned long long)r.fragments,
+                   r.surfaceVoxels ? double(r.fragments) / double(r.surfaceVoxels) : 0.0,
+                   (unsigned long long)r.triangles);
     return std::fflush(stdout) == 0 && !std::ferror(stdout)
                ? 0
                : reportError(makeError(ErrorCode::kIo, "stdout: write failed"));

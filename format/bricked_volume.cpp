@@ -39,6 +39,13 @@ void makeSceneHeader(FileHeader& h, const SceneSections& scene) {
   h.surfaceVoxelCount = bits(scene.surfaceMask);
   h.volumeVoxelCount = bits(scene.volumeMask);
   h.sphereVoxelCount = bits(scene.sphereMask);
+  h.surfaceMode = static_cast<uint32_t>(scene.surfaceMode);
+  if (scene.surfaceMode != SurfaceMode::kMean) {
+    h.versionMinor = kVersionMinorFragments;
+    h.fragmentCount = scene.surfaceMode == SurfaceMode::kPlanes ? scene.fragments.size()
+                                                                : scene.triangleRefs.size();
+    h.triangleCount = static_cast<uint32_t>(scene.triangles.size());
+  }
 }
 
 Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
@@ -54,9 +61,14 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
     if (s.materials.size() > kMaxMaterials)
       return makeError(ErrorCode::kTooLarge, path, ": ", s.materials.size(),
                        " materials exceed the format's limit of ", kMaxMaterials);
+    if (s.triangles.size() > kMaxVoxels)
+      return makeError(ErrorCode::kTooLarge, path, ": ", s.triangles.size(),
+                       " triangles exceed the format's limit of ", kMaxVoxels);
     makeSceneHeader(header, s);
     if (s.surface.size() != header.surfaceVoxelCount ||
-        (!s.spheres.empty() && s.sphereRefStart.size() != header.sphereVoxelCount + 1))
+        (!s.spheres.empty() && s.sphereRefStart.size() != header.sphereVoxelCount + 1) ||
+        (s.surfaceMode != SurfaceMode::kMean &&
+         s.fragmentStart.size() != header.surfaceVoxelCount + 1))
       return makeError(ErrorCode::kInvalidArgument, path,
                        ": scene payloads do not match their masks");
   }
@@ -89,6 +101,14 @@ Status writeBrickedVolume(const std::string& path, const BrickedVolume& v) {
       VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereMask, s.sphereMask));
       VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereRefStart, s.sphereRefStart));
       VOXLINK_RETURN_IF_ERROR(put(SectionId::kSphereRefs, s.sphereRefs));
+    }
+    if (s.surfaceMode != SurfaceMode::kMean)
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kFragmentStart, s.fragmentStart));
+    if (s.surfaceMode == SurfaceMode::kPlanes)
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kFragments, s.fragments));
+    if (s.surfaceMode == SurfaceMode::kTriangles) {
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kTriangleRefs, s.triangleRefs));
+      VOXLINK_RETURN_IF_ERROR(put(SectionId::kTriangles, s.triangles));
     }
   }
   return writer.commit(v.metaJson);

@@ -26,6 +26,12 @@ struct SceneSections {
   std::vector<uint32_t> sphereMask;       // PMSK, ceil(voxels / 32) words when there are spheres
   std::vector<uint32_t> sphereRefStart;   // SROF, sphere voxels + 1 entries
   std::vector<uint32_t> sphereRefs;       // SRID
+  // Version 2.1 (surfaceMode not kMean): per surface voxel, its list in FRAG or TRID.
+  SurfaceMode surfaceMode = SurfaceMode::kMean;
+  std::vector<uint32_t> fragmentStart;    // FROF, surface voxels + 1 entries
+  std::vector<FragmentRecord> fragments;  // FRAG (kPlanes)
+  std::vector<uint32_t> triangleRefs;     // TRID (kTriangles)
+  std::vector<TriangleRecord> triangles;  // TRIS (kTriangles)
 };
 
 // Sets the version 2 fields of a header from the scene sections it will carry.

@@ -25,6 +25,8 @@ inline constexpr char kMagic[8] = {'V', 'O', 'X', 'L', 'I', 'N', 'K', '\0'};
 inline constexpr uint16_t kVersionMajor = 1;       // a sparse volume
 inline constexpr uint16_t kVersionMajorScene = 2;  // a scene: geometry (+ volume) in one buffer
 inline constexpr uint16_t kVersionMinor = 0;       // readers accept any minor version
+// Version 2.1: a scene whose surface voxels also carry fragment lists (header.surfaceMode > 0).
+inline constexpr uint16_t kVersionMinorFragments = 1;
 // Readers accept the majors they know (1 and 2) and refuse later ones: a version 1 reader would
 // draw a version 2 file's geometry voxels as empty volume samples, so the major changed.
 inline constexpr uint32_t kByteOrderMark = 0x01020304u;  // reads 0x04030201 when swapped
@@ -86,7 +88,11 @@ struct FileHeader {             // 256 bytes at offset 0
   uint64_t surfaceVoxelCount;  // 8B (208)  voxels whose SURF word holds a fragment
   uint64_t volumeVoxelCount;   // 8B (216)  voxels whose VMSK bit is set
   uint64_t sphereVoxelCount;   // 8B (224)  voxels whose PMSK bit is set
-  uint8_t reserved[24];        // 24B (232) zero
+  // Version 2.1 (fragment lists); zero in older files, where these bytes were reserved.
+  uint32_t surfaceMode;    // 4B (232)  SurfaceMode: 0 mean, 1 planes, 2 triangles
+  uint32_t triangleCount;  // 4B (236)  entries of TRIS (surfaceMode 2)
+  uint64_t fragmentCount;  // 8B (240)  entries of FRAG (mode 1) or TRID (mode 2)
+  uint8_t reserved[8];     // 8B (248)  zero
 };
 static_assert(sizeof(FileHeader) == 256);
 static_assert(offsetof(FileHeader, sectionTableOffset) == 24);
@@ -100,7 +106,9 @@ static_assert(offsetof(FileHeader, materialCount) == 192);
 static_assert(offsetof(FileHeader, sphereRefCount) == 200);
 static_assert(offsetof(FileHeader, volumeVoxelCount) == 216);
 static_assert(offsetof(FileHeader, sphereVoxelCount) == 224);
-static_assert(offsetof(FileHeader, reserved) == 232);
+static_assert(offsetof(FileHeader, surfaceMode) == 232);
+static_assert(offsetof(FileHeader, fragmentCount) == 240);
+static_assert(offsetof(FileHeader, reserved) == 248);
 
 // Four ASCII characters read as a little-endian u32.
 constexpr uint32_t fourCC(const char (&s)[5]) {
@@ -132,6 +140,12 @@ enum class SectionId : uint32_t {
   kSphereRefStart = fourCC("SROF"),  // u32[sphereVoxelCount+1]: slot s references
                                      //   SRID[SROF[s], SROF[s+1])
   kSphereRefs = fourCC("SRID"),      // u32[sphereRefCount]: sphere indices, ascending per voxel
+  // Version 2.1: per surface voxel a list of fragments (planes) or of triangle references.
+  kFragmentStart = fourCC("FROF"),  // u32[surfaceVoxelCount+1]: surface slot s has entries
+                                    //   [FROF[s], FROF[s+1]) of FRAG or TRID, 1..kMaxFragments
+  kFragments = fourCC("FRAG"),      // FragmentRecord[fragmentCount] (surfaceMode 1)
+  kTriangleRefs = fourCC("TRID"),   // u32[fragmentCount]: triangle indices, ascending per voxel
+  kTriangles = fourCC("TRIS"),      // TriangleRecord[triangleCount] (surfaceMode 2)
   // Only in packed files (pack/packed_file.h): the original table and each section's codec.
   kPack = fourCC("PACK"),
 };
@@ -149,6 +163,11 @@ inline constexpr std::array<SectionId, 4> kSceneSections = {
 inline constexpr std::array<SectionId, 4> kSphereSections = {
     SectionId::kSpheres, SectionId::kSphereMask, SectionId::kSphereRefStart,
     SectionId::kSphereRefs};
+
+inline constexpr std::array<SectionId, 2> kPlaneSections = {SectionId::kFragmentStart,
+                                                            SectionId::kFragments};
+inline constexpr std::array<SectionId, 3> kTriangleSections = {
+    SectionId::kFragmentStart, SectionId::kTriangleRefs, SectionId::kTriangles};
 
 std::string_view sectionName(SectionId id);  // "META", ...
 
@@ -185,6 +204,35 @@ struct SphereRecord {    // 32 bytes; an implicit sphere in world units
   uint32_t reserved[3];  // 12B (20)  zero
 };
 static_assert(sizeof(SphereRecord) == 32);
+
+// --- Version 2.1 records: what a surface voxel holds besides its SURF word ------------------
+// Written to files: never renumber. format/surface_mode.h names them for the command line.
+enum class SurfaceMode : uint32_t {
+  kMean = 0,       // SURF only: one fragment per voxel (version 2.0 files)
+  kPlanes = 1,     // FROF + FRAG: per voxel the planes of its triangles, merged by normal
+  kTriangles = 2,  // FROF + TRID + TRIS: per voxel references to the triangles themselves
+};
+// Longest fragment list of one voxel (FRAG or TRID entries): a longer one is refused by the
+// builder and the validator.
+inline constexpr uint32_t kMaxFragmentsPerVoxel = 255;
+// FragmentRecord::offset is in units of 2^-12 of the voxel's smallest spacing, so planes up to
+// 8 such units from the centre are held (sqrt(3)/2 for cubic voxels) and the rounding error is
+// at most 2^-13 (1.2e-4) of a voxel.
+inline constexpr double kPlaneOffsetUnit = 1.0 / 4096.0;
+
+struct FragmentRecord {  // 8 bytes: one plane of a surface voxel
+  uint32_t word;         // 4B (0)  surfaceWord(): polar16 unit world normal, material
+  int16_t offset;        // 2B (4)  plane: dot(n, p - voxelCentre) = offset * kPlaneOffsetUnit *
+                         //         min(spacing), p and the centre in world units
+  uint16_t reserved;     // 2B (6)  zero
+};
+static_assert(sizeof(FragmentRecord) == 8);
+
+struct TriangleRecord {  // 40 bytes: a triangle in world units; its normal is (b-a) x (c-a)
+  float vertices[9];     // 36B (0)  a, b, c (xyz each), finite
+  uint32_t material;     // 4B (36)  < materialCount
+};
+static_assert(sizeof(TriangleRecord) == 40);
 
 struct SectionEntry {     // 32 bytes; the table is SectionEntry[sectionCount]
   uint32_t id;            // 4B (0)   SectionId

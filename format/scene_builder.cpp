@@ -32,6 +32,53 @@ void SceneBuilder::addSphereRef(uint32_t x, uint32_t y, uint32_t z, uint32_t sph
   entries_.push_back(Entry{x, y, z, kSphere, 0, sphere});
 }
 
+void SceneBuilder::addFragments(uint32_t x, uint32_t y, uint32_t z,
+                                std::span<const FragmentRecord> list) {
+  entries_.push_back(Entry{x, y, z, kFragmentList, uint16_t(std::min<size_t>(list.size(), 0xFFFF)),
+                           uint32_t(planes_.size())});
+  planes_.insert(planes_.end(), list.begin(), list.end());
+}
+
+void SceneBuilder::addTriangleRefs(uint32_t x, uint32_t y, uint32_t z,
+                                   std::span<const uint32_t> list) {
+  entries_.push_back(Entry{x, y, z, kFragmentList, uint16_t(std::min<size_t>(list.size(), 0xFFFF)),
+                           uint32_t(triangleRefs_.size())});
+  triangleRefs_.insert(triangleRefs_.end(), list.begin(), list.end());
+}
+
+Status SceneBuilder::appendList(const Entry& e, uint32_t count, SceneSections& scene) const {
+  if (count == 0 || count > kMaxFragmentsPerVoxel)
+    return makeError(ErrorCode::kTooLarge, "voxel (", e.x, ", ", e.y, ", ", e.z, "): ", count,
+                     count == 0xFFFF ? " or more" : "", " fragments; the format holds 1 to ",
+                     kMaxFragmentsPerVoxel, " per voxel");
+  if (surfaceMode_ == SurfaceMode::kPlanes) {
+    if (size_t(e.payload) + count > planes_.size())
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                       "): fragment list out of range");
+    for (uint32_t i = 0; i < count; ++i) {
+      const FragmentRecord& f = planes_[e.payload + i];
+      if (surfaceMaterial(f.word) >= materials_.size())
+        return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                         "): fragment material ", surfaceMaterial(f.word),
+                         " is not in the table of ", materials_.size());
+      scene.fragments.push_back(f);
+    }
+    return Status::ok();
+  }
+  if (size_t(e.payload) + count > triangleRefs_.size())
+    return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                     "): triangle list out of range");
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint32_t t = triangleRefs_[e.payload + i];
+    if (t >= triangles_.size() || (i > 0 && t <= triangleRefs_[e.payload + i - 1]))
+      return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                       "): triangle ", t, " is not ascending or not in the table of ",
+                       triangles_.size());
+    scene.triangleRefs.push_back(t);
+  }
+  return Status::ok();
+}
+
 Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
   VOXLINK_RETURN_IF_ERROR(checkDescription(description_));
   const VolumeDescription& d = description_;
@@ -70,6 +117,9 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
   SceneSections scene;
   scene.materials = materials_;
   scene.spheres = spheres_;
+  scene.surfaceMode = surfaceMode_;
+  scene.triangles = triangles_;
+  const bool lists = surfaceMode_ != SurfaceMode::kMean;
   double lo = INFINITY, hi = -INFINITY;
   uint64_t voxel = 0;
   for (size_t i = 0; i < keyed.size();) {
@@ -78,6 +128,7 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
     uint16_t gradient = kZeroGradient;
     uint32_t surface = kNoSurface;
     bool volume = false;
+    const Entry* list = nullptr;
     const size_t refsBefore = scene.sphereRefs.size();
     size_t j = i;
     for (; j < keyed.size() && keyed[j].key == keyed[i].key; ++j) {
@@ -98,6 +149,12 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
           return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
                            ") given two surface fragments");
         surface = e.payload;
+      } else if (e.kind == kFragmentList) {
+        if (repeated || !lists)
+          return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                           lists ? ") given two fragment lists"
+                                 : ") given a fragment list in a file without them");
+        list = &e;
       } else if (!(repeated && keyed[j - 1].entry->payload == e.payload)) {
         scene.sphereRefs.push_back(e.payload);  // a sphere named twice counts once
       }
@@ -114,6 +171,19 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
       scene.surfaceMask.back() |= bit;
       scene.surface.push_back(surface);
     }
+    if (lists) {
+      if ((surface != kNoSurface) != (list != nullptr))
+        return makeError(ErrorCode::kInvalidArgument, "voxel (", first.x, ", ", first.y, ", ",
+                         first.z,
+                         list ? ") has a fragment list but no surface fragment"
+                              : ") has a surface fragment but no fragment list");
+      if (list) {
+        scene.fragmentStart.push_back(static_cast<uint32_t>(surfaceMode_ == SurfaceMode::kPlanes
+                                                                ? scene.fragments.size()
+                                                                : scene.triangleRefs.size()));
+        VOXLINK_RETURN_IF_ERROR(appendList(*list, list->gradient, scene));
+      }
+    }
     if (scene.sphereRefs.size() > refsBefore) {
       scene.sphereMask.back() |= bit;
       scene.sphereRefStart.push_back(static_cast<uint32_t>(refsBefore));
@@ -123,6 +193,14 @@ Result<BrickedVolume> SceneBuilder::build(std::string metaJson) const {
   }
   if (!spheres_.empty())
     scene.sphereRefStart.push_back(static_cast<uint32_t>(scene.sphereRefs.size()));
+  if (lists) {
+    const size_t total =
+        surfaceMode_ == SurfaceMode::kPlanes ? scene.fragments.size() : scene.triangleRefs.size();
+    if (total > kMaxVoxels)
+      return makeError(ErrorCode::kTooLarge, total, " fragments exceed the format's limit of ",
+                       kMaxVoxels);
+    scene.fragmentStart.push_back(static_cast<uint32_t>(total));
+  }
 
   VOXLINK_ASSIGN_OR_RETURN(BrickedVolume built, bricks.build(std::move(metaJson)));
   built.description.valueMin = std::isfinite(lo) ? lo : 0.0;

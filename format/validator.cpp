@@ -13,6 +13,7 @@
 #include "base/crc32c.h"
 #include "base/parallel_for.h"
 #include "format/brick_rows.h"
+#include "format/detail/fragment_validator.h"
 #include "format/gradient_codec.h"
 #include "format/half.h"
 
@@ -323,6 +324,7 @@ Status checkScene(const VoxLinkFile& f) {
   if (!f.isScene()) return Status::ok();
   VOXLINK_RETURN_IF_ERROR(checkMaterials(f));
   VOXLINK_RETURN_IF_ERROR(checkSpheres(f));
+  VOXLINK_RETURN_IF_ERROR(checkFragmentLists(f));
   return checkSceneVoxels(f);
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/crc32c.h"
+#include "format/detail/fragment_validator.h"
 #include "format/half.h"
 
 namespace voxlink::format {
@@ -25,6 +26,7 @@ Status checkSceneCounts(const FileHeader& h, const std::string& where) {
                        ": header.materialCount..sphereVoxelCount: not zero in a version 1 file");
     return Status::ok();
   }
+  VOXLINK_RETURN_IF_ERROR(checkFragmentCounts(h, where));
   if (h.materialCount > kMaxMaterials)
     return makeError(ErrorCode::kCorrupt, where, ": header.materialCount: ", h.materialCount,
                      " exceeds ", kMaxMaterials);
@@ -92,6 +94,14 @@ std::string_view sectionName(SectionId id) {
       return "SROF";
     case SectionId::kSphereRefs:
       return "SRID";
+    case SectionId::kFragmentStart:
+      return "FROF";
+    case SectionId::kFragments:
+      return "FRAG";
+    case SectionId::kTriangleRefs:
+      return "TRID";
+    case SectionId::kTriangles:
+      return "TRIS";
     case SectionId::kPack:
       return "PACK";
   }
@@ -111,6 +121,10 @@ uint32_t expectedElementBytes(const FileHeader& header, SectionId id) {
       return sizeof(MaterialRecord);
     case SectionId::kSpheres:
       return sizeof(SphereRecord);
+    case SectionId::kFragments:
+      return sizeof(FragmentRecord);
+    case SectionId::kTriangles:
+      return sizeof(TriangleRecord);
     default:
       return 4;
   }
@@ -156,6 +170,14 @@ uint64_t expectedSectionBytes(const FileHeader& header, SectionId id, uint64_t m
       return (header.sphereVoxelCount + 1) * 4;
     case SectionId::kSphereRefs:
       return header.sphereRefCount * 4;
+    case SectionId::kFragmentStart:
+      return (header.surfaceVoxelCount + 1) * 4;
+    case SectionId::kFragments:
+      return header.fragmentCount * sizeof(FragmentRecord);
+    case SectionId::kTriangleRefs:
+      return header.fragmentCount * 4;
+    case SectionId::kTriangles:
+      return uint64_t{header.triangleCount} * sizeof(TriangleRecord);
     case SectionId::kPack:  // packed files only; never part of an unpacked file
       return 0;
   }
@@ -422,6 +444,10 @@ std::vector<SectionId> sceneSectionsOf(const FileHeader& h) {
   if (h.versionMajor != kVersionMajorScene) return ids;
   ids.assign(kSceneSections.begin(), kSceneSections.end());
   if (h.sphereCount > 0) ids.insert(ids.end(), kSphereSections.begin(), kSphereSections.end());
+  if (h.surfaceMode == uint32_t(SurfaceMode::kPlanes))
+    ids.insert(ids.end(), kPlaneSections.begin(), kPlaneSections.end());
+  if (h.surfaceMode == uint32_t(SurfaceMode::kTriangles))
+    ids.insert(ids.end(), kTriangleSections.begin(), kTriangleSections.end());
   return ids;
 }
 
@@ -433,6 +459,18 @@ std::span<const MaterialRecord> VoxLinkFile::materials() const {
   auto bytes = sectionBytes(SectionId::kMaterials);
   return {reinterpret_cast<const MaterialRecord*>(bytes.data()),
           bytes.size() / sizeof(MaterialRecord)};
+}
+
+std::span<const FragmentRecord> VoxLinkFile::fragments() const {
+  auto bytes = sectionBytes(SectionId::kFragments);
+  return {reinterpret_cast<const FragmentRecord*>(bytes.data()),
+          bytes.size() / sizeof(FragmentRecord)};
+}
+
+std::span<const TriangleRecord> VoxLinkFile::triangles() const {
+  auto bytes = sectionBytes(SectionId::kTriangles);
+  return {reinterpret_cast<const TriangleRecord*>(bytes.data()),
+          bytes.size() / sizeof(TriangleRecord)};
 }
 
 std::span<const SphereRecord> VoxLinkFile::spheres() const {

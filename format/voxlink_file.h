@@ -79,6 +79,13 @@ class VoxLinkFile {
     return words32(SectionId::kSphereRefStart);
   }  // by slot
   std::span<const uint32_t> sphereRefs() const { return words32(SectionId::kSphereRefs); }
+  // Version 2.1 fragment lists (empty spans without them): surface slot s has entries
+  // [fragmentStarts()[s], fragmentStarts()[s + 1]) of fragments() or triangleRefs().
+  SurfaceMode surfaceMode() const { return static_cast<SurfaceMode>(header_->surfaceMode); }
+  std::span<const uint32_t> fragmentStarts() const { return words32(SectionId::kFragmentStart); }
+  std::span<const FragmentRecord> fragments() const;
+  std::span<const uint32_t> triangleRefs() const { return words32(SectionId::kTriangleRefs); }
+  std::span<const TriangleRecord> triangles() const;
   // Per-voxel access through the masks: format/scene_index.h.
 
   // Value of VALU entry i in source units (stored value mapped through scale and offset). In

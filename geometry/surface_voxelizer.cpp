@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 
@@ -230,6 +231,13 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
   std::vector<size_t> firstVoxel(chunkCount + 1, 0);
   for (size_t c = 0; c < chunkCount; ++c) firstVoxel[c + 1] = firstVoxel[c] + runs[c];
   result.voxels.resize(firstVoxel[chunkCount]);
+  if (options.keepTriangleLists) {
+    if (overlapCount > UINT32_MAX)
+      return makeError(ErrorCode::kTooLarge, "surface voxelizer: ", overlapCount,
+                       " voxel/triangle overlaps are more than a triangle list holds");
+    result.triangleStart.assign(result.voxels.size() + 1, uint32_t(overlapCount));
+    result.triangleIds.resize(overlapCount);
+  }
   // One tally per worker that needs one (a histogram is 144 KB); fixed-point sums, so merging
   // them in any order gives the same bits.
   std::vector<std::unique_ptr<NormalErrorTally>> errors(workers);
@@ -260,6 +268,10 @@ Result<SurfaceVoxelization> voxelizeSurface(const TriangleMesh& mesh, const Voxe
       const auto xyz = voxelFromKey(overlaps[begin].key);
       const uint16_t material =
           mesh.triangleMaterials.empty() ? uint16_t(0) : mesh.triangleMaterials[dominant];
+      if (options.keepTriangleLists) {
+        result.triangleStart[out] = uint32_t(begin);
+        for (size_t i = begin; i < end; ++i) result.triangleIds[i] = overlaps[i].triangle;
+      }
       result.voxels[out++] = {xyz[0], xyz[1], xyz[2], normal, material};
       if (e != nullptr) {
         if (end - begin > 1) e->countMultiTriangleVoxel();

@@ -72,6 +72,9 @@ struct SurfaceVoxelizeOptions {
   // voxel's fragment and error pairs do not depend on the slab, so slabs' results concatenate
   // to the whole grid's.
   ZSlab slab;
+  // Also return each voxel's overlapping triangles (SurfaceVoxelization::triangleStart/Ids), for
+  // the fragment lists of geometry/fragment_planes.h and the triangle references of a file.
+  bool keepTriangleLists = false;
   // Called with the fraction done (0..1), one call at a time, from any thread; may be empty.
   std::function<void(double fraction)> progress;
 };
@@ -82,6 +85,10 @@ struct SurfaceVoxelization {
   // What normalError was computed from (geometry/normal_error.h), to merge slabs' results.
   std::shared_ptr<const NormalErrorTally> normalTally;
   uint64_t zeroAreaTriangles = 0;  // skipped
+  // With keepTriangleLists: voxel v's triangles, ascending, are
+  // triangleIds[triangleStart[v] .. triangleStart[v + 1]); empty otherwise.
+  std::vector<uint32_t> triangleStart;
+  std::vector<uint32_t> triangleIds;
 };
 
 // Errors: an invalid grid, a triangle index >= vertexCount, triangleMaterials not one per

@@ -79,6 +79,7 @@ SectionCodec codecFor(SectionId id, const PackOptions& options) {
       return SectionCodec::kDerived;
     case SectionId::kValues:
     case SectionId::kSphereRefStart:
+    case SectionId::kFragmentStart:
       return SectionCodec::kDeltaZstd;
     default:
       return SectionCodec::kZstd;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "format/gradient_codec.h"
 #include "render/render_model.h"
@@ -29,6 +30,9 @@ VoxelSceneWalker::VoxelSceneWalker(const format::VoxLinkFile& file)
     box_.hi[a] = origin_[a] + (double(dims_[a]) - 0.5) * spacing_[a];
   }
   unit_ = std::min({spacing_.x, spacing_.y, spacing_.z});
+  mode_ = file.isScene() ? file.surfaceMode() : format::SurfaceMode::kMean;
+  for (const format::FragmentRecord& f : file.fragments())
+    planeNormals_.push_back(glm::normalize(decoded(format::surfaceNormal(f.word))));
 }
 
 std::span<const format::MaterialRecord> VoxelSceneWalker::materials() const {
@@ -36,7 +40,72 @@ std::span<const format::MaterialRecord> VoxelSceneWalker::materials() const {
   return {m.data(), m.size()};
 }
 
-double VoxelSceneWalker::surfaceOffset() const { return kSurfaceShadowBias * unit_; }
+// A voxel's single fragment stands for a surface anywhere in the voxel, so rays it spawns start
+// voxels away; a plane or triangle hit lies on the stored surface (render_model.h).
+double VoxelSceneWalker::surfaceOffset() const {
+  switch (mode_) {
+    case format::SurfaceMode::kMean:
+      return kSurfaceShadowBias * unit_;
+    case format::SurfaceMode::kPlanes:
+      return kListSurfaceOffset * unit_;
+    case format::SurfaceMode::kTriangles:
+      break;
+  }
+  return kTriangleSurfaceOffset * unit_;
+}
+
+double VoxelSceneWalker::shadowStartOffset() const {
+  return mode_ == format::SurfaceMode::kMean ? unit_ : surfaceOffset();
+}
+
+SceneEvent VoxelSceneWalker::listHit(const Ray& ray, const glm::ivec3& cell, uint32_t slot,
+                                     double ta, double tb) const {
+  SceneEvent hit;
+  hit.t = HUGE_VAL;
+  const auto starts = file_.fragmentStarts();
+  if (mode_ == format::SurfaceMode::kPlanes) {
+    const auto fragments = file_.fragments();
+    for (uint32_t f = starts[slot]; f < starts[slot + 1]; ++f) {
+      const glm::dvec3& n = planeNormals_[f];
+      const double denominator = glm::dot(n, ray.direction);
+      if (denominator == 0) continue;
+      const glm::dvec3 centre = origin_ + glm::dvec3(cell) * spacing_;
+      const double offset = fragments[f].offset * format::kPlaneOffsetUnit * unit_;
+      const double t = (offset - glm::dot(n, ray.origin - centre)) / denominator;
+      if (t >= ta && t < tb && t < hit.t) {
+        hit.t = t;
+        hit.normal = n;
+        hit.material = format::surfaceMaterial(fragments[f].word);
+      }
+    }
+    return hit;
+  }
+  const auto refs = file_.triangleRefs();
+  const auto triangles = file_.triangles();
+  for (uint32_t r = starts[slot]; r < starts[slot + 1]; ++r) {
+    const format::TriangleRecord& tri = triangles[refs[r]];
+    const glm::dvec3 a(tri.vertices[0], tri.vertices[1], tri.vertices[2]);
+    const glm::dvec3 e1 = glm::dvec3(tri.vertices[3], tri.vertices[4], tri.vertices[5]) - a;
+    const glm::dvec3 e2 = glm::dvec3(tri.vertices[6], tri.vertices[7], tri.vertices[8]) - a;
+    // Moller-Trumbore, double precision.
+    const glm::dvec3 p = glm::cross(ray.direction, e2);
+    const double det = glm::dot(e1, p);
+    if (det == 0) continue;
+    const glm::dvec3 s = ray.origin - a;
+    const double u = glm::dot(s, p) / det;
+    if (u < 0 || u > 1) continue;
+    const glm::dvec3 q = glm::cross(s, e1);
+    const double v = glm::dot(ray.direction, q) / det;
+    if (v < 0 || u + v > 1) continue;
+    const double t = glm::dot(e2, q) / det;
+    if (t >= ta && t < tb && t < hit.t) {
+      hit.t = t;
+      hit.normal = glm::normalize(glm::cross(e1, e2));
+      hit.material = tri.material;
+    }
+  }
+  return hit;
+}
 
 void VoxelSceneWalker::walk(const Ray& ray, double tMin, double tMax,
                             const std::function<bool(const SceneEvent&)>& visit) const {
@@ -55,13 +124,19 @@ void VoxelSceneWalker::walk(const Ray& ray, double tMin, double tMax,
     if (found < 0) return true;
     const uint64_t i = uint64_t(found);
     if (scene) {
-      const uint32_t word = index_.surfaceWord(i);
-      if (word != format::kNoSurface) {
-        SceneEvent e;
-        e.t = ta;
-        e.normal = glm::normalize(decoded(format::surfaceNormal(word)));
-        e.material = format::surfaceMaterial(word);
-        if (!visit(e)) return false;
+      SceneEvent surfaceHit;
+      surfaceHit.t = HUGE_VAL;
+      if (mode_ == format::SurfaceMode::kMean) {
+        const uint32_t word = index_.surfaceWord(i);
+        if (word != format::kNoSurface) {
+          SceneEvent e;
+          e.t = ta;
+          e.normal = glm::normalize(decoded(format::surfaceNormal(word)));
+          e.material = format::surfaceMaterial(word);
+          if (!visit(e)) return false;
+        }
+      } else if (index_.surface().has(i)) {
+        surfaceHit = listHit(ray, c, index_.surface().slot(i), ta, tb);
       }
       // The nearest hit t >= max(ta, 0) of the voxel's spheres that lies inside its chord, so
       // each hit is met in exactly one voxel.
@@ -88,6 +163,9 @@ void VoxelSceneWalker::walk(const Ray& ray, double tMin, double tMax,
           hit.material = s.material;
         }
       }
+      // Surface and sphere hits of one voxel, nearest first.
+      if (hit.t < surfaceHit.t) std::swap(hit, surfaceHit);
+      if (surfaceHit.t < HUGE_VAL && !visit(surfaceHit)) return false;
       if (hit.t < HUGE_VAL && !visit(hit)) return false;
     }
     const int64_t slot = index_.volumeSlot(i);

@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // SceneWalker over a VoxLink file: each voxel cell the ray crosses is looked up
-// (format::VoxelLocator) and gives, in this order, its surface fragment (at the chord's entry,
-// with the stored polar normal), the nearest exact hit of its spheres inside the chord, and its
-// volume sample over the chord: what the GL ray tracer walks, in double precision. Works for
+// (format::VoxelLocator) and gives its surface hit, the nearest exact hit of its spheres inside
+// the chord (the two in order of distance), and its volume sample over the chord: what the GL
+// ray tracer walks, in double precision. The surface hit of a version 2.0 file (one fragment)
+// is at the chord's entry with the stored polar normal; with fragment lists (version 2.1) it is
+// the nearest intersection inside the chord of the voxel's planes or referenced triangles, with
+// that fragment's normal and material, and a voxel crossed without one is passed. Works for
 // version 1 files too (every voxel a volume sample).
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "format/scene_index.h"
 #include "format/voxel_locator.h"
@@ -25,7 +29,7 @@ class VoxelSceneWalker : public SceneWalker {
   std::span<const format::MaterialRecord> materials() const override;
   Box bounds() const override { return box_; }
   double surfaceOffset() const override;
-  double shadowStartOffset() const override { return unit_; }
+  double shadowStartOffset() const override;
   double opacityUnit() const override { return unit_; }
 
  private:
@@ -36,6 +40,12 @@ class VoxelSceneWalker : public SceneWalker {
   glm::dvec3 origin_, spacing_;
   double unit_;
   Box box_;
+  format::SurfaceMode mode_;
+  std::vector<glm::dvec3> planeNormals_;  // FRAG's normals, decoded once
+
+  // The nearest hit in [ta, tb) of surface voxel `slot`'s fragment list, or t = HUGE_VAL.
+  SceneEvent listHit(const Ray& ray, const glm::ivec3& cell, uint32_t slot, double ta,
+                     double tb) const;
 };
 
 }  // namespace voxlink::render

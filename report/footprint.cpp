@@ -34,6 +34,10 @@ SceneFootprint computeSceneFootprint(const VoxLinkFile& f) {
       case SectionId::kSurface:
       case SectionId::kSurfaceMask:
       case SectionId::kMaterials:
+      case SectionId::kFragmentStart:
+      case SectionId::kFragments:
+      case SectionId::kTriangleRefs:
+      case SectionId::kTriangles:
         s.surfaceBytes += e.bytes;
         break;
       case SectionId::kSphereMask:

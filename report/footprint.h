@@ -38,7 +38,7 @@ struct SceneFootprint {
   uint64_t materials = 0, spheres = 0, sphereRefs = 0;
   uint64_t structureBytes = 0;  // BOCC, BRNK, BVOX, ROWS, MASK
   uint64_t volumeBytes = 0;     // VALU, GRAD, VMSK
-  uint64_t surfaceBytes = 0;    // SMSK, SURF, MATL
+  uint64_t surfaceBytes = 0;    // SMSK, SURF, MATL, fragment lists (FROF, FRAG, TRID, TRIS)
   uint64_t sphereBytes = 0;     // SPHR, PMSK, SROF, SRID
 };
 

@@ -9,6 +9,7 @@
 
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
+#include "format/surface_mode.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
@@ -18,6 +19,7 @@
 #include "scene/scene_geometry.h"
 #include "scene/scene_ranks.h"
 #include "scene/scene_volume.h"
+#include "scene/surface_fragments.h"
 
 namespace voxlink::scene {
 namespace {
@@ -112,9 +114,16 @@ Status voxelizeSlab(const SceneDescription& scene, PlacedScene& placed,
         mesh.positions[3 * v + a] = float((mesh.positions[3 * v + a] - d.origin[a]) / d.spacing[a]);
     geometry::VoxelGrid indexGrid;
     indexGrid.dims = d.dims;
+    const format::SurfaceMode mode = scene.grid.surface;
+    if (surfaceVoxelizer && mode != format::SurfaceMode::kMean)
+      return makeError(ErrorCode::kUnsupported,
+                       "scene build: the GL voxelizer keeps one fragment per voxel; use "
+                       "--voxelizer exact with --surface planes or triangles");
     geometry::SurfaceVoxelizeOptions exact;
     exact.progress = meshProgress;
     exact.slab = slab;
+    exact.keepTriangleLists = mode != format::SurfaceMode::kMean;
+    exact.computeNormalError = mode == format::SurfaceMode::kMean;
     VOXLINK_ASSIGN_OR_RETURN(geometry::SurfaceVoxelization surface,
                              surfaceVoxelizer ? surfaceVoxelizer(mesh, indexGrid, meshProgress)
                                               : geometry::voxelizeSurface(mesh, indexGrid, exact));
@@ -126,6 +135,9 @@ Status voxelizeSlab(const SceneDescription& scene, PlacedScene& placed,
     }
     if (surface.normalTally) out.normalError = *surface.normalTally;
     report.zeroAreaTriangles = surface.zeroAreaTriangles;
+    if (mode != format::SurfaceMode::kMean)
+      VOXLINK_RETURN_IF_ERROR(
+          appendFragmentLists(mode, scene.grid.fragmentAngleDegrees, mesh, d, surface, out));
   }
   if (!placed.spheres.empty()) {
     const double s0 = d.spacing[0];
@@ -176,6 +188,10 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   VOXLINK_RETURN_IF_ERROR(base::agree(ranks, loaded));
   PlacedScene& placed = *placedOr;
   VOXLINK_RETURN_IF_ERROR(checkSameGeometry(ranks, placed, scene.path));
+  // The triangles in world units, before voxelizeSlab moves the mesh into index space.
+  std::vector<format::TriangleRecord> triangleTable;
+  if (root && scene.grid.surface == format::SurfaceMode::kTriangles)
+    triangleTable = triangleRecords(placed.mesh);
   report.triangles = placed.mesh.triangleCount();
   report.spheres = placed.spheres.size();
   // Rank 0 alone opens the volume (a dense one is converted there) and fixes the grid.
@@ -211,6 +227,10 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   if (!root) return out;  // rank 0 alone holds the merged voxels and the file
   report.surfaceVoxels = slab.surface.size();
   report.normalError = slab.normalError.stats();
+  report.surfaceMode = scene.grid.surface;
+  report.fragments = slab.planes.size() + slab.triangleRefs.size();
+  report.maxPlaneOffsetError = slab.maxOffsetError;
+  report.planePairsLeftOut = slab.planePairsLeftOut;
   report.sphereVoxels = slab.sphereVoxels;
   report.sphereRefs = slab.sphereRefs.size();
   format::SceneBuilder builder(d);
@@ -218,6 +238,20 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
                   (volume ? volume->voxelCount() : 0));
   for (const SurfaceEntry& e : slab.surface)
     builder.addSurface(e.x, e.y, e.z, e.normalCode, e.material);
+  if (scene.grid.surface != format::SurfaceMode::kMean) {
+    builder.setSurfaceMode(scene.grid.surface);
+    builder.setTriangles(std::move(triangleTable));
+    size_t at = 0;
+    for (size_t i = 0; i < slab.surface.size(); ++i) {
+      const SurfaceEntry& e = slab.surface[i];
+      const uint32_t n = slab.listLength[i];
+      if (scene.grid.surface == format::SurfaceMode::kPlanes)
+        builder.addFragments(e.x, e.y, e.z, std::span(slab.planes).subspan(at, n));
+      else
+        builder.addTriangleRefs(e.x, e.y, e.z, std::span(slab.triangleRefs).subspan(at, n));
+      at += n;
+    }
+  }
   std::vector<SurfaceEntry>().swap(slab.surface);
   for (const SphereEntry& e : slab.sphereRefs) builder.addSphereRef(e.x, e.y, e.z, e.sphere);
   std::vector<SphereEntry>().swap(slab.sphereRefs);
@@ -247,6 +281,16 @@ Result<SceneBuildOutput> buildScene(const SceneDescription& scene, const ScenePr
   meta["scene"]["normal_error_degrees"] = {{"mean", report.normalError.meanDegrees},
                                            {"p95", report.normalError.p95Degrees},
                                            {"max", report.normalError.maxDegrees}};
+  // Only files with fragment lists say so, so that `--surface mean` writes the bytes it did.
+  if (scene.grid.surface != format::SurfaceMode::kMean) {
+    meta["scene"]["surface"] = {{"mode", format::surfaceModeName(scene.grid.surface)},
+                                {"fragments", report.fragments}};
+    if (scene.grid.surface == format::SurfaceMode::kPlanes) {
+      meta["scene"]["surface"]["fragment_angle_degrees"] = scene.grid.fragmentAngleDegrees;
+      meta["scene"]["surface"]["plane_offset_max_error_voxels"] = report.maxPlaneOffsetError;
+      meta["scene"]["surface"]["pairs_without_plane"] = report.planePairsLeftOut;
+    }
+  }
   if (volume) {
     const format::VoxelLocator locator(*volume);
     const auto gradients = volume->gradientCodes();

@@ -27,7 +27,11 @@ struct SceneBuildReport {
   uint64_t triangles = 0, spheres = 0, materials = 0;
   uint64_t surfaceVoxels = 0, sphereVoxels = 0, sphereRefs = 0, volumeVoxels = 0;
   uint64_t zeroAreaTriangles = 0;
-  geometry::NormalErrorStats normalError;  // what one fragment per voxel costs
+  geometry::NormalErrorStats normalError;  // what the kept fragments' normals cost
+  format::SurfaceMode surfaceMode = format::SurfaceMode::kMean;
+  uint64_t fragments = 0;          // FRAG or TRID entries (surface modes planes, triangles)
+  double maxPlaneOffsetError = 0;  // planes: largest offset rounding, in voxels
+  uint64_t planePairsLeftOut = 0;  // planes: (voxel, triangle) pairs not in normalError
   std::array<uint32_t, 3> dims{0, 0, 0};
   std::array<double, 3> spacing{1, 1, 1};
   double loadSeconds = 0, voxelizeSeconds = 0, mergeSeconds = 0;

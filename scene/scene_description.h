@@ -11,6 +11,7 @@
 
 #include "base/error.h"
 #include "format/layout.h"
+#include "geometry/fragment_planes.h"
 #include "geometry/material.h"
 
 namespace voxlink::scene {
@@ -54,6 +55,10 @@ struct SceneGrid {
   uint32_t resolution = 256;  // voxels along the longest axis of the scene's bounds
   uint32_t brickSize = 8;
   format::Axis axis = format::Axis::kZ;
+  // What a surface voxel keeps (`scene build --surface`, format/surface_mode.h) and, for planes,
+  // the largest angle between triangle normals that share a fragment (`--fragment-angle`).
+  format::SurfaceMode surface = format::SurfaceMode::kMean;
+  double fragmentAngleDegrees = geometry::kDefaultMergeAngleDegrees;
 };
 
 struct Light {

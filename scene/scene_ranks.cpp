@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "scene/scene_ranks.h"
 
+#include <algorithm>
 #include <cstring>
 #include <type_traits>
 
@@ -59,17 +60,31 @@ SlabVoxels gatherSlabVoxels(base::RankGroup& ranks, SlabVoxels mine) {
   if (ranks.size() == 1) return mine;
   gatherInto(ranks, mine.surface);
   gatherInto(ranks, mine.sphereRefs);
+  gatherInto(ranks, mine.listLength);
+  gatherInto(ranks, mine.planes);
+  gatherInto(ranks, mine.triangleRefs);
   std::vector<uint64_t> tally = mine.normalError.words();
   tally.push_back(mine.sphereVoxels);
+  uint64_t offsetErrorBits = 0;
+  std::memcpy(&offsetErrorBits, &mine.maxOffsetError, sizeof offsetErrorBits);
+  tally.push_back(offsetErrorBits);
+  tally.push_back(mine.planePairsLeftOut);
   const auto parts = ranks.gatherToRoot(asBytes(tally));
   SlabVoxels all;
   all.surface = std::move(mine.surface);
   all.sphereRefs = std::move(mine.sphereRefs);
+  all.listLength = std::move(mine.listLength);
+  all.planes = std::move(mine.planes);
+  all.triangleRefs = std::move(mine.triangleRefs);
   for (const std::vector<uint8_t>& part : parts) {
     std::vector<uint64_t> words(part.size() / sizeof(uint64_t));
     std::memcpy(words.data(), part.data(), words.size() * sizeof(uint64_t));
     all.normalError.merge(geometry::NormalErrorTally::fromWords(words.data()));
     all.sphereVoxels += words[geometry::NormalErrorTally::kWords];
+    double offsetError = 0;
+    std::memcpy(&offsetError, &words[geometry::NormalErrorTally::kWords + 1], sizeof offsetError);
+    all.maxOffsetError = std::max(all.maxOffsetError, offsetError);
+    all.planePairsLeftOut += words[geometry::NormalErrorTally::kWords + 2];
   }
   return all;
 }

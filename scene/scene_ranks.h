@@ -35,13 +35,20 @@ static_assert(sizeof(SurfaceEntry) == 16 && sizeof(SphereEntry) == 16);
 // What one rank's slab holds, or, after gatherSlabVoxels, every slab's on rank 0.
 struct SlabVoxels {
   std::vector<SurfaceEntry> surface;
+  // Fragment lists (surface modes planes and triangles), one per surface entry in its order:
+  // entry i's list is listLength[i] records of planes or triangleRefs, after the previous ones.
+  std::vector<uint32_t> listLength;
+  std::vector<format::FragmentRecord> planes;
+  std::vector<uint32_t> triangleRefs;
+  double maxOffsetError = 0;       // largest plane offset rounding, in voxels
+  uint64_t planePairsLeftOut = 0;  // (voxel, triangle) pairs of groups given no plane
   std::vector<SphereEntry> sphereRefs;
   uint64_t sphereVoxels = 0;
   geometry::NormalErrorTally normalError;
 };
 
-// Collective: every rank's voxels on rank 0 (in rank order) with their tallies merged; the
-// other ranks get an empty set. One process gets its own back.
+// Collective: every rank's voxels and lists on rank 0 (in rank order) with their tallies merged;
+// the other ranks get an empty set. One process gets its own back.
 SlabVoxels gatherSlabVoxels(base::RankGroup& ranks, SlabVoxels mine);
 
 // Collective: ok when every rank placed the same triangles, spheres and materials as rank 0

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Geometry in a VoxLink scene (format version 2; paper, sections 3.1.1-3.1.2): per voxel a
-// surface fragment (polar normal + material), references to implicit spheres intersected
-// exactly, and a bit saying whether the voxel also carries a volume sample. Included when
+// surface fragment (polar normal + material) or, in version 2.1, a list of planes or triangle
+// references, references to implicit spheres intersected exactly, and a bit saying whether the
+// voxel also carries a volume sample. Included when
 // VXL_SCENE is 1; the sections come through voxlink_sections.glsl (surfWord, vmskWord,
 // matlWord and, with VXL_SPHERES, sphrWord, srofWord, sridWord).
 // Mirrors render/voxel_scene_walker.cpp; docs/scene.md states the model. Shading of
@@ -104,6 +105,81 @@ bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tH
 }
 #endif
 
+// Version 2.1 fragment lists (VXL_SURFACE_MODE 1 planes, 2 triangles; format/layout.h): the
+// sections come as frofWord and fragEntry (uvec2 per FragmentRecord), or tridWord and trisWord
+// (10 words per TriangleRecord). Mirrors VoxelSceneWalker::listHit.
+#if VXL_SURFACE_MODE == 1
+const float kPlaneOffsetUnit = 1.0 / 4096.0;  // format/layout.h
+#endif
+#if VXL_SURFACE_MODE == 2
+vec3 trisVertex(uint b) {
+  return vec3(uintBitsToFloat(trisWord(b)), uintBitsToFloat(trisWord(b + 1u)),
+              uintBitsToFloat(trisWord(b + 2u)));
+}
+#endif
+
+// The surface hit of a voxel the ray o + t d (index space) crosses over [ta, tz): with one
+// fragment per voxel at the chord's entry; with lists the nearest plane or triangle hit inside
+// the chord (none: false). n is the stored unit world normal, not faced.
+bool surfaceHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, out vec3 n,
+                out uint material) {
+  tHit = kBig;
+#if VXL_SURFACE_MODE == 0
+  uint surface = surfaceOf(voxel);
+  if (surface == kNoSurface) return false;
+  tHit = ta;
+  n = decodeGradient(surface & 0xFFFFu);
+  material = surface >> 16u;
+  return true;
+#else
+  uint word = smskWord(voxel >> 5u);
+  if (((word >> (voxel & 31u)) & 1u) == 0u) return false;
+  uint s = maskSlot(word, smskRank(voxel >> 5u), voxel);
+  // The ray in world units, with the same parameter t.
+  vec3 origin = indexToWorld(o), direction = d * uVolumeSpacing;
+#if VXL_SURFACE_MODE == 1
+  vec3 centre = indexToWorld(floor(o + 0.5 * (ta + tz) * d) + 0.5);
+  vec3 fromCentre = origin - centre;
+#endif
+  uint end = frofWord(s + 1u);
+  for (uint f = frofWord(s); f < end; ++f) {
+#if VXL_SURFACE_MODE == 1
+    uvec2 e = fragEntry(f);
+    vec3 fn = decodeGradient(e.x & 0xFFFFu);
+    float along = dot(fn, direction);
+    if (along == 0.0) continue;
+    float offset = float(int(e.y << 16u) >> 16) * (kPlaneOffsetUnit * uUnit);
+    float t = (offset - dot(fn, fromCentre)) / along;
+    if (t >= ta && t < tz && t < tHit) {
+      tHit = t;
+      n = fn;
+      material = e.x >> 16u;
+    }
+#else
+    uint b = tridWord(f) * 10u;
+    vec3 a = trisVertex(b);
+    vec3 e1 = trisVertex(b + 3u) - a, e2 = trisVertex(b + 6u) - a;
+    vec3 p = cross(direction, e2);
+    float det = dot(e1, p);
+    if (det == 0.0) continue;
+    vec3 fromA = origin - a;
+    float u = dot(fromA, p) / det;
+    if (u < 0.0 || u > 1.0) continue;
+    vec3 q = cross(fromA, e1);
+    float v = dot(direction, q) / det;
+    if (v < 0.0 || u + v > 1.0) continue;
+    float t = dot(e2, q) / det;
+    if (t >= ta && t < tz && t < tHit) {
+      tHit = t;
+      n = normalize(cross(e1, e2));
+      material = trisWord(b + 9u);
+    }
+#endif
+  }
+  return tHit < kBig;
+#endif
+}
+
 // Transmittance of a surface for shadow rays: 1 - opacity, and in the ray-traced mode with
 // refraction on, the refracted share passes too (light_transport.h, shadowTransmittanceOf).
 #if VXL_EFFECTS
@@ -118,8 +194,11 @@ float surfaceTransmittance(Material m) { return 1.0 - m.opacity; }
 // Transmittance of the geometry in one voxel a shadow ray crosses over [ta, tz).
 float geometryTransmittance(uint voxel, vec3 o, vec3 d, float ta, float tz) {
   float transmittance = 1.0;
-  uint surface = surfaceOf(voxel);
-  if (surface != kNoSurface) transmittance *= surfaceTransmittance(fetchMaterial(surface >> 16u));
+  float tSurface;
+  vec3 n;
+  uint material;
+  if (surfaceHit(voxel, o, d, ta, tz, tSurface, n, material))
+    transmittance *= surfaceTransmittance(fetchMaterial(material));
 #if VXL_SPHERES
   float tHit;
   uint sphere;

@@ -7,7 +7,16 @@
 // Surface hits cast their shadow rays from this many voxels off the surface along the normal:
 // a voxelized surface is one to two voxels thick, and a ray started inside it would shadow
 // the surface itself. kSurfaceShadowBias in render/render_model.h.
+// A plane or triangle hit lies on the stored surface: 0.3 voxel clears the neighbouring voxels'
+// planes yet stays inside the voxel; a triangle needs a rounding margin only
+// (kListSurfaceOffset, kTriangleSurfaceOffset in render/render_model.h).
+#if VXL_SURFACE_MODE == 0
 const float kSurfaceShadowBias = 2.0;
+#elif VXL_SURFACE_MODE == 1
+const float kSurfaceShadowBias = 0.3;
+#else
+const float kSurfaceShadowBias = 0.01;  // kTriangleSurfaceOffset
+#endif
 
 // Phong terms of a surface hit with unit normal n facing the eye; mirrors shadeSurface() in
 // render/render_model.h. Ambient and diffuse weights are the frame's, the highlight the
@@ -55,20 +64,30 @@ void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color, 
 }
 #endif
 
-// Surface fragment, then the nearest sphere hit, of one voxel the primary ray crosses over
-// [ta, tz). The caller composites the voxel's volume sample afterwards, if it has one.
+// The surface hit and the nearest sphere hit, nearest first, of one voxel the primary ray
+// crosses over [ta, tz). The caller composites the voxel's volume sample afterwards, if it has one.
 void compositeGeometry(uint voxel, vec3 o, vec3 d, float ta, float tz, vec3 toEye, inout vec3 color,
                        inout float transmittance) {
-  uint surface = surfaceOf(voxel);
-  if (surface != kNoSurface) {
-    vec3 n = decodeGradient(surface & 0xFFFFu);
-    compositeSurface(fetchMaterial(surface >> 16u), n, o + ta * d, toEye, color, transmittance);
-  }
+  float tSurface;
+  vec3 n;
+  uint material;
+  bool surface = surfaceHit(voxel, o, d, ta, tz, tSurface, n, material);
 #if VXL_SPHERES
   float tHit;
   uint sphere;
   vec3 centre;
-  if (transmittance > uStopTransmittance && firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre)) {
+  bool sphereFirst = firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre) &&
+                     !(surface && tSurface <= tHit);
+  if (sphereFirst) {
+    vec3 p = o + tHit * d;
+    compositeSurface(fetchMaterial(sphereMaterial(sphere)), normalize(p - centre), p, toEye, color,
+                     transmittance);
+  }
+#endif
+  if (surface && transmittance > uStopTransmittance)
+    compositeSurface(fetchMaterial(material), n, o + tSurface * d, toEye, color, transmittance);
+#if VXL_SPHERES
+  if (!sphereFirst && tHit < kBig && transmittance > uStopTransmittance) {
     vec3 p = o + tHit * d;
     compositeSurface(fetchMaterial(sphereMaterial(sphere)), normalize(p - centre), p, toEye, color,
                      transmittance);

@@ -6,12 +6,21 @@
 #include "voxlink_brick_walk.glsl"
 
 // Transmittance from worldPoint towards unit direction toLight, over at most `distance` (world;
-// kBig for a directional light). The ray starts one voxel (uUnit) along its way.
+// kBig for a directional light). The ray starts one voxel (uUnit) along its way, or
+// the surface offset of fragment lists (VoxelSceneWalker::shadowStartOffset).
+#if VXL_SURFACE_MODE == 0
+const float kShadowStartVoxels = 1.0;
+#elif VXL_SURFACE_MODE == 1
+const float kShadowStartVoxels = 0.3;
+#else
+const float kShadowStartVoxels = 0.01;
+#endif
 float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
-  vec3 o = worldToIndex(worldPoint + toLight * uUnit);
+  float start = kShadowStartVoxels * uUnit;
+  vec3 o = worldToIndex(worldPoint + toLight * start);
   vec3 d = directionToIndex(toLight);
   vec2 range = intersectBox(o, d, vec3(uDims));
-  float t0 = max(range.x, 0.0), t1 = min(range.y, distance - uUnit);
+  float t0 = max(range.x, 0.0), t1 = min(range.y, distance - start);
   float transmittance = 1.0;
   if (!(t0 < t1)) return transmittance;
   for (BrickWalk w = brickWalkBegin(o, d, t0, t1); brickWalkGoesOn(w);) {

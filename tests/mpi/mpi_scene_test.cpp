@@ -88,6 +88,17 @@ std::vector<SceneCase> sceneCases() {
        "mesh/c3dtm_fandisk.obj",
        R"({"objects": [{"type": "mesh", "file": "@mesh/c3dtm_fandisk.obj"}]})",
        {"--resolution", "70", "--brick", "4"}},
+      // Fragment lists (format version 2.1): planes of the bunny, triangle references of the
+      // fandisk, each voxel's list made on the rank of its slab.
+      {"BunnyPlanes",
+       "mesh/c3dtm_stanford-bunny.obj",
+       R"({"grid": {"resolution": 96}, "objects": [
+           {"type": "mesh", "file": "@mesh/c3dtm_stanford-bunny.obj"}]})",
+       {"--surface", "planes"}},
+      {"FandiskTriangles",
+       "mesh/c3dtm_fandisk.obj",
+       R"({"objects": [{"type": "mesh", "file": "@mesh/c3dtm_fandisk.obj"}]})",
+       {"--resolution", "70", "--brick", "4", "--surface", "triangles"}},
   };
 }
 

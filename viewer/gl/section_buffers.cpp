@@ -125,6 +125,16 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       arrays.push_back(section(file, format::SectionId::kSphereRefStart, "srofWord", "VxlSrof"));
       arrays.push_back(section(file, format::SectionId::kSphereRefs, "sridWord", "VxlSrid"));
     }
+    // Version 2.1 fragment lists (shaders/voxlink_scene.glsl, surfaceHit).
+    if (file.surfaceMode() != format::SurfaceMode::kMean)
+      arrays.push_back(section(file, format::SectionId::kFragmentStart, "frofWord", "VxlFrof"));
+    if (file.surfaceMode() == format::SurfaceMode::kPlanes)
+      arrays.push_back({"section FRAG", "fragEntry", "VxlFrag", 2,
+                        file.sectionBytes(format::SectionId::kFragments)});
+    if (file.surfaceMode() == format::SurfaceMode::kTriangles) {
+      arrays.push_back(section(file, format::SectionId::kTriangleRefs, "tridWord", "VxlTrid"));
+      arrays.push_back(section(file, format::SectionId::kTriangles, "trisWord", "VxlTris"));
+    }
   }
 
   SectionBuffers out;

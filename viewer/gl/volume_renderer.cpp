@@ -47,6 +47,10 @@ VolumeGeometry VolumeGeometry::of(const format::FileHeader& h) {
   g.valueType = static_cast<StoredType>(h.valueType);
   g.valueScale = h.valueScale;
   g.valueOffset = h.valueOffset;
+  if (h.surfaceMode == uint32_t(format::SurfaceMode::kPlanes))
+    g.surfaceOffsetVoxels = render::kListSurfaceOffset;
+  if (h.surfaceMode == uint32_t(format::SurfaceMode::kTriangles))
+    g.surfaceOffsetVoxels = render::kTriangleSurfaceOffset;
   return g;
 }
 

@@ -12,6 +12,7 @@
 
 #include "format/voxlink_file.h"
 #include "render/camera.h"
+#include "render/render_model.h"
 #include "render/render_settings.h"
 #include "tf/tf_table.h"
 #include "tf/transfer_function.h"
@@ -35,6 +36,8 @@ struct VolumeGeometry {
   StoredType valueType = StoredType::kU8;
   double valueScale = 1.0;
   double valueOffset = 0.0;
+  // Voxels (of the smallest spacing) that rays spawned at a surface start off it.
+  double surfaceOffsetVoxels = render::kSurfaceShadowBias;
 
   static VolumeGeometry of(const format::FileHeader& header);
   Box worldBox() const;

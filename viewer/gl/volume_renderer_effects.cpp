@@ -12,7 +12,6 @@
 namespace voxlink::viewer {
 
 using render::Camera;
-using render::kSurfaceShadowBias;
 using render::Light;
 using render::RenderSettings;
 using render::Sampling;
@@ -24,7 +23,8 @@ void VolumeRenderer::setEffectsUniforms(const ComputeProgram& p, const Camera& c
   glUniform1i(p.uniform("uMaxBounces"), s.effects.maxBounces);
   glUniform1i(p.uniform("uStepsPerPass"), std::max(1, s.effects.stepsPerPass));
   glUniform1f(p.uniform("uMinWeight"), float(1.0 - s.terminationAlpha));
-  glUniform1f(p.uniform("uSurfaceOffset"), float(kSurfaceShadowBias * geometry_.minSpacing()));
+  glUniform1f(p.uniform("uSurfaceOffset"),
+              float(geometry_.surfaceOffsetVoxels * geometry_.minSpacing()));
   glUniform1ui(p.uniform("uRayCapacity"), effects_.rayCapacity());
   std::vector<Light> lights = s.lights;
   if (lights.empty()) {

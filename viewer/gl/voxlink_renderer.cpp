@@ -14,7 +14,9 @@ std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
           {"VXL_AXIS", std::to_string(h.predominantAxis)},
           {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))},
           {"VXL_SCENE", h.versionMajor == format::kVersionMajorScene ? "1" : "0"},
-          {"VXL_SPHERES", h.sphereCount > 0 ? "1" : "0"}};
+          {"VXL_SPHERES", h.sphereCount > 0 ? "1" : "0"},
+          {"VXL_SURFACE_MODE",
+           std::to_string(h.versionMajor == format::kVersionMajorScene ? h.surfaceMode : 0u)}};
 }
 
 Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(

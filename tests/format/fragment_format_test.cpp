@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Version 2.1 files: per surface voxel a list of planes (FRAG) or triangle references (TRID into
+// TRIS) beside the voxel's SURF word. Round trips (plain and packed), the builder's refusals, and
+// damaged lists against the validator's messages.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+#include "base/crc32c.h"
+#include "format/bricked_volume.h"
+#include "format/gradient_codec.h"
+#include "format/scene_builder.h"
+#include "format/surface_mode.h"
+#include "format/validator.h"
+#include "format/voxlink_file.h"
+#include "pack/open_file.h"
+#include "pack/packed_file.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::format {
+namespace {
+
+MaterialRecord grey() {
+  MaterialRecord m{};
+  m.color[0] = m.color[1] = m.color[2] = 0.5f;
+  m.opacity = 1;
+  m.refractiveIndex = 1;
+  return m;
+}
+
+VolumeDescription smallGrid() {
+  VolumeDescription d;
+  d.dims = {16, 12, 10};
+  d.brickSize = 8;
+  return d;
+}
+
+FragmentRecord plane(double x, double y, double z, int16_t offset, uint16_t material = 0) {
+  FragmentRecord r{};
+  r.word = surfaceWord(encodeGradient(x, y, z), material);
+  r.offset = offset;
+  return r;
+}
+
+TriangleRecord triangle(float z, uint32_t material = 0) {
+  TriangleRecord t{};
+  const float v[9] = {0, 0, z, 4, 0, z, 0, 4, z};
+  std::memcpy(t.vertices, v, sizeof v);
+  t.material = material;
+  return t;
+}
+
+// Two surface voxels: (1, 2, 3) with the two sides of a sheet, (5, 5, 5) with one plane.
+SceneBuilder planesScene(size_t firstListLength = 2) {
+  SceneBuilder b(smallGrid());
+  b.setMaterials({grey(), grey()});
+  b.setSurfaceMode(SurfaceMode::kPlanes);
+  b.addSurface(1, 2, 3, encodeGradient(0.0, 0.0, 1.0), 0);
+  std::vector<FragmentRecord> sheet;
+  for (size_t i = 0; i < firstListLength; ++i)
+    sheet.push_back(i % 2 ? plane(0, 0, -1, 400, 1) : plane(0, 0, 1, -400, 0));
+  b.addFragments(1, 2, 3, sheet);
+  b.addSurface(5, 5, 5, encodeGradient(1.0, 0.0, 0.0), 1);
+  const FragmentRecord one = plane(1, 0, 0, 17, 1);
+  b.addFragments(5, 5, 5, std::span(&one, 1));
+  return b;
+}
+
+Result<VoxLinkFile> writeAndOpen(const SceneBuilder& b, const std::string& path) {
+  VOXLINK_ASSIGN_OR_RETURN(BrickedVolume built, b.build("{}"));
+  VOXLINK_RETURN_IF_ERROR(writeBrickedVolume(path, built));
+  return VoxLinkFile::open(path);
+}
+
+TEST(FragmentFormat, PlanesRoundTripPlainAndPacked) {
+  testing::TempDir dir;
+  auto f = writeAndOpen(planesScene(), dir.file("planes.vxl"));
+  ASSERT_TRUE(f) << f.message();
+  ASSERT_TRUE(validateFile(*f)) << validateFile(*f).message();
+  EXPECT_EQ(f->header().versionMajor, kVersionMajorScene);
+  EXPECT_EQ(f->header().versionMinor, kVersionMinorFragments);
+  EXPECT_EQ(f->surfaceMode(), SurfaceMode::kPlanes);
+  EXPECT_EQ(f->header().fragmentCount, 3u);
+  // File order is (z, y, x) by brick: (1, 2, 3) before (5, 5, 5).
+  const auto starts = f->fragmentStarts();
+  ASSERT_EQ(starts.size(), 3u);
+  EXPECT_EQ(starts[0], 0u);
+  EXPECT_EQ(starts[1], 2u);
+  EXPECT_EQ(starts[2], 3u);
+  EXPECT_EQ(f->fragments()[0].offset, -400);
+  EXPECT_EQ(surfaceMaterial(f->fragments()[1].word), 1);
+  EXPECT_EQ(f->fragments()[2].offset, 17);
+  ASSERT_TRUE(pack::packFile(*f, dir.file("planes.packed.vxl")));
+  auto unpacked =
+      pack::unpackFile(testing::readBytes(dir.file("planes.packed.vxl")), "p", uint64_t{1} << 30);
+  ASSERT_TRUE(unpacked) << unpacked.message();
+  ASSERT_EQ(unpacked->fileBytes(), f->fileBytes());
+  EXPECT_EQ(std::memcmp(unpacked->bytes().data(), f->bytes().data(), f->fileBytes()), 0);
+}
+
+TEST(FragmentFormat, TrianglesRoundTrip) {
+  SceneBuilder b(smallGrid());
+  b.setMaterials({grey()});
+  b.setSurfaceMode(SurfaceMode::kTriangles);
+  b.setTriangles({triangle(1), triangle(2), triangle(3)});
+  b.addSurface(2, 2, 2, encodeGradient(0.0, 0.0, 1.0), 0);
+  const uint32_t refs[] = {0, 2};
+  b.addTriangleRefs(2, 2, 2, refs);
+  testing::TempDir dir;
+  auto f = writeAndOpen(b, dir.file("triangles.vxl"));
+  ASSERT_TRUE(f) << f.message();
+  ASSERT_TRUE(validateFile(*f)) << validateFile(*f).message();
+  EXPECT_EQ(f->surfaceMode(), SurfaceMode::kTriangles);
+  EXPECT_EQ(f->header().triangleCount, 3u);
+  ASSERT_EQ(f->triangleRefs().size(), 2u);
+  EXPECT_EQ(f->triangleRefs()[1], 2u);
+  EXPECT_EQ(f->triangles()[2].vertices[2], 3.0f);
+}
+
+TEST(FragmentFormat, BuilderRefusesWhatTheFormatCannotSay) {
+  {
+    auto r = planesScene(kMaxFragmentsPerVoxel + 1).build();
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.message(), "voxel (1, 2, 3): 256 fragments; the format holds 1 to 255 per voxel");
+  }
+  EXPECT_TRUE(planesScene(kMaxFragmentsPerVoxel).build());
+  {
+    SceneBuilder b(smallGrid());
+    b.setMaterials({grey()});
+    b.setSurfaceMode(SurfaceMode::kPlanes);
+    b.addSurface(1, 1, 1, encodeGradient(0.0, 0.0, 1.0), 0);
+    auto r = b.build();
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.message(), "voxel (1, 1, 1) has a surface fragment but no fragment list");
+  }
+  {
+    SceneBuilder b(smallGrid());
+    b.setMaterials({grey()});
+    b.setSurfaceMode(SurfaceMode::kTriangles);
+    b.setTriangles({triangle(1)});
+    b.addSurface(1, 1, 1, encodeGradient(0.0, 0.0, 1.0), 0);
+    const uint32_t refs[] = {1};
+    b.addTriangleRefs(1, 1, 1, refs);
+    auto r = b.build();
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.message().find("triangle 1 is not ascending or not in the table of 1"),
+              std::string::npos)
+        << r.message();
+  }
+}
+
+TEST(FragmentFormat, ModeNamesParseBack) {
+  for (std::string_view name : kSurfaceModeNames)
+    EXPECT_EQ(surfaceModeName(*parseSurfaceMode(name)), name);
+  EXPECT_FALSE(parseSurfaceMode("voxels"));
+}
+
+// Damages a field of a valid planes file, reseals the checksums, and expects the named field.
+class FragmentBadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto built = planesScene(kMaxFragmentsPerVoxel).build("{}");
+    ASSERT_TRUE(built);
+    ASSERT_TRUE(writeBrickedVolume(dir_.file("good.vxl"), *built).isOk());
+    bytes_ = testing::readBytes(dir_.file("good.vxl"));
+  }
+  FileHeader& header() { return *reinterpret_cast<FileHeader*>(bytes_.data()); }
+  template <typename T>
+  T* section(SectionId id) {
+    auto* table = reinterpret_cast<SectionEntry*>(bytes_.data() + header().sectionTableOffset);
+    for (uint32_t i = 0; i < header().sectionCount; ++i)
+      if (table[i].id == static_cast<uint32_t>(id))
+        return reinterpret_cast<T*>(bytes_.data() + table[i].offset);
+    return nullptr;
+  }
+  std::string problem() {
+    auto* table = reinterpret_cast<SectionEntry*>(bytes_.data() + header().sectionTableOffset);
+    for (uint32_t i = 0; i < header().sectionCount; ++i)
+      table[i].crc = crc32c(bytes_.data() + table[i].offset, table[i].bytes);
+    header().headerCrc = 0;
+    header().headerCrc = crc32c(bytes_.data(), sizeof(FileHeader));
+    auto f = pack::fileFromBytes(bytes_, "bad.vxl");
+    if (!f) return f.message();
+    auto v = validateFile(*f);
+    return v ? "" : v.message();
+  }
+  testing::TempDir dir_;
+  std::vector<uint8_t> bytes_;
+};
+
+TEST_F(FragmentBadInput, GoodFileValidates) { EXPECT_EQ(problem(), ""); }
+
+TEST_F(FragmentBadInput, ListLongerThanTheFormatAllows) {
+  section<uint32_t>(SectionId::kFragmentStart)[1] = 256;  // voxel 0: 256, voxel 1: none
+  EXPECT_EQ(problem(),
+            "bad.vxl: section FROF: surface voxel 0 has fragments [0, 256) of 256 (a surface "
+            "voxel has 1 to 255)");
+}
+
+TEST_F(FragmentBadInput, FragmentReservedBitsSet) {
+  section<FragmentRecord>(SectionId::kFragments)[3].reserved = 1;
+  EXPECT_EQ(problem(), "bad.vxl: section FRAG: fragment 3.reserved is not zero");
+}
+
+TEST_F(FragmentBadInput, FragmentMaterialOutOfTable) {
+  section<FragmentRecord>(SectionId::kFragments)[0].word = surfaceWord(0, 7);
+  EXPECT_EQ(problem(), "bad.vxl: section FRAG: fragment 0 names material 7 of 2");
+}
+
+TEST_F(FragmentBadInput, UnknownSurfaceMode) {
+  header().surfaceMode = 3;
+  EXPECT_EQ(problem(),
+            "bad.vxl: header.surfaceMode: 3 is not a known surface mode (0 mean, 1 planes, 2 "
+            "triangles)");
+}
+
+TEST_F(FragmentBadInput, FragmentListsInAVersion20File) {
+  header().versionMinor = 0;
+  EXPECT_EQ(problem(), "bad.vxl: header.versionMinor: 0 but surfaceMode 1 needs version 2.1");
+}
+
+}  // namespace
+}  // namespace voxlink::format
