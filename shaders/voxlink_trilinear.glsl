@@ -65,8 +65,11 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   colorAlpha = vec4(0.0);
   gradient = vec3(0.0);
   if (voxel < 0) return;
-  classifyCorner(storedBits(uint(voxel)), gradientCode(uint(voxel)), colorAlpha, gradient);
-  gCellVisible = gCellVisible || colorAlpha.a > 0.0;
+  vec4 c = classify(storedBits(uint(voxel)));
+  if (!(c.a > 0.0)) return;
+  colorAlpha = vec4(c.rgb * c.a, c.a);
+  gradient = c.a * gradientDirection(uint(voxel));
+  gCellVisible = true;
 }
 
 // Occupied index and first voxel of the dual brick's brick `m` (bits as in gK0..gK7), by
