@@ -43,7 +43,7 @@ run() {  # name source tf [convert options...]
   "$voxlink" convert "$source" --tf "$tf" -o "$out/$name.vxl" -q "$@"
   "$voxlink" export "$out/$name.vxl" -o "$out/$name.nrrd" -q
   "$voxlink" bench-render "$out/$name.vxl" --tf "$tf" --sizes "$size" --no-dense \
-      --frames-per-turn "$frames" --pictures "$out/$name" -q | tee "$out/$name.md"
+      --frames-per-turn "$frames" --pictures "$out/$name" | tee "$out/$name.md"
   DISPLAY=":$display" pvpython --no-mpi "$here/paraview_render_bench.py" "$out/$name.nrrd" "$tf" \
       --size "$size" --frames-per-turn "$frames" --picture "$out/$name/paraview.png" \
       2>"$out/$name.paraview.err" | tee "$out/$name.paraview.txt"
