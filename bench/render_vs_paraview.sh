@@ -9,6 +9,7 @@
 # usage: bench/render_vs_paraview.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN] [SIZE]
 # OCCUPANCY=1 runs the occupancy sweep instead: the tooth CT kept at thresholds that keep about
 # 1 %, 6 %, 20 % and 50 % of its voxels, each shown with a ramp TF over what it keeps.
+# BENCH_FLAGS (environment) adds options to bench-render, e.g. --no-reference (no PSNR, faster).
 # pvpython needs an X display: the script starts its own Xvfb (display 180 + a free number).
 set -euo pipefail
 voxlink=$(realpath "$1")
@@ -42,7 +43,8 @@ run() {  # name source tf [convert options...]
   if [[ ! -e $source ]]; then echo "skipped $name: $source missing"; return; fi
   "$voxlink" convert "$source" --tf "$tf" -o "$out/$name.vxl" -q "$@"
   "$voxlink" export "$out/$name.vxl" -o "$out/$name.nrrd" -q
-  "$voxlink" bench-render "$out/$name.vxl" --tf "$tf" --sizes "$size" --no-dense \
+  # shellcheck disable=SC2086
+  "$voxlink" bench-render "$out/$name.vxl" --tf "$tf" --sizes "$size" --no-dense ${BENCH_FLAGS:-} \
       --frames-per-turn "$frames" --pictures "$out/$name" | tee "$out/$name.md"
   DISPLAY=":$display" pvpython --no-mpi "$here/paraview_render_bench.py" "$out/$name.nrrd" "$tf" \
       --size "$size" --frames-per-turn "$frames" --picture "$out/$name/paraview.png" \
