@@ -153,10 +153,11 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
     if (chunks > 1)
       accessor += cat("  uint c = i >> ", shift, "u;\n  uint j = i & ", chunkElements - 1, "u;\n");
     for (uint64_t c = 0; c < chunks; ++c) {
-      if (int(unit) >= maxUnits)
+      // The last unit is the TF table's (volume_renderer.h).
+      if (int(unit) >= maxUnits - 1)
         return makeError(ErrorCode::kTooLarge, file.path(), ": the file needs more than the ",
-                         maxUnits, " texture units a compute shader has here (chunks of ", limit,
-                         " bytes)");
+                         maxUnits - 1, " texture units a compute shader has for them (chunks of ",
+                         limit, " bytes)");
       const uint64_t first = c * chunkElements * elementBytes;
       const uint64_t count = std::min(chunkElements, elements - c * chunkElements) * elementBytes;
       std::vector<uint8_t> staging;
