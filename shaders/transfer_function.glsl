@@ -5,6 +5,10 @@
 layout(std430, binding = VXL_TF_BINDING) readonly restrict buffer VxlTransferFunction {
   vec4 tfTable[];
 };
+#if !VXL_TF_BREAKPOINTS
+// The same table as a buffer texture: a texel fetch is cheaper than a storage read on llvmpipe.
+layout(binding = VXL_TF_UNIT) uniform samplerBuffer uTfTexels;
+#endif
 uniform int uTfEntries;
 uniform float uValueScale;   // source = stored * scale + offset
 uniform float uValueOffset;
@@ -33,6 +37,6 @@ vec4 classify(uint bits) {
   if (isnan(value) || isinf(value)) return vec4(0.0);
   return tfBreakpoints(value);
 #else
-  return tfTable[bits];
+  return texelFetch(uTfTexels, int(bits));
 #endif
 }

@@ -4,7 +4,7 @@
 // voxlink_sections.glsl declares the buffers (viewer/gl/section_buffers.h: the voxel sections
 // unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
 // chunks where one exceeds a storage block) and the accessors rowsWord(), maskWord(),
-// valuWord(), gradWord(), brickIndexWord(), dualBoxWord(), brickEntry().
+// valuWord(), gradDirWord(), brickIndexWord(), dualBoxWord(), brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
@@ -86,4 +86,10 @@ uint storedBits(uint voxel) {
 #endif
 }
 
-uint gradientCode(uint voxel) { return u16At(gradWord(voxel >> 1u), voxel); }
+// Unit gradient direction of a voxel, or zero: decoded at load time and packed as three 10-bit
+// signed integers (viewer/gl/gradient_directions.h), renormalized here.
+vec3 gradientDirection(uint voxel) {
+  int w = int(gradDirWord(voxel));
+  vec3 v = vec3(bitfieldExtract(w, 0, 10), bitfieldExtract(w, 10, 10), bitfieldExtract(w, 20, 10));
+  return w == 0 ? vec3(0.0) : normalize(v);
+}

@@ -65,8 +65,11 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   colorAlpha = vec4(0.0);
   gradient = vec3(0.0);
   if (voxel < 0) return;
-  classifyCorner(storedBits(uint(voxel)), gradientCode(uint(voxel)), colorAlpha, gradient);
-  gCellVisible = gCellVisible || colorAlpha.a > 0.0;
+  vec4 c = classify(storedBits(uint(voxel)));
+  if (!(c.a > 0.0)) return;
+  colorAlpha = vec4(c.rgb * c.a, c.a);
+  gradient = c.a * gradientDirection(uint(voxel));
+  gCellVisible = true;
 }
 
 // Occupied index and first voxel of the dual brick's brick `m` (bits as in gK0..gK7), by
@@ -253,8 +256,16 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       k = max(k + 1, firstSampleAfterCell(o, d, cell, t0));
       continue;
     }
-    compositeSample(qIn, qIn - vec3(cell), toEye, color, transmittance);
-    if (transmittance <= uStopTransmittance) return;
-    ++k;
+    // Every sample of a visible cell in this pass: its corners are loaded, and a pass of this
+    // loop runs the whole body (corner lookup included) on llvmpipe, while this inner loop runs
+    // only the blend and shading. The samples taken are the ones the outer loop would take.
+    for (;;) {
+      compositeSample(qIn, qIn - vec3(cell), toEye, color, transmittance);
+      if (transmittance <= uStopTransmittance) return;
+      ++k;
+      ts = t0 + (float(k) + 0.5) * uStep;
+      qIn = o + ts * d - 0.5;
+      if (ts >= tOut || any(notEqual(ivec3(floor(qIn)), cell))) break;
+    }
   }
 }

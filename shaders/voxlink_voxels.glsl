@@ -34,11 +34,11 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
         if (a > 0.0) {
 #if VXL_EFFECTS
           color += transmittance * a *
-                   effectsVolumeShade(c.rgb, decodeGradient(gradientCode(voxel)),
+                   effectsVolumeShade(c.rgb, gradientDirection(voxel),
                                       indexToWorld(o + 0.5 * (ta + tz) * d), toEye);
 #else
           vec3 ambient, lit;
-          shadeSample(c.rgb, 1.0, decodeGradient(gradientCode(voxel)), toEye, ambient, lit);
+          shadeSample(c.rgb, 1.0, gradientDirection(voxel), toEye, ambient, lit);
           float shadow = 1.0;
 #if VXL_SHADOWS
           shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));

@@ -4,6 +4,8 @@
 // size, predominant axis and stored type, with sections split into several buffer textures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 
@@ -13,6 +15,7 @@
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
+#include "viewer/gl/gradient_directions.h"
 #include "viewer/gl/section_buffers.h"
 #include "viewer/gl/shader_program.h"
 #include "viewer/gl/volume_renderer.h"
@@ -176,14 +179,38 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
             EXPECT_EQ(next, expected + 1) << "the next list element is not index + 1";
           }
         }
-        const bool ok = r[0] == expected && uint32_t(r[1]) == bits &&
-                        (expected < 0 || uint32_t(r[2]) == codes[expected]) && r[3] == next;
+        const bool ok =
+            r[0] == expected && uint32_t(r[1]) == bits &&
+            (expected < 0 || uint32_t(r[2]) == viewer::packGradientDirection(codes[expected])) &&
+            r[3] == next;
         if (!ok && ++errors <= 5)
           ADD_FAILURE() << "cell (" << x << ", " << y << ", " << z << "): GLSL voxel " << r[0]
                         << " bits " << r[1] << " code " << r[2] << " next " << r[3]
                         << "; C++ voxel " << expected << " bits " << bits << " next " << next;
       }
   EXPECT_EQ(errors, 0);
+}
+
+// The packed directions the shaders read instead of codes: within 0.1 degrees of the decoded
+// code once renormalized, zero for the zero-gradient code.
+TEST(GradientDirections, PackedWithinATenthOfADegree) {
+  EXPECT_EQ(viewer::packGradientDirection(format::kZeroGradient), 0u);
+  double worst = 0;
+  for (uint32_t code = 0; code < (1u << 16); ++code) {
+    const auto v = format::decodeGradient(uint16_t(code));
+    if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;
+    const uint32_t w = viewer::packGradientDirection(uint16_t(code));
+    double u[3], length = 0, dot = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int32_t bits = int32_t(w >> (10 * a) & 0x3FFu);
+      u[a] = bits >= 512 ? bits - 1024 : bits;
+      length += u[a] * u[a];
+    }
+    for (int a = 0; a < 3; ++a) dot += u[a] / std::sqrt(length) * v[a];
+    worst = std::max(worst, std::acos(std::min(dot, 1.0)) * 180 / M_PI);
+  }
+  EXPECT_LT(worst, 0.1);
+  EXPECT_GT(worst, 0.0);  // the rounding is real: this test would notice a lossless change
 }
 
 std::vector<LookupCase> lookupCases() {

@@ -8,6 +8,7 @@
 #include "format/scene_index.h"
 #include "render/brick_bounds.h"
 #include "render/brick_lookup.h"
+#include "viewer/gl/gradient_directions.h"
 
 namespace voxlink::viewer {
 
@@ -65,7 +66,8 @@ Status checkUploadFits(const format::VoxLinkFile& file, const BrickRange& occupi
   uint64_t sections = 0;
   for (const format::SectionEntry& e : file.sectionTable())
     if (e.id != uint32_t(format::SectionId::kMeta)) sections += e.bytes;
-  const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections;
+  // The GRAD section goes up decoded: 4 bytes per voxel for its 2 (gradient_directions.h).
+  const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections + 4 * file.voxelCount();
   const uint64_t available = base::memoryForThisProcess();
   if (needed > available)
     return makeError(ErrorCode::kTooLarge, file.path(), ": rendering needs ", needed,
@@ -96,11 +98,13 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   const std::vector<uint32_t> boxes = brickBounds(file);
   const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file, occupied, boxes);
   const std::vector<uint32_t> entries = brickEntries(file, boxes);
+  const std::vector<uint32_t> directions =
+      packGradientDirections(file.sectionBytes(format::SectionId::kGradients));
   std::vector<GpuArray> arrays = {
       section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"),
       section(file, format::SectionId::kRowMask, "maskWord", "VxlMask"),
       section(file, format::SectionId::kValues, "valuWord", "VxlValu"),
-      section(file, format::SectionId::kGradients, "gradWord", "VxlGrad"),
+      {"gradient directions", "gradDirWord", "VxlGradDir", 1, bytesOf(directions)},
       {"brick index table", "brickIndexWord", "VxlBrickIndex", 1, bytesOf(brickIndex)},
       {"dual brick boxes", "dualBoxWord", "VxlDualBox", 1, bytesOf(dualBoxes)},
       {"brick entries", "brickEntry", "VxlBrickEntry", 2, bytesOf(entries)},
@@ -159,10 +163,11 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
     if (chunks > 1)
       accessor += cat("  uint c = i >> ", shift, "u;\n  uint j = i & ", chunkElements - 1, "u;\n");
     for (uint64_t c = 0; c < chunks; ++c) {
-      if (int(unit) >= maxUnits)
+      // The last unit is the TF table's (volume_renderer.h).
+      if (int(unit) >= maxUnits - 1)
         return makeError(ErrorCode::kTooLarge, file.path(), ": the file needs more than the ",
-                         maxUnits, " texture units a compute shader has here (chunks of ", limit,
-                         " bytes)");
+                         maxUnits - 1, " texture units a compute shader has for them (chunks of ",
+                         limit, " bytes)");
       const uint64_t first = c * chunkElements * elementBytes;
       const uint64_t count = std::min(chunkElements, elements - c * chunkElements) * elementBytes;
       std::vector<uint8_t> staging;

@@ -63,6 +63,12 @@ Box VolumeGeometry::worldBox() const {
   return b;
 }
 
+GLuint tfTextureUnit() {
+  GLint units = 0;
+  glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &units);
+  return GLuint(std::max(units, 16) - 1);  // GL 4.3 guarantees 16
+}
+
 double VolumeGeometry::minSpacing() const { return std::min({spacing[0], spacing[1], spacing[2]}); }
 
 VolumeRenderer::VolumeRenderer(const VolumeGeometry& geometry) : geometry_(geometry) {
@@ -82,6 +88,11 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   if (texels.empty()) texels.assign(4, 0.0f);
   tfBuffer_ = createStorageBuffer(texels.data(), texels.size() * sizeof(float));
   tfBytes_ = texels.size() * sizeof(float);
+  // The same buffer as RGBA texels: on llvmpipe a texel fetch (a gather) costs about 35
+  // instructions per SIMD vector, a storage-buffer read (a loop over the lanes) about 90, and a
+  // trilinear sample reads the TF for 8 corners (docs/rendering-benchmark.md).
+  tfTexels_ = createTexture(GL_TEXTURE_BUFFER);
+  glTextureBuffer(tfTexels_.id(), GL_RGBA32F, tfBuffer_.buffer.id());
 }
 
 Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
@@ -108,6 +119,7 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_TRILINEAR", s.sampling == Sampling::kTrilinear ? "1" : "0"});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
+  defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
   defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
   defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
   VOXLINK_ASSIGN_OR_RETURN(
@@ -126,6 +138,7 @@ Status VolumeRenderer::prepare(const RenderSettings& settings) {
 
 void VolumeRenderer::bindTables(const ComputeProgram& p) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTfBinding, tfBuffer_.buffer.id());
+  glBindTextureUnit(tfTextureUnit(), tfTexels_.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGradientTableBinding, gradientTable_.buffer.id());
   bindData(p);
 }

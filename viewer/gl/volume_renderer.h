@@ -47,6 +47,9 @@ struct VolumeGeometry {
 // Storage-buffer bindings of the tables, above any the file's sections take.
 inline constexpr GLuint kTfBinding = 62;
 inline constexpr GLuint kGradientTableBinding = 63;
+// Texture unit of the TF table read as a buffer texture (indexed tables): the last one a compute
+// shader has (SectionBuffers leaves it free).
+GLuint tfTextureUnit();
 
 class VolumeRenderer {
  public:
@@ -101,6 +104,7 @@ class VolumeRenderer {
   tf::TransferFunction tf_;
   TfTable table_;
   GlStorageBuffer tfBuffer_;
+  GlTexture tfTexels_;  // tfBuffer_ as a buffer texture of RGBA texels
   uint64_t tfBytes_ = 0;
   GlStorageBuffer gradientTable_;
   std::map<std::tuple<int, bool, int, int>, ComputeProgram> programs_;
