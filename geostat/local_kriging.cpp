@@ -287,8 +287,10 @@ class BrickSolver {
         // at most n^1.5 x the true norm) settles most systems as the estimate would.
         if (!f.bounded && jitter == 0) {
           ts.work.resize(n * (n + 1));
-          const double inverseBound =
-              2 * norm1 * spd::inverseNormBound(f.l.data(), n, ld, ts.work.data());
+          double inverseBound =
+              2 * norm1 * spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
+          if (!(inverseBound <= maxCondition))
+            inverseBound = 2 * norm1 * spd::inverseNormBound(f.l.data(), n, ld, ts.work.data());
           if (inverseBound <= maxCondition) f.bounded = true, bound = inverseBound;
         }
         if (!f.bounded) ts.work.resize(3 * n);

@@ -38,7 +38,7 @@ double norm1(const std::vector<double>& a, size_t n) {
   return worst;
 }
 
-TEST(SpdKernels, InverseNormBoundIsAboveTheTrueNormAndAtMostNToTheThreeHalvesTimesIt) {
+TEST(SpdKernels, InverseNormBoundsAreAboveTheTrueNormAndTheL1BoundAtMostN15TimesIt) {
   for (size_t n : {1, 2, 5, 16, 31, 32, 33, 48}) {
     for (double range : {0.1, 1.0, 4.0}) {  // condition from ~1 to ~1e5
       std::vector<double> l = covariances(n, range, static_cast<unsigned>(n));
@@ -59,6 +59,8 @@ TEST(SpdKernels, InverseNormBoundIsAboveTheTrueNormAndAtMostNToTheThreeHalvesTim
       const double bound = spd::inverseNormBound(l.data(), n, ld, work.data());
       EXPECT_GE(bound, truth * (1 - 1e-12)) << "n " << n << " range " << range;
       EXPECT_LE(bound, truth * std::pow(double(n), 1.5) * (1 + 1e-12)) << n << " " << range;
+      const double comparison = spd::inverseNormComparisonBound(l.data(), n, ld, work.data());
+      EXPECT_GE(comparison, truth * (1 - 1e-12)) << "n " << n << " range " << range;
       const double estimate = spd::inverseNormEstimate(l.data(), n, ld, work.data());
       EXPECT_LE(estimate, bound * (1 + 1e-12)) << n << " " << range;
     }
