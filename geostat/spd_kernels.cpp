@@ -42,8 +42,11 @@ inline double dotInline(const double* a, const double* b, size_t n) {
 }  // namespace
 
 // Right-looking, two columns at a time: each trailing column is read and written once per pair
-// (a rank-2 axpy), which halves the memory traffic of the update that dominates.
-VOXLINK_VECTOR_CLONES bool factorLower(double* a, size_t n, size_t ld) {
+// (a rank-2 axpy), which halves the memory traffic of the update that dominates. kN > 0 fixes
+// the size (the same arithmetic, unrolled by the compiler).
+template <size_t kN>
+inline bool factorLowerBody(double* a, size_t n, size_t ld) {
+  if constexpr (kN > 0) n = kN, ld = paddedSize(kN);
   size_t j = 0;
   for (; j + 1 < n; j += 2) {
     double* c0 = a + j * ld;
@@ -59,6 +62,11 @@ VOXLINK_VECTOR_CLONES bool factorLower(double* a, size_t n, size_t ld) {
     }
   }
   return j == n || finishColumn(a + j * ld, j, n);
+}
+
+VOXLINK_VECTOR_CLONES bool factorLower(double* a, size_t n, size_t ld) {
+  if (n == 32 && ld == 32) return factorLowerBody<32>(a, n, ld);
+  return factorLowerBody<0>(a, n, ld);
 }
 
 VOXLINK_VECTOR_CLONES void solveLower(const double* l, size_t n, size_t ld, double* b) {
