@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "geostat/drift.h"
@@ -22,31 +21,38 @@ struct Factorization {
   bool bounded = false;  // condition is the nugget's bound, not an estimate
 };
 
-// Factorizations of recently seen neighbour sets, found by the hash of the set.
+// Factorizations of recently seen neighbour sets, found by the hash of the set: 4-way set
+// associative with round-robin replacement, so a lookup or an insert never allocates (in 3-D
+// almost every node inserts; a node-based hash map spent a malloc on each).
 class FactorizationCache {
  public:
-  explicit FactorizationCache(size_t capacity) : capacity_(std::max<size_t>(capacity, 16)) {}
+  explicit FactorizationCache(size_t capacity)
+      : sets_(std::max<size_t>(capacity, 16) / kWays),
+        entries_(sets_ * kWays),
+        hashes_(entries_.size()),
+        next_(sets_) {}
   Factorization* find(uint64_t hash, const std::vector<uint32_t>& key) {
-    const auto it = index_.find(hash);
-    if (it == index_.end()) return nullptr;
-    Factorization& f = entries_[it->second];
-    return f.key == key ? &f : nullptr;
+    const size_t first = (hash % sets_) * kWays;
+    for (size_t i = first; i < first + kWays; ++i)
+      if (hashes_[i] == hash && entries_[i].key == key) return &entries_[i];
+    return nullptr;
   }
-  // A slot for a new set (reusing an old slot's memory); forgets everything when full.
+  // A slot for a new set (reusing an old slot's memory).
   Factorization& insert(uint64_t hash) {
-    if (used_ == capacity_) {
-      index_.clear();
-      used_ = 0;
-    }
-    if (used_ == entries_.size()) entries_.emplace_back();
-    index_[hash] = static_cast<uint32_t>(used_);
-    return entries_[used_++];
+    const size_t set = hash % sets_;
+    const size_t slot = set * kWays + next_[set];
+    next_[set] = static_cast<uint8_t>((next_[set] + 1) % kWays);
+    hashes_[slot] = hash;
+    entries_[slot].key.clear();  // not a valid entry until factored
+    return entries_[slot];
   }
 
  private:
-  size_t capacity_, used_ = 0;
+  static constexpr size_t kWays = 4;
+  size_t sets_;
   std::vector<Factorization> entries_;
-  std::unordered_map<uint64_t, uint32_t> index_;
+  std::vector<uint64_t> hashes_;
+  std::vector<uint8_t> next_;  // the way each set replaces next
 };
 
 // The hash of a neighbour set (sample indices, ascending).

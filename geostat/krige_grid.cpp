@@ -18,8 +18,8 @@ std::string KrigingSummary::text() const {
       << " nodes used a cached factorization; mean neighbours " << meanNeighbours << "\n"
       << "worst condition estimate (1-norm): " << worstCondition;
   if (systemsBounded > 0)
-    out << " (" << systemsBounded << " systems not estimated: the nugget bounds their condition by "
-        << worstConditionBound << ")";
+    out << " (" << systemsBounded << " systems not estimated: bounded by " << worstConditionBound
+        << ")";
   out << "\n"
       << "regularized nodes: " << regularizedNodes << " (largest diagonal jitter " << largestJitter
       << ")\n";

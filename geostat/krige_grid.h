@@ -32,8 +32,8 @@ struct KrigingSummary {
   uint64_t regularizedNodes = 0;   // nodes whose system needed a diagonal jitter
   uint64_t driftReducedNodes = 0;  // nodes kriged with dependent drift terms dropped (drift.h)
   double worstCondition = 0;       // largest 1-norm condition estimate of any system
-  // Systems whose condition the nugget bounds below --max-condition are not estimated:
-  // how many, and the largest bound.
+  // Systems whose condition a bound (the nugget's, or one from L^-1) keeps below
+  // --max-condition are not estimated: how many, and the largest bound.
   uint64_t systemsBounded = 0;
   double worstConditionBound = 0;
   double largestJitter = 0;

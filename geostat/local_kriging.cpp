@@ -30,8 +30,11 @@ struct ThreadState {
   std::vector<Neighbour> nearest;
   std::vector<uint32_t> candidates;      // sample indices, ascending
   std::vector<double> cx, cy, cz, pair;  // their coordinates and covariances (m x m)
-  std::vector<double> d2, rhs, work, nth, drift;
-  double cut = 0;  // squared distance between the last node's k-th and (k+1)-th (0: none)
+  std::vector<double> d2, rhs, work, drift;
+  std::vector<std::pair<double, uint32_t>> band;  // (squared distance, candidate) to rank
+  std::vector<uint8_t> taken;
+  double lastKth = -1;  // the brick's previous node's k-th squared distance (-1: none yet)
+  Point3 lastNode{};
   std::vector<uint32_t> picked, lastPicked, key;
   FactorizationCache cache;
   const Factorization* last = nullptr;  // the previous node's, valid while lastPicked is
@@ -93,7 +96,7 @@ class BrickSolver {
     std::sort(ts.candidates.begin(), ts.candidates.end());
     loadCandidates(ts);
     ts.lastPicked.clear();
-    ts.cut = 0;
+    ts.lastKth = -1;
     for (uint32_t z = box.lo[2]; z < box.hi[2]; ++z)
       for (uint32_t y = box.lo[1]; y < box.hi[1]; ++y)
         for (uint32_t x = box.lo[0]; x < box.hi[0]; ++x)
@@ -204,45 +207,46 @@ class BrickSolver {
         if (ts.d2[j] <= reach2) ts.picked.push_back(static_cast<uint32_t>(j));
       return !ts.picked.empty();
     }
-    // Neighbouring nodes have nearly the same k-th distance: when exactly k candidates are
-    // closer than the previous node's cut, they are this node's k nearest (one pass).
-    if (ts.cut > 0 && ts.cut <= reach2 && pickBelowCut(ts)) return true;
-    ts.nth.assign(ts.d2.begin(), ts.d2.end());
-    std::nth_element(ts.nth.begin(), ts.nth.begin() + static_cast<long>(k_ - 1), ts.nth.end());
-    const double kth = ts.nth[k_ - 1];
-    size_t closer = 0;
-    for (size_t j = 0; j < m; ++j) closer += ts.d2[j] < kth;
-    size_t atKth = k_ - closer;  // samples exactly as far as the k-th: the lowest indices
-    double next = INFINITY;
-    for (size_t j = 0; j < m; ++j) {
-      if (ts.d2[j] < kth || (ts.d2[j] == kth && atKth > 0 && atKth--))
-        ts.picked.push_back(static_cast<uint32_t>(j));
-      else if (ts.d2[j] > kth)
-        next = std::min(next, ts.d2[j]);
-    }
-    ts.cut = 0.5 * (kth + next);  // no cut when the k-th and (k+1)-th tie: 0.5 (a + a) = a
-    if (!(ts.cut > kth)) ts.cut = 0;
+    pickNearest(q, ts);
     return true;
   }
 
-  // The candidates closer than ts.cut if they are exactly k; the cut then moves to halfway
-  // between this node's k-th and (k+1)-th distance.
-  bool pickBelowCut(ThreadState& ts) const {
+  // The k smallest (d2, index) of the candidates. The previous node p of the brick bounds this
+  // node's k-th distance: |d_k(q) - d_k(p)| <= |q - p|. Candidates below that band are in,
+  // those above it out, and only the few inside it are ranked. The bounds only save work: the
+  // pick is exact whatever they are, as long as fewer than k lie below and k in all up to the
+  // band's top (else the band is widened to everything).
+  void pickNearest(const Point3& q, ThreadState& ts) const {
     const size_t m = ts.d2.size();
-    size_t below = 0;
-    double inside = 0, outside = INFINITY;
-    for (size_t j = 0; j < m; ++j) {
-      const double d = ts.d2[j];
-      const bool in = d < ts.cut;
-      below += in;
-      inside = in ? std::max(inside, d) : inside;
-      outside = in ? outside : std::min(outside, d);
+    double below = 0, above = INFINITY;
+    if (ts.lastKth >= 0) {
+      const double dk = std::sqrt(ts.lastKth);
+      const double step = std::sqrt((q[0] - ts.lastNode[0]) * (q[0] - ts.lastNode[0]) +
+                                    (q[1] - ts.lastNode[1]) * (q[1] - ts.lastNode[1]) +
+                                    (q[2] - ts.lastNode[2]) * (q[2] - ts.lastNode[2]));
+      below = dk > step ? (dk - step) * (dk - step) * (1 - 1e-9) : 0.0;
+      above = (dk + step) * (dk + step) * (1 + 1e-9);
     }
-    if (below != k_) return false;
+    size_t inside = 0;
+    for (;;) {
+      inside = 0;
+      ts.band.clear();
+      for (size_t j = 0; j < m; ++j) {
+        const double d = ts.d2[j];
+        inside += d < below;
+        if (d >= below && d <= above) ts.band.push_back({d, static_cast<uint32_t>(j)});
+      }
+      if (inside < k_ && inside + ts.band.size() >= k_) break;
+      below = 0, above = INFINITY;
+    }
+    const auto nth = ts.band.begin() + static_cast<long>(k_ - inside - 1);
+    std::nth_element(ts.band.begin(), nth, ts.band.end());
+    ts.taken.assign(m, 0);
+    for (auto it = ts.band.begin(); it <= nth; ++it) ts.taken[it->second] = 1;
     for (size_t j = 0; j < m; ++j)
-      if (ts.d2[j] < ts.cut) ts.picked.push_back(static_cast<uint32_t>(j));
-    ts.cut = 0.5 * (inside + outside);
-    return true;
+      if (ts.d2[j] < below || ts.taken[j]) ts.picked.push_back(static_cast<uint32_t>(j));
+    ts.lastKth = nth->first;
+    ts.lastNode = q;
   }
 
   // The covariances among the picked candidates (lower triangle, column-major) plus jitter on
@@ -276,9 +280,19 @@ class BrickSolver {
       // With a nugget the matrix is nugget I plus a positive semidefinite one, so its smallest
       // eigenvalue is >= nugget and cond_1 <= sqrt(n) ||A||_1 / nugget (doubled for rounding):
       // below --max-condition that bound makes the estimate (10 triangular solves) needless.
-      const double bound = nugget > 0 ? 2 * std::sqrt(double(n)) * norm1 / nugget : INFINITY;
+      double bound = nugget > 0 ? 2 * std::sqrt(double(n)) * norm1 / nugget : INFINITY;
       if (spd::factorLower(f.l.data(), n, ld)) {
         f.bounded = jitter == 0 && bound <= maxCondition;
+        // Without a nugget, ||A^-1||_1 <= a bound from L^-1 (a third of the estimate's cost,
+        // at most n^1.5 x the true norm) settles most systems as the estimate would.
+        if (!f.bounded && jitter == 0) {
+          ts.work.resize(n * (n + 1));
+          double inverseBound =
+              2 * norm1 * spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
+          if (!(inverseBound <= maxCondition))
+            inverseBound = 2 * norm1 * spd::inverseNormBound(f.l.data(), n, ld, ts.work.data());
+          if (inverseBound <= maxCondition) f.bounded = true, bound = inverseBound;
+        }
         if (!f.bounded) ts.work.resize(3 * n);
         f.condition =
             f.bounded ? bound : norm1 * spd::inverseNormEstimate(f.l.data(), n, ld, ts.work.data());

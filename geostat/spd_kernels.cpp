@@ -25,11 +25,28 @@ inline bool finishColumn(double* cj, size_t j, size_t n) {
   return true;
 }
 
+// Four split accumulators: the sum's latency chain is a quarter as long.
+inline double dotInline(const double* a, const double* b, size_t n) {
+  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    s0 += a[i] * b[i];
+    s1 += a[i + 1] * b[i + 1];
+    s2 += a[i + 2] * b[i + 2];
+    s3 += a[i + 3] * b[i + 3];
+  }
+  for (; i < n; ++i) s0 += a[i] * b[i];
+  return (s0 + s1) + (s2 + s3);
+}
+
 }  // namespace
 
 // Right-looking, two columns at a time: each trailing column is read and written once per pair
-// (a rank-2 axpy), which halves the memory traffic of the update that dominates.
-VOXLINK_VECTOR_CLONES bool factorLower(double* a, size_t n, size_t ld) {
+// (a rank-2 axpy), which halves the memory traffic of the update that dominates. kN > 0 fixes
+// the size (the same arithmetic, unrolled by the compiler).
+template <size_t kN>
+inline bool factorLowerBody(double* a, size_t n, size_t ld) {
+  if constexpr (kN > 0) n = kN, ld = paddedSize(kN);
   size_t j = 0;
   for (; j + 1 < n; j += 2) {
     double* c0 = a + j * ld;
@@ -45,6 +62,11 @@ VOXLINK_VECTOR_CLONES bool factorLower(double* a, size_t n, size_t ld) {
     }
   }
   return j == n || finishColumn(a + j * ld, j, n);
+}
+
+VOXLINK_VECTOR_CLONES bool factorLower(double* a, size_t n, size_t ld) {
+  if (n == 32 && ld == 32) return factorLowerBody<32>(a, n, ld);
+  return factorLowerBody<0>(a, n, ld);
 }
 
 VOXLINK_VECTOR_CLONES void solveLower(const double* l, size_t n, size_t ld, double* b) {
@@ -70,16 +92,7 @@ VOXLINK_VECTOR_CLONES void solveLower(const double* l, size_t n, size_t ld, doub
 }
 
 VOXLINK_VECTOR_CLONES double dot(const double* a, const double* b, size_t n) {
-  double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-  size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    s0 += a[i] * b[i];
-    s1 += a[i + 1] * b[i + 1];
-    s2 += a[i + 2] * b[i + 2];
-    s3 += a[i + 3] * b[i + 3];
-  }
-  for (; i < n; ++i) s0 += a[i] * b[i];
-  return (s0 + s1) + (s2 + s3);
+  return dotInline(a, b, n);
 }
 
 void solveLowerTransposed(const double* l, size_t n, size_t ld, double* b) {
@@ -89,15 +102,92 @@ void solveLowerTransposed(const double* l, size_t n, size_t ld, double* b) {
   }
 }
 
+// The two solves in one call, so the short dot products of the transposed solve are inlined
+// rather than dispatched one by one (the same arithmetic as the two calls).
+VOXLINK_VECTOR_CLONES void applyInverse(const double* l, size_t n, size_t ld, double* b) {
+  for (size_t j = 0; j < n; ++j) {
+    const double* cj = l + j * ld;
+    const double bj = b[j] * cj[j];
+    b[j] = bj;
+    for (size_t i = j + 1; i < n; ++i) b[i] -= cj[i] * bj;
+  }
+  for (size_t i = n; i-- > 0;) {
+    const double* ci = l + i * ld;
+    b[i] = (b[i] - dotInline(ci + i + 1, b + i + 1, n - i - 1)) * ci[i];
+  }
+}
+
+// X = L^-1 row by row (row-major, n x n; the right-looking updates of a row are independent
+// axpys), then min(||X||_1 ||X||_inf, sqrt(n) ||X||_F^2): each is an upper bound of
+// ||A^-1||_1 = ||X^T X||_1. kN > 0 fixes the size for the compiler.
+template <size_t kN>
+inline double inverseNormBoundBody(const double* l, size_t n, size_t ld, double* x) {
+  if constexpr (kN > 0) n = kN, ld = paddedSize(kN);
+  std::fill(x, x + n * n, 0.0);
+  for (size_t j = 0; j < n; ++j) x[j * n + j] = 1.0;
+  for (size_t j = 0; j < n; ++j) {
+    const double* cj = l + j * ld;
+    double* xj = x + j * n;
+    for (size_t c = 0; c <= j; ++c) xj[c] *= cj[j];
+    for (size_t i = j + 1; i < n; ++i) {
+      double* xi = x + i * n;
+      const double lij = cj[i];
+      for (size_t c = 0; c <= j; ++c) xi[c] -= lij * xj[c];
+    }
+  }
+  double frobenius = 0, rowMax = 0;
+  double* column = x + n * n;  // n more doubles of work
+  std::fill(column, column + n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    const double* xi = x + i * n;
+    double row = 0;
+    for (size_t c = 0; c <= i; ++c) {
+      const double a = std::fabs(xi[c]);
+      row += a;
+      column[c] += a;
+      frobenius += a * a;
+    }
+    rowMax = std::max(rowMax, row);
+  }
+  const double columnMax = *std::max_element(column, column + n);
+  return std::min(columnMax * rowMax, std::sqrt(double(n)) * frobenius);
+}
+
+VOXLINK_VECTOR_CLONES double inverseNormBound(const double* l, size_t n, size_t ld, double* work) {
+  if (n == 0) return 1.0;
+  if (n == 32 && ld == 32) return inverseNormBoundBody<32>(l, n, ld, work);
+  return inverseNormBoundBody<0>(l, n, ld, work);
+}
+
+// |L^-1| <= M(L)^-1 entrywise, M(L) the comparison matrix (|l_ii| on the diagonal, -|l_ij|
+// below; Higham, Accuracy and Stability, Thm 8.12), so ||L^-1||_inf <= max(M^-1 e) and
+// ||L^-1||_1 <= max(M^-T e). Sums of positive terms: no cancellation, rounding stays relative.
+VOXLINK_VECTOR_CLONES double inverseNormComparisonBound(const double* l, size_t n, size_t ld,
+                                                        double* work) {
+  if (n == 0) return 1.0;
+  double* x = work;
+  double* y = work + n;
+  std::fill(x, x + n, 1.0);
+  for (size_t j = 0; j < n; ++j) {
+    const double* cj = l + j * ld;
+    const double xj = x[j] * cj[j];
+    x[j] = xj;
+    for (size_t i = j + 1; i < n; ++i) x[i] += std::fabs(cj[i]) * xj;
+  }
+  for (size_t i = n; i-- > 0;) {
+    const double* ci = l + i * ld;
+    double sum = 1.0;
+    for (size_t k = i + 1; k < n; ++k) sum += std::fabs(ci[k]) * y[k];
+    y[i] = sum * ci[i];
+  }
+  return *std::max_element(x, x + n) * *std::max_element(y, y + n);
+}
+
 double inverseNormEstimate(const double* l, size_t n, size_t ld, double* work) {
   if (n == 0) return 1.0;
   double* x = work;
   double* y = work + n;
   double* z = work + 2 * n;
-  auto applyInverse = [&](double* v) {
-    solveLower(l, n, ld, v);
-    solveLowerTransposed(l, n, ld, v);
-  };
   auto norm1 = [n](const double* v) {
     double s = 0;
     for (size_t i = 0; i < n; ++i) s += std::fabs(v[i]);
@@ -108,12 +198,12 @@ double inverseNormEstimate(const double* l, size_t n, size_t ld, double* work) {
   double estimate = 0;
   for (int iter = 0; iter < 5; ++iter) {
     std::copy(y, y + n, x);
-    applyInverse(y);
+    applyInverse(l, n, ld, y);
     const double norm = norm1(y);
     if (iter > 0 && norm <= estimate) break;
     estimate = norm;
     for (size_t i = 0; i < n; ++i) z[i] = y[i] >= 0 ? 1.0 : -1.0;
-    applyInverse(z);
+    applyInverse(l, n, ld, z);
     size_t j = 0;
     double zx = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -127,7 +217,7 @@ double inverseNormEstimate(const double* l, size_t n, size_t ld, double* work) {
   // Higham's alternating-sign probe catches matrices Hager's iteration underestimates.
   for (size_t i = 0; i < n; ++i)
     y[i] = (i % 2 ? -1.0 : 1.0) * (1.0 + static_cast<double>(i) / std::max<size_t>(n - 1, 1));
-  applyInverse(y);
+  applyInverse(l, n, ld, y);
   return std::max(estimate, 2.0 * norm1(y) / (3.0 * static_cast<double>(n)));
 }
 

@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "geostat/spd_kernels.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace voxlink::geostat {
+namespace {
+
+// Exponential covariances of n random points in a unit cube (range r), column-major, padded.
+std::vector<double> covariances(size_t n, double r, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<double, 3>> p(n);
+  for (auto& q : p) q = {u(rng), u(rng), u(rng)};
+  const size_t ld = spd::paddedSize(n);
+  std::vector<double> a(ld * n, 0.0);
+  for (size_t j = 0; j < n; ++j)
+    for (size_t i = 0; i < n; ++i) {
+      const double h = std::hypot(p[i][0] - p[j][0], p[i][1] - p[j][1], p[i][2] - p[j][2]);
+      a[j * ld + i] = std::exp(-3 * h / r);
+    }
+  return a;
+}
+
+double norm1(const std::vector<double>& a, size_t n) {
+  const size_t ld = spd::paddedSize(n);
+  double worst = 0;
+  for (size_t j = 0; j < n; ++j) {
+    double sum = 0;
+    for (size_t i = 0; i < n; ++i) sum += std::fabs(a[j * ld + i]);
+    worst = std::max(worst, sum);
+  }
+  return worst;
+}
+
+TEST(SpdKernels, InverseNormBoundsAreAboveTheTrueNormAndTheL1BoundAtMostN15TimesIt) {
+  for (size_t n : {1, 2, 5, 16, 31, 32, 33, 48}) {
+    for (double range : {0.1, 1.0, 4.0}) {  // condition from ~1 to ~1e5
+      std::vector<double> l = covariances(n, range, static_cast<unsigned>(n));
+      const size_t ld = spd::paddedSize(n);
+      ASSERT_TRUE(spd::factorLower(l.data(), n, ld)) << n;
+      // The truth: ||A^-1||_1 from A^-1 column by column.
+      double truth = 0;
+      std::vector<double> column(n);
+      for (size_t j = 0; j < n; ++j) {
+        std::fill(column.begin(), column.end(), 0.0);
+        column[j] = 1;
+        spd::applyInverse(l.data(), n, ld, column.data());
+        double sum = 0;
+        for (double v : column) sum += std::fabs(v);
+        truth = std::max(truth, sum);
+      }
+      std::vector<double> work(n * (n + 1));
+      const double bound = spd::inverseNormBound(l.data(), n, ld, work.data());
+      EXPECT_GE(bound, truth * (1 - 1e-12)) << "n " << n << " range " << range;
+      EXPECT_LE(bound, truth * std::pow(double(n), 1.5) * (1 + 1e-12)) << n << " " << range;
+      const double comparison = spd::inverseNormComparisonBound(l.data(), n, ld, work.data());
+      EXPECT_GE(comparison, truth * (1 - 1e-12)) << "n " << n << " range " << range;
+      const double estimate = spd::inverseNormEstimate(l.data(), n, ld, work.data());
+      EXPECT_LE(estimate, bound * (1 + 1e-12)) << n << " " << range;
+    }
+  }
+}
+
+TEST(SpdKernels, ApplyInverseIsTheTwoTriangularSolvesBitForBit) {
+  for (size_t n : {3, 32, 45}) {
+    std::vector<double> l = covariances(n, 1.0, 9);
+    const size_t ld = spd::paddedSize(n);
+    const double norm = norm1(l, n);
+    ASSERT_TRUE(spd::factorLower(l.data(), n, ld));
+    std::vector<double> b(n), c(n);
+    for (size_t i = 0; i < n; ++i) b[i] = c[i] = std::sin(1.0 + double(i)) * norm;
+    spd::applyInverse(l.data(), n, ld, b.data());
+    spd::solveLower(l.data(), n, ld, c.data());
+    spd::solveLowerTransposed(l.data(), n, ld, c.data());
+    for (size_t i = 0; i < n; ++i) EXPECT_EQ(b[i], c[i]) << n << " " << i;
+  }
+}
+
+}  // namespace
+}  // namespace voxlink::geostat
