@@ -2,7 +2,10 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Checks the layering of cmake/layers.txt: every `#include "folder/..."` in a folder's .h/.cpp
 # files must name the folder itself or one on a lower line of the table; fails naming the file,
-# the line and the forbidden arrow. Also fails on any .h/.cpp outside tests/ over 500 lines.
+# the line and the forbidden arrow. A table entry may be a subfolder (render/gl): its files
+# belong to it, not to the folder above. A room's internal headers live in a `detail/` folder
+# inside it; including another room's detail/ header fails too (tests/ may include any). Also
+# fails on any .h/.cpp outside tests/ over 500 lines.
 #   bash scripts/check-layers.sh [ROOT]        # check (default ROOT: this checkout)
 #   bash scripts/check-layers.sh --dot [ROOT]  # the layers and the real arrows as graphviz dot
 #     (docs/images/layers.dot is that through `tred`, layers.svg its drawing)
@@ -38,19 +41,35 @@ awk -v mode="$mode" -v table="$table" '
     layers = n
     bad = 0
   }
+  # The room of a path: its first two folders where the table names them (render/gl), else
+  # its first folder.
+  function room(path,    two) {
+    two = path
+    if (match(two, /^[a-z_]+\/[a-z_]+\//)) {
+      two = substr(two, 1, RLENGTH - 1)
+      if (two in layer) return two
+    }
+    sub(/\/.*/, "", path)
+    return path
+  }
   FNR == 1 {
     file = FILENAME
-    folder = file
-    sub(/\/.*/, "", folder)
+    folder = room(file)
     if (!(folder in layer) && file ~ /\//) {
       print file ": folder " folder "/ is not in " table > "/dev/stderr"
       bad = 1
     }
   }
   /^[ \t]*#[ \t]*include[ \t]*"[a-z_]+\// {
-    target = $0
-    sub(/^[^"]*"/, "", target)
-    sub(/\/.*/, "", target)
+    path = $0
+    sub(/^[^"]*"/, "", path)
+    sub(/".*/, "", path)
+    target = room(path)
+    if (path ~ /\/detail\// && target != folder && folder != "tests") {
+      print file ":" FNR ": " folder "/ includes a detail/ header of " target "/ (" $0 \
+        "): detail/ headers are internal to their room" > "/dev/stderr"
+      bad = 1
+    }
     if (!(target in layer) || !(folder in layer) || target == folder) next
     arrow[folder " " target]++
     if (layer[target] >= layer[folder]) {

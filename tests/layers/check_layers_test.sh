@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # scripts/check-layers.sh passes on a copy of the sources, and fails naming the file, the line and
-# the arrow when one upward or sideways include is planted in it, and when a file runs over 500
-# lines or a folder is missing from cmake/layers.txt.
+# the arrow when one upward or sideways include is planted in it, when a file includes another
+# room's detail/ header (a room's own passes), and when a file runs over 500 lines or a folder is
+# missing from cmake/layers.txt.
 #   bash tests/layers/check_layers_test.sh SOURCE_DIR
 set -euo pipefail
 src=$(cd "$1" && pwd)
@@ -51,6 +52,20 @@ restore base/error.h
 plant pack/packed_file.cpp '#include "tf/transfer_function.h"'
 expect_fail "sibling include" 'pack/packed_file.cpp:2: forbidden arrow pack -> tf'
 restore pack/packed_file.cpp
+
+plant scene/scene_assembly.cpp '#include "convert/detail/slab_window.h"'
+expect_fail "another room's detail header" 'scene/scene_assembly.cpp:2: scene/ includes a detail/ header of convert/'
+restore scene/scene_assembly.cpp
+
+plant convert/converter.cpp '#include "convert/detail/slab_window.h"'
+if check; then
+  echo "ok: a room's own detail header passes"
+else
+  echo "FAIL: a room's own detail header: check-layers failed:" >&2
+  cat "$tmp/err" >&2
+  failures=$((failures + 1))
+fi
+restore convert/converter.cpp
 
 seq 501 | sed 's|^|// line |' > "$copy/format/long_file.cpp"
 expect_fail "a file over 500 lines" 'format/long_file.cpp: 501 lines'
