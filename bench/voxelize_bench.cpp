@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Surface voxelization benchmark (docs/geometry.md): the exact CPU voxelizer of geometry/ and the
-// GL voxelizer (viewer/gl/gl_voxelizer.h, headless) against OpenVDB's
+// GL voxelizer (render/gl/gl_voxelizer.h, headless) against OpenVDB's
 // tools::meshToUnsignedDistanceField (tools::meshToVolume with an unsigned band) with a
 // half-width of 1 voxel (what a user would pick to get a surface band), on the same mesh and grid
 // in the same run, same threads (TBB).
@@ -28,9 +28,9 @@
 #include "geometry/mesh_loader.h"
 #include "geometry/surface_voxelizer.h"
 #include "geometry/voxel_set_compare.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_voxelizer.h"
 #include "scene/scene_assembly.h"
-#include "viewer/gl/gl_context.h"
-#include "viewer/gl/gl_voxelizer.h"
 
 namespace {
 
@@ -105,12 +105,12 @@ int main(int argc, char** argv) {
   const std::string dataDir = argc > 1 ? argv[1] : VOXLINK_BENCH_DATA_DIR;
   const int runs = argc > 2 ? std::max(1, std::atoi(argv[2])) : 3;
   openvdb::initialize();
-  auto context = voxlink::viewer::createHeadlessContext();
+  auto context = voxlink::render::gl::createHeadlessContext();
   if (!context) {
     std::fprintf(stderr, "%s\n", context.message().c_str());
     return 1;
   }
-  auto glVoxelizer = voxlink::viewer::GlSurfaceVoxelizer::create();
+  auto glVoxelizer = voxlink::render::gl::GlSurfaceVoxelizer::create();
   if (!glVoxelizer) {
     std::fprintf(stderr, "%s\n", glVoxelizer.message().c_str());
     return 1;
@@ -201,13 +201,13 @@ int main(int argc, char** argv) {
       // The GL path: the whole call (upload, three draws, read-back, depth sort, resolve), with
       // the paper's pixel-centre coverage and with emulated conservative rasterization.
       char line[320];
-      for (const auto coverage :
-           {voxlink::viewer::GlCoverage::kCenter, voxlink::viewer::GlCoverage::kConservative}) {
+      for (const auto coverage : {voxlink::render::gl::GlCoverage::kCenter,
+                                  voxlink::render::gl::GlCoverage::kConservative}) {
         const char* coverageName =
-            coverage == voxlink::viewer::GlCoverage::kCenter ? "centre" : "cons.";
+            coverage == voxlink::render::gl::GlCoverage::kCenter ? "centre" : "cons.";
         std::vector<double> glWall, glRaster, glCpu;
-        voxlink::viewer::GlSurfaceVoxelization gl;
-        voxlink::viewer::GlVoxelizeOptions glOptions;
+        voxlink::render::gl::GlSurfaceVoxelization gl;
+        voxlink::render::gl::GlVoxelizeOptions glOptions;
         glOptions.resolve = timed;
         glOptions.coverage = coverage;
         for (int r = 0; r < runs; ++r) {

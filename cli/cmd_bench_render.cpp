@@ -12,13 +12,13 @@
 #include "cli/render_options.h"
 #include "format/validator.h"
 #include "pack/open_file.h"
+#include "render/gl/dense_renderer.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/render_benchmark.h"
+#include "render/gl/voxlink_renderer.h"
 #include "render/recorded_source.h"
 #include "render/reference_renderer.h"
 #include "render/scene_reference_renderer.h"
-#include "viewer/gl/dense_renderer.h"
-#include "viewer/gl/gl_context.h"
-#include "viewer/gl/render_benchmark.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::cli {
 
@@ -55,7 +55,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
   return [args] {
     auto file = pack::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
-    viewer::BenchmarkOptions o;
+    render::gl::BenchmarkOptions o;
     o.framesPerTurn = args->framesPerTurn;
     o.sizes.clear();
     for (const auto& s : args->sizes) {
@@ -92,15 +92,15 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
       if (!loaded) return reportError(loaded.error());
       dense = std::move(*loaded);
     }
-    auto context = viewer::createHeadlessContext();
+    auto context = render::gl::createHeadlessContext();
     if (!context) return reportError(context.error());
-    auto voxlink = viewer::VoxLinkRenderer::create(*file);
+    auto voxlink = render::gl::VoxLinkRenderer::create(*file);
     if (!voxlink) return reportError(voxlink.error());
     (*voxlink)->setTransferFunction(*tf);
-    std::vector<viewer::VolumeRenderer*> renderers{voxlink->get()};
-    std::unique_ptr<viewer::DenseRenderer> denseRenderer;
+    std::vector<render::gl::VolumeRenderer*> renderers{voxlink->get()};
+    std::unique_ptr<render::gl::DenseRenderer> denseRenderer;
     if (!args->noDense) {
-      auto d = viewer::DenseRenderer::create(*dense, (*voxlink)->geometry());
+      auto d = render::gl::DenseRenderer::create(*dense, (*voxlink)->geometry());
       if (!d) return reportError(d.error());
       denseRenderer = std::move(*d);
       denseRenderer->setTransferFunction(*tf);
@@ -108,7 +108,7 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     }
     std::optional<render::ReferenceRenderer> volumeReference;
     std::optional<render::SceneReferenceRenderer> sceneReference;
-    viewer::ReferenceRender reference;
+    render::gl::ReferenceRender reference;
     if (!args->noReference && file->isScene()) {
       sceneReference.emplace(*file, *tf);
       reference = [&](const render::Camera& c, const render::RenderSettings& s) {
@@ -140,9 +140,9 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
         o.base.shading.shadows ? "on" : "off", render::effectsName(o.base.effects).c_str(),
         o.base.effects.maxBounces, o.base.lights.size());
     auto rows =
-        viewer::runRenderBenchmark(renderers, reference, (*voxlink)->geometry().worldBox(), o);
+        render::gl::runRenderBenchmark(renderers, reference, (*voxlink)->geometry().worldBox(), o);
     if (!rows) return reportError(rows.error());
-    args->out.print("%s", viewer::benchmarkTable(*rows).c_str());
+    args->out.print("%s", render::gl::benchmarkTable(*rows).c_str());
     return 0;
   };
 }

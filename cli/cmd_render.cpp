@@ -13,12 +13,12 @@
 #include "cli/render_options.h"
 #include "format/validator.h"
 #include "pack/open_file.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/voxlink_renderer.h"
 #include "render/recorded_source.h"
 #include "render/reference_renderer.h"
 #include "render/scene_reference_renderer.h"
 #include "sources/volume_source.h"
-#include "viewer/gl/gl_context.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::cli {
 
@@ -79,14 +79,14 @@ CommandRunner addRenderCommand(CLI::App& app) {
       if (!loaded) return reportError(loaded.error());
       dense = std::move(*loaded);
     }
-    auto context = viewer::createHeadlessContext();
+    auto context = render::gl::createHeadlessContext();
     if (!context) return reportError(context.error());
-    auto renderer = viewer::VoxLinkRenderer::create(*file);
+    auto renderer = render::gl::VoxLinkRenderer::create(*file);
     if (!renderer) return reportError(renderer.error());
     (*renderer)->setTransferFunction(*tf);
     const render::Camera camera =
         render::Camera::framing((*renderer)->geometry().worldBox(), *spec);
-    viewer::RenderTarget target;
+    render::gl::RenderTarget target;
     const auto start = std::chrono::steady_clock::now();
     if (Status s = (*renderer)->render(camera, *settings, target); !s) return reportError(s);
     const render::Image image = target.read();

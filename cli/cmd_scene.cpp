@@ -17,8 +17,8 @@
 #include "scene/scene_description.h"
 #include "scene/scene_input_files.h"
 #ifdef VOXLINK_WITH_VIEWER
-#include "viewer/gl/gl_context.h"
-#include "viewer/gl/gl_voxelizer.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/gl_voxelizer.h"
 #endif
 
 namespace voxlink::cli {
@@ -92,20 +92,20 @@ CommandRunner addSceneCommand(CLI::App& app) {
                     o->surface));
     scene::SurfaceVoxelizer voxelizer;  // empty: the exact CPU path
 #ifdef VOXLINK_WITH_VIEWER
-    std::unique_ptr<viewer::GlContext> context;
-    std::optional<viewer::GlSurfaceVoxelizer> gl;
+    std::unique_ptr<render::gl::GlContext> context;
+    std::optional<render::gl::GlSurfaceVoxelizer> gl;
     if (o->voxelizer == "gl") {
-      auto created = viewer::createHeadlessContext();
+      auto created = render::gl::createHeadlessContext();
       if (!created) return reportError(created.error());
       context = std::move(*created);
-      auto program = viewer::GlSurfaceVoxelizer::create();
+      auto program = render::gl::GlSurfaceVoxelizer::create();
       if (!program) return reportError(program.error());
       gl.emplace(std::move(*program));
       // GL draws in one go: its progress is the stage's start and end only.
       voxelizer = [&gl](
                       const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
                       const std::function<void(double)>&) -> Result<geometry::SurfaceVoxelization> {
-        VOXLINK_ASSIGN_OR_RETURN(viewer::GlSurfaceVoxelization r, gl->voxelize(mesh, grid));
+        VOXLINK_ASSIGN_OR_RETURN(render::gl::GlSurfaceVoxelization r, gl->voxelize(mesh, grid));
         return std::move(r.surface);
       };
     }

@@ -9,13 +9,13 @@
 #include <vector>
 
 #include "base/parallel_for.h"
-#include "convert/brick_count_pass.h"
-#include "convert/brick_encode_pass.h"
-#include "convert/converter_meta.h"
-#include "convert/keep_rule.h"
-#include "convert/rank_exchange.h"
-#include "convert/slab_window.h"
-#include "convert/value_mapping.h"
+#include "convert/detail/brick_count_pass.h"
+#include "convert/detail/brick_encode_pass.h"
+#include "convert/detail/converter_meta.h"
+#include "convert/detail/keep_rule.h"
+#include "convert/detail/rank_exchange.h"
+#include "convert/detail/slab_window.h"
+#include "convert/detail/value_mapping.h"
 #include "format/bricked_volume.h"
 #include "format/file_writer.h"
 

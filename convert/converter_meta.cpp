@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "convert/converter_meta.h"
+#include "convert/detail/converter_meta.h"
 
 #include <filesystem>
 #include <nlohmann/json.hpp>

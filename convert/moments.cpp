@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "convert/slab_window.h"
+#include "convert/detail/slab_window.h"
 
 namespace voxlink::convert {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "convert/rank_exchange.h"
+#include "convert/detail/rank_exchange.h"
 
 #include <algorithm>
 #include <cstring>

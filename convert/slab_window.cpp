@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "convert/slab_window.h"
+#include "convert/detail/slab_window.h"
 
 #include <algorithm>
 #include <cstring>

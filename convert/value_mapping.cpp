@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "convert/value_mapping.h"
+#include "convert/detail/value_mapping.h"
 
 #include <algorithm>
 #include <cmath>

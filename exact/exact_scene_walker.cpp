@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "exact/sphere_roots.h"
+#include "exact/detail/sphere_roots.h"
 #include "geometry/voxel_grid.h"
 #include "render/render_model.h"
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // ROWS and BVOX follow from MASK: a row's first voxel is the number of voxels in the brick's
 // rows before it, a brick's first voxel the number in the bricks before it. Packed files store
-// neither when they match (codec kDerived, pack/section_codec.h); unpacking computes them
+// neither when they match (codec kDerived, pack/detail/section_codec.h); unpacking computes them
 // here, and the original checksums then confirm them.
 #pragma once
 

@@ -391,7 +391,7 @@ def vxl_seeds(s, d, out, voxlink):
                     with open(packed, "rb") as f:
                         s.add("vxl", name + "_" + suffix, f.read())
     # A 24^3 crop with brick 8: its middle brick lies away from the volume's faces, where
-    # unpacking predicts gradients eight cells at a time (pack/dense_brick_rows.h).
+    # unpacking predicts gradients eight cells at a time (pack/detail/dense_brick_rows.h).
     # (this corner of neghip keeps 132 voxels in the middle brick, 696 in all)
     crop24 = b"".join(neghip[(z * 64 + y) * 64 : (z * 64 + y) * 64 + 24]
                       for z in range(16, 40) for y in range(32, 56))

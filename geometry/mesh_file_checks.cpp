@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/mesh_file_checks.h"
+#include "geometry/detail/mesh_file_checks.h"
 
 #include <cstdint>
 #include <filesystem>

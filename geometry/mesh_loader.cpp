@@ -20,8 +20,8 @@
 #include <string_view>
 
 #include "base/limits.h"
-#include "geometry/mesh_file_checks.h"
-#include "geometry/ply_strips.h"
+#include "geometry/detail/mesh_file_checks.h"
+#include "geometry/detail/ply_strips.h"
 
 namespace voxlink::geometry {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/ply_strips.h"
+#include "geometry/detail/ply_strips.h"
 
 #include <bit>
 #include <cctype>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "base/limits.h"
-#include "geometry/mesh_file_checks.h"
+#include "geometry/detail/mesh_file_checks.h"
 
 namespace voxlink::geometry {
 namespace {

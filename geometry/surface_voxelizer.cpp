@@ -9,8 +9,8 @@
 #include <mutex>
 
 #include "base/parallel_for.h"
+#include "geometry/detail/triangle_box_overlap.h"
 #include "geometry/normal_error.h"
-#include "geometry/triangle_box_overlap.h"
 
 namespace voxlink::geometry {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geometry/triangle_box_overlap.h"
+#include "geometry/detail/triangle_box_overlap.h"
 
 #include <algorithm>
 #include <cmath>

@@ -31,8 +31,8 @@ struct VoxelGrid {
   }
 };
 
-// The slices z in [begin, end) of a grid: the part one MPI rank voxelizes (scene/scene_ranks.h).
-// The default covers every slice.
+// The slices z in [begin, end) of a grid: the part one MPI rank voxelizes
+// (scene/detail/scene_ranks.h). The default covers every slice.
 struct ZSlab {
   uint32_t begin = 0;
   uint32_t end = UINT32_MAX;

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "geostat/kriging.h"
+#include "geostat/detail/kriging.h"
 
 namespace voxlink::geostat {
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/drift.h"
+#include "geostat/detail/drift.h"
 
 #include <cmath>
 
-#include "geostat/spd_kernels.h"
+#include "geostat/detail/spd_kernels.h"
 
 namespace voxlink::geostat {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/global_kriging.h"
+#include "geostat/detail/global_kriging.h"
 
 #include <cblas.h>
 #include <lapacke.h>
@@ -12,8 +12,8 @@
 
 #include "base/parallel_for.h"
 #include "base/process_memory.h"
-#include "geostat/drift.h"
-#include "geostat/spd_kernels.h"
+#include "geostat/detail/drift.h"
+#include "geostat/detail/spd_kernels.h"
 
 namespace voxlink::geostat {
 namespace {

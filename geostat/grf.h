@@ -14,8 +14,8 @@
 #include <functional>
 #include <string>
 
-#include "geostat/grf_kernel.h"
-#include "geostat/grid_part.h"
+#include "geostat/detail/grf_kernel.h"
+#include "geostat/detail/grid_part.h"
 
 namespace voxlink::geostat {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/grf_kernel.h"
+#include "geostat/detail/grf_kernel.h"
 
 #include <fftw3.h>
 

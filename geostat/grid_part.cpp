@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/grid_part.h"
+#include "geostat/detail/grid_part.h"
 
 namespace voxlink::geostat {
 

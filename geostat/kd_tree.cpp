@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/kd_tree.h"
+#include "geostat/detail/kd_tree.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "base/parallel_for.h"
-#include "geostat/global_kriging.h"
-#include "geostat/local_kriging.h"
+#include "geostat/detail/global_kriging.h"
+#include "geostat/detail/local_kriging.h"
 
 namespace voxlink::geostat {
 

@@ -7,8 +7,8 @@
 #include <functional>
 #include <string>
 
-#include "geostat/grid_part.h"
-#include "geostat/kriging.h"
+#include "geostat/detail/grid_part.h"
+#include "geostat/detail/kriging.h"
 
 namespace voxlink::geostat {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/kriging.h"
+#include "geostat/detail/kriging.h"
 
 #include <algorithm>
 #include <numeric>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/local_kriging.h"
+#include "geostat/detail/local_kriging.h"
 
 #include <algorithm>
 #include <atomic>
@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "base/parallel_for.h"
-#include "geostat/drift.h"
-#include "geostat/factorization_cache.h"
-#include "geostat/spd_kernels.h"
+#include "geostat/detail/drift.h"
+#include "geostat/detail/factorization_cache.h"
+#include "geostat/detail/spd_kernels.h"
 
 namespace voxlink::geostat {
 namespace {

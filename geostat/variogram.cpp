@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/variogram.h"
+#include "geostat/detail/variogram.h"
 
 #include <cmath>
 #include <map>

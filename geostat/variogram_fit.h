@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "geostat/detail/variogram.h"
 #include "geostat/point_set.h"
-#include "geostat/variogram.h"
 
 namespace voxlink::geostat {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pack/dense_brick_rows.h"
+#include "pack/detail/dense_brick_rows.h"
 
 #include <array>
 #include <bit>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pack/gradient_predictor.h"
+#include "pack/detail/gradient_predictor.h"
 
 #include <cstdint>
 #include <span>
@@ -8,9 +8,9 @@
 #include "base/check.h"
 #include "base/parallel_for.h"
 #include "base/vector_clones.h"
-#include "pack/brick_gradient_predictor.h"
-#include "pack/central_differences.h"
-#include "pack/gradient_boundaries.h"
+#include "pack/detail/brick_gradient_predictor.h"
+#include "pack/detail/central_differences.h"
+#include "pack/detail/gradient_boundaries.h"
 
 namespace voxlink::pack {
 

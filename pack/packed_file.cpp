@@ -14,7 +14,7 @@
 #include "base/parallel_for.h"
 #include "format/derived_sections.h"
 #include "format/validator.h"
-#include "pack/gradient_predictor.h"
+#include "pack/detail/gradient_predictor.h"
 
 namespace voxlink::pack {
 

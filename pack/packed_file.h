@@ -19,7 +19,7 @@
 #include "base/error.h"
 #include "base/progress.h"
 #include "format/voxlink_file.h"
-#include "pack/section_codec.h"
+#include "pack/detail/section_codec.h"
 
 namespace voxlink::pack {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pack/portable_gradient_code.h"
+#include "pack/detail/portable_gradient_code.h"
 
 #include <cmath>
 

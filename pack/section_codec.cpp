@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "pack/section_codec.h"
+#include "pack/detail/section_codec.h"
 
 #include <zstd.h>
 

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "python/bindings.h"
+#include "render/gl/gl_context.h"
+#include "render/gl/voxlink_renderer.h"
 #include "render/render_options.h"
-#include "viewer/gl/gl_context.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::python {
 namespace {
@@ -21,11 +21,11 @@ Result<render::Image> renderFrame(const format::VoxLinkFile& file,
   VOXLINK_ASSIGN_OR_RETURN(render::RenderSettings settings, options.settings(file));
   VOXLINK_ASSIGN_OR_RETURN(render::CameraSpec spec, options.cameraSpec(file));
   VOXLINK_ASSIGN_OR_RETURN(tf::TransferFunction tf, options.transferFunction(file));
-  VOXLINK_ASSIGN_OR_RETURN(auto context, viewer::createHeadlessContext());
-  VOXLINK_ASSIGN_OR_RETURN(auto renderer, viewer::VoxLinkRenderer::create(file));
+  VOXLINK_ASSIGN_OR_RETURN(auto context, render::gl::createHeadlessContext());
+  VOXLINK_ASSIGN_OR_RETURN(auto renderer, render::gl::VoxLinkRenderer::create(file));
   renderer->setTransferFunction(tf);
   const render::Camera camera = render::Camera::framing(renderer->geometry().worldBox(), spec);
-  viewer::RenderTarget target;
+  render::gl::RenderTarget target;
   VOXLINK_RETURN_IF_ERROR(renderer->render(camera, settings, target));
   return target.read();
 }

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <vector>
 
-#include "render/light_transport.h"
+#include "render/detail/light_transport.h"
+#include "render/detail/render_rows.h"
 #include "render/render_model.h"
-#include "render/render_rows.h"
 
 namespace voxlink::render {
 

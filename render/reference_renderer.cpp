@@ -3,8 +3,8 @@
 
 #include <cmath>
 
+#include "render/detail/render_rows.h"
 #include "render/render_model.h"
-#include "render/render_rows.h"
 
 namespace voxlink::render {
 

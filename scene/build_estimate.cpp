@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "scene/build_estimate.h"
+#include "scene/detail/build_estimate.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,11 +15,11 @@
 #include "format/voxlink_file.h"
 #include "geometry/sphere_voxelizer.h"
 #include "geometry/voxel_grid.h"
-#include "scene/build_estimate.h"
+#include "scene/detail/build_estimate.h"
+#include "scene/detail/scene_ranks.h"
+#include "scene/detail/scene_volume.h"
+#include "scene/detail/surface_fragments.h"
 #include "scene/scene_geometry.h"
-#include "scene/scene_ranks.h"
-#include "scene/scene_volume.h"
-#include "scene/surface_fragments.h"
 
 namespace voxlink::scene {
 namespace {

@@ -47,14 +47,14 @@ using SceneProgress = std::function<void(const char* stage, double fraction)>;
 
 // Voxelizes the scene's meshes (one mesh, in index space: unit voxels, centres on integers).
 // The default is the exact CPU path (geometry::voxelizeSurface); the CLI passes the GL path
-// (viewer/gl/gl_voxelizer.h) for `--voxelizer gl`, which keeps scene/ free of GL.
+// (render/gl/gl_voxelizer.h) for `--voxelizer gl`, which keeps scene/ free of GL.
 // `progress(fraction)` reports the voxelizer's own progress (may be ignored).
 using SurfaceVoxelizer = std::function<Result<geometry::SurfaceVoxelization>(
     const geometry::TriangleMesh& mesh, const geometry::VoxelGrid& grid,
     const std::function<void(double fraction)>& progress)>;
 
 // On several MPI ranks (`ranks`; null: this process alone) every rank must call it; each
-// voxelizes its slab of brick layers (scene/scene_ranks.h) and rank 0 alone gets the merged
+// voxelizes its slab of brick layers (scene/detail/scene_ranks.h) and rank 0 alone gets the merged
 // volume and the whole report (the others an empty volume). Errors are agreed: every rank gets
 // the lowest failing rank's. A SurfaceVoxelizer other than the exact one needs one process.
 Result<SceneBuildOutput> buildScene(const SceneDescription& scene,

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "scene/scene_ranks.h"
+#include "scene/detail/scene_ranks.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "scene/scene_volume.h"
+#include "scene/detail/scene_volume.h"
 
 #include <unistd.h>
 

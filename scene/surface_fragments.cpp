@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "scene/surface_fragments.h"
+#include "scene/detail/surface_fragments.h"
 
 #include <algorithm>
 #include <cmath>

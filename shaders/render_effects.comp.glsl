@@ -4,7 +4,7 @@
 // accumulator; each later pass traces the rays the pass before spawned into the ray buffer
 // (atomic counter), adds what they see to their pixels and spawns the next generation. The
 // host starts passes until no ray is left or the bounce limit is reached
-// (viewer/gl/volume_renderer_effects.cpp).
+// (render/gl/volume_renderer_effects.cpp).
 #version 450
 #if VXL_EFFECTS_PRIMARY
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -31,7 +31,7 @@ layout(local_size_x = 64) in;
 // Per pixel: r, g, b and the share that reached the background, in fixed point (kAccumScale
 // per unit) so that rays of one pixel add up in any order to the same sum.
 layout(std430, binding = VXL_ACCUM_BINDING) buffer Accum { uint accum[]; };
-const float kAccumScale = 1048576.0;  // 2^20; viewer/gl/effects_buffers.h
+const float kAccumScale = 1048576.0;  // 2^20; render/gl/detail/effects_buffers.h
 const float kAccumMax = 4000.0;       // per add, so that no sum of a pixel wraps
 
 uint fixedPoint(float v) { return uint(clamp(v, 0.0, kAccumMax) * kAccumScale + 0.5); }

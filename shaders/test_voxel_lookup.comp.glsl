@@ -10,7 +10,7 @@ uniform ivec3 uDims;
 #include "voxlink_access.glsl"
 
 // Per cell: voxel index or -1, stored value bits, packed gradient direction
-// (viewer/gl/gradient_directions.h), and the voxel found by the
+// (render/gl/detail/gradient_directions.h), and the voxel found by the
 // row walk's neighbour step (the next list element along the predominant axis) or -1.
 layout(std430, binding = VXL_RESULTS_BINDING) writeonly restrict buffer Results { ivec4 results[]; };
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Lookups in a VoxLink file on the GPU (format/layout.h, the same steps as format::VoxelLocator):
 // brick -> occupied index -> row start -> bit rank within the row mask. The generated
-// voxlink_sections.glsl declares the buffers (viewer/gl/section_buffers.h: the voxel sections
+// voxlink_sections.glsl declares the buffers (render/gl/detail/section_buffers.h: the voxel sections
 // unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
 // chunks where one exceeds a storage block) and the accessors rowsWord(), maskWord(),
 // valuWord(), gradDirWord(), brickIndexWord(), dualBoxWord(), brickEntry().
@@ -87,7 +87,7 @@ uint storedBits(uint voxel) {
 }
 
 // Unit gradient direction of a voxel, or zero: decoded at load time and packed as three 10-bit
-// signed integers (viewer/gl/gradient_directions.h), renormalized here.
+// signed integers (render/gl/detail/gradient_directions.h), renormalized here.
 vec3 gradientDirection(uint voxel) {
   int w = int(gradDirWord(voxel));
   vec3 v = vec3(bitfieldExtract(w, 0, 10), bitfieldExtract(w, 10, 10), bitfieldExtract(w, 20, 10));

@@ -13,7 +13,7 @@ uniform int uLightCount;
 uniform vec4 uLightPosition[VXL_MAX_LIGHTS];  // xyz world; w = 1 directional (xyz towards it)
 uniform vec3 uLightRadiance[VXL_MAX_LIGHTS];
 
-// One ray of the ray buffer: 32 bytes (viewer/gl/effects_buffers.h, GpuRay).
+// One ray of the ray buffer: 32 bytes (render/gl/detail/effects_buffers.h, GpuRay).
 struct GpuRay {
   vec4 originWeight;  // world origin, weight (share of the pixel)
   vec3 direction;     // world, unit

@@ -5,9 +5,9 @@
 #include <filesystem>
 
 #include "base/regular_file.h"
+#include "sources/readers/detail/reader_registry.h"
 #include "sources/readers/raw_reader.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/reader_registry.h"
 
 namespace voxlink::sources {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/axes.h"
+#include "sources/readers/detail/axes.h"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/axis_reorder.h"
+#include "sources/readers/detail/axis_reorder.h"
 
 #include <cmath>
 #include <cstring>

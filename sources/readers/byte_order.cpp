@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/byte_order.h"
+#include "sources/readers/detail/byte_order.h"
 
 #include <cstring>
 

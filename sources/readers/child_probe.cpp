@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/child_probe.h"
+#include "sources/readers/detail/child_probe.h"
 
 #include <fcntl.h>
 #include <poll.h>

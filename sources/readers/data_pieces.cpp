@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/data_pieces.h"
+#include "sources/readers/detail/data_pieces.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -8,8 +8,8 @@
 #include <filesystem>
 
 #include "base/regular_file.h"
-#include "sources/readers/byte_order.h"
-#include "sources/readers/inflate_stream.h"
+#include "sources/readers/detail/byte_order.h"
+#include "sources/readers/detail/inflate_stream.h"
 #include "sources/readers/raw_reader.h"
 
 namespace voxlink::sources {

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/dicom_frames.h"
+#include "sources/readers/detail/dicom_frames.h"
 
 #include <cmath>
 
-#include "sources/readers/dicom_tags.h"
+#include "sources/readers/detail/dicom_tags.h"
 
 namespace voxlink::sources {
 namespace {

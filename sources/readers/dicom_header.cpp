@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/dicom_header.h"
+#include "sources/readers/detail/dicom_header.h"
 
 #include <gdcmReader.h>
 
@@ -7,11 +7,11 @@
 #include <filesystem>
 
 #include "base/limits.h"
-#include "sources/readers/dicom_frames.h"
-#include "sources/readers/dicom_pixel_encoding.h"
-#include "sources/readers/dicom_tags.h"
-#include "sources/readers/gdcm_messages.h"
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/dicom_frames.h"
+#include "sources/readers/detail/dicom_pixel_encoding.h"
+#include "sources/readers/detail/dicom_tags.h"
+#include "sources/readers/detail/gdcm_messages.h"
+#include "sources/readers/detail/text_header.h"
 
 namespace voxlink::sources {
 namespace {

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/dicom_pixel_encoding.h"
+#include "sources/readers/detail/dicom_pixel_encoding.h"
 
 #include <gdcmTransferSyntax.h>
 
 #include <algorithm>
 #include <cstring>
 
-#include "sources/readers/dicom_tags.h"
+#include "sources/readers/detail/dicom_tags.h"
 
 namespace voxlink::sources {
 namespace {

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/dicom_probe.h"
+#include "sources/readers/detail/dicom_probe.h"
 
 #include <fstream>
 #include <string_view>
 
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/text_header.h"
 
 namespace voxlink::sources {
 

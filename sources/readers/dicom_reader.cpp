@@ -13,11 +13,11 @@
 #include <set>
 #include <vector>
 
-#include "sources/readers/dicom_pixel_encoding.h"
+#include "sources/readers/detail/dicom_pixel_encoding.h"
+#include "sources/readers/detail/gdcm_messages.h"
+#include "sources/readers/detail/rescale.h"
 #include "sources/readers/dicom_series.h"
-#include "sources/readers/gdcm_messages.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/rescale.h"
 
 namespace voxlink::sources {
 namespace {

@@ -7,10 +7,10 @@
 #include <map>
 
 #include "base/limits.h"
-#include "sources/readers/dicom_pixel_encoding.h"
-#include "sources/readers/dicom_probe.h"
-#include "sources/readers/file_list.h"
-#include "sources/readers/gdcm_guard.h"
+#include "sources/readers/detail/dicom_pixel_encoding.h"
+#include "sources/readers/detail/dicom_probe.h"
+#include "sources/readers/detail/file_list.h"
+#include "sources/readers/detail/gdcm_guard.h"
 
 namespace voxlink::sources {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "base/error.h"
 #include "format/scalar_type.h"
-#include "sources/readers/dicom_header.h"
+#include "sources/readers/detail/dicom_header.h"
 
 namespace voxlink::sources {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/dicom_tags.h"
+#include "sources/readers/detail/dicom_tags.h"
 
 #include <gdcmSequenceOfItems.h>
 
 #include <algorithm>
 
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/text_header.h"
 
 namespace voxlink::sources {
 

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/file_list.h"
+#include "sources/readers/detail/file_list.h"
 
 #include <cctype>
 #include <filesystem>
 
 #include "base/checked_math.h"
 #include "base/limits.h"
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/text_header.h"
 
 namespace voxlink::sources {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/gdcm_guard.h"
+#include "sources/readers/detail/gdcm_guard.h"
 
 #include <gdcmAttribute.h>
 #include <gdcmBoxRegion.h>
@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "base/limits.h"
-#include "sources/readers/child_probe.h"
-#include "sources/readers/dicom_pixel_encoding.h"
-#include "sources/readers/dicom_tags.h"
+#include "sources/readers/detail/child_probe.h"
+#include "sources/readers/detail/dicom_pixel_encoding.h"
+#include "sources/readers/detail/dicom_tags.h"
 
 namespace voxlink::sources {
 namespace {

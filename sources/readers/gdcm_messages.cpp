@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/gdcm_messages.h"
+#include "sources/readers/detail/gdcm_messages.h"
 
 #include <gdcmTrace.h>
 

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <sstream>
 
+#include "sources/readers/detail/text_stream.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/text_stream.h"
 
 namespace voxlink::sources {
 namespace {

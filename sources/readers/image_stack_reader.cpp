@@ -8,9 +8,9 @@
 #include "base/limits.h"
 #include "base/regular_file.h"
 #include "imageio/image_io.h"
-#include "sources/readers/file_list.h"
+#include "sources/readers/detail/file_list.h"
+#include "sources/readers/detail/reader_registry.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/reader_registry.h"
 
 namespace voxlink::sources {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/inflate_stream.h"
+#include "sources/readers/detail/inflate_stream.h"
 
 #include <zlib.h>
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/metaimage_header.h"
+#include "sources/readers/detail/metaimage_header.h"
 
 #include <cmath>
 #include <map>
 #include <set>
 
 #include "base/limits.h"
-#include "sources/readers/file_list.h"
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/file_list.h"
+#include "sources/readers/detail/text_header.h"
 
 namespace voxlink::sources {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "sources/readers/data_pieces.h"
-#include "sources/readers/metaimage_header.h"
+#include "sources/readers/detail/data_pieces.h"
+#include "sources/readers/detail/metaimage_header.h"
 #include "sources/readers/reader_common.h"
 
 namespace voxlink::sources {

@@ -12,11 +12,11 @@
 #include <optional>
 
 #include "base/stderr_capture.h"
-#include "sources/readers/axes.h"
-#include "sources/readers/data_pieces.h"
+#include "sources/readers/detail/axes.h"
+#include "sources/readers/detail/data_pieces.h"
+#include "sources/readers/detail/reader_registry.h"
+#include "sources/readers/detail/rescale.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/reader_registry.h"
-#include "sources/readers/rescale.h"
 
 namespace voxlink::sources {
 namespace {

@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "base/mapped_file.h"
-#include "sources/readers/byte_order.h"
+#include "sources/readers/detail/byte_order.h"
 #include "sources/readers/raw_reader.h"
 #include "sources/readers/reader_common.h"
 

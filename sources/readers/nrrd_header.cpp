@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/nrrd_header.h"
+#include "sources/readers/detail/nrrd_header.h"
 
 #include <algorithm>
 #include <cctype>
@@ -9,8 +9,8 @@
 #include <set>
 
 #include "base/limits.h"
-#include "sources/readers/file_list.h"
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/file_list.h"
+#include "sources/readers/detail/text_header.h"
 
 namespace voxlink::sources {
 namespace {

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "sources/readers/axes.h"
-#include "sources/readers/data_pieces.h"
-#include "sources/readers/nrrd_header.h"
+#include "sources/readers/detail/axes.h"
+#include "sources/readers/detail/data_pieces.h"
+#include "sources/readers/detail/nrrd_header.h"
 #include "sources/readers/reader_common.h"
 
 namespace voxlink::sources {

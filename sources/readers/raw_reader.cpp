@@ -4,7 +4,7 @@
 #include <cstring>
 
 #include "base/mapped_file.h"
-#include "sources/readers/byte_order.h"
+#include "sources/readers/detail/byte_order.h"
 #include "sources/readers/reader_common.h"
 
 namespace voxlink::sources {

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/reader_registry.h"
+#include "sources/readers/detail/reader_registry.h"
 
 #include <algorithm>
 #include <filesystem>
 
-#include "sources/readers/dicom_probe.h"
+#include "sources/readers/detail/dicom_probe.h"
 #include "sources/readers/dicom_reader.h"
 #include "sources/readers/dicom_series.h"
 #include "sources/readers/gslib_reader.h"

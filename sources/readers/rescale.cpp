@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/rescale.h"
+#include "sources/readers/detail/rescale.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/text_header.h"
 
 #include <algorithm>
 #include <cctype>

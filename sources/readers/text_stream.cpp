@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/text_stream.h"
+#include "sources/readers/detail/text_stream.h"
 
 #include <zip.h>
 

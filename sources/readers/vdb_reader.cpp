@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cstring>
 
-#include "sources/readers/axes.h"
-#include "sources/readers/child_probe.h"
+#include "sources/readers/detail/axes.h"
+#include "sources/readers/detail/child_probe.h"
 #include "sources/readers/reader_common.h"
 
 namespace voxlink::sources {

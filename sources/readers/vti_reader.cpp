@@ -10,12 +10,12 @@
 
 #include "base/checked_math.h"
 #include "base/limits.h"
-#include "sources/readers/axes.h"
-#include "sources/readers/axis_reorder.h"
-#include "sources/readers/byte_order.h"
+#include "sources/readers/detail/axes.h"
+#include "sources/readers/detail/axis_reorder.h"
+#include "sources/readers/detail/byte_order.h"
+#include "sources/readers/detail/text_header.h"
+#include "sources/readers/detail/xml_tags.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/text_header.h"
-#include "sources/readers/xml_tags.h"
 
 namespace voxlink::sources {
 namespace {

@@ -4,12 +4,12 @@
 #include <map>
 
 #include "base/limits.h"
-#include "sources/readers/axes.h"
-#include "sources/readers/data_pieces.h"
-#include "sources/readers/file_list.h"
+#include "sources/readers/detail/axes.h"
+#include "sources/readers/detail/data_pieces.h"
+#include "sources/readers/detail/file_list.h"
+#include "sources/readers/detail/text_header.h"
+#include "sources/readers/detail/xml_tags.h"
 #include "sources/readers/reader_common.h"
-#include "sources/readers/text_header.h"
-#include "sources/readers/xml_tags.h"
 
 namespace voxlink::sources {
 namespace {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "sources/readers/xml_tags.h"
+#include "sources/readers/detail/xml_tags.h"
 
 #include <algorithm>
 #include <pugixml.hpp>

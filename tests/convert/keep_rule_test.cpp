@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The converter's fast keep rules agree with Classification::keeps() on every value.
-#include "convert/keep_rule.h"
+#include "convert/detail/keep_rule.h"
 
 #include <gtest/gtest.h>
 

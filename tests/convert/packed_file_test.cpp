@@ -17,8 +17,8 @@
 #include "format/scene_builder.h"
 #include "format/validator.h"
 #include "format/voxel_locator.h"
-#include "pack/dense_brick_rows.h"
-#include "pack/gradient_predictor.h"
+#include "pack/detail/dense_brick_rows.h"
+#include "pack/detail/gradient_predictor.h"
 #include "pack/open_file.h"
 #include "sources/volume_source.h"
 #include "tests/convert/volume_fixtures.h"
@@ -189,7 +189,7 @@ TEST(PackedFile, PredictionFindsTheConvertersGradientsForMostVoxels) {
   }
 }
 
-// The eight-cell kernels (pack/dense_brick_rows.h) must predict the per-voxel codes bit for
+// The eight-cell kernels (pack/detail/dense_brick_rows.h) must predict the per-voxel codes bit for
 // bit, or a file packed on a CPU that has them would not unpack on one that has not: every
 // brick size they take, every depth axis, 8- and 16-bit, half and float values.
 TEST(PackedFile, DenseBrickKernelsPredictThePerVoxelCodes) {

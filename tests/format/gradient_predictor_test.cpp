@@ -2,7 +2,7 @@
 // The gradient prediction of packed files: its code is decided by exact comparisons only, so it
 // does not depend on the starting guess (which the vectorized encoder supplies and which may
 // differ between CPUs), and it agrees with the reference encoder except on cell boundaries.
-#include "pack/gradient_predictor.h"
+#include "pack/detail/gradient_predictor.h"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The float encoder packed files predict with (pack/portable_gradient_code.h): it agrees with
-// the float64 reference except within its arithmetic's error of a cell border, a batch gives the
-// same codes as one direction at a time (the vectorized loop and its scalar remainder), and
+// The float encoder packed files predict with (pack/detail/portable_gradient_code.h): it agrees
+// with the float64 reference except within its arithmetic's error of a cell border, a batch gives
+// the same codes as one direction at a time (the vectorized loop and its scalar remainder), and
 // zero, non-finite, tiny and huge input behave.
-#include "pack/portable_gradient_code.h"
+#include "pack/detail/portable_gradient_code.h"
 
 #include <gtest/gtest.h>
 

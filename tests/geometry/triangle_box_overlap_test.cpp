@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The fast triangle/voxel test against the plain 13-axis SAT, and the tie rule.
-#include "geometry/triangle_box_overlap.h"
+#include "geometry/detail/triangle_box_overlap.h"
 
 #include <gtest/gtest.h>
 

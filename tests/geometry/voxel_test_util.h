@@ -7,8 +7,8 @@
 #include <map>
 #include <vector>
 
+#include "geometry/detail/triangle_box_overlap.h"
 #include "geometry/sphere_voxelizer.h"
-#include "geometry/triangle_box_overlap.h"
 #include "geometry/triangle_mesh.h"
 #include "geometry/voxel_grid.h"
 

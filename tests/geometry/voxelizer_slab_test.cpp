@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Slabs of z slices (what one MPI rank voxelizes, scene/scene_ranks.h): the surface and sphere
-// voxelizers' results over slabs that tile the grid concatenate to the whole grid's result,
+// Slabs of z slices (what one MPI rank voxelizes, scene/detail/scene_ranks.h): the surface and
+// sphere voxelizers' results over slabs that tile the grid concatenate to the whole grid's result,
 // fragment for fragment, and the normal-error tallies merge to the same statistics.
 #include <gtest/gtest.h>
 

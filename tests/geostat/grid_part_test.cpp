@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Shares of a grid (geostat/grid_part.h), the split the MPI ranks use: every share count gives,
-// share by share, byte for byte the nodes of one whole-grid run, each node exactly once, for
+// Shares of a grid (geostat/detail/grid_part.h), the split the MPI ranks use: every share count
+// gives, share by share, byte for byte the nodes of one whole-grid run, each node exactly once, for
 // local and global kriging (2-D and 3-D, with a drift) and random fields; shares may be empty.
 #include <gtest/gtest.h>
 

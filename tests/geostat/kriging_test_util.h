@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "geostat/kriging.h"
+#include "geostat/detail/kriging.h"
 
 namespace voxlink::geostat::test {
 

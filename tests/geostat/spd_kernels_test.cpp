@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "geostat/spd_kernels.h"
+#include "geostat/detail/spd_kernels.h"
 
 #include <gtest/gtest.h>
 

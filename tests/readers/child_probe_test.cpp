@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// probeInChild (sources/readers/child_probe.h): a crash in the child is seen as a crash even when
-// the parent has crash handlers of its own that would exit instead (libFuzzer, crash reporters).
-#include "sources/readers/child_probe.h"
+// probeInChild (sources/readers/detail/child_probe.h): a crash in the child is seen as a crash even
+// when the parent has crash handlers of its own that would exit instead (libFuzzer, crash
+// reporters).
+#include "sources/readers/detail/child_probe.h"
 
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -5,11 +5,11 @@
 
 #include <algorithm>
 
-#include "sources/readers/axes.h"
-#include "sources/readers/file_list.h"
-#include "sources/readers/inflate_stream.h"
-#include "sources/readers/rescale.h"
-#include "sources/readers/text_header.h"
+#include "sources/readers/detail/axes.h"
+#include "sources/readers/detail/file_list.h"
+#include "sources/readers/detail/inflate_stream.h"
+#include "sources/readers/detail/rescale.h"
+#include "sources/readers/detail/text_header.h"
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {

@@ -6,7 +6,7 @@
 
 #include <cstring>
 
-#include "sources/readers/file_list.h"
+#include "sources/readers/detail/file_list.h"
 #include "tests/readers/npy_test_util.h"
 #include "tests/readers/reader_test_util.h"
 

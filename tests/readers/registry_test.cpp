@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "sources/readers/reader_registry.h"
+#include "sources/readers/detail/reader_registry.h"
 #include "tests/readers/reader_test_util.h"
 
 namespace voxlink::convert::testing {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The scene build's memory estimate against what the voxelizers really store, on the real bunny
 // and an implicit sphere, and the one-line refusal when the estimate exceeds the memory.
-#include "scene/build_estimate.h"
+#include "scene/detail/build_estimate.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The split of a scene build among MPI ranks (scene/scene_ranks.h) and the gather that collects
-// the ranks' voxels on rank 0 (base/rank_group.h), without MPI: a scripted group plays rank 0
-// of three and answers for the other two. tests/mpi runs the real thing under mpirun.
-#include "scene/scene_ranks.h"
+// The split of a scene build among MPI ranks (scene/detail/scene_ranks.h) and the gather that
+// collects the ranks' voxels on rank 0 (base/rank_group.h), without MPI: a scripted group plays
+// rank 0 of three and answers for the other two. tests/mpi runs the real thing under mpirun.
+#include "scene/detail/scene_ranks.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "viewer/app/camera_controller.h"
+#include "viewer/app/detail/camera_controller.h"
 
 namespace voxlink::viewer {
 

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <random>
 
-#include "render/light_transport.h"
+#include "render/detail/light_transport.h"
 #include "tests/viewer/analytic_scene.h"
 
 namespace voxlink::viewer {

@@ -10,14 +10,18 @@
 
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
+#include "render/gl/render_target.h"
+#include "render/gl/voxlink_renderer.h"
 #include "render/scene_reference_renderer.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/gl/render_target.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::gl::RenderTarget;
+using render::gl::VoxLinkRenderer;
+
 namespace {
 
 using format::FragmentRecord;

@@ -5,6 +5,9 @@
 
 namespace voxlink::viewer::testing {
 
+using render::gl::createHeadlessContext;
+using render::gl::GlContext;
+
 GlContext* glContext() {
   static std::unique_ptr<GlContext> context = [] {
     auto c = createHeadlessContext();

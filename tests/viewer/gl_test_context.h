@@ -5,9 +5,11 @@
 
 #include <gtest/gtest.h>
 
-#include "viewer/gl/gl_context.h"
+#include "render/gl/gl_context.h"
 
 namespace voxlink::viewer::testing {
+
+using render::gl::GlContext;
 
 // nullptr (and a test failure) when EGL gives no GL 4.5 context.
 GlContext* glContext();

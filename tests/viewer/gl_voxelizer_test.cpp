@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The GL surface voxelizer against the exact CPU path: known voxel sets on synthetic triangles,
 // and on the real meshes a subset of the exact voxels with close normals.
-#include "viewer/gl/gl_voxelizer.h"
+#include "render/gl/gl_voxelizer.h"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +14,12 @@
 #include "tests/support/test_util.h"
 
 namespace voxlink::viewer {
+
+using render::gl::GlCoverage;
+using render::gl::GlSurfaceVoxelization;
+using render::gl::GlSurfaceVoxelizer;
+using render::gl::GlVoxelizeOptions;
+
 namespace {
 
 using geometry::SurfaceVoxel;

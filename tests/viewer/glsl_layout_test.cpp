@@ -12,18 +12,27 @@
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/voxel_locator.h"
+#include "render/gl/detail/gradient_directions.h"
+#include "render/gl/detail/section_buffers.h"
+#include "render/gl/detail/volume_renderer.h"
+#include "render/gl/shader_program.h"
+#include "render/gl/voxlink_renderer.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/gl/gradient_directions.h"
-#include "viewer/gl/section_buffers.h"
-#include "viewer/gl/shader_program.h"
-#include "viewer/gl/volume_renderer.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
 
 using render::DenseVolume;
+using render::gl::ComputeProgram;
+using render::gl::createBuffer;
+using render::gl::createStorageBuffer;
+using render::gl::GlBuffer;
+using render::gl::GlStorageBuffer;
+using render::gl::kGradientTableBinding;
+using render::gl::SectionBufferOptions;
+using render::gl::SectionBuffers;
+using render::gl::voxlinkDefines;
 
 namespace {
 
@@ -179,10 +188,10 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
             EXPECT_EQ(next, expected + 1) << "the next list element is not index + 1";
           }
         }
-        const bool ok =
-            r[0] == expected && uint32_t(r[1]) == bits &&
-            (expected < 0 || uint32_t(r[2]) == viewer::packGradientDirection(codes[expected])) &&
-            r[3] == next;
+        const bool ok = r[0] == expected && uint32_t(r[1]) == bits &&
+                        (expected < 0 ||
+                         uint32_t(r[2]) == render::gl::packGradientDirection(codes[expected])) &&
+                        r[3] == next;
         if (!ok && ++errors <= 5)
           ADD_FAILURE() << "cell (" << x << ", " << y << ", " << z << "): GLSL voxel " << r[0]
                         << " bits " << r[1] << " code " << r[2] << " next " << r[3]
@@ -194,12 +203,12 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
 // The packed directions the shaders read instead of codes: within 0.1 degrees of the decoded
 // code once renormalized, zero for the zero-gradient code.
 TEST(GradientDirections, PackedWithinATenthOfADegree) {
-  EXPECT_EQ(viewer::packGradientDirection(format::kZeroGradient), 0u);
+  EXPECT_EQ(render::gl::packGradientDirection(format::kZeroGradient), 0u);
   double worst = 0;
   for (uint32_t code = 0; code < (1u << 16); ++code) {
     const auto v = format::decodeGradient(uint16_t(code));
     if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;
-    const uint32_t w = viewer::packGradientDirection(uint16_t(code));
+    const uint32_t w = render::gl::packGradientDirection(uint16_t(code));
     double u[3], length = 0, dot = 0;
     for (int a = 0; a < 3; ++a) {
       const int32_t bits = int32_t(w >> (10 * a) & 0x3FFu);

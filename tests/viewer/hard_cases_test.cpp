@@ -8,10 +8,10 @@
 
 #include <cmath>
 
+#include "render/gl/voxlink_renderer.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
 
@@ -24,6 +24,9 @@ using render::ReferenceRenderer;
 using render::RenderSettings;
 using render::Sampling;
 using render::samplingName;
+using render::gl::RenderTarget;
+using render::gl::SectionBufferOptions;
+using render::gl::VoxLinkRenderer;
 
 namespace {
 

@@ -2,7 +2,7 @@
 // Re-classification from the source a file records: a TF that asks for removed values is
 // noticed, the background job re-converts the tooth CT keeping what the TF shows, and the new
 // file holds what the TF asks for.
-#include "viewer/app/reclassifier.h"
+#include "viewer/app/detail/reclassifier.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "pack/open_file.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
-#include "viewer/app/classification_check.h"
+#include "viewer/app/detail/classification_check.h"
 
 namespace voxlink::viewer {
 

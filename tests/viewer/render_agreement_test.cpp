@@ -7,13 +7,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "render/gl/dense_renderer.h"
+#include "render/gl/voxlink_renderer.h"
 #include "render/recorded_source.h"
 #include "tests/support/test_util.h"
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
 #include "tf/tf_presets.h"
-#include "viewer/gl/dense_renderer.h"
-#include "viewer/gl/voxlink_renderer.h"
 
 namespace voxlink::viewer {
 
@@ -25,6 +25,8 @@ using render::ReferenceRenderer;
 using render::RenderSettings;
 using render::Sampling;
 using render::samplingName;
+using render::gl::DenseRenderer;
+using render::gl::VoxLinkRenderer;
 using tf::defaultTransferFunction;
 
 namespace {

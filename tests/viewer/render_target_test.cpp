@@ -2,7 +2,7 @@
 // A render target GL cannot allocate fails at once, in one line naming the size, instead of a
 // compute pass writing into nothing for a minute and then reporting a bare GL error code; the
 // target stays usable at a size that fits.
-#include "viewer/gl/render_target.h"
+#include "render/gl/render_target.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +11,9 @@
 #include "tests/viewer/gl_test_context.h"
 
 namespace voxlink::viewer {
+
+using render::gl::RenderTarget;
+
 namespace {
 
 TEST(RenderTarget, ImageGlCannotAllocateFailsInOneLine) {

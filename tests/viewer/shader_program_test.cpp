@@ -1,14 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Shader loading: includes resolved once each, defines placed after #version, compiler messages
 // mapped back to the file and line they came from, and every shipped program compiling.
-#include "viewer/gl/shader_program.h"
+#include "render/gl/shader_program.h"
 
 #include <gtest/gtest.h>
 
+#include "render/gl/detail/volume_renderer.h"
 #include "tests/viewer/gl_test_context.h"
-#include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer {
+
+using render::gl::ComputeProgram;
+using render::gl::kGradientTableBinding;
+using render::gl::mapShaderLog;
+using render::gl::preprocessShader;
+
 namespace {
 
 const std::map<std::string, std::string> kFiles = {

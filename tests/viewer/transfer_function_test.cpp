@@ -9,7 +9,7 @@
 #include "tf/tf_presets.h"
 #include "tf/tf_table.h"
 #include "tf/value_interval.h"
-#include "viewer/app/classification_check.h"
+#include "viewer/app/detail/classification_check.h"
 
 namespace voxlink::viewer {
 

@@ -20,6 +20,8 @@ using render::DenseVolume;
 using render::loadDenseVolume;
 using render::ReferenceRenderer;
 using render::RenderSettings;
+using render::gl::RenderTarget;
+using render::gl::VolumeRenderer;
 
 Result<format::BrickedVolume> sparsify(const DenseVolume& v,
                                        const std::function<bool(double)>& keep,

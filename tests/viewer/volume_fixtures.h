@@ -12,10 +12,10 @@
 #include "format/bricked_volume.h"
 #include "format/voxlink_file.h"
 #include "render/dense_volume.h"
+#include "render/gl/detail/volume_renderer.h"
 #include "render/image.h"
 #include "render/reference_renderer.h"
 #include "tf/transfer_function.h"
-#include "viewer/gl/volume_renderer.h"
 
 namespace voxlink::viewer::testing {
 
@@ -25,6 +25,7 @@ using render::Image;
 using render::ImageError;
 using render::ReferenceRenderer;
 using render::RenderSettings;
+using render::gl::VolumeRenderer;
 
 struct SparseOptions {
   uint32_t brickSize = 8;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/camera_controller.h"
+#include "viewer/app/detail/camera_controller.h"
 
 #include <cmath>
 

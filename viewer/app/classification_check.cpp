@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/classification_check.h"
+#include "viewer/app/detail/classification_check.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>

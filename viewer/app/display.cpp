@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/display.h"
+#include "viewer/app/detail/display.h"
 
 namespace voxlink::viewer {
+
+using render::gl::ComputeProgram;
+using render::gl::createTexture;
+using render::gl::GlFramebuffer;
+using render::gl::RenderTarget;
 
 Result<Display> Display::create() {
   Display d;

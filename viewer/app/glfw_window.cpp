@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/glfw_window.h"
+#include "viewer/app/detail/glfw_window.h"
 
 #include <epoxy/gl.h>
 // GLFW after epoxy, without its own GL header.
@@ -9,6 +9,9 @@
 #include <array>
 
 namespace voxlink::viewer {
+
+using render::gl::checkGlCapabilities;
+
 namespace {
 
 std::string lastGlfwError() {

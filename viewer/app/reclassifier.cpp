@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/reclassifier.h"
+#include "viewer/app/detail/reclassifier.h"
 
 #include <filesystem>
 

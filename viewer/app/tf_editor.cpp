@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/tf_editor.h"
+#include "viewer/app/detail/tf_editor.h"
 
 #include <imgui.h>
 

@@ -12,10 +12,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "viewer/app/camera_controller.h"
-#include "viewer/app/display.h"
-#include "viewer/app/glfw_window.h"
-#include "viewer/app/viewer_state.h"
+#include "viewer/app/detail/camera_controller.h"
+#include "viewer/app/detail/display.h"
+#include "viewer/app/detail/glfw_window.h"
+#include "viewer/app/detail/viewer_state.h"
 
 namespace voxlink::viewer {
 
@@ -25,6 +25,7 @@ using render::RenderSettings;
 using render::Sampling;
 using render::srgbDecode;
 using render::writeImage;
+using render::gl::RenderTarget;
 
 namespace {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "viewer/app/viewer_state.h"
+#include "viewer/app/detail/viewer_state.h"
 
 #include <imgui.h>
 
@@ -19,6 +19,7 @@ using render::RenderSettings;
 using render::Sampling;
 using render::sceneLights;
 using render::valueHistogram;
+using render::gl::VoxLinkRenderer;
 using tf::defaultTransferFunction;
 using tf::displayRange;
 

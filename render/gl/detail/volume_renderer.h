@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// What the GL ray casters share: the frame's uniforms (camera, settings, volume geometry), the
+// transfer-function and gradient-decoding tables, a cache of compiled program variants and the
+// dispatch. VoxLinkRenderer (the sparse file) and DenseRenderer (3D textures) fill in the data.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "format/voxlink_file.h"
+#include "render/camera.h"
+#include "render/gl/detail/effects_buffers.h"
+#include "render/gl/detail/gl_objects.h"
+#include "render/gl/render_target.h"
+#include "render/gl/shader_program.h"
+#include "render/render_model.h"
+#include "render/render_settings.h"
+#include "tf/tf_table.h"
+#include "tf/transfer_function.h"
+
+namespace voxlink::render::gl {
+
+using tf::TfTable;
+
+// The geometry and value mapping both renderers need, in the file's terms.
+struct VolumeGeometry {
+  std::array<uint32_t, 3> dims{0, 0, 0};
+  std::array<double, 3> spacing{1, 1, 1};
+  std::array<double, 3> origin{0, 0, 0};
+  StoredType valueType = StoredType::kU8;
+  double valueScale = 1.0;
+  double valueOffset = 0.0;
+  // Voxels (of the smallest spacing) that rays spawned at a surface start off it.
+  double surfaceOffsetVoxels = render::kSurfaceShadowBias;
+
+  static VolumeGeometry of(const format::FileHeader& header);
+  Box worldBox() const;
+  double minSpacing() const;
+};
+
+// Storage-buffer bindings of the tables, above any the file's sections take.
+inline constexpr GLuint kTfBinding = 62;
+inline constexpr GLuint kGradientTableBinding = 63;
+// Texture unit of the TF table read as a buffer texture (indexed tables): the last one a compute
+// shader has (SectionBuffers leaves it free).
+GLuint tfTextureUnit();
+
+class VolumeRenderer {
+ public:
+  virtual ~VolumeRenderer() = default;
+
+  void setTransferFunction(const tf::TransferFunction& tf);
+  const tf::TransferFunction& transferFunction() const { return tf_; }
+  // Renders into `target` (resized to the settings' size). Returns once the work is queued;
+  // call glFinish() or target.read() to wait for it.
+  Status render(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
+  // Compiles the program variant for these settings ahead of the first frame.
+  Status prepare(const RenderSettings& settings);
+  // GPU memory of the volume data, the tables and nothing else.
+  uint64_t gpuBytes() const { return dataBytes() + tfBytes_ + gradientTable_.bytes; }
+  const VolumeGeometry& geometry() const { return geometry_; }
+  virtual std::string name() const = 0;
+
+  // What the last frame of the ray-traced mode (settings.effects) did: passes run (the primary
+  // pass included), rays traced after the primary ones, rays the buffer had no room for.
+  struct EffectsStats {
+    int passes = 0;
+    uint64_t secondaryRays = 0;
+    uint64_t droppedRays = 0;
+  };
+  const EffectsStats& lastEffectsStats() const { return effectsStats_; }
+
+ protected:
+  explicit VolumeRenderer(const VolumeGeometry& geometry);
+  virtual std::string mainShader() const = 0;
+  // The ray-traced mode's pass shader; empty where the data has no such mode.
+  virtual std::string effectsShader() const { return {}; }
+  // Refuses settings the data cannot be rendered with (called before every frame).
+  virtual Status checkSupported(const RenderSettings&) const { return Status::ok(); }
+  virtual std::vector<ShaderDefine> dataDefines() const = 0;
+  virtual std::map<std::string, std::string> generatedFiles() const { return {}; }
+  virtual void bindData(const ComputeProgram& program) const = 0;
+  virtual uint64_t dataBytes() const = 0;
+
+ private:
+  // Program variants: the plain frame, and the ray-traced mode's primary pass, secondary pass and
+  // resolve (volume_renderer_effects.cpp).
+  enum class Pass { kPlain, kEffectsPrimary, kEffectsSecondary, kEffectsResolve };
+  Result<const ComputeProgram*> program(const RenderSettings& settings, Pass pass = Pass::kPlain);
+  Status renderEffects(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
+  void setEffectsUniforms(const ComputeProgram& p, const Camera& camera,
+                          const RenderSettings& s) const;
+  void bindTables(const ComputeProgram& p) const;
+  void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
+                        uint32_t width, uint32_t height) const;
+
+  VolumeGeometry geometry_;
+  tf::TransferFunction tf_;
+  TfTable table_;
+  GlStorageBuffer tfBuffer_;
+  GlTexture tfTexels_;  // tfBuffer_ as a buffer texture of RGBA texels
+  uint64_t tfBytes_ = 0;
+  GlStorageBuffer gradientTable_;
+  std::map<std::tuple<int, bool, int, int>, ComputeProgram> programs_;
+  EffectsBuffers effects_;
+  EffectsStats effectsStats_;
+};
+
+}  // namespace voxlink::render::gl

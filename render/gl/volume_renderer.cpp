@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/gl/detail/volume_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "format/gradient_codec.h"
+
+namespace voxlink::render::gl {
+
+using tf::buildTfTable;
+
+namespace {
+
+// sin/cos tables taken from format::decodeGradient, so the shader decodes bit-identically:
+// entries [0, 255) are (sin theta, cos theta), [255, 511) are (cos phi, sin phi).
+std::vector<float> gradientTable() {
+  std::vector<float> t;
+  for (int theta = 0; theta <= format::kPolarSteps; ++theta) {
+    const auto v = format::decodeGradient(uint16_t(theta << 8));  // phi = 0: (sin, 0, cos)
+    t.push_back(v[0]);
+    t.push_back(v[2]);
+  }
+  for (int phi = 0; phi < format::kAzimuthSteps; ++phi) {
+    const auto v = format::decodeGradient(uint16_t((format::kPolarSteps / 2) << 8 | phi));
+    t.push_back(v[0]);  // sin(pi/2) = 1: (cos phi, sin phi, 0)
+    t.push_back(v[1]);
+  }
+  return t;
+}
+
+}  // namespace
+
+VolumeGeometry VolumeGeometry::of(const format::FileHeader& h) {
+  VolumeGeometry g;
+  for (int a = 0; a < 3; ++a) {
+    g.dims[a] = h.dims[a];
+    g.spacing[a] = h.spacing[a];
+    g.origin[a] = h.origin[a];
+  }
+  g.valueType = static_cast<StoredType>(h.valueType);
+  g.valueScale = h.valueScale;
+  g.valueOffset = h.valueOffset;
+  if (h.surfaceMode == uint32_t(format::SurfaceMode::kPlanes))
+    g.surfaceOffsetVoxels = render::kListSurfaceOffset;
+  if (h.surfaceMode == uint32_t(format::SurfaceMode::kTriangles))
+    g.surfaceOffsetVoxels = render::kTriangleSurfaceOffset;
+  return g;
+}
+
+Box VolumeGeometry::worldBox() const {
+  Box b;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = origin[a] - 0.5 * spacing[a];
+    b.hi[a] = origin[a] + (double(dims[a]) - 0.5) * spacing[a];
+  }
+  return b;
+}
+
+GLuint tfTextureUnit() {
+  GLint units = 0;
+  glGetIntegerv(GL_MAX_COMPUTE_TEXTURE_IMAGE_UNITS, &units);
+  return GLuint(std::max(units, 16) - 1);  // GL 4.3 guarantees 16
+}
+
+double VolumeGeometry::minSpacing() const { return std::min({spacing[0], spacing[1], spacing[2]}); }
+
+VolumeRenderer::VolumeRenderer(const VolumeGeometry& geometry) : geometry_(geometry) {
+  const std::vector<float> table = gradientTable();
+  gradientTable_ = createStorageBuffer(table.data(), table.size() * sizeof(float));
+  tf::TransferFunction identity;
+  identity.opacity = {{0.0, 0.0}};
+  identity.color = {{0.0, {1, 1, 1}}};
+  setTransferFunction(identity);
+}
+
+void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
+  tf_ = tf;
+  table_ = buildTfTable(tf, geometry_.valueType, geometry_.valueScale, geometry_.valueOffset);
+  // A texture buffer may not be empty.
+  std::vector<float> texels = table_.texels;
+  if (texels.empty()) texels.assign(4, 0.0f);
+  tfBuffer_ = createStorageBuffer(texels.data(), texels.size() * sizeof(float));
+  tfBytes_ = texels.size() * sizeof(float);
+  // The same buffer as RGBA texels: on llvmpipe a texel fetch (a gather) costs about 35
+  // instructions per SIMD vector, a storage-buffer read (a loop over the lanes) about 90, and a
+  // trilinear sample reads the TF for 8 corners (docs/rendering-benchmark.md).
+  tfTexels_ = createTexture(GL_TEXTURE_BUFFER);
+  glTextureBuffer(tfTexels_.id(), GL_RGBA32F, tfBuffer_.buffer.id());
+}
+
+Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
+  const bool effects = pass != Pass::kPlain;
+  const bool shadows = s.shading.enabled && (s.shading.shadows || (effects && s.effects.shadows));
+  const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()));
+  if (auto it = programs_.find(key); it != programs_.end()) return &it->second;
+  if (pass == Pass::kEffectsResolve) {
+    VOXLINK_ASSIGN_OR_RETURN(
+        ComputeProgram p,
+        ComputeProgram::build("effects_resolve.comp.glsl",
+                              {{"VXL_ACCUM_BINDING", std::to_string(kAccumBinding)}}, {}));
+    return &programs_.emplace(key, std::move(p)).first->second;
+  }
+  std::vector<ShaderDefine> defines = dataDefines();
+  defines.push_back({"VXL_EFFECTS", effects ? "1" : "0"});
+  if (effects) {
+    defines.push_back({"VXL_EFFECTS_PRIMARY", pass == Pass::kEffectsPrimary ? "1" : "0"});
+    defines.push_back({"VXL_MAX_LIGHTS", std::to_string(kMaxLights)});
+    defines.push_back({"VXL_RAYS_IN_BINDING", std::to_string(kRaysInBinding)});
+    defines.push_back({"VXL_RAYS_OUT_BINDING", std::to_string(kRaysOutBinding)});
+    defines.push_back({"VXL_ACCUM_BINDING", std::to_string(kAccumBinding)});
+  }
+  defines.push_back({"VXL_TRILINEAR", s.sampling == Sampling::kTrilinear ? "1" : "0"});
+  defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
+  defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
+  defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
+  defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
+  defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
+  VOXLINK_ASSIGN_OR_RETURN(
+      ComputeProgram p,
+      ComputeProgram::build(effects ? effectsShader() : mainShader(), defines, generatedFiles()));
+  return &programs_.emplace(key, std::move(p)).first->second;
+}
+
+Status VolumeRenderer::prepare(const RenderSettings& settings) {
+  VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
+  if (!settings.effects.any()) return program(settings).status();
+  for (Pass pass : {Pass::kEffectsPrimary, Pass::kEffectsSecondary, Pass::kEffectsResolve})
+    VOXLINK_RETURN_IF_ERROR(program(settings, pass).status());
+  return Status::ok();
+}
+
+void VolumeRenderer::bindTables(const ComputeProgram& p) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kTfBinding, tfBuffer_.buffer.id());
+  glBindTextureUnit(tfTextureUnit(), tfTexels_.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kGradientTableBinding, gradientTable_.buffer.id());
+  bindData(p);
+}
+
+void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& camera,
+                                      const RenderSettings& s, uint32_t width,
+                                      uint32_t height) const {
+  auto vec3 = [&](const char* name, const glm::dvec3& v) {
+    glUniform3f(p.uniform(name), float(v.x), float(v.y), float(v.z));
+  };
+  const glm::dvec2 half = camera.planeHalfExtent(width, height);
+  vec3("uEyeWorld", camera.eye());
+  vec3("uCamForward", -camera.back());
+  vec3("uCamRight", camera.right() * half.x);
+  vec3("uCamUp", camera.up() * half.y);
+  glUniform2ui(p.uniform("uImageSize"), width, height);
+  const auto& g = geometry_;
+  vec3("uVolumeOrigin", {g.origin[0], g.origin[1], g.origin[2]});
+  vec3("uVolumeSpacing", {g.spacing[0], g.spacing[1], g.spacing[2]});
+  glUniform3i(p.uniform("uDims"), GLint(g.dims[0]), GLint(g.dims[1]), GLint(g.dims[2]));
+  const double unit = g.minSpacing();
+  glUniform1f(p.uniform("uUnit"), float(unit));
+  glUniform1f(p.uniform("uStep"), float(s.stepVoxels * unit));
+  const auto& l = s.shading.lightDirection;
+  vec3("uToLight", glm::normalize(camera.toWorld(glm::normalize(glm::dvec3(l[0], l[1], l[2])))));
+  glUniform4f(p.uniform("uPhong"), float(s.shading.ambient), float(s.shading.diffuse),
+              float(s.shading.specular), float(s.shading.shininess));
+  glUniform1i(p.uniform("uShadingEnabled"), s.shading.enabled ? 1 : 0);
+  glUniform1f(p.uniform("uStopTransmittance"), float(1.0 - s.terminationAlpha));
+  glUniform1f(p.uniform("uShadowStop"), float(s.shadowTerminationTransmittance));
+  vec3("uBackground", {s.background[0], s.background[1], s.background[2]});
+  glUniform1i(p.uniform("uTfEntries"), GLint(table_.entries));
+  glUniform1f(p.uniform("uValueScale"), float(g.valueScale));
+  glUniform1f(p.uniform("uValueOffset"), float(g.valueOffset));
+}
+
+Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settings,
+                              RenderTarget& target) {
+  VOXLINK_RETURN_IF_ERROR(checkSettings(settings, name()));
+  VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
+  if (settings.effects.any()) return renderEffects(camera, settings, target);
+  VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* p, program(settings));
+  VOXLINK_RETURN_IF_ERROR(target.resize(settings.width, settings.height));
+  p->use();
+  setFrameUniforms(*p, camera, settings, settings.width, settings.height);
+  bindTables(*p);
+  glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR)
+    return makeError(ErrorCode::kUnsupported, "render (", name(), " renderer): GL error 0x",
+                     std::hex, e, " while rendering");
+  return Status::ok();
+}
+
+}  // namespace voxlink::render::gl

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/gl/voxlink_renderer.h"
+
+#include "render/gl/detail/volume_renderer.h"
+
+namespace voxlink::render::gl {
+
+std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
+  return {{"VXL_N", std::to_string(h.brickSize)},
+          {"VXL_AXIS", std::to_string(h.predominantAxis)},
+          {"VXL_VALUE_BYTES", std::to_string(storedSize(static_cast<StoredType>(h.valueType)))},
+          {"VXL_SCENE", h.versionMajor == format::kVersionMajorScene ? "1" : "0"},
+          {"VXL_SPHERES", h.sphereCount > 0 ? "1" : "0"},
+          {"VXL_SURFACE_MODE",
+           std::to_string(h.versionMajor == format::kVersionMajorScene ? h.surfaceMode : 0u)}};
+}
+
+Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(
+    const format::VoxLinkFile& file, const SectionBufferOptions& options) {
+  VOXLINK_ASSIGN_OR_RETURN(SectionBuffers sections, SectionBuffers::upload(file, options));
+  return std::unique_ptr<VoxLinkRenderer>(new VoxLinkRenderer(file, std::move(sections)));
+}
+
+VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections)
+    : VolumeRenderer(VolumeGeometry::of(file.header())),
+      sections_(std::move(sections)),
+      header_(file.header()) {}
+
+Status VoxLinkRenderer::checkSupported(const RenderSettings& settings) const {
+  if (header_.versionMajor == format::kVersionMajorScene && settings.sampling != Sampling::kVoxel)
+    return makeError(ErrorCode::kUnsupported, name(),
+                     ": scenes (files with geometry) render with voxel sampling; ",
+                     samplingName(settings.sampling), " sampling is for volume files");
+  return Status::ok();
+}
+
+std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const { return voxlinkDefines(header_); }
+
+std::map<std::string, std::string> VoxLinkRenderer::generatedFiles() const {
+  return {{"voxlink_sections.glsl", sections_.glsl()}};
+}
+
+void VoxLinkRenderer::bindData(const ComputeProgram& program) const {
+  sections_.bind();
+  glUniform3i(program.uniform("uBrickGrid"), GLint(header_.brickGrid[0]),
+              GLint(header_.brickGrid[1]), GLint(header_.brickGrid[2]));
+}
+
+}  // namespace voxlink::render::gl
