@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # scripts/check-layers.sh passes on a copy of the sources, and fails naming the file, the line and
-# the arrow when one upward or sideways include is planted in it, when a file includes another
-# room's detail/ header (a room's own passes), and when a file runs over 500 lines or a folder is
-# missing from cmake/layers.txt.
+# the arrow when one upward or sideways include is planted in it (also one into a subfolder room,
+# render/gl), when a file includes another room's detail/ header (a room's own passes), and when a
+# file runs over 500 lines or a folder is missing from cmake/layers.txt.
 #   bash tests/layers/check_layers_test.sh SOURCE_DIR
 set -euo pipefail
 src=$(cd "$1" && pwd)
@@ -52,6 +52,10 @@ restore base/error.h
 plant pack/packed_file.cpp '#include "tf/transfer_function.h"'
 expect_fail "sibling include" 'pack/packed_file.cpp:2: forbidden arrow pack -> tf'
 restore pack/packed_file.cpp
+
+plant render/camera.cpp '#include "render/gl/gl_context.h"'
+expect_fail "include of a subfolder room above" 'render/camera.cpp:2: forbidden arrow render -> render/gl'
+restore render/camera.cpp
 
 plant scene/scene_assembly.cpp '#include "convert/detail/slab_window.h"'
 expect_fail "another room's detail header" 'scene/scene_assembly.cpp:2: scene/ includes a detail/ header of convert/'
