@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// What a scene file says about how to look at it, as the viewer's structs: its camera (the
+// What a scene file says about how to look at it, as render/'s structs: its camera (the
 // default view, as `voxlink render` takes it from a built scene's META) and its point lights.
 // The exact tracer renders straight from the scene file, with no .vxl to read them from.
 #pragma once
