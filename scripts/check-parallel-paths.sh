@@ -8,6 +8,7 @@ cd "$(dirname "$0")/.."
 # Threads that are not parallel work, each with its reason (docs/parallelism.md):
 allowed=(
   viewer/app/reclassifier  # the window's background re-classification; its converter obeys the limit
+  viewer/app/detail/reclassifier  # its header (internal to viewer/, so in detail/)
   mpi/mpi_rank_group.cpp   # one thread that waits for MPI messages while the rank works
 )
 pattern='tbb::|<tbb/|std::thread[^:_]|std::thread$|std::jthread|std::async|pthread_create|#pragma omp'
