@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace voxlink::format {
+namespace voxlink {
 namespace {
 
 TEST(Crc32c, KnownVectors) {
@@ -56,4 +56,4 @@ TEST(Crc32c, CombineEqualsChecksumOfTheJoinedBytes) {
 }
 
 }  // namespace
-}  // namespace voxlink::format
+}  // namespace voxlink

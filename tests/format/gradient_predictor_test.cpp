@@ -12,12 +12,12 @@
 
 #include "format/gradient_codec.h"
 
-namespace voxlink::format {
+namespace voxlink::pack {
 
-using pack::azimuthBoundaryCosines;
-using pack::azimuthBoundarySines;
-using pack::exactGradientCode;
-using pack::polarBoundaryCosines;
+using format::encodeGradientReference;
+using format::kAzimuthSteps;
+using format::kPolarSteps;
+using format::kZeroGradient;
 
 namespace {
 
@@ -73,4 +73,4 @@ TEST(GradientPredictor, AxesPolesAndZero) {
 }
 
 }  // namespace
-}  // namespace voxlink::format
+}  // namespace voxlink::pack

@@ -20,7 +20,7 @@
 #include <thread>
 #include <vector>
 
-namespace voxlink::format {
+namespace voxlink {
 namespace {
 
 TEST(ParallelFor, RunsEveryIndexOnceWhateverTheThreads) {
@@ -179,4 +179,4 @@ TEST(ParallelFor, CallersOnSeveralThreadsEachGetEveryIndexOnce) {
 }
 
 }  // namespace
-}  // namespace voxlink::format
+}  // namespace voxlink

@@ -15,9 +15,12 @@
 
 #include "format/gradient_codec.h"
 
-namespace voxlink::format {
+namespace voxlink::pack {
 
-using pack::portableGradientCodes;
+using format::encodeGradientReference;
+using format::kAzimuthSteps;
+using format::kPolarSteps;
+using format::kZeroGradient;
 
 namespace {
 
@@ -150,4 +153,4 @@ TEST(PortableGradientCode, CodesArePinned) {
 }
 
 }  // namespace
-}  // namespace voxlink::format
+}  // namespace voxlink::pack

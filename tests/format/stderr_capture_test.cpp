@@ -8,7 +8,7 @@
 
 #include <cstdio>
 
-namespace voxlink::format {
+namespace voxlink {
 namespace {
 
 TEST(StderrCapture, CapturesTheFirstLineAndRestoresStderr) {
@@ -37,4 +37,4 @@ TEST(StderrCapture, CapturesTheFirstLineAndRestoresStderr) {
 }
 
 }  // namespace
-}  // namespace voxlink::format
+}  // namespace voxlink

@@ -6,13 +6,7 @@
 #include <cmath>
 #include <limits>
 
-namespace voxlink::format {
-
-using tf::anyContains;
-using tf::describeIntervals;
-using tf::parseTransferFunction;
-using tf::TransferFunction;
-using tf::transferFunctionJson;
+namespace voxlink::tf {
 
 namespace {
 
@@ -126,4 +120,4 @@ TEST(TransferFunction, JsonRoundTrip) {
 }
 
 }  // namespace
-}  // namespace voxlink::format
+}  // namespace voxlink::tf

@@ -7,10 +7,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::OpenOptions;
-using sources::openVolume;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -249,4 +246,4 @@ TEST(BadInput, OptionsThatDisagreeWithTheHeader) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

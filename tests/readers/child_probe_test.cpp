@@ -23,12 +23,7 @@
 
 extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribute__((weak));
 
-namespace voxlink::convert {
-
-using sources::describeDeath;
-using sources::MarkFn;
-using sources::probeInChild;
-using sources::ProbeOutcome;
+namespace voxlink::sources {
 
 namespace {
 
@@ -120,4 +115,4 @@ TEST(ProbeInChild, ParentsSanitizerDeathCallbackDoesNotRunInTheChild) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

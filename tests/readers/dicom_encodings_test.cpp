@@ -16,11 +16,7 @@
 #include "sources/readers/dicom_reader.h"
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeSource;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -165,4 +161,4 @@ TEST_F(DicomEncodings, ColorIsRefusedBeforeAnyPixelIsDecoded) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -19,14 +19,7 @@
 #include "sources/readers/dicom_reader.h"
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::DicomSeriesSummary;
-using sources::listDicomFolder;
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -395,4 +388,4 @@ TEST(DicomFolders, GantryTiltIsRefusedWithTheNumbers) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

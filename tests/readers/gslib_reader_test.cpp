@@ -10,12 +10,7 @@
 #include "sources/volume_source.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::convert {
-
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources {
 
 namespace {
 
@@ -164,4 +159,4 @@ TEST(GslibReader, BadInputNamesTheFileAndTheField) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

@@ -12,19 +12,7 @@
 #include "sources/readers/detail/text_header.h"
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::AxesSummary;
-using sources::convertRescaled;
-using sources::expandNumberedFiles;
-using sources::InflateStream;
-using sources::naturalLess;
-using sources::parseBool;
-using sources::parseDoubles;
-using sources::parseIntegers;
-using sources::rescaledType;
-using sources::summarizeAxes;
-using sources::Vec3;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -124,4 +112,4 @@ TEST(HeaderHelpers, GzipMembersConcatenateAndSkipWorks) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -10,12 +10,7 @@
 #include "tests/readers/npy_test_util.h"
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::expandNumberedFiles;
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -159,4 +154,4 @@ TEST(HostileSizes, GslibTitleThatWrapsToZeroRows) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

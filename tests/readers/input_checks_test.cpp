@@ -8,11 +8,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -90,4 +86,4 @@ TEST(InputChecks, FifosFailAtOnceInsteadOfBlocking) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -8,11 +8,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -141,4 +137,4 @@ TEST(MetaImageReader, ElementTypesByteOrderListsAndHeaderSize) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -8,12 +8,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -147,9 +142,9 @@ TEST(NiftiReader, RefusesTimeSeriesAndComplexData) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing
 
-namespace voxlink::convert::testing {
+namespace voxlink::sources::testing {
 namespace {
 
 // libnifti turns pixdim 0 and NaN into 1 silently: NaN must be an error naming the field, 0 a
@@ -179,4 +174,4 @@ TEST(NiftiReader, PixdimZeroIsANoteAndNaNAnError) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

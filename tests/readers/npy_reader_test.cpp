@@ -10,13 +10,7 @@
 #include "tests/readers/npy_test_util.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::convert {
-
-using sources::openNpy;
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources {
 
 namespace {
 
@@ -258,4 +252,4 @@ TEST(NpyReader, ReadsWhatTheKrigeCommandWrites) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert
+}  // namespace voxlink::sources

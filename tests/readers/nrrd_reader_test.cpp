@@ -9,10 +9,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -271,4 +268,4 @@ TEST(NrrdReader, CommentsKeyValuePairsAndCrlfLinesAreAccepted) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -6,11 +6,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -58,4 +54,4 @@ TEST(RawReader, WrongTypeAndMissingOptions) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

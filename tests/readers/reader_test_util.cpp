@@ -5,13 +5,7 @@
 
 #include <algorithm>
 
-namespace voxlink::convert::testing {
-
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
-using sources::VolumeSource;
+namespace voxlink::sources::testing {
 
 std::unique_ptr<VolumeSource> openOrDie(const std::string& path, const OpenOptions& options) {
   auto r = openVolume(path, options);
@@ -146,4 +140,4 @@ Status openAndReadAll(const std::string& path, const OpenOptions& options) {
   return data.status();
 }
 
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -13,11 +13,8 @@
 #include "sources/volume_source.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::convert::testing {
+namespace voxlink::sources::testing {
 
-using sources::OpenOptions;
-using sources::VolumeInfo;
-using sources::VolumeSource;
 using ::voxlink::testing::dataPath;
 using ::voxlink::testing::readBytes;
 using ::voxlink::testing::TempDir;
@@ -66,4 +63,4 @@ void expectError(const Result<T>& result, ErrorCode code,
 // Opens then reads everything, returning the first error (open or read).
 Status openAndReadAll(const std::string& path, const OpenOptions& options = {});
 
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

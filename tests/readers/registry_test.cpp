@@ -8,12 +8,7 @@
 #include "sources/readers/detail/reader_registry.h"
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::lowerExtension;
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readerNames;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -103,4 +98,4 @@ TEST(ReaderRegistry, LowerExtensionKeepsGz) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

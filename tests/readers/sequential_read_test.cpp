@@ -5,10 +5,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -76,4 +73,4 @@ INSTANTIATE_TEST_SUITE_P(RealFiles, SequentialRead, ::testing::ValuesIn(kInputs)
                          });
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

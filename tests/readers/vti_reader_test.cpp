@@ -9,12 +9,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::OpenOptions;
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -254,9 +249,9 @@ TEST(VtiReader, ReversedAndPermutedDirectionsKeepWorldPositions) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing
 
-namespace voxlink::convert::testing {
+namespace voxlink::sources::testing {
 namespace {
 
 // The header is parsed by pugixml: broken or cut XML is one line naming the file and the
@@ -292,4 +287,4 @@ TEST(VtiReader, HeaderXmlErrorsNameTheFileAndTheElement) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

@@ -6,11 +6,7 @@
 
 #include "tests/readers/reader_test_util.h"
 
-namespace voxlink::convert::testing {
-
-using sources::openVolume;
-using sources::readAll;
-using sources::VolumeInfo;
+namespace voxlink::sources::testing {
 
 namespace {
 
@@ -85,4 +81,4 @@ TEST(VvdReader, BadHeadersNameTheField) {
 }
 
 }  // namespace
-}  // namespace voxlink::convert::testing
+}  // namespace voxlink::sources::testing

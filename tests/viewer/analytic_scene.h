@@ -10,12 +10,7 @@
 
 #include "render/scene_walker.h"
 
-namespace voxlink::viewer::testing {
-
-using render::Box;
-using render::Ray;
-using render::SceneEvent;
-using render::SceneWalker;
+namespace voxlink::render::testing {
 
 struct AnalyticPlane {
   glm::dvec3 point, normal;  // unit normal; the plane is infinite unless halfSize > 0
@@ -102,4 +97,4 @@ inline format::MaterialRecord analyticMaterial(glm::dvec3 c, double emission = 0
   return m;
 }
 
-}  // namespace voxlink::viewer::testing
+}  // namespace voxlink::render::testing

@@ -11,13 +11,7 @@
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::brickBounds;
-using render::BrickBox;
-using render::DenseVolume;
-using render::packBrickBox;
-using render::unpackBrickBox;
+namespace voxlink::render {
 
 namespace {
 
@@ -90,4 +84,4 @@ TEST(BrickBounds, EachBoxIsTheTightBoxOfItsBricksVoxels) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render

@@ -15,20 +15,7 @@
 #include "tests/support/test_util.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::brickBounds;
-using render::BrickBox;
-using render::BrickRange;
-using render::DenseVolume;
-using render::dualBrickBoxes;
-using render::dualBrickGrid;
-using render::dualBrickRange;
-using render::kEmptyBrick;
-using render::kEmptyDualBrick;
-using render::occupiedBrickRange;
-using render::occupiedIndexByBrick;
-using render::unpackBrickBox;
+namespace voxlink::render {
 
 namespace {
 
@@ -253,4 +240,4 @@ TEST(BrickLookup, TablesFollowTheOccupiedBricksNotTheGrid) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render

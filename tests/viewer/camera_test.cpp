@@ -1,21 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Camera framing, primary rays, orbit/pan/zoom and the controller that maps input onto them.
+// Camera framing, primary rays, orbit/pan/zoom.
 #include "render/camera.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "viewer/app/detail/camera_controller.h"
-
-namespace voxlink::viewer {
-
-using render::Box;
-using render::Camera;
-using render::CameraSpec;
-using render::parseCameraSpec;
-using render::parseUpAxis;
-using render::Ray;
+namespace voxlink::render {
 
 namespace {
 
@@ -117,30 +108,5 @@ TEST(Camera, ParseSpecNumbersAtTheEdgesOfDouble) {
   EXPECT_EQ(r.message(), "--camera: '2x' is not a number (expected AZ,EL[,DIST[,FOV]] in degrees)");
 }
 
-TEST(CameraController, DragOrbitsWheelZoomsResetReturnsHome) {
-  const Camera home = Camera::framing(kBox, {});
-  CameraController cc(home);
-  InputFrame in;
-  in.mouseX = 100;
-  in.mouseY = 100;
-  EXPECT_FALSE(cc.update(in, 600));
-  in.left = true;
-  EXPECT_FALSE(cc.update(in, 600));  // the press itself does not move
-  EXPECT_TRUE(cc.dragging());
-  in.mouseX = 150;
-  EXPECT_TRUE(cc.update(in, 600));
-  EXPECT_GT(glm::length(cc.camera().back() - home.back()), 0.1);
-  in.left = false;
-  cc.update(in, 600);
-  EXPECT_FALSE(cc.dragging());
-  in.scroll = 2;
-  EXPECT_TRUE(cc.update(in, 600));
-  EXPECT_LT(cc.camera().distance(), home.distance());
-  in = InputFrame{};
-  in.reset = true;
-  EXPECT_TRUE(cc.update(in, 600));
-  EXPECT_EQ(cc.camera().eye(), home.eye());
-}
-
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render

@@ -14,17 +14,7 @@
 #include "render/detail/light_transport.h"
 #include "tests/viewer/analytic_scene.h"
 
-namespace voxlink::viewer {
-
-using render::Box;
-using render::Camera;
-using render::CameraSpec;
-using render::Effects;
-using render::EffectsTracer;
-using render::Image;
-using render::Ray;
-using render::refractDirection;
-using render::RenderSettings;
+namespace voxlink::render {
 
 namespace {
 
@@ -206,4 +196,4 @@ TEST(EffectsTracer, CameraInsideAGlassSphere) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render

@@ -3,7 +3,7 @@
 
 #include <cstdio>
 
-namespace voxlink::viewer::testing {
+namespace voxlink::render::testing {
 
 using render::gl::createHeadlessContext;
 using render::gl::GlContext;
@@ -21,4 +21,4 @@ GlContext* glContext() {
   return context.get();
 }
 
-}  // namespace voxlink::viewer::testing
+}  // namespace voxlink::render::testing

@@ -7,17 +7,17 @@
 
 #include "render/gl/gl_context.h"
 
-namespace voxlink::viewer::testing {
+namespace voxlink::render::testing {
 
 using render::gl::GlContext;
 
 // nullptr (and a test failure) when EGL gives no GL 4.5 context.
 GlContext* glContext();
 
-}  // namespace voxlink::viewer::testing
+}  // namespace voxlink::render::testing
 
 #define VOXLINK_REQUIRE_GL()                                        \
   do {                                                              \
-    if (::voxlink::viewer::testing::glContext() == nullptr)         \
+    if (::voxlink::render::testing::glContext() == nullptr)         \
       FAIL() << "no headless OpenGL 4.5 context (EGL surfaceless)"; \
   } while (0)

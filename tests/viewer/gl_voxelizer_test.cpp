@@ -13,12 +13,7 @@
 #include "gl_test_context.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::viewer {
-
-using render::gl::GlCoverage;
-using render::gl::GlSurfaceVoxelization;
-using render::gl::GlSurfaceVoxelizer;
-using render::gl::GlVoxelizeOptions;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -239,4 +234,4 @@ INSTANTIATE_TEST_SUITE_P(
                        ::testing::Values(64u, 128u)));
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

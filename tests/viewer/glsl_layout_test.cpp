@@ -21,18 +21,7 @@
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::DenseVolume;
-using render::gl::ComputeProgram;
-using render::gl::createBuffer;
-using render::gl::createStorageBuffer;
-using render::gl::GlBuffer;
-using render::gl::GlStorageBuffer;
-using render::gl::kGradientTableBinding;
-using render::gl::SectionBufferOptions;
-using render::gl::SectionBuffers;
-using render::gl::voxlinkDefines;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -245,4 +234,4 @@ std::string lookupName(const ::testing::TestParamInfo<LookupCase>& param) {
 INSTANTIATE_TEST_SUITE_P(AllLayouts, GlslLookup, ::testing::ValuesIn(lookupCases()), lookupName);
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

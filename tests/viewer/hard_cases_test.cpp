@@ -13,20 +13,7 @@
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::Box;
-using render::Camera;
-using render::CameraSpec;
-using render::DenseVolume;
-using render::Image;
-using render::ReferenceRenderer;
-using render::RenderSettings;
-using render::Sampling;
-using render::samplingName;
-using render::gl::RenderTarget;
-using render::gl::SectionBufferOptions;
-using render::gl::VoxLinkRenderer;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -231,4 +218,4 @@ TEST(HardCases, SplitSectionsRenderTheSameImage) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

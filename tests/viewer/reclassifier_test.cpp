@@ -23,8 +23,9 @@ namespace {
 TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   voxlink::testing::TempDir dir;
-  auto file = testing::convertWithThreshold(testing::toothPath(), testing::toothOpenOptions(),
-                                            "150", dir.file("tooth.vxl"));
+  auto file = render::testing::convertWithThreshold(render::testing::toothPath(),
+                                                    render::testing::toothOpenOptions(), "150",
+                                                    dir.file("tooth.vxl"));
   ASSERT_TRUE(file) << file.message();
   const FileClassification before = fileClassification(*file);
   ASSERT_TRUE(before.recorded);
@@ -56,11 +57,11 @@ TEST(Reclassifier, ReconvertsTheRecordedSourceWithTheNewTf) {
 
 TEST(Reclassifier, RefusesFilesWithoutARecordedSource) {
   const DenseVolume dense =
-      testing::makeVolume({8, 8, 8}, {1, 1, 1}, [](int x, int, int) { return x; });
-  auto sparse = testing::sparsify(dense, [](double v) { return v > 3; }, {});
+      render::testing::makeVolume({8, 8, 8}, {1, 1, 1}, [](int x, int, int) { return x; });
+  auto sparse = render::testing::sparsify(dense, [](double v) { return v > 3; }, {});
   ASSERT_TRUE(sparse);
   voxlink::testing::TempDir dir;
-  auto file = testing::writeAndOpen(*sparse, dir.file("bare.vxl"));
+  auto file = render::testing::writeAndOpen(*sparse, dir.file("bare.vxl"));
   ASSERT_TRUE(file);
   Reclassifier job;
   tf::TransferFunction tf;

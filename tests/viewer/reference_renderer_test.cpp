@@ -9,20 +9,7 @@
 #include "render/render_model.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::Camera;
-using render::compareImages;
-using render::DenseVolume;
-using render::Image;
-using render::intersectBox;
-using render::Ray;
-using render::ReferenceRenderer;
-using render::RenderSettings;
-using render::Sampling;
-using render::shadeSample;
-using render::Shading;
-using render::walkVoxels;
+namespace voxlink::render {
 
 namespace {
 
@@ -135,4 +122,4 @@ TEST(ImageMetrics, PsnrAndMaxError) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render

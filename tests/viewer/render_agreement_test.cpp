@@ -15,18 +15,8 @@
 #include "tests/viewer/volume_fixtures.h"
 #include "tf/tf_presets.h"
 
-namespace voxlink::viewer {
+namespace voxlink::render::gl {
 
-using render::Camera;
-using render::CameraSpec;
-using render::DenseVolume;
-using render::loadSourceVolume;
-using render::ReferenceRenderer;
-using render::RenderSettings;
-using render::Sampling;
-using render::samplingName;
-using render::gl::DenseRenderer;
-using render::gl::VoxLinkRenderer;
 using tf::defaultTransferFunction;
 
 namespace {
@@ -121,4 +111,4 @@ TEST(RenderAgreement, LidcChestCt) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

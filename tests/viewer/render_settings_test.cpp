@@ -10,9 +10,7 @@
 #include <random>
 #include <string>
 
-namespace voxlink::viewer {
-
-using render::parseImageSize;
+namespace voxlink::render {
 
 namespace {
 
@@ -57,4 +55,4 @@ TEST(ParseImageSize, RandomStringsAgreeWithTheDigitsOnlyRule) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render

@@ -10,9 +10,7 @@
 
 #include "tests/viewer/gl_test_context.h"
 
-namespace voxlink::viewer {
-
-using render::gl::RenderTarget;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -36,4 +34,4 @@ TEST(RenderTarget, ImageGlCannotAllocateFailsInOneLine) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

@@ -20,23 +20,7 @@
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::Camera;
-using render::CameraSpec;
-using render::compareImages;
-using render::Effects;
-using render::Image;
-using render::ImageError;
-using render::Light;
-using render::Ray;
-using render::RenderSettings;
-using render::Sampling;
-using render::SceneReferenceRenderer;
-using render::UpAxis;
-using render::gl::RenderTarget;
-using render::gl::VolumeRenderer;
-using render::gl::VoxLinkRenderer;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -349,4 +333,4 @@ TEST(SceneRender, TrilinearSamplingOfAScene) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

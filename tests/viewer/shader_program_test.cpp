@@ -8,12 +8,7 @@
 #include "render/gl/detail/volume_renderer.h"
 #include "tests/viewer/gl_test_context.h"
 
-namespace voxlink::viewer {
-
-using render::gl::ComputeProgram;
-using render::gl::kGradientTableBinding;
-using render::gl::mapShaderLog;
-using render::gl::preprocessShader;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -74,4 +69,4 @@ TEST(ShaderProgram, ShippedDisplayAndTestProgramsCompile) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The transfer function as shaders see it (tables), presets, ParaView import, and the interval
-// arithmetic that says which values a TF asks for that a file's classification removed.
+// arithmetic the viewer's classification check uses.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -9,33 +9,20 @@
 #include "tf/tf_presets.h"
 #include "tf/tf_table.h"
 #include "tf/value_interval.h"
-#include "viewer/app/detail/classification_check.h"
 
-namespace voxlink::viewer {
-
-using tf::buildTfTable;
-using tf::evaluateBreakpoints;
-using tf::ParaViewImport;
-using tf::parseParaViewPreset;
-using tf::tfPreset;
-using tf::tfPresetNames;
-using tf::TfTable;
+namespace voxlink::tf {
 
 namespace {
 
-using tf::complementIntervals;
-using tf::intersectIntervals;
-using tf::mergeIntervals;
-
-tf::TransferFunction stepTf() {
-  tf::TransferFunction tf;
+TransferFunction stepTf() {
+  TransferFunction tf;
   tf.opacity = {{10, 0.0}, {20, 0.5}, {20, 0.1}, {35, 0.9}, {35.5, 0.2}};
   tf.color = {{0, {0, 0, 1}}, {20, {1, 0, 0}}, {20, {0, 1, 0}}, {50, {1, 1, 1}}};
   return tf;
 }
 
 TEST(TfTable, IndexedTablesHoldTheTfAtEveryStoredValue) {
-  const tf::TransferFunction tf = stepTf();
+  const TransferFunction tf = stepTf();
   const TfTable u8 = buildTfTable(tf, StoredType::kU8, 0.25, 3.0);
   ASSERT_EQ(u8.entries, 256u);
   for (uint32_t i = 0; i < 256; ++i) {
@@ -52,7 +39,7 @@ TEST(TfTable, IndexedTablesHoldTheTfAtEveryStoredValue) {
 }
 
 TEST(TfTable, BreakpointsReproduceTheTfIncludingSteps) {
-  const tf::TransferFunction tf = stepTf();
+  const TransferFunction tf = stepTf();
   const TfTable t = buildTfTable(tf, StoredType::kF32, 1.0, 0.0);
   EXPECT_EQ(t.kind, TfTable::Kind::kBreakpoints);
   std::mt19937 rng(7);
@@ -104,7 +91,7 @@ TEST(ParaViewImport, ReadsRgbAndOpacityPointsAndRescales) {
 }
 
 TEST(ClassificationCheck, IntervalArithmetic) {
-  using I = tf::ValueInterval;
+  using I = ValueInterval;
   const auto merged =
       mergeIntervals({{5, 10, false, true}, {10, 12, false, false}, {1, 2, false, false}});
   ASSERT_EQ(merged.size(), 2u);
@@ -126,21 +113,5 @@ TEST(ClassificationCheck, IntervalArithmetic) {
   EXPECT_EQ(both[0].hi, 10);
 }
 
-TEST(ClassificationCheck, TfOpacityOnRemovedValuesIsFound) {
-  FileClassification c;
-  c.recorded = true;
-  c.keep = {{60, HUGE_VAL, false, true}};  // --threshold 60
-  tf::TransferFunction tf;
-  tf.opacity = {{70, 0.0}, {90, 0.5}};
-  EXPECT_TRUE(visibleButRemoved(tf, c).empty());
-  tf.opacity = {{40, 0.0}, {90, 0.5}};  // opacity from just above 40
-  const auto bad = visibleButRemoved(tf, c);
-  ASSERT_EQ(bad.size(), 1u);
-  EXPECT_EQ(bad[0].lo, 40);
-  EXPECT_TRUE(bad[0].loOpen);
-  EXPECT_EQ(bad[0].hi, 60);
-  EXPECT_TRUE(bad[0].hiOpen);
-}
-
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::tf

@@ -12,14 +12,8 @@
 #include "pack/open_file.h"
 #include "tests/support/test_util.h"
 
-namespace voxlink::viewer::testing {
+namespace voxlink::render::testing {
 
-using render::Camera;
-using render::compareImages;
-using render::DenseVolume;
-using render::loadDenseVolume;
-using render::ReferenceRenderer;
-using render::RenderSettings;
 using render::gl::RenderTarget;
 using render::gl::VolumeRenderer;
 
@@ -148,4 +142,4 @@ RenderPair renderBoth(VolumeRenderer& renderer, const ReferenceRenderer& referen
   return pair;
 }
 
-}  // namespace voxlink::viewer::testing
+}  // namespace voxlink::render::testing

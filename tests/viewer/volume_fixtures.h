@@ -17,14 +17,8 @@
 #include "render/reference_renderer.h"
 #include "tf/transfer_function.h"
 
-namespace voxlink::viewer::testing {
+namespace voxlink::render::testing {
 
-using render::Camera;
-using render::DenseVolume;
-using render::Image;
-using render::ImageError;
-using render::ReferenceRenderer;
-using render::RenderSettings;
 using render::gl::VolumeRenderer;
 
 struct SparseOptions {
@@ -75,4 +69,4 @@ struct RenderPair {
 RenderPair renderBoth(VolumeRenderer& renderer, const ReferenceRenderer& reference,
                       const Camera& camera, const RenderSettings& settings);
 
-}  // namespace voxlink::viewer::testing
+}  // namespace voxlink::render::testing
