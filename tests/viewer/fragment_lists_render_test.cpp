@@ -17,10 +17,7 @@
 #include "tests/viewer/gl_test_context.h"
 #include "tests/viewer/volume_fixtures.h"
 
-namespace voxlink::viewer {
-
-using render::gl::RenderTarget;
-using render::gl::VoxLinkRenderer;
+namespace voxlink::render::gl {
 
 namespace {
 
@@ -184,4 +181,4 @@ TEST(FragmentListsRender, GlMatchesTheFloat64Walker) {
 }
 
 }  // namespace
-}  // namespace voxlink::viewer
+}  // namespace voxlink::render::gl
