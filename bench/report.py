@@ -116,8 +116,9 @@ def write_markdown(path, m, preset, sections):
         "",
         "Regenerate: `cmake --build build --target report` (this page and docs/report/*.png; "
         "`--target report-quick` writes the small preset to build/report-quick instead). "
-        "ParaView (pvpython) is not measured here: the project has no pvpython rendering "
-        "benchmark yet; the rendering peer is the dense 3D-texture ray caster.",
+        "The rendering peer here is the dense 3D-texture ray caster; ParaView (pvpython) at "
+        "matched settings is measured by `bench/render_vs_paraview.sh` "
+        "(docs/rendering-benchmark.md, \"Against ParaView\"), not by this report.",
         "",
     ]
     for s in sections:
