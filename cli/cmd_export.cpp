@@ -5,6 +5,7 @@
 
 #include "base/file_name.h"
 #include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/progress_bar.h"
@@ -19,6 +20,7 @@ CommandRunner addExportCommand(CLI::App& app) {
   struct Args {
     std::string path, output;
     double fill = 0;
+    unsigned threads = 0;
     OutputOptions out;
   };
   auto args = std::make_shared<Args>();
@@ -32,8 +34,10 @@ CommandRunner addExportCommand(CLI::App& app) {
   cmd->add_option("--fill", args->fill, "Value of removed voxels (must fit the source type)")
       ->check(finiteNumber())
       ->capture_default_str();
+  addThreadsOption(cmd, args->threads);
   args->out.add(cmd, true);
   return [args] {
+    const base::ThreadLimit limit(args->threads);  // every parallel path, OpenVDB's TBB too
     const std::string& out = args->output;
     const bool vdb = base::hasExtension(out, ".vdb");
     if (!vdb && !base::hasExtension(out, ".nrrd") && !base::hasExtension(out, ".nhdr"))

@@ -124,6 +124,7 @@ CommandRunner addPackCommand(CLI::App& app) {
 CommandRunner addUnpackCommand(CLI::App& app) {
   struct Args {
     std::string path, output;
+    unsigned threads = 0;
     OutputOptions out;
   };
   auto args = std::make_shared<Args>();
@@ -132,8 +133,10 @@ CommandRunner addUnpackCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Unpacked output (.vxl)")->required();
+  addThreadsOption(cmd, args->threads);
   args->out.add(cmd, true);
   return [args] {
+    const base::ThreadLimit limit(args->threads);  // every parallel path, for the whole run
     const auto start = std::chrono::steady_clock::now();
     // Unpacking and validating 90 % of the bar, writing the rest.
     ProgressBar bar(args->out.showProgress());

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "exact/edge_error.h"
@@ -54,6 +55,7 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
     int maxBounces = 4;
     int repeat = 1;
     bool noShading = false;
+    unsigned threads = 0;
     OutputOptions out;
   };
   auto args = std::make_shared<Args>();
@@ -85,7 +87,9 @@ CommandRunner addRenderExactCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   args->out.add(cmd, false);
+  addThreadsOption(cmd, args->threads);
   return [args] {
+    const base::ThreadLimit limit(args->threads);  // Embree's TBB and the effects tracer
     // -o is required; --voxel-output is optional (empty: not asked for).
     std::vector<std::string> outputs = {args->output};
     if (!args->voxelOutput.empty()) outputs.push_back(args->voxelOutput);

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "base/output_file.h"
+#include "base/parallel_for.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/process_ranks.h"
@@ -32,6 +33,7 @@ CommandRunner addSceneCommand(CLI::App& app) {
   struct Options {
     std::string input, output;
     uint32_t resolution = 0, brick = 0;
+    unsigned threads = 0;
     OutputOptions out;
     std::string voxelizer = "exact";
     std::string surface = "mean";
@@ -64,9 +66,11 @@ CommandRunner addSceneCommand(CLI::App& app) {
                    "planes: triangles of a voxel share a fragment when their normals differ by "
                    "at most this many degrees")
       ->check(CLI::Range(0.0, 180.0));
+  addThreadsOption(build, o->threads);
   o->out.add(build, true);
   return [o, build] {
     if (!build->parsed()) return 2;
+    const base::ThreadLimit limit(o->threads);  // every parallel path, for the whole build
     // On several MPI ranks every rank reads the scene file and checks the target itself; the
     // errors are agreed, so no rank is left waiting for one that stopped.
     base::RankGroup& ranks = processRanks();

@@ -115,5 +115,33 @@ TEST(CliThreads, GrfRunsOnOneThreadWithThreadsOne) {
   expectOneThreadAndSameBytes(dir, {"grf", "--dims", "64,64,64", "--seed", "7"}, ".npy");
 }
 
+// The commands that gained --threads with the GL move's pass over the CLI: scene builds (every
+// surface mode), unpack, export and the exact tracer (Embree's TBB bounded through the limit).
+TEST(CliThreads, SceneBuildRunsOnOneThreadWithThreadsOne) {
+  TempDir dir;
+  const std::string house = std::string(VOXLINK_SAMPLES_DIR) + "/scenes/house.scene.json";
+  for (const char* surface : {"mean", "planes", "triangles"})
+    expectOneThreadAndSameBytes(
+        dir, {"scene", "build", house, "--resolution", "96", "--surface", surface}, ".vxl");
+}
+
+TEST(CliThreads, UnpackAndExportRunOnOneThreadWithThreadsOne) {
+  VOXLINK_REQUIRE_DATA(kFoot);
+  TempDir dir;
+  const std::string vxl = dir.file("foot.vxl"), packed = dir.file("foot.packed.vxl");
+  ASSERT_EQ(runVoxlink({"convert", dataPath(kFoot), "--threshold", "60", "-o", vxl, "-q"}).status,
+            0);
+  ASSERT_EQ(runVoxlink({"pack", vxl, "-o", packed, "-q"}).status, 0);
+  expectOneThreadAndSameBytes(dir, {"unpack", packed}, ".vxl");
+  expectOneThreadAndSameBytes(dir, {"export", vxl}, ".nrrd");
+}
+
+TEST(CliThreads, RenderExactRunsOnOneThreadWithThreadsOne) {
+  TempDir dir;
+  const std::string house = std::string(VOXLINK_SAMPLES_DIR) + "/scenes/house.scene.json";
+  expectOneThreadAndSameBytes(dir, {"render-exact", house, "--size", "48x48", "--effects", "all"},
+                              ".png");
+}
+
 }  // namespace
 }  // namespace voxlink::testing
