@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -168,6 +169,7 @@ void runOnThreadsErased(unsigned threads, const std::function<void(unsigned)>& w
     std::condition_variable left;
     bool closed = false;
     unsigned inside = 0;
+    std::exception_ptr failure;  // the first exception a work(t) threw, rethrown to the caller
   };
   const auto gate = std::make_shared<Gate>();
   HelperPool& pool = *poolSlot();
@@ -177,22 +179,33 @@ void runOnThreadsErased(unsigned threads, const std::function<void(unsigned)>& w
       if (gate->closed) return;
       ++gate->inside;
     }
-    {
+    std::exception_ptr failure;
+    try {
       WorkerScope scope;
       work(t);
+    } catch (...) {  // escaping a helper would end the process; the caller rethrows it
+      failure = std::current_exception();
     }
     std::lock_guard lock(gate->mutex);
+    if (failure && !gate->failure) gate->failure = failure;
     if (--gate->inside == 0) gate->left.notify_all();
   });
-  {
+  // Whatever work(0) does, the caller closes the gate and waits: helpers inside still use `work`
+  // and the caller's stack, and the pool counts this call until callEnded().
+  std::exception_ptr failure;
+  try {
     WorkerScope scope;
     work(0);
+  } catch (...) {
+    failure = std::current_exception();
   }
   std::unique_lock lock(gate->mutex);
   gate->closed = true;
   gate->left.wait(lock, [&] { return gate->inside == 0; });
+  if (!failure) failure = gate->failure;
   lock.unlock();
   pool.callEnded();
+  if (failure) std::rethrow_exception(failure);
 }
 
 bool insideParallelWork() { return workingForFacility; }

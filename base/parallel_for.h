@@ -93,7 +93,8 @@ void runOnThreadsErased(unsigned threads, const std::function<void(unsigned)>& w
 // address-space limit, as on a shared node or in a container), or one the scheduler has not run
 // by the time the caller's work(0) returns, is left out and the others do its share, so `work`
 // must take its items from a shared counter, never decide them by t; t may index per-thread
-// scratch of threadCount(threads) entries.
+// scratch of threadCount(threads) entries. An exception from work(t) on any thread reaches the
+// caller once every started work(t) has returned (the first one thrown, if several did).
 template <class Work>
 void runOnThreads(unsigned threads, Work&& work) {
   threads = detail::insideParallelWork() ? 1u : threadCount(threads);

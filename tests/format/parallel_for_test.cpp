@@ -17,6 +17,7 @@
 #include <mutex>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -182,6 +183,46 @@ TEST(ParallelFor, CallersOnSeveralThreadsEachGetEveryIndexOnce) {
     });
   for (std::thread& t : callers) t.join();
   EXPECT_EQ(wrong.load(), 0);
+}
+
+TEST(RunOnThreads, AnExceptionOnAHelperReachesTheCaller) {
+  std::atomic<bool> helperStarted{false};
+  bool threw = false;
+  try {
+    runOnThreads(2, [&](unsigned t) {
+      if (t == 1) {
+        helperStarted = true;
+        throw std::runtime_error("helper failed");
+      }
+      // Give the helper time to start; one the system never runs is left out (then no throw).
+      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (!helperStarted && std::chrono::steady_clock::now() < until) std::this_thread::yield();
+    });
+  } catch (const std::runtime_error& e) {
+    threw = true;
+    EXPECT_STREQ(e.what(), "helper failed");
+  }
+  if (!helperStarted) GTEST_SKIP() << "no helper ran within 10 s on this machine";
+  EXPECT_TRUE(threw);
+}
+
+TEST(RunOnThreads, AnExceptionOnTheCallerWaitsForHelpersInsideAndThePoolStaysUsable) {
+  for (int call = 0; call < 50; ++call) {
+    std::atomic<int> entered{0}, finished{0};
+    EXPECT_THROW(runOnThreads(3,
+                              [&](unsigned t) {
+                                if (t == 0) throw std::logic_error("caller failed");
+                                ++entered;
+                                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+                                ++finished;
+                              }),
+                 std::logic_error);
+    // Helpers that got in before the gate closed have finished: they used the caller's state.
+    EXPECT_EQ(entered.load(), finished.load());
+  }
+  std::vector<std::atomic<int>> seen(1000);
+  parallelFor(seen.size(), 3, [&](uint64_t i) { seen[i].fetch_add(1); });
+  for (const std::atomic<int>& s : seen) EXPECT_EQ(s.load(), 1);
 }
 
 }  // namespace
