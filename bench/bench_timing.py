@@ -5,6 +5,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 
 def run(cmd, env=None):
@@ -16,6 +17,17 @@ def run(cmd, env=None):
         sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
     wall, rss = re.search(r"TIME ([\d.]+) (\d+)", p.stderr).groups()
     return p.stdout, float(wall), int(rss) / 1024.0
+
+
+def run_wall(cmd, env=None):
+    """Runs cmd; returns (stdout, wall seconds from a monotonic clock: finer than /usr/bin/time's
+    10 ms, for sub-second commands). Exits the script with the command's output when it fails."""
+    start = time.monotonic()
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    seconds = time.monotonic() - start
+    if p.returncode != 0:
+        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
+    return p.stdout, seconds
 
 
 def fresh(output):

@@ -20,9 +20,10 @@ import json
 import os
 import re
 import statistics
-import subprocess
 import sys
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_timing import run_wall  # noqa: E402
 
 parser = argparse.ArgumentParser()
 parser.add_argument("voxlink")
@@ -43,13 +44,7 @@ MESHES = {"dragon": "mesh/stanford_dragon_decimated.ply", "bunny": "mesh/c3dtm_s
           "teapot": "mesh/c3dtm_teapot.obj"}
 
 
-def run(cmd):
-    start = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    seconds = time.monotonic() - start
-    if p.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
-    return p.stdout, seconds
+run = run_wall  # (stdout, seconds)
 
 
 

@@ -20,10 +20,9 @@ import json
 import os
 import re
 import statistics
-import subprocess
 import sys
-import time
 
+from bench_timing import run_wall
 from scene_paths import absolute_paths
 
 voxlink, scenes_dir, data = sys.argv[1:4]
@@ -48,13 +47,7 @@ RENDER_REPEATS = "1" if quick else "3"
 SIZE = option("--size", "256x256")
 
 
-def run(cmd):
-    start = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    seconds = time.monotonic() - start
-    if p.returncode != 0:
-        sys.exit(f"failed: {' '.join(cmd)}\n{p.stdout}{p.stderr}")
-    return p.stdout, seconds
+run = run_wall  # (stdout, seconds)
 
 
 def scenes():

@@ -422,6 +422,22 @@ def vxl_seeds(s, d, out, voxlink):
             for name, path in (("scene_sphere", scene), ("scene_sphere_packed", packed)):
                 with open(path, "rb") as f:
                     s.add("vxl", name, f.read())
+    # A small mesh scene in the two surface modes of format 2.1 (per-voxel fragment lists FROF/FRAG;
+    # triangle references TRID/TRIS), so the fuzzer starts inside their validators.
+    mesh = os.path.join(tmp, "box.obj")
+    with open(mesh, "w") as f:
+        f.write("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\n"
+                "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n")
+    mesh_json = os.path.join(tmp, "box.scene.json")
+    with open(mesh_json, "w") as f:
+        f.write('{"grid": {"resolution": 12}, "objects": [{"type": "mesh", "file": "box.obj"}]}')
+    for mode in ("planes", "triangles"):
+        out = os.path.join(tmp, f"box_{mode}.vxl")
+        if subprocess.run([voxlink, "scene", "build", mesh_json, "-o", out, "--surface", mode],
+                          capture_output=True).returncode == 0:
+            with open(out, "rb") as f:
+                s.add("vxl", f"scene_box_{mode}", f.read())
 
 
 def main():
