@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "format/surface_mode.h"
+
 namespace voxlink::report {
 
 using format::FileHeader;
@@ -24,6 +26,9 @@ SceneFootprint computeSceneFootprint(const VoxLinkFile& f) {
   s.spheres = h.sphereCount;
   s.sphereRefs = h.sphereRefCount;
   s.sphereVoxels = h.sphereVoxelCount;
+  s.surfaceMode = std::string(format::surfaceModeName(f.surfaceMode()));
+  s.fragments = h.fragmentCount;
+  s.triangles = h.triangleCount;
   for (const SectionEntry& e : f.sectionTable()) {
     switch (static_cast<SectionId>(e.id)) {
       case SectionId::kValues:
@@ -188,6 +193,16 @@ std::string footprintTable(const FootprintReport& r) {
         (unsigned long long)s.volumeVoxels, (unsigned long long)s.surfaceVoxels,
         (unsigned long long)s.materials, (unsigned long long)s.sphereVoxels,
         (unsigned long long)s.spheres, (unsigned long long)s.sphereRefs);
+    if (s.surfaceMode == "planes")
+      add("  surface mode planes: %llu fragments, %.3f per surface voxel\n",
+          (unsigned long long)s.fragments,
+          s.surfaceVoxels ? double(s.fragments) / s.surfaceVoxels : 0.0);
+    else if (s.surfaceMode == "triangles")
+      add("  surface mode triangles: %llu triangles, %llu references, %.3f per surface voxel\n",
+          (unsigned long long)s.triangles, (unsigned long long)s.fragments,
+          s.surfaceVoxels ? double(s.fragments) / s.surfaceVoxels : 0.0);
+    else
+      add("  surface mode mean: one fragment per surface voxel\n");
     add("  by kind: bricks+rows %.3f MB, volume %.3f MB, surfaces %.3f MB, spheres %.3f MB\n",
         mb(s.structureBytes), mb(s.volumeBytes), mb(s.surfaceBytes), mb(s.sphereBytes));
   }
@@ -246,15 +261,12 @@ std::string footprintJson(const FootprintReport& r) {
   j["ratio_vs_dense"] = r.ratioVsDense;
   if (r.scene) {
     const SceneFootprint& s = *r.scene;
-    j["scene"] = {{"volume_voxels", s.volumeVoxels},
-                  {"surface_voxels", s.surfaceVoxels},
-                  {"sphere_voxels", s.sphereVoxels},
-                  {"materials", s.materials},
-                  {"spheres", s.spheres},
-                  {"sphere_refs", s.sphereRefs},
-                  {"structure_bytes", s.structureBytes},
-                  {"volume_bytes", s.volumeBytes},
-                  {"surface_bytes", s.surfaceBytes},
+    j["scene"] = {{"volume_voxels", s.volumeVoxels}, {"surface_voxels", s.surfaceVoxels},
+                  {"sphere_voxels", s.sphereVoxels}, {"surface_mode", s.surfaceMode},
+                  {"fragments", s.fragments},        {"triangles", s.triangles},
+                  {"materials", s.materials},        {"spheres", s.spheres},
+                  {"sphere_refs", s.sphereRefs},     {"structure_bytes", s.structureBytes},
+                  {"volume_bytes", s.volumeBytes},   {"surface_bytes", s.surfaceBytes},
                   {"sphere_bytes", s.sphereBytes}};
   }
   if (r.peer) {

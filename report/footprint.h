@@ -35,6 +35,9 @@ struct SceneFootprint {
   uint64_t volumeVoxels = 0;   // voxels with a volume sample
   uint64_t surfaceVoxels = 0;  // voxels with a surface fragment
   uint64_t sphereVoxels = 0;   // voxels that reference at least one sphere
+  std::string surfaceMode;     // format/surface_mode.h's name: mean, planes, triangles
+  uint64_t fragments = 0;      // FRAG entries (planes) or TRID references (triangles)
+  uint64_t triangles = 0;      // TRIS entries (triangles)
   uint64_t materials = 0, spheres = 0, sphereRefs = 0;
   uint64_t structureBytes = 0;  // BOCC, BRNK, BVOX, ROWS, MASK
   uint64_t volumeBytes = 0;     // VALU, GRAD, VMSK

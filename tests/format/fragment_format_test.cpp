@@ -16,6 +16,7 @@
 #include "format/voxlink_file.h"
 #include "pack/open_file.h"
 #include "pack/packed_file.h"
+#include "report/footprint.h"
 #include "tests/support/test_util.h"
 
 namespace voxlink::format {
@@ -91,6 +92,15 @@ TEST(FragmentFormat, PlanesRoundTripPlainAndPacked) {
   EXPECT_EQ(f->fragments()[0].offset, -400);
   EXPECT_EQ(surfaceMaterial(f->fragments()[1].word), 1);
   EXPECT_EQ(f->fragments()[2].offset, 17);
+  // `voxlink info` names the mode and counts the lists.
+  const report::FootprintReport footprint = report::computeFootprint(*f);
+  ASSERT_TRUE(footprint.scene);
+  EXPECT_EQ(footprint.scene->surfaceMode, "planes");
+  EXPECT_EQ(footprint.scene->fragments, 3u);
+  EXPECT_NE(report::footprintTable(footprint).find(
+                "surface mode planes: 3 fragments, 1.500 per surface voxel"),
+            std::string::npos)
+      << report::footprintTable(footprint);
   ASSERT_TRUE(pack::packFile(*f, dir.file("planes.packed.vxl")));
   auto unpacked =
       pack::unpackFile(testing::readBytes(dir.file("planes.packed.vxl")), "p", uint64_t{1} << 30);
@@ -116,6 +126,15 @@ TEST(FragmentFormat, TrianglesRoundTrip) {
   ASSERT_EQ(f->triangleRefs().size(), 2u);
   EXPECT_EQ(f->triangleRefs()[1], 2u);
   EXPECT_EQ(f->triangles()[2].vertices[2], 3.0f);
+  const report::FootprintReport footprint = report::computeFootprint(*f);
+  ASSERT_TRUE(footprint.scene);
+  EXPECT_EQ(footprint.scene->surfaceMode, "triangles");
+  EXPECT_NE(report::footprintJson(footprint).find(R"("triangles": 3)"), std::string::npos)
+      << report::footprintJson(footprint);
+  EXPECT_NE(report::footprintTable(footprint).find(
+                "surface mode triangles: 3 triangles, 2 references, 2.000 per surface voxel"),
+            std::string::npos)
+      << report::footprintTable(footprint);
 }
 
 TEST(FragmentFormat, BuilderRefusesWhatTheFormatCannotSay) {
