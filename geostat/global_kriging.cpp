@@ -20,9 +20,10 @@ namespace voxlink::geostat {
 namespace {
 
 constexpr size_t kBlockNodes = 256;  // nodes per dtrsm: large enough for level-3 speed
-// One multiply-add of the sparse forms (an indexed load from K^-1) costs about this many
-// flops of OpenBLAS's dgemm on this machine (docs/kriging.md, "Compact support").
-constexpr double kSparsePairFlops = 8;
+// A node's sparse forms cost about this many times nnz^2 flops of OpenBLAS's dtrmm (one core,
+// measured: 0.45-0.54 ns per nnz^2 against 0.034 ns per n^2 flop; docs/kriging.md, "Compact
+// support").
+constexpr double kSparsePairFlops = 14;
 // Below this many samples the factorization (n^3 / 3 flops: 0.13 s at 2048 on one core) runs
 // on one OpenBLAS thread: the outputs are then the same bytes for any --threads.
 constexpr size_t kThreadedFactorSamples = 2048;
@@ -284,7 +285,7 @@ void solveBlockWithInverse(const Kriger& kriger, const GridSpec& grid, const Fac
 }
 
 // Whether K^-1 and the sparse forms beat L^-1 (or L) over the whole grid, in dgemm flops: the
-// inverse costs n^3 / 3 more to form (dpotri against dtrtri), each node min(8 nnz^2, 2 n^2)
+// inverse costs n^3 / 3 more to form (dpotri against dtrtri), each node min(14 nnz^2, 2 n^2)
 // against n^2 (dtrmm; a dtrsm runs at about half its speed). nnz from nodes sampled evenly over
 // the whole grid, so every rank and thread count decides alike (byte-identical outputs).
 bool inverseIsCheaper(const Kriger& kriger, const GridSpec& grid, const SupportGatherer& gatherer) {
