@@ -166,6 +166,20 @@ TEST(GlobalCompactSupport, NonzerosFromNoneToAllEqualDense) {
   }
 }
 
+// Rows of 512 nodes 0.5 apart cross the samples: more than half a block's nodes see all of
+// them and go through the dgemm in several batches; rows far away keep the whole job cheap.
+TEST(GlobalCompactSupport, BlocksFullOfDenseNodesEqualDense) {
+  const PointSet s = randomPoints(300, 13);
+  const Kriger k = kriger(s, model(VariogramType::kSpherical, 0.5, 8, 150));
+  const GridSpec grid{{512, 41, 1}, {-78, -2000, 0}, {0.5, 100, 1}};
+  const Grid dense = krige(k, grid, Solver::kTriangular);
+  const Grid automatic = krige(k, grid, Solver::kAuto);
+  EXPECT_GT(automatic.summary.sparseNodes, 0u);
+  EXPECT_GT(grid.nodeCount() - automatic.summary.sparseNodes, 300u);
+  EXPECT_LE(worstRelative(automatic.values, dense.values, 3), 1e-10);
+  EXPECT_LE(worstRelative(automatic.variances, dense.variances, 8.5), 1e-10);
+}
+
 TEST(GlobalCompactSupport, SharesAndThreadsWriteTheSameBytes) {
   const PointSet s = randomPoints(500, 8);
   const Kriger k = kriger(s, model(VariogramType::kSpherical, 1, 9, 30));
