@@ -309,8 +309,9 @@ bool inverseIsCheaper(const Kriger& kriger, const GridSpec& grid, const SupportG
 
 uint64_t globalKrigingBytes(size_t samples, unsigned threads) {
   // The factor (or K^-1), a block of covariance columns and a node's support per thread, the
-  // vectors of length n (drift terms up to 10 of them, their K^-1 F) and the sample buckets.
-  return 8ull * samples * (samples + (kBlockNodes + 2) * base::threadCount(threads) + 24);
+  // vectors of length n (up to 11 drift terms: F, L^-1 F and K^-1 F; r, alpha) and the sample
+  // buckets.
+  return 8ull * samples * (samples + (kBlockNodes + 2) * base::threadCount(threads) + 40);
 }
 
 Result<KrigingSummary> krigeGridGlobal(const Kriger& kriger, const GridSpec& grid,
