@@ -309,7 +309,7 @@ bool inverseIsCheaper(const Kriger& kriger, const GridSpec& grid, const SupportG
 
 uint64_t globalKrigingBytes(size_t samples, unsigned threads) {
   // The factor (or K^-1), a block of covariance columns and a node's support per thread, the
-  // vectors of length n (up to 11 drift terms: F, L^-1 F and K^-1 F; r, alpha) and the sample
+  // vectors of length n (up to 11 drift terms: L^-1 F and K^-1 F; r, alpha) and the sample
   // buckets.
   return 8ull * samples * (samples + (kBlockNodes + 2) * base::threadCount(threads) + 40);
 }
