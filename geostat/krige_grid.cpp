@@ -26,6 +26,10 @@ std::string KrigingSummary::text() const {
   if (driftReducedNodes > 0)
     out << "drift: " << driftReducedNodes
         << " nodes kriged without drift terms that were dependent over their samples\n";
+  if (sparseNodes > 0)
+    out << "compact support: " << sparseNodes << " nodes solved on the samples within the range"
+        << " only (mean " << double(sparseNonzeros) / double(sparseNodes) << ", at most "
+        << sparseMostNonzeros << "; " << sparseEmptyNodes << " nodes with none)\n";
   out << "time: " << seconds << " s\n";
   return out.str();
 }
@@ -46,6 +50,10 @@ void KrigingSummary::add(const KrigingSummary& other) {
   regularizedNodes += other.regularizedNodes;
   driftReducedNodes += other.driftReducedNodes;
   systemsBounded += other.systemsBounded;
+  sparseNodes += other.sparseNodes;
+  sparseNonzeros += other.sparseNonzeros;
+  sparseMostNonzeros = std::max(sparseMostNonzeros, other.sparseMostNonzeros);
+  sparseEmptyNodes += other.sparseEmptyNodes;
   worstCondition = std::max(worstCondition, other.worstCondition);
   worstConditionBound = std::max(worstConditionBound, other.worstConditionBound);
   largestJitter = std::max(largestJitter, other.largestJitter);

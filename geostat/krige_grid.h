@@ -38,6 +38,9 @@ struct KrigingSummary {
   double worstConditionBound = 0;
   double largestJitter = 0;
   double meanNeighbours = 0;
+  // Global kriging with a compactly supported covariance (compact_support.h): nodes solved on
+  // their nonzero covariances alone, the sum and the largest of those counts, nodes with none.
+  uint64_t sparseNodes = 0, sparseNonzeros = 0, sparseMostNonzeros = 0, sparseEmptyNodes = 0;
   double seconds = 0;
 
   std::string text() const;  // a few lines for the command's summary
@@ -58,6 +61,11 @@ struct GridKrigingOptions {
   // With KrigingOptions::externalDrift: the drift's value at every node of the grid, x fastest
   // (nodeCount() values, finite).
   const double* externalDrift = nullptr;
+  // Global kriging: kAuto forms K^-1 and solves each node on its nonzero covariances when the
+  // covariance has compact support (spherical) and that costs less; the others force a path
+  // (kSparse: every node on its nonzero covariances; for tests and measurements).
+  enum class GlobalSolver { kAuto, kTriangular, kSparse };
+  GlobalSolver globalSolver = GlobalSolver::kAuto;
 };
 
 Result<KrigingSummary> krigeGrid(const Kriger& kriger, const GridSpec& grid, const SliceSink& sink,
