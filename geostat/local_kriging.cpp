@@ -227,24 +227,34 @@ class BrickSolver {
       below = dk > step ? (dk - step) * (dk - step) * (1 - 1e-9) : 0.0;
       above = (dk + step) * (dk + step) * (1 + 1e-9);
     }
-    size_t inside = 0;
+    // Branch-free passes: the distances come in sample order, so which side of the band a
+    // candidate falls is a coin toss the branch predictor loses (it was most of solveNode).
+    ts.band.resize(m);
+    ts.taken.resize(m);
+    size_t inside = 0, banded = 0;
     for (;;) {
-      inside = 0;
-      ts.band.clear();
+      inside = banded = 0;
       for (size_t j = 0; j < m; ++j) {
         const double d = ts.d2[j];
-        inside += d < below;
-        if (d >= below && d <= above) ts.band.push_back({d, static_cast<uint32_t>(j)});
+        const bool in = d < below;
+        ts.taken[j] = in;
+        ts.band[banded] = {d, static_cast<uint32_t>(j)};
+        banded += !in & (d <= above);
+        inside += in;
       }
-      if (inside < k_ && inside + ts.band.size() >= k_) break;
+      if (inside < k_ && inside + banded >= k_) break;
       below = 0, above = INFINITY;
     }
     const auto nth = ts.band.begin() + static_cast<long>(k_ - inside - 1);
-    std::nth_element(ts.band.begin(), nth, ts.band.end());
-    ts.taken.assign(m, 0);
+    std::nth_element(ts.band.begin(), nth, ts.band.begin() + static_cast<long>(banded));
     for (auto it = ts.band.begin(); it <= nth; ++it) ts.taken[it->second] = 1;
-    for (size_t j = 0; j < m; ++j)
-      if (ts.d2[j] < below || ts.taken[j]) ts.picked.push_back(static_cast<uint32_t>(j));
+    ts.picked.resize(m);
+    size_t picked = 0;
+    for (size_t j = 0; j < m; ++j) {
+      ts.picked[picked] = static_cast<uint32_t>(j);
+      picked += ts.taken[j];
+    }
+    ts.picked.resize(picked);
     ts.lastKth = nth->first;
     ts.lastNode = q;
   }
@@ -355,8 +365,9 @@ class BrickSolver {
     }
     ++ts.summary.systemsReused;
     ts.rhs.resize(n);
-    const Variogram& v = kriger_.variogram();
-    for (size_t i = 0; i < n; ++i) ts.rhs[i] = v.covariance(std::sqrt(ts.d2[ts.picked[i]]));
+    ts.work.resize(n);
+    for (size_t i = 0; i < n; ++i) ts.work[i] = ts.d2[ts.picked[i]];
+    kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
     spd::solveLower(f->l.data(), n, spd::paddedSize(n), ts.rhs.data());
     const double yy = spd::dot(ts.rhs.data(), ts.rhs.data(), n);
     const double ry = spd::dot(f->r.data(), ts.rhs.data(), n);
