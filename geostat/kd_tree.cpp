@@ -53,12 +53,10 @@ using Tree = nanoflann::KDTreeSingleIndexAdaptor<SquaredDistance, Cloud, 3, uint
 class NearestSet {
  public:
   NearestSet(size_t k, double bound2, std::vector<Neighbour>& heap)
-      : k_(k), bound2_(bound2), heap_(heap) {}
+      : k_(k), bound2_(bound2), heap_(heap), worst_(widened(bound2)) {}
   bool full() const { return heap_.size() == k_; }
-  double worstDist() const {
-    const double worst = full() ? std::min(bound2_, heap_.front().distance) : bound2_;
-    return std::nextafter(worst * kBoundMargin, INFINITY);
-  }
+  // nanoflann asks at every leaf point and branch: kept, not recomputed (nextafter is a call).
+  double worstDist() const { return worst_; }
   bool addPoint(double d2, uint32_t index) {
     const Neighbour n{index, d2};  // squared until the end
     if (d2 > bound2_) return true;
@@ -69,14 +67,19 @@ class NearestSet {
       std::pop_heap(heap_.begin(), heap_.end(), closer);
       heap_.back() = n;
       std::push_heap(heap_.begin(), heap_.end(), closer);
+    } else {
+      return true;
     }
+    if (full()) worst_ = widened(std::min(bound2_, heap_.front().distance));
     return true;
   }
 
  private:
+  static double widened(double d2) { return std::nextafter(d2 * kBoundMargin, INFINITY); }
   size_t k_;
   double bound2_;
   std::vector<Neighbour>& heap_;
+  double worst_;
 };
 
 // Every point within a squared radius, stopping once there are more than maxCount.

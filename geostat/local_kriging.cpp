@@ -10,6 +10,7 @@
 #include "base/parallel_for.h"
 #include "geostat/detail/drift.h"
 #include "geostat/detail/factorization_cache.h"
+#include "geostat/detail/neighbour_pick.h"
 #include "geostat/detail/spd_kernels.h"
 
 namespace voxlink::geostat {
@@ -25,17 +26,13 @@ struct Box {
   uint64_t nodes() const { return uint64_t{hi[0] - lo[0]} * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
 };
 
-struct ThreadState {
+struct ThreadState : PickState {
   explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
   std::vector<Neighbour> nearest;
-  std::vector<uint32_t> candidates;      // sample indices, ascending
-  std::vector<double> cx, cy, cz, pair;  // their coordinates and covariances (m x m)
-  std::vector<double> d2, rhs, work, drift;
-  std::vector<std::pair<double, uint32_t>> band;  // (squared distance, candidate) to rank
-  std::vector<uint8_t> taken;
-  double lastKth = -1;  // the brick's previous node's k-th squared distance (-1: none yet)
-  Point3 lastNode{};
-  std::vector<uint32_t> picked, lastPicked, key;
+  std::vector<uint32_t> candidates;  // sample indices, ascending
+  std::vector<double> pair;          // the candidates' covariances (m x m)
+  std::vector<double> rhs, work, drift;
+  std::vector<uint32_t> lastPicked, key;
   FactorizationCache cache;
   const Factorization* last = nullptr;  // the previous node's, valid while lastPicked is
   KrigingSummary summary;
@@ -189,66 +186,6 @@ class BrickSolver {
     return c;
   }
 
-  // The node's k nearest candidates, ascending, in ts.picked; false when none is in reach.
-  // Order: distance, then sample index (candidates are in sample order), as KdTree::nearest.
-  bool pickNeighbours(const Point3& q, ThreadState& ts) const {
-    const size_t m = ts.candidates.size();
-    ts.d2.resize(m);
-    const double reach2 = std::isfinite(maxDistance_) ? maxDistance_ * maxDistance_ : INFINITY;
-    size_t inReach = 0;
-    for (size_t j = 0; j < m; ++j) {  // as KdTree computes them, so ties break alike
-      const double dx = ts.cx[j] - q[0], dy = ts.cy[j] - q[1], dz = ts.cz[j] - q[2];
-      ts.d2[j] = dx * dx + dy * dy + dz * dz;
-      inReach += ts.d2[j] <= reach2;
-    }
-    ts.picked.clear();
-    if (inReach <= k_) {
-      for (size_t j = 0; j < m; ++j)
-        if (ts.d2[j] <= reach2) ts.picked.push_back(static_cast<uint32_t>(j));
-      return !ts.picked.empty();
-    }
-    pickNearest(q, ts);
-    return true;
-  }
-
-  // The k smallest (d2, index) of the candidates. The previous node p of the brick bounds this
-  // node's k-th distance: |d_k(q) - d_k(p)| <= |q - p|. Candidates below that band are in,
-  // those above it out, and only the few inside it are ranked. The bounds only save work: the
-  // pick is exact whatever they are, as long as fewer than k lie below and k in all up to the
-  // band's top (else the band is widened to everything).
-  void pickNearest(const Point3& q, ThreadState& ts) const {
-    const size_t m = ts.d2.size();
-    double below = 0, above = INFINITY;
-    if (ts.lastKth >= 0) {
-      const double dk = std::sqrt(ts.lastKth);
-      const double step = std::sqrt((q[0] - ts.lastNode[0]) * (q[0] - ts.lastNode[0]) +
-                                    (q[1] - ts.lastNode[1]) * (q[1] - ts.lastNode[1]) +
-                                    (q[2] - ts.lastNode[2]) * (q[2] - ts.lastNode[2]));
-      below = dk > step ? (dk - step) * (dk - step) * (1 - 1e-9) : 0.0;
-      above = (dk + step) * (dk + step) * (1 + 1e-9);
-    }
-    size_t inside = 0;
-    for (;;) {
-      inside = 0;
-      ts.band.clear();
-      for (size_t j = 0; j < m; ++j) {
-        const double d = ts.d2[j];
-        inside += d < below;
-        if (d >= below && d <= above) ts.band.push_back({d, static_cast<uint32_t>(j)});
-      }
-      if (inside < k_ && inside + ts.band.size() >= k_) break;
-      below = 0, above = INFINITY;
-    }
-    const auto nth = ts.band.begin() + static_cast<long>(k_ - inside - 1);
-    std::nth_element(ts.band.begin(), nth, ts.band.end());
-    ts.taken.assign(m, 0);
-    for (auto it = ts.band.begin(); it <= nth; ++it) ts.taken[it->second] = 1;
-    for (size_t j = 0; j < m; ++j)
-      if (ts.d2[j] < below || ts.taken[j]) ts.picked.push_back(static_cast<uint32_t>(j));
-    ts.lastKth = nth->first;
-    ts.lastNode = q;
-  }
-
   // The covariances among the picked candidates (lower triangle, column-major) plus jitter on
   // the diagonal, into f.l; returns the 1-norm of that matrix.
   double gather(ThreadState& ts, double jitter, Factorization& f) const {
@@ -328,7 +265,7 @@ class BrickSolver {
     const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
     const Point3 q = centred(x, y, z);
     ++ts.summary.nodes;
-    if (!pickNeighbours(q, ts)) {
+    if (!pickNeighbours(q, k_, maxDistance_, ts)) {
       values_[at] = variances_[at] = noData_;
       ++ts.summary.nodesWithoutData;
       return Status::ok();
@@ -355,8 +292,9 @@ class BrickSolver {
     }
     ++ts.summary.systemsReused;
     ts.rhs.resize(n);
-    const Variogram& v = kriger_.variogram();
-    for (size_t i = 0; i < n; ++i) ts.rhs[i] = v.covariance(std::sqrt(ts.d2[ts.picked[i]]));
+    ts.work.resize(n);
+    for (size_t i = 0; i < n; ++i) ts.work[i] = ts.d2[ts.picked[i]];
+    kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
     spd::solveLower(f->l.data(), n, spd::paddedSize(n), ts.rhs.data());
     const double yy = spd::dot(ts.rhs.data(), ts.rhs.data(), n);
     const double ry = spd::dot(f->r.data(), ts.rhs.data(), n);

@@ -174,11 +174,20 @@ VOXLINK_VECTOR_CLONES double inverseNormComparisonBound(const double* l, size_t 
     x[j] = xj;
     for (size_t i = j + 1; i < n; ++i) x[i] += std::fabs(cj[i]) * xj;
   }
+  // Split accumulators as in dotInline: one running sum was a chain of n^2 / 2 dependent adds
+  // (every term is >= 0, so the order moves only the last bits of a bound).
   for (size_t i = n; i-- > 0;) {
     const double* ci = l + i * ld;
-    double sum = 1.0;
-    for (size_t k = i + 1; k < n; ++k) sum += std::fabs(ci[k]) * y[k];
-    y[i] = sum * ci[i];
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    size_t k = i + 1;
+    for (; k + 4 <= n; k += 4) {
+      s0 += std::fabs(ci[k]) * y[k];
+      s1 += std::fabs(ci[k + 1]) * y[k + 1];
+      s2 += std::fabs(ci[k + 2]) * y[k + 2];
+      s3 += std::fabs(ci[k + 3]) * y[k + 3];
+    }
+    for (; k < n; ++k) s0 += std::fabs(ci[k]) * y[k];
+    y[i] = (1.0 + ((s0 + s1) + (s2 + s3))) * ci[i];
   }
   return *std::max_element(x, x + n) * *std::max_element(y, y + n);
 }

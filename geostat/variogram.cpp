@@ -89,6 +89,29 @@ double Variogram::correlation(double h) const {
   return 0.0;
 }
 
+void Variogram::covariancesOfSquared(const double* squared, double* out, size_t n) const {
+  const double a = params_.range, psill = params_.psill, total = sill();
+  switch (params_.type) {
+    case VariogramType::kExponential:
+      for (size_t i = 0; i < n; ++i) {
+        const double h = std::sqrt(squared[i]);
+        out[i] = h == 0.0 ? total : psill * std::exp(-3.0 * h / a);
+      }
+      return;
+    case VariogramType::kSpherical:
+      for (size_t i = 0; i < n; ++i) {  // the same operations as correlation(), so the same bits
+        const double h = std::sqrt(squared[i]), t = h / a;
+        const double c = h >= a ? 0.0 : 1.0 - 1.5 * t + 0.5 * t * t * t;
+        out[i] = h == 0.0 ? total : psill * c;
+      }
+      return;
+    case VariogramType::kGaussian:
+    case VariogramType::kMatern:
+      break;
+  }
+  for (size_t i = 0; i < n; ++i) out[i] = covariance(std::sqrt(squared[i]));
+}
+
 std::string Variogram::describe() const {
   std::ostringstream out;
   out.precision(6);

@@ -10,7 +10,8 @@
 # headers, nanoflann for Kriging's k-d tree, Imath for half floats. `tests` adds the test
 # frameworks, tools the tests call, Python, ParaView, clang, R and Open MPI (the build enables
 # MPI when it finds Open MPI; without it `voxlink` is the same program minus mpirun support).
-# matplotlib and the zstd tool are for bench/report.py and its ctest (docs/report.md).
+# matplotlib and the zstd tool are for bench/report.py and its ctest (docs/report.md); scipy is
+# for bench/neighbour_set_changes.py (docs/kriging.md).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 sample=(
@@ -41,7 +42,7 @@ tests=(
   paraview python3-paraview
   clang-14 libclang-rt-14-dev clang-format-14
   r-cran-gstat
-  python3-matplotlib zstd
+  python3-matplotlib zstd python3-scipy
 )
 if [ $# -eq 0 ]; then
   echo "usage: $0 sample [tests]" >&2

@@ -12,6 +12,7 @@
 // where scale() is the Matern scale parameter solved so that correlation(range) = exp(-3).
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "base/error.h"
@@ -42,6 +43,9 @@ class Variogram {
   double correlation(double h) const;
   // Covariance of two samples at distance h; h == 0 includes the nugget.
   double covariance(double h) const { return h == 0.0 ? sill() : params_.psill * correlation(h); }
+  // out[i] = covariance(sqrt(squared[i])) for n distances, bit for bit: one switch and a loop
+  // the compiler vectorizes (spherical), not a call per distance (local kriging's right-hand side).
+  void covariancesOfSquared(const double* squared, double* out, size_t n) const;
   double gamma(double h) const {
     return h == 0.0 ? 0.0 : params_.nugget + params_.psill * (1.0 - correlation(h));
   }

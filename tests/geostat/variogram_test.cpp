@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 namespace voxlink::geostat {
 namespace {
@@ -44,6 +46,24 @@ TEST(Variogram, NuggetOnlyAppliesAwayFromZero) {
   EXPECT_NEAR(v.covariance(1e-9), 0.75, 1e-9);
   EXPECT_NEAR(v.gamma(10), 1.0, 1e-15);
   EXPECT_NEAR(v.gamma(5), 0.25 + 0.75 * (1.5 * 0.5 - 0.5 * 0.125), 1e-15);
+}
+
+// Local kriging's right-hand sides come from the batched form: it must give the same bits as
+// covariance(sqrt(d2)) one by one, at 0, inside, at and beyond the range.
+TEST(Variogram, BatchedCovariancesEqualOneByOne) {
+  std::vector<double> squared{0.0, 1e-300, 1e-18, 0.25, 1.0, 2.0, 17.3, 99.99, 100.0, 100.01, 1e6};
+  for (int i = 1; i < 200; ++i) squared.push_back(0.731 * i);  // past the 4-wide vector tail
+  for (VariogramType t : {VariogramType::kExponential, VariogramType::kSpherical,
+                          VariogramType::kGaussian, VariogramType::kMatern}) {
+    const Variogram v = make(t, 0.3, 1.7, 10, 1.5);
+    std::vector<double> out(squared.size(), NAN);
+    v.covariancesOfSquared(squared.data(), out.data(), squared.size());
+    for (size_t i = 0; i < squared.size(); ++i) {
+      const double expected = v.covariance(std::sqrt(squared[i]));
+      EXPECT_EQ(std::memcmp(&out[i], &expected, sizeof(double)), 0)
+          << variogramTypeName(t) << " d2 " << squared[i] << ": " << out[i] << " vs " << expected;
+    }
+  }
 }
 
 TEST(Variogram, ParsesModelsAndRejectsBadOnes) {
