@@ -13,6 +13,7 @@
 #include "format/layout.h"
 #include "geometry/fragment_planes.h"
 #include "geometry/material.h"
+#include "scene/scene_animation.h"
 
 namespace voxlink::scene {
 
@@ -46,6 +47,8 @@ struct SceneObject {
   // tfPath: a transfer function JSON (--tf). Both empty: `path` is a .vxl.
   std::vector<std::string> thresholds;
   std::string tfPath;
+  // kMesh: keyframed motion (scene_animation.h); `scene build` ignores it (the rest pose).
+  std::optional<Animation> animation;
   // The scene file and the object's place in it ("cornell.scene.json: objects[2]"): errors from
   // the object's own files and voxelization start with it.
   std::string where;
