@@ -87,28 +87,57 @@ geometry::Bounds3 gridBox(const geometry::VoxelGrid& grid) {
 
 Status checkAnimationInGrid(const Animation& animation, const geometry::Bounds3& restBounds,
                             const geometry::VoxelGrid& grid, const std::string& where) {
-  if (restBounds.isEmpty()) return Status::ok();
+  if (restBounds.isEmpty() || animation.keys.empty()) return Status::ok();
   const geometry::Bounds3 box = gridBox(grid);
-  std::array<double, 3> centre{}, half{};
+  std::array<double, 3> centre{};
   double radius = 0;
   for (int a = 0; a < 3; ++a) {
     centre[a] = 0.5 * (double(restBounds.min[a]) + restBounds.max[a]);
-    half[a] = 0.5 * (double(restBounds.max[a]) - restBounds.min[a]);
-    radius += half[a] * half[a];
+    const double half = 0.5 * (double(restBounds.max[a]) - restBounds.min[a]);
+    radius += half * half;
   }
-  if (animation.rotates()) half.fill(std::sqrt(radius));
+  radius = std::sqrt(radius);
   static const char* kAxis = "xyz";
-  for (size_t k = 0; k < animation.keys.size(); ++k) {
-    const AnimationKey& key = animation.keys[k];
-    for (int a = 0; a < 3; ++a) {
-      const double lo = centre[a] + key.translate[a] - half[a];
-      const double hi = centre[a] + key.translate[a] + half[a];
-      if (lo < box.min[a] || hi > box.max[a])
-        return makeError(ErrorCode::kInvalidArgument, where, ".animation.keys[", k,
-                         "]: moves the object outside the grid (", kAxis[a], " ", lo, "..", hi,
-                         " not in ", box.min[a], "..", box.max[a],
-                         animation.rotates() ? ", rotating: its bounding sphere)" : ")");
+  // The box of the rest bounds' corners under `pose`, grown by `margin`, inside the grid?
+  auto check = [&](const Pose& pose, double margin, const std::string& at) -> Status {
+    std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    for (int c = 0; c < 8; ++c) {
+      const std::array<double, 3> corner{(c & 1) ? restBounds.max[0] : restBounds.min[0],
+                                         (c & 2) ? restBounds.max[1] : restBounds.min[1],
+                                         (c & 4) ? restBounds.max[2] : restBounds.min[2]};
+      const auto p = applyPose(pose, centre, corner);
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], p[a] - margin);
+        hi[a] = std::max(hi[a], p[a] + margin);
+      }
     }
+    for (int a = 0; a < 3; ++a)
+      if (lo[a] < box.min[a] || hi[a] > box.max[a])
+        return makeError(ErrorCode::kInvalidArgument, where, ".animation.", at,
+                         ": moves the object outside the grid (", kAxis[a], " ", lo[a], "..", hi[a],
+                         " not in ", box.min[a], "..", box.max[a], ")");
+    return Status::ok();
+  };
+  const auto& keys = animation.keys;
+  for (size_t k = 0; k < keys.size(); ++k)
+    VOXLINK_RETURN_IF_ERROR(check(poseOf(keys[k]), 0, cat("keys[", k, "]")));
+  if (!animation.rotates()) return Status::ok();  // translations between keys inside stay inside
+  // Rotating: poses along each segment (the loop's way back included) at most a degree apart;
+  // between two, a point moves at most radius x the angle turned, the margin.
+  const size_t segments = keys.size() - 1 + (animation.period > 0 && keys.size() > 1 ? 1 : 0);
+  for (size_t k = 0; k < segments; ++k) {
+    const AnimationKey& a = keys[k];
+    const AnimationKey& b = keys[(k + 1) % keys.size()];
+    double turn = 0;
+    for (int i = 0; i < 3; ++i) turn += std::abs(b.rotateDegrees[i] - a.rotateDegrees[i]);
+    const int steps = std::max(1, int(std::ceil(turn)));
+    const double margin = radius * (turn / steps) * kPi / 180;
+    for (int i = 1; i < steps; ++i)
+      VOXLINK_RETURN_IF_ERROR(check(mix(a, b, double(i) / steps), margin,
+                                    cat("keys[", k, "]..keys[", (k + 1) % keys.size(), "]")));
+    if (steps == 1 && turn > 0)
+      VOXLINK_RETURN_IF_ERROR(
+          check(mix(a, b, 0.5), margin, cat("keys[", k, "]..keys[", (k + 1) % keys.size(), "]")));
   }
   return Status::ok();
 }

@@ -42,9 +42,10 @@ std::array<double, 3> applyPose(const Pose& pose, const std::array<double, 3>& c
 // The world box the grid's voxels cover (their outer faces).
 geometry::Bounds3 gridBox(const geometry::VoxelGrid& grid);
 
-// Errors (one line, `where` = "s.scene.json: objects[1]"): a key that takes the object's rest
-// bounds outside `grid`. A rotating object is checked with the sphere around its bounds (every
-// rotation stays inside it); a translation between two keys inside the grid stays inside.
+// Errors (one line, `where` = "s.scene.json: objects[1]"): a key, or for a rotating object a
+// pose between two keys, that takes the object's rest bounds (rotated with it: their corners)
+// outside `grid`. Rotating poses are checked at most a degree apart, each grown by the most a
+// point can move between two; a translation between two keys inside the grid stays inside.
 Status checkAnimationInGrid(const Animation& animation, const geometry::Bounds3& restBounds,
                             const geometry::VoxelGrid& grid, const std::string& where);
 

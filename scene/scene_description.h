@@ -11,6 +11,7 @@
 
 #include "base/error.h"
 #include "format/layout.h"
+#include "geometry/bounds.h"
 #include "geometry/fragment_planes.h"
 #include "geometry/material.h"
 #include "scene/scene_animation.h"
@@ -62,6 +63,9 @@ struct SceneGrid {
   // the largest angle between triangle normals that share a fragment (`--fragment-angle`).
   format::SurfaceMode surface = format::SurfaceMode::kMean;
   double fragmentAngleDegrees = geometry::kDefaultMergeAngleDegrees;
+  // Set by callers, not the file: fit the grid around these bounds instead of the objects' (a
+  // dynamic scene's static part keeps the grid of the whole scene at rest).
+  std::optional<geometry::Bounds3> fitBounds;
 };
 
 struct Light {

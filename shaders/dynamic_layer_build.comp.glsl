@@ -4,7 +4,7 @@
 //   0  per column: mark the brick of every voxel a fragment covers
 //   1  per brick: a marked brick takes the next pool slot (atomic) and zeroes its voxels
 //   2  per column: add each fragment's area-weighted triangle normal to its voxels in fixed
-//      point (atomicAdd), and the material + 1 to .w (atomicMax)
+//      point (atomicAdd), and the triangle's material + 1 to .w (atomicMax)
 // The per-voxel sum of area x unit normal is the host's mean rule (geometry/fragment_resolve.h)
 // up to the fixed point; the lists need no depth sort because a sum does not depend on order.
 #version 450
@@ -19,7 +19,6 @@ uniform uint uColumns;     // viewport edge: columns per axis row
 uniform uvec3 uDims;       // grid voxels
 uniform uvec3 uBrickGrid;  // bricks per axis
 uniform uint uBrickCapacity;
-uniform uint uMaterial;
 
 layout(std430, binding = 0) readonly buffer Heads { uint heads[]; };
 layout(std430, binding = 1) readonly buffer Fragments { uvec4 fragments[]; };
@@ -27,6 +26,7 @@ layout(std430, binding = 2) readonly buffer Positions { float positions[]; };
 layout(std430, binding = 3) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 5) buffer BrickMap { uint brickMap[]; };
 layout(std430, binding = 6) buffer Pool { ivec4 pool[]; };
+layout(std430, binding = 8) readonly buffer TriangleMaterials { uint triangleMaterials[]; };
 layout(std430, binding = 7) buffer Counters { uint brickCount; uint bricksDropped; };
 
 vec3 vertexAt(uint v) {
@@ -48,6 +48,7 @@ void walkColumn(uint column) {
   uint v = (column / uColumns) % uColumns, u = column % uColumns;
   uint slot = heads[column];
   ivec3 add = ivec3(0);
+  int material = 0;
   for (uint guard = 0u; slot != kEmpty && guard < 65536u; ++guard) {
     uvec4 f = fragments[slot];
     uvec3 voxel;
@@ -55,6 +56,7 @@ void walkColumn(uint column) {
     voxel[(axis + 2u) % 3u] = v;
     if (uPass == 2) {
       uint t = f.y;
+      material = int(triangleMaterials[t]) + 1;
       vec3 a = vertexAt(indices[3u * t]);
       vec3 n = 0.5 * cross(vertexAt(indices[3u * t + 1u]) - a, vertexAt(indices[3u * t + 2u]) - a);
       float area = length(n);
@@ -75,7 +77,7 @@ void walkColumn(uint column) {
         atomicAdd(pool[e].x, add.x);
         atomicAdd(pool[e].y, add.y);
         atomicAdd(pool[e].z, add.z);
-        atomicMax(pool[e].w, int(uMaterial) + 1);
+        atomicMax(pool[e].w, material);  // the highest material index of the voxel
       }
     }
     slot = f.z;

@@ -38,7 +38,8 @@ struct GlDynamicLayer::State {
   GLuint raster = 0, vertexArray = 0;
   ComputeProgram build;
   GlFramebuffer framebuffer;
-  GlBuffer heads, fragments, fragmentCount, positions, indices, order, brickMap, pool, counters;
+  GlBuffer heads, fragments, fragmentCount, positions, indices, order, materials, brickMap, pool,
+      counters;
   ~State() {
     if (raster) glDeleteProgram(raster);
     if (vertexArray) glDeleteVertexArrays(1, &vertexArray);
@@ -150,7 +151,11 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
 }
 
 Status GlDynamicLayer::update(const std::vector<float>& positions,
-                              const std::vector<uint32_t>& triangles, uint32_t material) {
+                              const std::vector<uint32_t>& triangles,
+                              const std::vector<uint32_t>& triangleMaterials) {
+  if (triangleMaterials.size() * 3 != triangles.size())
+    return makeError(ErrorCode::kSizeMismatch, "dynamic layer: ", triangleMaterials.size(),
+                     " triangle materials for ", triangles.size() / 3, " triangles");
   State& s = *s_;
   // Triangles binned by dominant axis (the voxelizer's swizzle), zero-area ones left out; the
   // voxel box of the vertices for the ray tracer.
@@ -201,10 +206,13 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   if (triangles.size() > s.triangleIndices) {
     s.indices = storage(triangles.size() * 4);
     s.order = storage(triangles.size() / 3 * 4);
+    s.materials = storage(triangles.size() / 3 * 4);
     s.triangleIndices = triangles.size();
   }
   glNamedBufferSubData(s.positions.id(), 0, GLsizeiptr(positions.size() * 4), positions.data());
   glNamedBufferSubData(s.indices.id(), 0, GLsizeiptr(triangles.size() * 4), triangles.data());
+  glNamedBufferSubData(s.materials.id(), 0, GLsizeiptr(triangleMaterials.size() * 4),
+                       triangleMaterials.data());
   if (!order.empty())
     glNamedBufferSubData(s.order.id(), 0, GLsizeiptr(order.size() * 4), order.data());
 
@@ -253,7 +261,7 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glUniform3ui(s.build.uniform("uDims"), s.dims[0], s.dims[1], s.dims[2]);
   glUniform3ui(s.build.uniform("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
   glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
-  glUniform1ui(s.build.uniform("uMaterial"), material);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.materials.id());
   const uint64_t columns = 3ull * s.edge * s.edge;
   const uint64_t bricks = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2];
   for (int pass = 0; pass < 3; ++pass) {

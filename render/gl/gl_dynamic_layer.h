@@ -8,7 +8,8 @@
 //     triangles' area x unit normal in fixed point (atomic adds) and material + 1.
 // The ray tracer (DynamicSceneRenderer) reads both beside the static file. The rule is the host's
 // mean rule (area-weighted normal) in fixed point, without the host's depth sort (a sum does not
-// need it) and with one material per update.
+// need it) and, per voxel, the highest material index of its triangles (the host: the largest
+// triangle's).
 #pragma once
 
 #include <epoxy/gl.h>
@@ -40,9 +41,10 @@ class GlDynamicLayer {
                                        uint64_t brickCapacity, uint64_t fragmentCapacity);
 
   // Re-voxelizes the triangles (vertices in grid coordinates: voxel i spans [i, i + 1)) into the
-  // layer with `material`. Queues uploads, draws and dispatches; reads nothing back.
+  // layer, each with its material (a voxel keeps the highest of its triangles'). Queues uploads,
+  // draws and dispatches; reads nothing back.
   Status update(const std::vector<float>& gridPositions, const std::vector<uint32_t>& triangles,
-                uint32_t material);
+                const std::vector<uint32_t>& triangleMaterials);
   // Waits and reads two counters: an error when the last update had more fragments or bricks
   // than the buffers hold (its layer would miss voxels).
   Status checkLastUpdate() const;

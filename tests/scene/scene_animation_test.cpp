@@ -114,14 +114,44 @@ TEST(SceneAnimation, AnObjectMovedOutsideTheGridIsAnError) {
   EXPECT_EQ(checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").message(),
             "s.json: objects[1].animation.keys[2]: moves the object outside the grid (z 8..10 "
             "not in -0.5..9.5)");
-  // Rotating: the bounding sphere (radius 1.73) must fit; at x + 6 it reaches 9.73.
-  a.keys = {{0, {0, 0, 0}, {0, 0, 0}}, {1, {6, 0, 0}, {0, 45, 0}}};
-  const std::string rotating = checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").message();
-  EXPECT_NE(rotating.find("keys[1]: moves the object outside the grid (x "), std::string::npos)
-      << rotating;
-  EXPECT_NE(rotating.find("bounding sphere"), std::string::npos) << rotating;
-  a.keys[1].translate[0] = 5;
+  // Rotating 90 degrees about z at x + 5: the keys fit (the box turns into itself), the pose
+  // half-way (45 degrees) reaches 2 + 5 + sqrt(2) = 8.41 in x and fits, at x + 6 it does not.
+  a.keys = {{0, {0, 0, 0}, {0, 0, 0}}, {1, {5, 0, 0}, {0, 0, 90}}};
   EXPECT_TRUE(checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").isOk());
+  a.keys[1].translate[0] = 6.3;  // the key: 7.3 .. 9.3 fits; half-way 3.15 + 3.41 = 6.56 too
+  a.keys[1].rotateDegrees[2] = 0;
+  EXPECT_TRUE(checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").isOk());
+  a.keys[1].rotateDegrees = {0, 0, 45};  // at the key: 2 + 6.3 + sqrt(2) = 9.71 > 9.5
+  EXPECT_EQ(
+      checkAnimationInGrid(a, rest, grid, "s.json: objects[1]")
+          .message()
+          .rfind("s.json: objects[1].animation.keys[1]: moves the object outside the grid (x ", 0),
+      0u);
+  // Only between the keys: 0 -> 90 degrees turns through 45 on the way, at x + 6.5 / 2.
+  a.keys = {{0, {6.3, 0, 0}, {0, 0, 0}}, {1, {6.3, 0, 0}, {0, 0, 90}}};
+  EXPECT_EQ(
+      checkAnimationInGrid(a, rest, grid, "s.json: objects[1]")
+          .message()
+          .rfind("s.json: objects[1].animation.keys[0]..keys[1]: moves the object outside", 0),
+      0u);
+  // The loop's way back (last key -> first) is checked too.
+  a.keys = {{0, {6.3, 0, 0}, {0, 0, 0}}, {1, {6.3, 0, 0}, {0, 0, 0}}, {2, {6.3, 0, 0}, {0, 0, 90}}};
+  EXPECT_NE(
+      checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").message().find("keys[1]..keys[2]"),
+      std::string::npos);
+  a.keys[2].rotateDegrees[2] = 0;
+  a.keys[1].rotateDegrees[2] = 360;  // 0 -> 360 -> 0: turns through 45 twice
+  EXPECT_NE(
+      checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").message().find("keys[0]..keys[1]"),
+      std::string::npos);
+  // x + 6.3 at 0 degrees, back to x + 0, out to x + 6.3 at 90 degrees: only the loop from
+  // keys[2] back to keys[0] turns through 45 degrees near the edge.
+  a.keys = {{0, {6.3, 0, 0}, {0, 0, 0}}, {1, {0, 0, 0}, {0, 0, 0}}, {2, {6.3, 0, 0}, {0, 0, 90}}};
+  EXPECT_TRUE(checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").isOk());
+  a.period = 3;
+  EXPECT_NE(
+      checkAnimationInGrid(a, rest, grid, "s.json: objects[1]").message().find("keys[2]..keys[0]"),
+      std::string::npos);
 }
 
 }  // namespace

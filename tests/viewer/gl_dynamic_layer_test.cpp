@@ -41,6 +41,10 @@ Fixture bunnyAt(uint32_t resolution) {
   return f;
 }
 
+std::vector<uint32_t> materials(const Fixture& f, uint32_t m) {
+  return std::vector<uint32_t>(f.mesh.triangleCount(), m);
+}
+
 Result<GlDynamicLayer> layerFor(const Fixture& f, uint64_t bricks = 0) {
   std::array<double, 3> extent{};
   for (int a = 0; a < 3; ++a) extent[a] = f.grid.dims[a];
@@ -58,7 +62,7 @@ TEST(GlDynamicLayer, SameVoxelsAndNormalsAsTheHostPath) {
   ASSERT_TRUE(host) << host.message();
   auto layer = layerFor(f);
   ASSERT_TRUE(layer) << layer.message();
-  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, 7).isOk());
+  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, materials(f, 7)).isOk());
   ASSERT_TRUE(layer->checkLastUpdate().isOk());
   const auto gpu = layer->readVoxels();
   ASSERT_EQ(gpu.size(), host->surface.voxels.size());
@@ -87,7 +91,7 @@ TEST(GlDynamicLayer, AMovedMeshGivesTheMovedVoxels) {
   ASSERT_TRUE(layer) << layer.message();
   // Shrunk about the origin so that a move by whole voxels stays inside the grid.
   for (float& p : f.gridPositions) p *= 0.5f;
-  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, 0).isOk());
+  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, materials(f, 0)).isOk());
   const auto before = layer->readVoxels();
   ASSERT_GT(before.size(), 100u);
   std::vector<float> moved = f.gridPositions;
@@ -96,7 +100,7 @@ TEST(GlDynamicLayer, AMovedMeshGivesTheMovedVoxels) {
     moved[v + 1] += 5;
     moved[v + 2] += 3;
   }
-  ASSERT_TRUE(layer->update(moved, f.mesh.triangles, 0).isOk());
+  ASSERT_TRUE(layer->update(moved, f.mesh.triangles, materials(f, 0)).isOk());
   ASSERT_TRUE(layer->checkLastUpdate().isOk());
   const auto after = layer->readVoxels();
   ASSERT_EQ(after.size(), before.size());
@@ -114,7 +118,7 @@ TEST(GlDynamicLayer, APoolTooSmallIsAnError) {
   Fixture f = bunnyAt(64);
   auto layer = layerFor(f, 2);
   ASSERT_TRUE(layer) << layer.message();
-  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, 0).isOk());
+  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, materials(f, 0)).isOk());
   const Status s = layer->checkLastUpdate();
   EXPECT_FALSE(s.isOk());
   EXPECT_NE(s.message().find("bricks exceed its 2"), std::string::npos) << s.message();
