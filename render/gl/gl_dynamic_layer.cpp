@@ -38,8 +38,8 @@ struct GlDynamicLayer::State {
   GLuint raster = 0, vertexArray = 0;
   ComputeProgram build;
   GlFramebuffer framebuffer;
-  GlBuffer heads, fragments, fragmentCount, positions, indices, order, materials, brickMap, pool,
-      counters;
+  GlBuffer fragments, fragmentCount, dispatchSize, positions, indices, order, materials, brickMap,
+      pool, counters;
   ~State() {
     if (raster) glDeleteProgram(raster);
     if (vertexArray) glDeleteVertexArrays(1, &vertexArray);
@@ -57,7 +57,7 @@ uint32_t GlDynamicLayer::brickSize() const { return s_->brickSize; }
 uint64_t GlDynamicLayer::gpuBytes() const {
   const uint64_t bricks = uint64_t(s_->brickGrid[0]) * s_->brickGrid[1] * s_->brickGrid[2];
   const uint64_t n3 = uint64_t(s_->brickSize) * s_->brickSize * s_->brickSize;
-  return 3ull * s_->edge * s_->edge * 4 + s_->fragmentCapacity * kFragmentBytes + bricks * 4 +
+  return s_->fragmentCapacity * kFragmentBytes + bricks * 4 +
          s_->brickCapacity * n3 * kPoolVoxelBytes;
 }
 
@@ -108,13 +108,12 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   s->fragmentCapacity = fragmentCapacity;
   const uint64_t maxBlock = uint64_t(std::max(getInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 0));
   const uint64_t n3 = uint64_t(brickSize) * brickSize * brickSize;
-  const uint64_t heads = 3ull * s->edge * s->edge * 4;
   if (int64_t(s->edge) > getInteger(GL_MAX_FRAMEBUFFER_WIDTH))
     return makeError(ErrorCode::kTooLarge, "dynamic layer: grid edge ", s->edge,
                      " exceeds the largest framebuffer");
-  for (const auto& [what, bytes] : {std::pair<const char*, uint64_t>{"column heads", heads},
-                                    {"fragments", fragmentCapacity * kFragmentBytes},
-                                    {"brick pool", brickCapacity * n3 * kPoolVoxelBytes}})
+  for (const auto& [what, bytes] :
+       {std::pair<const char*, uint64_t>{"fragments", fragmentCapacity * kFragmentBytes},
+        {"brick pool", brickCapacity * n3 * kPoolVoxelBytes}})
     if (bytes > maxBlock)
       return makeError(ErrorCode::kTooLarge, "dynamic layer: ", bytes >> 20, " MiB of ", what,
                        " exceed the largest storage buffer (", maxBlock >> 20, " MiB)");
@@ -135,9 +134,9 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   s->framebuffer = GlFramebuffer(fb);
   glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(s->edge));
   glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(s->edge));
-  s->heads = storage(heads);
   s->fragments = storage(fragmentCapacity * kFragmentBytes, 0);
   s->fragmentCount = storage(4, GL_DYNAMIC_STORAGE_BIT);
+  s->dispatchSize = storage(12);
   s->brickMap = storage(uint64_t(s->brickGrid[0]) * s->brickGrid[1] * s->brickGrid[2] * 4);
   s->pool = storage(brickCapacity * n3 * kPoolVoxelBytes, 0);
   s->counters = storage(8);
@@ -217,13 +216,12 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     glNamedBufferSubData(s.order.id(), 0, GLsizeiptr(order.size() * 4), order.data());
 
   const GLuint empty = kEmpty, zero = 0;
-  glClearNamedBufferData(s.heads.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
   glClearNamedBufferData(s.brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
   glClearNamedBufferData(s.fragmentCount.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
 
-  // Raster: gl_voxelize appends each fragment to its column's list (as GlSurfaceVoxelizer).
+  // Raster: gl_voxelize writes each fragment with its column (uColumnInFragment), no lists.
   glUseProgram(s.raster);
   glBindFramebuffer(GL_FRAMEBUFFER, s.framebuffer.id());
   glViewport(0, 0, GLsizei(s.edge), GLsizei(s.edge));
@@ -231,7 +229,6 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glBindVertexArray(s.vertexArray);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, s.heads.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, s.fragments.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, s.positions.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s.indices.id());
@@ -241,6 +238,7 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glUniform1f(at("uViewportEdge"), float(s.edge));
   glUniform1ui(at("uColumns"), s.edge);
   glUniform1i(at("uConservative"), 1);
+  glUniform1i(at("uColumnInFragment"), 1);
   glUniform1ui(at("uCapacity"), GLuint(s.fragmentCapacity));
   for (uint32_t w = 0; w < 3; ++w) {
     if (first[w] == first[w + 1]) continue;
@@ -250,7 +248,7 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * (first[w + 1] - first[w])));
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
 
   // Build: mark bricks, allocate them, accumulate normals (shaders/dynamic_layer_build.comp.glsl).
   s.build.use();
@@ -262,13 +260,23 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glUniform3ui(s.build.uniform("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
   glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.materials.id());
-  const uint64_t columns = 3ull * s.edge * s.edge;
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, s.fragmentCount.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSize.id());
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s.dispatchSize.id());
+  glUniform1ui(s.build.uniform("uCapacity"), GLuint(s.fragmentCapacity));
   const uint64_t bricks = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2];
-  for (int pass = 0; pass < 3; ++pass) {
+  // The fragment passes are sized on the GPU from the counter (pass 3): no count comes back.
+  for (int pass : {3, 0, 1, 2}) {
     glUniform1i(s.build.uniform("uPass"), pass);
-    glDispatchCompute(GLuint(((pass == 1 ? bricks : columns) + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (pass == 3)
+      glDispatchCompute(1, 1, 1);
+    else if (pass == 1)
+      glDispatchCompute(GLuint((bricks + 63) / 64), 1, 1);
+    else
+      glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     return makeError(ErrorCode::kUnsupported, "dynamic layer: GL error 0x", std::hex, e);
   return Status::ok();

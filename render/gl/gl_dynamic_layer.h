@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The dynamic layer of a dynamic scene (docs/dynamic-scenes.md): the moving meshes re-voxelized
 // every frame by the GL voxelizer's raster stage (shaders/gl_voxelize.*.glsl, conservative
-// coverage) and turned into a GPU-side structure by a compute pass
-// (shaders/dynamic_layer_build.comp.glsl), with nothing read back:
+// coverage, each fragment stored with its column instead of in a list) and turned into a
+// GPU-side structure by compute passes sized on the GPU (shaders/dynamic_layer_build.comp.glsl),
+// with nothing read back:
 //   - a brick map over the whole grid: per brick a pool slot, or empty;
 //   - a pool of bricks (sized from the moving objects' bounds): per voxel the sum of its
 //     triangles' area x unit normal in fixed point (atomic adds) and material + 1.
