@@ -104,16 +104,19 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   s->brickSize = brickSize;
   s->edge = std::max({dims[0], dims[1], dims[2]});
   for (int a = 0; a < 3; ++a) s->brickGrid[a] = (dims[a] + brickSize - 1) / brickSize;
-  s->brickCapacity = brickCapacity;
   s->fragmentCapacity = fragmentCapacity;
   const uint64_t maxBlock = uint64_t(std::max(getInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 0));
   const uint64_t n3 = uint64_t(brickSize) * brickSize * brickSize;
+  // The bound from the moving objects' boxes can exceed one storage buffer (128 MiB on
+  // llvmpipe) where the surface itself would fit: the pool takes what fits, and an update that
+  // needs more is an error (checkLastUpdate), never a frame with missing bricks.
+  brickCapacity = std::min(brickCapacity, maxBlock / (n3 * kPoolVoxelBytes));
+  s->brickCapacity = brickCapacity;
   if (int64_t(s->edge) > getInteger(GL_MAX_FRAMEBUFFER_WIDTH))
     return makeError(ErrorCode::kTooLarge, "dynamic layer: grid edge ", s->edge,
                      " exceeds the largest framebuffer");
   for (const auto& [what, bytes] :
-       {std::pair<const char*, uint64_t>{"fragments", fragmentCapacity * kFragmentBytes},
-        {"brick pool", brickCapacity * n3 * kPoolVoxelBytes}})
+       {std::pair<const char*, uint64_t>{"fragments", fragmentCapacity * kFragmentBytes}})
     if (bytes > maxBlock)
       return makeError(ErrorCode::kTooLarge, "dynamic layer: ", bytes >> 20, " MiB of ", what,
                        " exceed the largest storage buffer (", maxBlock >> 20, " MiB)");

@@ -36,8 +36,9 @@ uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSi
 
 class GlDynamicLayer {
  public:
-  // Needs a current GL 4.5 context. Errors: a pool or fragment buffer beyond the largest storage
-  // buffer, a grid wider than the largest viewport.
+  // Needs a current GL 4.5 context. The pool holds `brickCapacity` bricks, or as many as the
+  // largest storage buffer does. Errors: a fragment buffer beyond the largest storage buffer, a
+  // grid wider than the largest framebuffer.
   static Result<GlDynamicLayer> create(const std::array<uint32_t, 3>& dims, uint32_t brickSize,
                                        uint64_t brickCapacity, uint64_t fragmentCapacity);
 
