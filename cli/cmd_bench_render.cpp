@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "cli/bench_animate.h"
 #include "cli/command.h"
 #include "cli/output_options.h"
 #include "cli/render_options.h"
@@ -30,6 +31,9 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     uint32_t framesPerTurn = 36;
     bool noDense = false, noReference = false;
     std::string pictures;
+    bool animate = false;
+    std::vector<uint32_t> resolutions, bricks;
+    uint32_t frames = 60;
     SourceOptions source;
     RenderOptions render;
     OutputOptions out;
@@ -37,7 +41,9 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand("bench-render",
                                  "Rendering benchmark: VoxLink vs dense ray caster, with PSNR");
-  cmd->add_option("file", args->path, "VoxLink file (.vxl)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("file", args->path, "VoxLink file (.vxl); with --animate a scene file (.json)")
+      ->required()
+      ->check(CLI::ExistingFile);
   cmd->add_option("--sizes", args->sizes, "Image sizes WxH")->capture_default_str();
   cmd->add_option("--samplings", args->samplings, "Sampling modes")
       ->check(CLI::IsMember({"voxel", "trilinear"}))
@@ -49,10 +55,37 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
   cmd->add_flag("--no-reference", args->noReference, "Skip the float64 reference (no PSNR)");
   cmd->add_option("--pictures", args->pictures,
                   "Directory for PNGs of each run's first frame and the reference");
+  cmd->add_flag("--animate", args->animate,
+                "FILE is a scene file with animated meshes: time voxelize + render per frame in "
+                "this process (docs/dynamic-scenes.md)");
+  cmd->add_option("--resolutions", args->resolutions, "With --animate: grid resolutions")
+      ->check(CLI::Range(2u, 65536u));
+  cmd->add_option("--bricks", args->bricks, "With --animate: brick sizes")
+      ->check(CLI::IsMember({4u, 8u, 16u, 32u}));
+  cmd->add_option("--frames", args->frames, "With --animate: timed frames over one period")
+      ->check(CLI::Range(1u, 100000u))
+      ->capture_default_str();
   args->source.add(cmd);
   args->render.add(cmd, false);
   args->out.add(cmd, false);
   return [args] {
+    if (args->animate) {
+      AnimateBenchOptions a;
+      a.scenePath = args->path;
+      for (const auto& s : args->sizes) {
+        auto wh = render::parseImageSize(s);
+        if (!wh) return reportError(wh.error());
+        a.sizes.push_back(*wh);
+      }
+      a.resolutions = args->resolutions;
+      a.bricks = args->bricks;
+      a.frames = args->frames;
+      a.pictures = args->pictures;
+      return runAnimateBenchmark(a, args->render, args->out);
+    }
+    if (!args->resolutions.empty() || !args->bricks.empty())
+      return reportError(makeError(ErrorCode::kInvalidArgument,
+                                   "bench-render: --resolutions and --bricks need --animate"));
     auto file = pack::openValidatedFile(args->path);
     if (!file) return reportError(file.error());
     render::gl::BenchmarkOptions o;

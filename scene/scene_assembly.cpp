@@ -61,11 +61,12 @@ Result<format::VolumeDescription> describeGrid(const SceneDescription& scene,
     d.valueErrorBound = h.valueErrorBound;
     d.flags = h.flags;
   } else {
-    if (placed.mesh.triangleCount() == 0 && placed.spheres.empty())
+    if (placed.mesh.triangleCount() == 0 && placed.spheres.empty() && !scene.grid.fitBounds)
       return makeError(ErrorCode::kInvalidArgument, scene.path,
                        ": objects: the scene holds no geometry and no volume");
-    VOXLINK_ASSIGN_OR_RETURN(geometry::VoxelGrid fitted,
-                             geometry::fitGrid(placed.bounds, scene.grid.resolution));
+    VOXLINK_ASSIGN_OR_RETURN(
+        geometry::VoxelGrid fitted,
+        geometry::fitGrid(scene.grid.fitBounds.value_or(placed.bounds), scene.grid.resolution));
     for (int a = 0; a < 3; ++a) {
       d.dims[a] = fitted.dims[a];
       d.spacing[a] = fitted.spacing;

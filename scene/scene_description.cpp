@@ -163,6 +163,41 @@ SceneMaterial readMaterial(const json& j, const std::string& where, Fields& f) {
   return out;
 }
 
+// "animation": {"keys": [{"time": s, "translate": [..], "rotate": [..]}, ...], "period": s}.
+Animation readAnimation(const json& j, const std::string& where, Fields& f) {
+  Animation a;
+  f.onlyKeys(j, where, {"keys", "period"});
+  if (!f.ok()) return a;
+  if (!j.contains("keys") || !j["keys"].is_array() || j["keys"].empty()) {
+    f.fail(where + ".keys", "expected an array of at least one key");
+    return a;
+  }
+  for (size_t i = 0; f.ok() && i < j["keys"].size(); ++i) {
+    const json& k = j["keys"][i];
+    const std::string at = cat(where, ".keys[", i, "]");
+    f.onlyKeys(k, at, {"time", "translate", "rotate"});
+    if (f.ok() && !k.contains("time")) f.fail(at, "needs a \"time\"");
+    if (!f.ok()) break;
+    AnimationKey key;
+    key.time = f.number(k["time"], at + ".time", 0, 1e9);
+    if (k.contains("translate"))
+      key.translate = f.vector<3>(k["translate"], at + ".translate", -1e12, 1e12);
+    if (k.contains("rotate"))
+      key.rotateDegrees = f.vector<3>(k["rotate"], at + ".rotate", -3600, 3600);
+    if (f.ok() && i > 0 && key.time <= a.keys.back().time)
+      f.fail(at + ".time", cat(key.time, " is not after keys[", i - 1, "].time (",
+                               a.keys.back().time, "): keys must be sorted by time"));
+    a.keys.push_back(key);
+  }
+  if (f.ok() && j.contains("period")) {
+    a.period = f.number(j["period"], where + ".period", 1e-9, 1e9);
+    if (f.ok() && a.period <= a.keys.back().time)
+      f.fail(where + ".period",
+             cat(a.period, " is not after the last key's time (", a.keys.back().time, ")"));
+  }
+  return a;
+}
+
 // "threshold": 60, [60, 200], or a list of those (a union): convert's --threshold specs.
 std::vector<std::string> thresholdSpecs(Fields& f, const json& j, const std::string& where) {
   const std::string at = where + ".threshold";
@@ -204,10 +239,12 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
     return o;
   }
   const std::string type = f.string(j["type"], where + ".type");
+  if (f.ok() && j.contains("animation") && type != "mesh")
+    f.fail(where + ".animation", "only meshes move (the GL voxelizer re-voxelizes triangles)");
   if (type == "mesh" || type == "particles") {
     o.kind = type == "mesh" ? ObjectKind::kMesh : ObjectKind::kParticles;
     if (type == "mesh")
-      f.onlyKeys(j, where, {"type", "file", "transform", "material"});
+      f.onlyKeys(j, where, {"type", "file", "transform", "material", "animation"});
     else
       f.onlyKeys(j, where, {"type", "file", "transform", "material", "radius_scale"});
     if (j.contains("radius_scale"))
@@ -247,6 +284,12 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
     o.material = f.string(j["material"], where + ".material");
     if (f.ok() && !scene.findMaterial(*o.material))
       f.fail(where + ".material", "\"" + *o.material + "\" is not in \"materials\"");
+  }
+  if (f.ok() && j.contains("animation")) {
+    if (!o.material)
+      f.fail(where + ".animation", "a moving mesh needs a \"material\" from \"materials\"");
+    else
+      o.animation = readAnimation(j["animation"], where + ".animation", f);
   }
   if (f.ok() && o.kind == ObjectKind::kParticles && o.transform.uniformScale() == 0)
     f.fail(where + ".transform", "spheres need a uniform scale");

@@ -11,8 +11,10 @@
 
 #include "base/error.h"
 #include "format/layout.h"
+#include "geometry/bounds.h"
 #include "geometry/fragment_planes.h"
 #include "geometry/material.h"
+#include "scene/scene_animation.h"
 
 namespace voxlink::scene {
 
@@ -46,6 +48,8 @@ struct SceneObject {
   // tfPath: a transfer function JSON (--tf). Both empty: `path` is a .vxl.
   std::vector<std::string> thresholds;
   std::string tfPath;
+  // kMesh: keyframed motion (scene_animation.h); `scene build` ignores it (the rest pose).
+  std::optional<Animation> animation;
   // The scene file and the object's place in it ("cornell.scene.json: objects[2]"): errors from
   // the object's own files and voxelization start with it.
   std::string where;
@@ -59,6 +63,9 @@ struct SceneGrid {
   // the largest angle between triangle normals that share a fragment (`--fragment-angle`).
   format::SurfaceMode surface = format::SurfaceMode::kMean;
   double fragmentAngleDegrees = geometry::kDefaultMergeAngleDegrees;
+  // Set by callers, not the file: fit the grid around these bounds instead of the objects' (a
+  // dynamic scene's static part keeps the grid of the whole scene at rest).
+  std::optional<geometry::Bounds3> fitBounds;
 };
 
 struct Light {

@@ -20,6 +20,9 @@ uniform uvec3 uDims;     // voxels along u, v and the depth axis
 uniform uint uColumns;   // heads per axis row (the viewport edge)
 uniform uint uCapacity;  // fragment slots
 uniform bool uConservative;
+// The dynamic layer (shaders/dynamic_layer_build.comp.glsl) takes the fragments in any order: the
+// column in place of the link and the depth, and no list.
+uniform bool uColumnInFragment;
 
 layout(std430, binding = 2) readonly buffer Positions { float positions[]; };
 layout(std430, binding = 3) readonly buffer Indices { uint indices[]; };
@@ -99,6 +102,10 @@ void main() {
   uint slot = atomicCounterIncrement(fragmentCount);
   if (slot >= uCapacity) return;  // counted: the host grows the buffer and draws again
   uint column = (uint(uAxis) * uColumns + v) * uColumns + u;
+  if (uColumnInFragment) {
+    fragments[slot] = uvec4(first | (last << 16), vTriangle, column, 0u);
+    return;
+  }
   uint next = atomicExchange(heads[column], slot);
   fragments[slot] = uvec4(first | (last << 16), vTriangle, next, floatBitsToUint(dMin));
 }

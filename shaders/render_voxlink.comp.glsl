@@ -18,4 +18,5 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "compositing.glsl"
 #include "voxlink_voxels.glsl"
 #include "voxlink_trilinear.glsl"
+#include "voxlink_dynamic.glsl"
 #include "render_main.glsl"

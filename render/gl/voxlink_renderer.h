@@ -28,8 +28,10 @@ class VoxLinkRenderer : public VolumeRenderer {
   void bindData(const ComputeProgram& program) const override;
   uint64_t dataBytes() const override { return sections_.gpuBytes(); }
 
- private:
+ protected:
   VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections);
+
+ private:
   SectionBuffers sections_;
   format::FileHeader header_;
 };

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/gl/dynamic_scene.h"
+
+#include <chrono>
+
+#include "format/bricked_volume.h"
+#include "scene/scene_animation.h"
+#include "scene/scene_assembly.h"
+#include "scene/scene_geometry.h"
+
+namespace voxlink::render::gl {
+namespace {
+
+// The affine map p -> applyPose(pose, centre, M p) as a Transform.
+scene::Transform posed(const scene::Pose& pose, const std::array<double, 3>& centre,
+                       const scene::Transform& m) {
+  auto map = [&](const std::array<double, 3>& p) {
+    return scene::applyPose(pose, centre, m.apply(p));
+  };
+  const auto o = map({0, 0, 0});
+  scene::Transform r;
+  for (int c = 0; c < 3; ++c) {
+    std::array<double, 3> unit{0, 0, 0};
+    unit[size_t(c)] = 1;
+    const auto p = map(unit);
+    for (int row = 0; row < 3; ++row) r.m[size_t(row * 4 + c)] = p[size_t(row)] - o[size_t(row)];
+  }
+  for (int row = 0; row < 3; ++row) r.m[size_t(row * 4 + 3)] = o[size_t(row)];
+  return r;
+}
+
+}  // namespace
+
+DynamicScene::DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
+                           GlDynamicLayer layer)
+    : scene_(std::move(scene)), file_(std::move(file)), layer_(std::move(layer)) {}
+
+Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescription& scene,
+                                                         const std::string& staticFile) {
+  const auto start = std::chrono::steady_clock::now();
+  scene::SceneDescription still = scene;  // the static objects
+  still.objects.clear();
+  std::vector<size_t> movingObjects;
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    if (scene.objects[i].animation)
+      movingObjects.push_back(i);
+    else
+      still.objects.push_back(scene.objects[i]);
+  }
+  if (movingObjects.empty())
+    return makeError(ErrorCode::kInvalidArgument, scene.path,
+                     ": objects: no object has an \"animation\" (nothing moves)");
+  if (still.objects.empty())
+    return makeError(ErrorCode::kInvalidArgument, scene.path,
+                     ": objects: a dynamic scene needs a static object besides the moving ones");
+  // The grid of the whole scene at rest, kept while objects move.
+  VOXLINK_ASSIGN_OR_RETURN(scene::PlacedScene all, scene::placeSceneGeometry(scene));
+  still.grid.fitBounds = all.bounds;
+  VOXLINK_ASSIGN_OR_RETURN(scene::SceneBuildOutput built, scene::buildScene(still));
+  VOXLINK_RETURN_IF_ERROR(format::writeBrickedVolume(staticFile, built.volume));
+  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile file, format::VoxLinkFile::open(staticFile));
+  geometry::VoxelGrid grid;
+  for (int a = 0; a < 3; ++a) {
+    grid.dims[size_t(a)] = file.header().dims[a];
+    grid.origin[size_t(a)] = file.header().origin[a];
+  }
+  grid.spacing = file.header().spacing[0];
+  if (file.header().spacing[1] != grid.spacing || file.header().spacing[2] != grid.spacing)
+    return makeError(ErrorCode::kUnsupported, scene.path,
+                     ": moving meshes need cubic voxels (the scene's volume has other spacings)");
+
+  std::vector<Moving> moving;
+  uint64_t fragments = 0, bricks = 0, triangles = 0;
+  const uint32_t brick = file.header().brickSize;
+  for (size_t i : movingObjects) {
+    const scene::SceneObject& o = scene.objects[i];
+    scene::SceneDescription one = scene;
+    one.objects = {o};
+    VOXLINK_ASSIGN_OR_RETURN(scene::PlacedScene placed, scene::placeSceneGeometry(one));
+    VOXLINK_RETURN_IF_ERROR(
+        scene::checkAnimationInGrid(*o.animation, placed.bounds, grid, o.where));
+    Moving m;
+    m.object = i;
+    m.restPositions.assign(placed.mesh.positions.begin(), placed.mesh.positions.end());
+    m.triangles = placed.mesh.triangles;
+    std::vector<float> rest(placed.mesh.positions.size());
+    std::array<double, 3> extent{};
+    for (int a = 0; a < 3; ++a) {
+      m.centre[size_t(a)] = 0.5 * (double(placed.bounds.min[a]) + placed.bounds.max[a]);
+      extent[size_t(a)] = (double(placed.bounds.max[a]) - placed.bounds.min[a]) / grid.spacing;
+    }
+    if (o.animation->rotates()) {
+      const double diameter =
+          std::sqrt(extent[0] * extent[0] + extent[1] * extent[1] + extent[2] * extent[2]);
+      extent.fill(diameter);
+    }
+    for (double& e : extent) e += 2;  // the conservative raster's touching voxels
+    for (size_t k = 0; k < rest.size(); ++k)
+      rest[k] = float(m.restPositions[k] / grid.spacing);  // lengths in voxels suffice
+    fragments += dynamicFragmentBound(rest, m.triangles);
+    bricks += dynamicBrickBound(extent, brick, grid.dims);
+    triangles += placed.mesh.triangleCount();
+    moving.push_back(std::move(m));
+  }
+  VOXLINK_ASSIGN_OR_RETURN(GlDynamicLayer layer,
+                           GlDynamicLayer::create(grid.dims, brick, bricks, fragments));
+  std::unique_ptr<DynamicScene> d(new DynamicScene(scene, std::move(file), std::move(layer)));
+  d->grid_ = grid;
+  d->moving_ = std::move(moving);
+  for (const Moving& m : d->moving_) {
+    const uint32_t base = uint32_t(d->gridPositions_.size() / 3);
+    for (uint32_t t : m.triangles) d->triangles_.push_back(base + t);
+    d->gridPositions_.resize(d->gridPositions_.size() + m.restPositions.size());
+    // Materials: the moving object's scene material, whose index in every placement's table
+    // is its place among the scene's materials (scene_geometry.h: scene materials first).
+    const std::string& name = *scene.objects[m.object].material;
+    uint32_t index = 0;
+    while (index < scene.materials.size() && scene.materials[index].first != name) ++index;
+    d->materials_.insert(d->materials_.end(), m.triangles.size() / 3, index);
+  }
+  VOXLINK_ASSIGN_OR_RETURN(d->renderer_, DynamicSceneRenderer::create(d->file_, d->layer_));
+  d->stats_.staticBuildSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  d->stats_.movingTriangles = triangles;
+  d->stats_.layerBytes = d->layer_.gpuBytes();
+  d->restBounds_ = all.bounds;
+  return d;
+}
+
+Status DynamicScene::setTime(double seconds) {
+  size_t out = 0;
+  for (const Moving& m : moving_) {
+    const scene::Pose pose = samplePose(*scene_.objects[m.object].animation, seconds);
+    for (size_t v = 0; v < m.restPositions.size(); v += 3) {
+      const auto w = scene::applyPose(
+          pose, m.centre, {m.restPositions[v], m.restPositions[v + 1], m.restPositions[v + 2]});
+      const auto g = grid_.toGrid(w[0], w[1], w[2]);
+      for (int a = 0; a < 3; ++a) gridPositions_[out++] = float(g[size_t(a)]);
+    }
+  }
+  return layer_.update(gridPositions_, triangles_, materials_);
+}
+
+scene::SceneDescription DynamicScene::frozenAt(double seconds) const {
+  scene::SceneDescription frozen = scene_;
+  frozen.grid.fitBounds = restBounds_;
+  for (const Moving& m : moving_) {
+    scene::SceneObject& o = frozen.objects[m.object];
+    o.transform = posed(samplePose(*o.animation, seconds), m.centre, o.transform);
+    o.animation.reset();
+  }
+  return frozen;
+}
+
+}  // namespace voxlink::render::gl

@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// A dynamic scene (docs/dynamic-scenes.md): a scene file whose meshes with an `animation` move.
+// The static objects are voxelized once (scene::buildScene, the exact CPU path) into a scene
+// file; every frame, setTime() places the moving meshes at their pose and re-voxelizes only them
+// into the GPU-side dynamic layer (gl_dynamic_layer.h); renderer() draws both. The grid is the
+// whole scene's at rest, and every moving object must stay inside it at every key.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+#include "format/voxlink_file.h"
+#include "geometry/voxel_grid.h"
+#include "render/gl/dynamic_scene_renderer.h"
+#include "render/gl/gl_dynamic_layer.h"
+#include "scene/scene_description.h"
+
+namespace voxlink::render::gl {
+
+struct DynamicSceneStats {
+  double staticBuildSeconds = 0;  // the static objects, once
+  uint64_t movingTriangles = 0;
+  uint64_t layerBytes = 0;  // GPU memory of the dynamic layer
+};
+
+class DynamicScene {
+ public:
+  // Needs a current GL 4.5 context. `staticFile`: where the static part is written (a scratch
+  // path the caller owns). Errors: no moving object, none static, an object that leaves the grid,
+  // and what buildScene and GlDynamicLayer::create return.
+  static Result<std::unique_ptr<DynamicScene>> load(const scene::SceneDescription& scene,
+                                                    const std::string& staticFile);
+
+  // Places the moving meshes at `seconds` and re-voxelizes them on the GPU (queued, no read-back).
+  Status setTime(double seconds);
+  DynamicSceneRenderer& renderer() { return *renderer_; }
+  const GlDynamicLayer& layer() const { return layer_; }
+  const geometry::VoxelGrid& grid() const { return grid_; }
+  const DynamicSceneStats& stats() const { return stats_; }
+  // The scene with every moving object frozen at its pose at `seconds` (its transform composed
+  // with the pose, no animation) and the same grid: what `scene build` makes of that frame.
+  scene::SceneDescription frozenAt(double seconds) const;
+
+ private:
+  struct Moving {
+    size_t object = 0;                  // index in the description
+    std::vector<double> restPositions;  // world, 3 per vertex
+    std::vector<uint32_t> triangles;
+    std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
+  };
+  DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file, GlDynamicLayer layer);
+  scene::SceneDescription scene_;
+  format::VoxLinkFile file_;
+  GlDynamicLayer layer_;
+  std::unique_ptr<DynamicSceneRenderer> renderer_;
+  geometry::VoxelGrid grid_;
+  std::vector<Moving> moving_;
+  std::vector<uint32_t> triangles_, materials_;  // all moving meshes, concatenated
+  std::vector<float> gridPositions_;
+  geometry::Bounds3 restBounds_;  // the whole scene at rest: the grid's
+  DynamicSceneStats stats_;
+};
+
+}  // namespace voxlink::render::gl

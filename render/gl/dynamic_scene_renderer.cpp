@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/gl/dynamic_scene_renderer.h"
+
+namespace voxlink::render::gl {
+
+Result<std::unique_ptr<DynamicSceneRenderer>> DynamicSceneRenderer::create(
+    const format::VoxLinkFile& file, const GlDynamicLayer& layer) {
+  if (!file.isScene())
+    return makeError(ErrorCode::kUnsupported,
+                     "dynamic scene: the static part must be a scene file (version 2)");
+  if (file.header().surfaceMode != 0)
+    return makeError(ErrorCode::kUnsupported,
+                     "dynamic scene: the static part must keep one fragment per voxel "
+                     "(--surface mean), as the dynamic layer does");
+  VOXLINK_ASSIGN_OR_RETURN(SectionBuffers sections, SectionBuffers::upload(file));
+  return std::unique_ptr<DynamicSceneRenderer>(
+      new DynamicSceneRenderer(file, std::move(sections), layer));
+}
+
+DynamicSceneRenderer::DynamicSceneRenderer(const format::VoxLinkFile& file, SectionBuffers sections,
+                                           const GlDynamicLayer& layer)
+    : VoxLinkRenderer(file, std::move(sections)), layer_(layer) {
+  for (int a = 0; a < 3; ++a) dims_[a] = file.header().dims[a];
+}
+
+Status DynamicSceneRenderer::checkSupported(const RenderSettings& settings) const {
+  VOXLINK_RETURN_IF_ERROR(VoxLinkRenderer::checkSupported(settings));
+  if (settings.effects.any() || settings.shading.shadows)
+    return makeError(ErrorCode::kUnsupported, name(),
+                     ": shadows and --effects do not see the moving objects yet; render plain "
+                     "frames");
+  return Status::ok();
+}
+
+std::vector<ShaderDefine> DynamicSceneRenderer::dataDefines() const {
+  std::vector<ShaderDefine> defines = VoxLinkRenderer::dataDefines();
+  defines.push_back({"VXL_DYNAMIC_LAYER", "1"});
+  defines.push_back({"VXL_DYN_N", std::to_string(layer_.brickSize())});
+  return defines;
+}
+
+void DynamicSceneRenderer::bindData(const ComputeProgram& program) const {
+  VoxLinkRenderer::bindData(program);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 59, layer_.brickMap());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 60, layer_.pool());
+  const uint32_t n = layer_.brickSize();
+  glUniform3i(program.uniform("uDynBrickGrid"), GLint((dims_[0] + n - 1) / n),
+              GLint((dims_[1] + n - 1) / n), GLint((dims_[2] + n - 1) / n));
+  glUniform3i(program.uniform("uDynLo"), layer_.lo()[0], layer_.lo()[1], layer_.lo()[2]);
+  glUniform3i(program.uniform("uDynHi"), layer_.hi()[0], layer_.hi()[1], layer_.hi()[2]);
+}
+
+}  // namespace voxlink::render::gl

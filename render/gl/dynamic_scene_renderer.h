@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The GL ray tracer over a dynamic scene (docs/dynamic-scenes.md): the static scene file as
+// VoxLinkRenderer draws it, plus the dynamic layer (gl_dynamic_layer.h) the moving meshes were
+// voxelized into this frame; each ray takes the nearest of the two (shaders/voxlink_dynamic.glsl).
+// Plain frames only: shadow rays and the ray-traced mode would not see the moving meshes, so
+// they are refused rather than drawn wrong.
+#pragma once
+
+#include <memory>
+
+#include "render/gl/gl_dynamic_layer.h"
+#include "render/gl/voxlink_renderer.h"
+
+namespace voxlink::render::gl {
+
+class DynamicSceneRenderer : public VoxLinkRenderer {
+ public:
+  // `layer` must outlive the renderer; its update() before each render() is what is drawn.
+  static Result<std::unique_ptr<DynamicSceneRenderer>> create(const format::VoxLinkFile& file,
+                                                              const GlDynamicLayer& layer);
+  std::string name() const override { return "voxlink-dynamic"; }
+
+ protected:
+  Status checkSupported(const RenderSettings& settings) const override;
+  std::vector<ShaderDefine> dataDefines() const override;
+  void bindData(const ComputeProgram& program) const override;
+
+ private:
+  DynamicSceneRenderer(const format::VoxLinkFile& file, SectionBuffers sections,
+                       const GlDynamicLayer& layer);
+  const GlDynamicLayer& layer_;
+  std::array<uint32_t, 3> dims_;
+};
+
+}  // namespace voxlink::render::gl

@@ -1,0 +1,327 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/gl/gl_dynamic_layer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geometry/voxel_grid.h"
+#include "render/gl/detail/gl_objects.h"
+#include "render/gl/shader_program.h"
+
+namespace voxlink::render::gl {
+namespace {
+
+constexpr GLuint kEmpty = 0xffffffffu;
+constexpr uint64_t kFragmentBytes = 16;   // uvec4, shaders/gl_voxelize.frag.glsl
+constexpr uint64_t kPoolVoxelBytes = 16;  // ivec4, shaders/dynamic_layer_build.comp.glsl
+
+GLint getInteger(GLenum name) {
+  GLint value = 0;
+  glGetIntegerv(name, &value);
+  return value;
+}
+
+GlBuffer storage(uint64_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
+  GlBuffer b = createBuffer();
+  glNamedBufferStorage(b.id(), GLsizeiptr(std::max<uint64_t>(bytes, 16)), nullptr, flags);
+  return b;
+}
+
+}  // namespace
+
+struct GlDynamicLayer::State {
+  std::array<uint32_t, 3> dims{}, brickGrid{};
+  uint32_t brickSize = 8, edge = 0;
+  uint64_t brickCapacity = 0, fragmentCapacity = 0;
+  size_t vertexFloats = 0, triangleIndices = 0;
+  GLuint raster = 0, vertexArray = 0;
+  ComputeProgram build;
+  GlFramebuffer framebuffer;
+  GlBuffer fragments, fragmentCount, dispatchSize, positions, indices, order, materials, brickMap,
+      pool, counters;
+  ~State() {
+    if (raster) glDeleteProgram(raster);
+    if (vertexArray) glDeleteVertexArrays(1, &vertexArray);
+  }
+};
+
+GlDynamicLayer::GlDynamicLayer(std::unique_ptr<State> state) : s_(std::move(state)) {}
+GlDynamicLayer::GlDynamicLayer(GlDynamicLayer&&) noexcept = default;
+GlDynamicLayer& GlDynamicLayer::operator=(GlDynamicLayer&&) noexcept = default;
+GlDynamicLayer::~GlDynamicLayer() = default;
+GLuint GlDynamicLayer::brickMap() const { return s_->brickMap.id(); }
+GLuint GlDynamicLayer::pool() const { return s_->pool.id(); }
+uint32_t GlDynamicLayer::brickSize() const { return s_->brickSize; }
+
+uint64_t GlDynamicLayer::gpuBytes() const {
+  const uint64_t bricks = uint64_t(s_->brickGrid[0]) * s_->brickGrid[1] * s_->brickGrid[2];
+  const uint64_t n3 = uint64_t(s_->brickSize) * s_->brickSize * s_->brickSize;
+  return s_->fragmentCapacity * kFragmentBytes + bricks * 4 +
+         s_->brickCapacity * n3 * kPoolVoxelBytes;
+}
+
+uint64_t dynamicFragmentBound(const std::vector<float>& p, const std::vector<uint32_t>& tri) {
+  double sum = 0;
+  for (size_t t = 0; t + 2 < tri.size(); t += 3) {
+    double c[3][3];
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) c[k][a] = p[3 * size_t(tri[t + size_t(k)]) + size_t(a)];
+    double e1[3], e2[3], perimeter = 0;
+    for (int a = 0; a < 3; ++a) {
+      e1[a] = c[1][a] - c[0][a];
+      e2[a] = c[2][a] - c[0][a];
+    }
+    for (int k = 0; k < 3; ++k) {
+      double l2 = 0;
+      for (int a = 0; a < 3; ++a)
+        l2 += (c[(k + 1) % 3][a] - c[k][a]) * (c[(k + 1) % 3][a] - c[k][a]);
+      perimeter += std::sqrt(l2);
+    }
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    sum +=
+        0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) + std::sqrt(2.0) * perimeter + 4.0;
+  }
+  return uint64_t(std::ceil(sum)) + 1024;
+}
+
+uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSize,
+                           const std::array<uint32_t, 3>& dims) {
+  uint64_t bricks = 1;
+  for (int a = 0; a < 3; ++a) {
+    const uint64_t grid = (uint64_t(dims[a]) + brickSize - 1) / brickSize;
+    bricks *= std::min<uint64_t>(grid, uint64_t(std::ceil(extent[a] / brickSize)) + 1);
+  }
+  return bricks;
+}
+
+Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dims,
+                                              uint32_t brickSize, uint64_t brickCapacity,
+                                              uint64_t fragmentCapacity) {
+  auto s = std::make_unique<State>();
+  s->dims = dims;
+  s->brickSize = brickSize;
+  s->edge = std::max({dims[0], dims[1], dims[2]});
+  for (int a = 0; a < 3; ++a) s->brickGrid[a] = (dims[a] + brickSize - 1) / brickSize;
+  s->fragmentCapacity = fragmentCapacity;
+  const uint64_t maxBlock = uint64_t(std::max(getInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 0));
+  const uint64_t n3 = uint64_t(brickSize) * brickSize * brickSize;
+  // The bound from the moving objects' boxes can exceed one storage buffer (128 MiB on
+  // llvmpipe) where the surface itself would fit: the pool takes what fits, and an update that
+  // needs more is an error (checkLastUpdate), never a frame with missing bricks.
+  brickCapacity = std::min(brickCapacity, maxBlock / (n3 * kPoolVoxelBytes));
+  s->brickCapacity = brickCapacity;
+  if (int64_t(s->edge) > getInteger(GL_MAX_FRAMEBUFFER_WIDTH))
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: grid edge ", s->edge,
+                     " exceeds the largest framebuffer");
+  for (const auto& [what, bytes] :
+       {std::pair<const char*, uint64_t>{"fragments", fragmentCapacity * kFragmentBytes}})
+    if (bytes > maxBlock)
+      return makeError(ErrorCode::kTooLarge, "dynamic layer: ", bytes >> 20, " MiB of ", what,
+                       " exceed the largest storage buffer (", maxBlock >> 20, " MiB)");
+
+  VOXLINK_ASSIGN_OR_RETURN(GLuint vertex,
+                           compileShaderStage(GL_VERTEX_SHADER, "gl_voxelize.vert.glsl"));
+  auto fragment = compileShaderStage(GL_FRAGMENT_SHADER, "gl_voxelize.frag.glsl");
+  if (!fragment) {
+    glDeleteShader(vertex);
+    return fragment.error();
+  }
+  VOXLINK_ASSIGN_OR_RETURN(s->raster, linkProgram({vertex, *fragment}, "gl_voxelize"));
+  VOXLINK_ASSIGN_OR_RETURN(s->build, ComputeProgram::build("dynamic_layer_build.comp.glsl",
+                                                           {{"VXL_N", std::to_string(brickSize)}}));
+  glCreateVertexArrays(1, &s->vertexArray);
+  GLuint fb = 0;
+  glCreateFramebuffers(1, &fb);
+  s->framebuffer = GlFramebuffer(fb);
+  glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(s->edge));
+  glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(s->edge));
+  s->fragments = storage(fragmentCapacity * kFragmentBytes, 0);
+  s->fragmentCount = storage(4, GL_DYNAMIC_STORAGE_BIT);
+  s->dispatchSize = storage(12);
+  s->brickMap = storage(uint64_t(s->brickGrid[0]) * s->brickGrid[1] * s->brickGrid[2] * 4);
+  s->pool = storage(brickCapacity * n3 * kPoolVoxelBytes, 0);
+  s->counters = storage(8);
+  const GLuint empty = kEmpty;  // an empty layer until the first update
+  glClearNamedBufferData(s->brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
+  if (GLenum e = glGetError(); e != GL_NO_ERROR)
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: GL error 0x", std::hex, e,
+                     " allocating ", (brickCapacity * n3 * kPoolVoxelBytes) >> 20,
+                     " MiB of brick pool");
+  return GlDynamicLayer(std::move(s));
+}
+
+Status GlDynamicLayer::update(const std::vector<float>& positions,
+                              const std::vector<uint32_t>& triangles,
+                              const std::vector<uint32_t>& triangleMaterials) {
+  if (triangleMaterials.size() * 3 != triangles.size())
+    return makeError(ErrorCode::kSizeMismatch, "dynamic layer: ", triangleMaterials.size(),
+                     " triangle materials for ", triangles.size() / 3, " triangles");
+  State& s = *s_;
+  // Triangles binned by dominant axis (the voxelizer's swizzle), zero-area ones left out; the
+  // voxel box of the vertices for the ray tracer.
+  std::array<std::vector<uint32_t>, 3> byAxis;
+  const size_t vertexCount = positions.size() / 3;
+  for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    const float* c[3];
+    for (int k = 0; k < 3; ++k) {
+      if (triangles[t + size_t(k)] >= vertexCount)
+        return makeError(ErrorCode::kInvalidArgument, "dynamic layer: triangle ", t / 3,
+                         ": vertex index out of range");
+      c[k] = &positions[3 * size_t(triangles[t + size_t(k)])];
+    }
+    const double e1[3] = {c[1][0] - c[0][0], c[1][1] - c[0][1], c[1][2] - c[0][2]};
+    const double e2[3] = {c[2][0] - c[0][0], c[2][1] - c[0][1], c[2][2] - c[0][2]};
+    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                         e1[0] * e2[1] - e1[1] * e2[0]};
+    if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) continue;
+    int w = 0;
+    if (std::abs(n[1]) > std::abs(n[w])) w = 1;
+    if (std::abs(n[2]) > std::abs(n[w])) w = 2;
+    byAxis[size_t(w)].push_back(uint32_t(t / 3));
+  }
+  std::array<float, 3> lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  for (size_t v = 0; v < vertexCount; ++v)
+    for (int a = 0; a < 3; ++a) {
+      lo[size_t(a)] = std::min(lo[size_t(a)], positions[3 * v + size_t(a)]);
+      hi[size_t(a)] = std::max(hi[size_t(a)], positions[3 * v + size_t(a)]);
+    }
+  for (int a = 0; a < 3; ++a) {
+    // One voxel of margin: the conservative raster marks voxels a triangle only touches.
+    lo_[size_t(a)] = std::clamp(int32_t(std::floor(lo[size_t(a)])) - 1, 0, int32_t(s.dims[a]));
+    hi_[size_t(a)] = std::clamp(int32_t(std::floor(hi[size_t(a)])) + 2, 0, int32_t(s.dims[a]));
+  }
+  std::vector<uint32_t> order;
+  std::array<uint32_t, 4> first{};
+  for (int a = 0; a < 3; ++a) {
+    first[size_t(a)] = uint32_t(order.size());
+    order.insert(order.end(), byAxis[size_t(a)].begin(), byAxis[size_t(a)].end());
+  }
+  first[3] = uint32_t(order.size());
+
+  // Geometry buffers grow when a mesh needs more room (the first frame, a bigger mesh).
+  if (positions.size() > s.vertexFloats) {
+    s.positions = storage(positions.size() * 4);
+    s.vertexFloats = positions.size();
+  }
+  if (triangles.size() > s.triangleIndices) {
+    s.indices = storage(triangles.size() * 4);
+    s.order = storage(triangles.size() / 3 * 4);
+    s.materials = storage(triangles.size() / 3 * 4);
+    s.triangleIndices = triangles.size();
+  }
+  glNamedBufferSubData(s.positions.id(), 0, GLsizeiptr(positions.size() * 4), positions.data());
+  glNamedBufferSubData(s.indices.id(), 0, GLsizeiptr(triangles.size() * 4), triangles.data());
+  glNamedBufferSubData(s.materials.id(), 0, GLsizeiptr(triangleMaterials.size() * 4),
+                       triangleMaterials.data());
+  if (!order.empty())
+    glNamedBufferSubData(s.order.id(), 0, GLsizeiptr(order.size() * 4), order.data());
+
+  const GLuint empty = kEmpty, zero = 0;
+  glClearNamedBufferData(s.brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
+  glClearNamedBufferData(s.fragmentCount.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+
+  // Raster: gl_voxelize writes each fragment with its column (uColumnInFragment), no lists.
+  glUseProgram(s.raster);
+  glBindFramebuffer(GL_FRAMEBUFFER, s.framebuffer.id());
+  glViewport(0, 0, GLsizei(s.edge), GLsizei(s.edge));
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glBindVertexArray(s.vertexArray);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, s.fragments.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, s.positions.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s.indices.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s.order.id());
+  glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, s.fragmentCount.id());
+  auto at = [&](const char* name) { return glGetUniformLocation(s.raster, name); };
+  glUniform1f(at("uViewportEdge"), float(s.edge));
+  glUniform1ui(at("uColumns"), s.edge);
+  glUniform1i(at("uConservative"), 1);
+  glUniform1i(at("uColumnInFragment"), 1);
+  glUniform1ui(at("uCapacity"), GLuint(s.fragmentCapacity));
+  for (uint32_t w = 0; w < 3; ++w) {
+    if (first[w] == first[w + 1]) continue;
+    glUniform1i(at("uAxis"), GLint(w));
+    glUniform1ui(at("uFirst"), first[w]);
+    glUniform3ui(at("uDims"), s.dims[(w + 1) % 3], s.dims[(w + 2) % 3], s.dims[w]);
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * (first[w + 1] - first[w])));
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+
+  // Build: mark bricks, allocate them, accumulate normals (shaders/dynamic_layer_build.comp.glsl).
+  s.build.use();
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s.brickMap.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, s.counters.id());
+  glUniform1ui(s.build.uniform("uColumns"), s.edge);
+  glUniform3ui(s.build.uniform("uDims"), s.dims[0], s.dims[1], s.dims[2]);
+  glUniform3ui(s.build.uniform("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
+  glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.materials.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, s.fragmentCount.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSize.id());
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s.dispatchSize.id());
+  glUniform1ui(s.build.uniform("uCapacity"), GLuint(s.fragmentCapacity));
+  const uint64_t bricks = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2];
+  // The fragment passes are sized on the GPU from the counter (pass 3): no count comes back.
+  for (int pass : {3, 0, 1, 2}) {
+    glUniform1i(s.build.uniform("uPass"), pass);
+    if (pass == 3)
+      glDispatchCompute(1, 1, 1);
+    else if (pass == 1)
+      glDispatchCompute(GLuint((bricks + 63) / 64), 1, 1);
+    else
+      glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  }
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  if (GLenum e = glGetError(); e != GL_NO_ERROR)
+    return makeError(ErrorCode::kUnsupported, "dynamic layer: GL error 0x", std::hex, e);
+  return Status::ok();
+}
+
+Status GlDynamicLayer::checkLastUpdate() const {
+  GLuint fragments = 0, counters[2] = {0, 0};
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glGetNamedBufferSubData(s_->fragmentCount.id(), 0, 4, &fragments);
+  glGetNamedBufferSubData(s_->counters.id(), 0, 8, counters);
+  if (fragments > s_->fragmentCapacity)
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: ", fragments, " fragments exceed its ",
+                     s_->fragmentCapacity);
+  if (counters[1] > 0)
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: ", counters[0], " bricks exceed its ",
+                     s_->brickCapacity);
+  return Status::ok();
+}
+
+std::vector<std::pair<uint64_t, std::array<int32_t, 4>>> GlDynamicLayer::readVoxels() const {
+  const State& s = *s_;
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<GLuint> map(uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2]);
+  glGetNamedBufferSubData(s.brickMap.id(), 0, GLsizeiptr(map.size() * 4), map.data());
+  const uint32_t n = s.brickSize, n3 = n * n * n;
+  std::vector<std::array<int32_t, 4>> brick(n3);
+  std::vector<std::pair<uint64_t, std::array<int32_t, 4>>> out;
+  for (uint32_t bz = 0; bz < s.brickGrid[2]; ++bz)
+    for (uint32_t by = 0; by < s.brickGrid[1]; ++by)
+      for (uint32_t bx = 0; bx < s.brickGrid[0]; ++bx) {
+        const GLuint slot = map[(uint64_t(bz) * s.brickGrid[1] + by) * s.brickGrid[0] + bx];
+        if (slot == kEmpty || slot >= s.brickCapacity) continue;
+        glGetNamedBufferSubData(s.pool.id(), GLintptr(uint64_t(slot) * n3 * kPoolVoxelBytes),
+                                GLsizeiptr(n3 * kPoolVoxelBytes), brick.data());
+        for (uint32_t k = 0; k < n3; ++k)
+          if (brick[k][3] != 0)
+            out.push_back(
+                {geometry::voxelKey(bx * n + k % n, by * n + k / n % n, bz * n + k / (n * n)),
+                 brick[k]});
+      }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace voxlink::render::gl

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The dynamic layer of a dynamic scene (docs/dynamic-scenes.md): the moving meshes re-voxelized
+// every frame by the GL voxelizer's raster stage (shaders/gl_voxelize.*.glsl, conservative
+// coverage, each fragment stored with its column instead of in a list) and turned into a
+// GPU-side structure by compute passes sized on the GPU (shaders/dynamic_layer_build.comp.glsl),
+// with nothing read back:
+//   - a brick map over the whole grid: per brick a pool slot, or empty;
+//   - a pool of bricks (sized from the moving objects' bounds): per voxel the sum of its
+//     triangles' area x unit normal in fixed point (atomic adds) and material + 1.
+// The ray tracer (DynamicSceneRenderer) reads both beside the static file. The rule is the host's
+// mean rule (area-weighted normal) in fixed point, without the host's depth sort (a sum does not
+// need it) and, per voxel, the highest material index of its triangles (the host: the largest
+// triangle's).
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "base/error.h"
+
+namespace voxlink::render::gl {
+
+// Fragments the conservative raster can append for these triangles in any orientation (per
+// triangle: its area + sqrt(2) x its perimeter + 4 pixels), grid coordinates.
+uint64_t dynamicFragmentBound(const std::vector<float>& gridPositions,
+                              const std::vector<uint32_t>& triangles);
+
+// Bricks a box of `extent` voxels can touch anywhere in the grid.
+uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSize,
+                           const std::array<uint32_t, 3>& dims);
+
+class GlDynamicLayer {
+ public:
+  // Needs a current GL 4.5 context. The pool holds `brickCapacity` bricks, or as many as the
+  // largest storage buffer does. Errors: a fragment buffer beyond the largest storage buffer, a
+  // grid wider than the largest framebuffer.
+  static Result<GlDynamicLayer> create(const std::array<uint32_t, 3>& dims, uint32_t brickSize,
+                                       uint64_t brickCapacity, uint64_t fragmentCapacity);
+
+  // Re-voxelizes the triangles (vertices in grid coordinates: voxel i spans [i, i + 1)) into the
+  // layer, each with its material (a voxel keeps the highest of its triangles'). Queues uploads,
+  // draws and dispatches; reads nothing back.
+  Status update(const std::vector<float>& gridPositions, const std::vector<uint32_t>& triangles,
+                const std::vector<uint32_t>& triangleMaterials);
+  // Waits and reads two counters: an error when the last update had more fragments or bricks
+  // than the buffers hold (its layer would miss voxels).
+  Status checkLastUpdate() const;
+  // Reads the layer back (tests, diagnostics): per occupied voxel its key
+  // (geometry::voxelKey) and (normal sum x, y, z, material + 1), sorted by key.
+  std::vector<std::pair<uint64_t, std::array<int32_t, 4>>> readVoxels() const;
+
+  GLuint brickMap() const;
+  GLuint pool() const;
+  uint32_t brickSize() const;
+  // Voxel box [lo, hi) holding the last update's triangles (rays are clipped to it).
+  const std::array<int32_t, 3>& lo() const { return lo_; }
+  const std::array<int32_t, 3>& hi() const { return hi_; }
+  uint64_t gpuBytes() const;
+
+ private:
+  struct State;  // GL objects, owned
+  explicit GlDynamicLayer(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+  std::array<int32_t, 3> lo_{}, hi_{};
+
+ public:
+  GlDynamicLayer(GlDynamicLayer&&) noexcept;
+  GlDynamicLayer& operator=(GlDynamicLayer&&) noexcept;
+  ~GlDynamicLayer();
+};
+
+}  // namespace voxlink::render::gl

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The dynamic layer of a dynamic scene (render/gl/gl_dynamic_layer.h): moving meshes voxelized
+// this frame on the GPU into a brick map over the grid and a pool of bricks (per voxel the sum
+// of area x unit normal in fixed point and material + 1). The ray tracer finds the first
+// occupied voxel of the layer along the ray (a hit at the voxel's entry, as the static mean-mode
+// fragments) and traces the static file only up to it (render_main.glsl). Defined when
+// VXL_DYNAMIC_LAYER is; VXL_DYN_N is the layer's brick edge.
+#ifdef VXL_DYNAMIC_LAYER
+
+layout(std430, binding = 59) readonly buffer DynBrickMap { uint dynBrickMap[]; };
+layout(std430, binding = 60) readonly buffer DynPool { ivec4 dynPool[]; };
+uniform ivec3 uDynLo, uDynHi;  // voxel box [lo, hi) of this frame's moving triangles
+uniform ivec3 uDynBrickGrid;   // bricks per axis of the layer's map
+
+// First voxel of the layer on o + t d (index space) in [t0, t1): its entry tHit, world normal n
+// (unit; towards the ray where the sides cancel) and material.
+bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
+                out uint material) {
+  tHit = kBig;
+  vec3 lo = vec3(uDynLo), hi = vec3(uDynHi);
+  if (any(greaterThanEqual(uDynLo, uDynHi))) return false;
+  vec2 range = intersectBox(o - lo, d, hi - lo);
+  float ta = max(range.x, t0), tb = min(range.y, t1);
+  if (!(ta < tb)) return false;
+  const int bn = VXL_DYN_N;
+  ivec3 bLo = uDynLo / bn, bHi = (uDynHi - 1) / bn;
+  Dda bricks = ddaInit(o / float(bn), d / float(bn), ta, bLo, bHi);
+  float t = ta;
+  int limit = (bHi.x - bLo.x) + (bHi.y - bLo.y) + (bHi.z - bLo.z) + 3;
+  for (int i = 0; i < limit && t < tb; ++i) {
+    int axis = minAxis(bricks.tMax);
+    float tOut = min(max(bricks.tMax[axis], t), tb);
+    ivec3 c = bricks.cell;
+    uint slot = dynBrickMap[(c.z * uDynBrickGrid.y + c.y) * uDynBrickGrid.x + c.x];
+    if (slot != 0xffffffffu && tOut > t) {
+      Dda voxels = ddaInit(o, d, t, c * bn, c * bn + (bn - 1));
+      float tv = t;
+      for (int j = 0; j < 3 * bn + 3 && tv < tOut; ++j) {
+        int va = minAxis(voxels.tMax);
+        ivec3 l = voxels.cell - c * bn;
+        ivec4 e = dynPool[slot * uint(bn * bn * bn) + uint((l.z * bn + l.y) * bn + l.x)];
+        if (e.w != 0) {
+          tHit = tv;
+          vec3 sum = vec3(e.xyz);
+          n = dot(sum, sum) > 0.0 ? normalize(sum) : -normalize(d);
+          material = uint(e.w - 1);
+          return true;
+        }
+        tv = min(max(voxels.tMax[va], tv), tOut);
+        ddaAdvance(voxels, va);
+      }
+    }
+    t = tOut;
+    ddaAdvance(bricks, axis);
+  }
+  return false;
+}
+
+#endif

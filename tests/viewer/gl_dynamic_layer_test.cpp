@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The dynamic layer (GPU-side re-voxelization) against the GL voxelizer's host path on a real
+// mesh: the same voxels, normals within a fixed-point rounding, a moved mesh gives the moved
+// voxels (the previous frame cleared), and a pool too small is an error, not a silent gap.
+#include "render/gl/gl_dynamic_layer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "geometry/mesh_loader.h"
+#include "geometry/voxel_grid.h"
+#include "gl_test_context.h"
+#include "render/gl/gl_voxelizer.h"
+#include "tests/support/test_util.h"
+
+namespace voxlink::render::gl {
+namespace {
+
+struct Fixture {
+  geometry::TriangleMesh mesh;
+  geometry::VoxelGrid grid;
+  std::vector<float> gridPositions;
+};
+
+Fixture bunnyAt(uint32_t resolution) {
+  Fixture f;
+  auto mesh = geometry::loadMesh(::voxlink::testing::dataPath("mesh/vtk_bunny.ply"));
+  EXPECT_TRUE(mesh) << mesh.message();
+  f.mesh = std::move(*mesh);
+  geometry::Bounds3 b;
+  for (size_t v = 0; v < f.mesh.vertexCount(); ++v)
+    b.add(f.mesh.positions[3 * v], f.mesh.positions[3 * v + 1], f.mesh.positions[3 * v + 2]);
+  f.grid = *geometry::fitGrid(b, resolution);
+  for (size_t v = 0; v < f.mesh.vertexCount(); ++v) {
+    const auto g = f.grid.toGrid(f.mesh.positions[3 * v], f.mesh.positions[3 * v + 1],
+                                 f.mesh.positions[3 * v + 2]);
+    f.gridPositions.insert(f.gridPositions.end(), {float(g[0]), float(g[1]), float(g[2])});
+  }
+  return f;
+}
+
+std::vector<uint32_t> materials(const Fixture& f, uint32_t m) {
+  return std::vector<uint32_t>(f.mesh.triangleCount(), m);
+}
+
+Result<GlDynamicLayer> layerFor(const Fixture& f, uint64_t bricks = 0) {
+  std::array<double, 3> extent{};
+  for (int a = 0; a < 3; ++a) extent[a] = f.grid.dims[a];
+  return GlDynamicLayer::create(f.grid.dims, 8,
+                                bricks ? bricks : dynamicBrickBound(extent, 8, f.grid.dims),
+                                dynamicFragmentBound(f.gridPositions, f.mesh.triangles));
+}
+
+TEST(GlDynamicLayer, SameVoxelsAndNormalsAsTheHostPath) {
+  VOXLINK_REQUIRE_GL();
+  Fixture f = bunnyAt(96);
+  auto voxelizer = GlSurfaceVoxelizer::create();
+  ASSERT_TRUE(voxelizer) << voxelizer.message();
+  auto host = voxelizer->voxelize(f.mesh, f.grid);  // conservative, area-weighted normals
+  ASSERT_TRUE(host) << host.message();
+  auto layer = layerFor(f);
+  ASSERT_TRUE(layer) << layer.message();
+  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, materials(f, 7)).isOk());
+  ASSERT_TRUE(layer->checkLastUpdate().isOk());
+  const auto gpu = layer->readVoxels();
+  ASSERT_EQ(gpu.size(), host->surface.voxels.size());
+  std::map<uint64_t, std::array<float, 3>> hostNormals;
+  for (const auto& v : host->surface.voxels)
+    hostNormals[geometry::voxelKey(v.x, v.y, v.z)] = v.normal;
+  size_t compared = 0, off = 0;
+  for (const auto& [key, e] : gpu) {
+    ASSERT_TRUE(hostNormals.count(key)) << "voxel not in the host's set";
+    EXPECT_EQ(e[3], 8);  // material + 1
+    const double len = std::sqrt(double(e[0]) * e[0] + double(e[1]) * e[1] + double(e[2]) * e[2]);
+    if (len < 64) continue;  // sides that cancel: no meaningful direction on either path
+    const auto& h = hostNormals[key];
+    const double cosine = (e[0] * h[0] + e[1] * h[1] + e[2] * h[2]) / len;
+    ++compared;
+    off += cosine < std::cos(1.0 * M_PI / 180);  // more than 1 degree apart
+  }
+  EXPECT_GT(compared, gpu.size() * 99 / 100);
+  EXPECT_LE(off, compared / 1000) << off << " of " << compared << " normals > 1 degree off";
+}
+
+TEST(GlDynamicLayer, AMovedMeshGivesTheMovedVoxels) {
+  VOXLINK_REQUIRE_GL();
+  Fixture f = bunnyAt(64);
+  auto layer = layerFor(f);
+  ASSERT_TRUE(layer) << layer.message();
+  // Shrunk about the origin so that a move by whole voxels stays inside the grid.
+  for (float& p : f.gridPositions) p *= 0.5f;
+  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, materials(f, 0)).isOk());
+  const auto before = layer->readVoxels();
+  ASSERT_GT(before.size(), 100u);
+  std::vector<float> moved = f.gridPositions;
+  for (size_t v = 0; v < moved.size(); v += 3) {
+    moved[v] += 9;
+    moved[v + 1] += 5;
+    moved[v + 2] += 3;
+  }
+  ASSERT_TRUE(layer->update(moved, f.mesh.triangles, materials(f, 0)).isOk());
+  ASSERT_TRUE(layer->checkLastUpdate().isOk());
+  const auto after = layer->readVoxels();
+  ASSERT_EQ(after.size(), before.size());
+  for (size_t i = 0; i < before.size(); ++i) {
+    const auto a = geometry::voxelFromKey(before[i].first);
+    ASSERT_EQ(after[i].first, geometry::voxelKey(a[0] + 9, a[1] + 5, a[2] + 3)) << i;
+    // The same sums up to the rounding of the moved float vertices (units of 1/4096).
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(after[i].second[c], before[i].second[c], 4) << i;
+    EXPECT_EQ(after[i].second[3], before[i].second[3]);
+  }
+}
+
+TEST(GlDynamicLayer, APoolTooSmallIsAnError) {
+  VOXLINK_REQUIRE_GL();
+  Fixture f = bunnyAt(64);
+  auto layer = layerFor(f, 2);
+  ASSERT_TRUE(layer) << layer.message();
+  ASSERT_TRUE(layer->update(f.gridPositions, f.mesh.triangles, materials(f, 0)).isOk());
+  const Status s = layer->checkLastUpdate();
+  EXPECT_FALSE(s.isOk());
+  EXPECT_NE(s.message().find("bricks exceed its 2"), std::string::npos) << s.message();
+}
+
+}  // namespace
+}  // namespace voxlink::render::gl
