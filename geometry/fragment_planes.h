@@ -39,6 +39,11 @@ struct PlaneFragment {
   std::array<double, 3> normal;  // unit, grid coordinates (the mesh's space / grid.spacing)
   std::array<double, 3> point;   // on the plane, grid coordinates relative to the voxel centre
   uint16_t material;
+  // Where the triangles' parts lie in the voxel, seen along axis `extentAxis` (the normal's
+  // largest component): bounds of axes (extentAxis + 1) % 3 and (extentAxis + 2) % 3 in
+  // voxel-local [0, 1] (format/fragment_extent.h stores them).
+  int extentAxis = 0;
+  std::array<double, 2> extentLo{0, 0}, extentHi{1, 1};
 };
 
 struct PlaneFragments {

@@ -31,8 +31,10 @@ VoxelSceneWalker::VoxelSceneWalker(const format::VoxLinkFile& file)
   }
   unit_ = std::min({spacing_.x, spacing_.y, spacing_.z});
   mode_ = file.isScene() ? file.surfaceMode() : format::SurfaceMode::kMean;
-  for (const format::FragmentRecord& f : file.fragments())
+  for (const format::FragmentRecord& f : file.fragments()) {
     planeNormals_.push_back(glm::normalize(decoded(format::surfaceNormal(f.word))));
+    planeExtents_.push_back(format::decodeExtent(f.extent));
+  }
 }
 
 std::span<const format::MaterialRecord> VoxelSceneWalker::materials() const {
@@ -72,7 +74,10 @@ SceneEvent VoxelSceneWalker::listHit(const Ray& ray, const glm::ivec3& cell, uin
       const glm::dvec3 centre = origin_ + glm::dvec3(cell) * spacing_;
       const double offset = fragments[f].offset * format::kPlaneOffsetUnit * unit_;
       const double t = (offset - glm::dot(n, ray.origin - centre)) / denominator;
-      if (t >= ta && t < tb && t < hit.t) {
+      if (!(t >= ta && t < tb && t < hit.t)) continue;
+      // The hit in voxel-local coordinates ([0, 1]^3 in the cell), against the piece's box.
+      const glm::dvec3 local = (ray.origin + t * ray.direction - centre) / spacing_ + 0.5;
+      if (format::extentHolds(planeExtents_[f], {local.x, local.y, local.z})) {
         hit.t = t;
         hit.normal = n;
         hit.material = format::surfaceMaterial(fragments[f].word);
