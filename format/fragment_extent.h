@@ -11,7 +11,10 @@
 //   bits 5-7   upper bound of u, in eighths *below* the voxel's high face
 //   bits 8-10  lower bound of v = (axis + 2) % 3
 //   bits 11-13 upper bound of v, in eighths below the high face
-//   bits 14-15 zero
+//   bit 14     convex: the piece meets every other plane of its voxel at a convex crease (a
+//              silhouette, a thin part's tip), so a hit counts only behind or on each of them
+//              (kConvexTolerance); the planes then end where they cross, as the surface does
+//   bit 15     zero
 // Each interval keeps lower + upper <= 7 eighths: at least an eighth of the voxel wide.
 #pragma once
 
@@ -22,18 +25,23 @@
 namespace voxlink::format {
 
 inline constexpr uint32_t kExtentSteps = 8;  // the box's bounds are multiples of 1/8 voxel
+inline constexpr uint16_t kExtentConvex = 1u << 14;
+// How far (in the voxel's smallest spacing) a convex piece's hit may lie in front of another
+// plane of its voxel and still count: rounding, not geometry.
+inline constexpr double kConvexTolerance = 1e-4;
 
 struct FragmentExtent {
   int axis = 0;                    // the box is seen along this axis
   std::array<double, 2> lo{0, 0};  // u, v lower bounds, voxel-local [0, 1]
   std::array<double, 2> hi{1, 1};  // u, v upper bounds
+  bool convex = false;             // clipped by the voxel's other planes (bit 14)
 };
 
 // The code of the smallest box on the eighths grid holding [lo, hi] (voxel-local; values outside
 // [0, 1] are clamped), seen along `axis`.
 inline uint16_t encodeExtent(int axis, const std::array<double, 2>& lo,
-                             const std::array<double, 2>& hi) {
-  uint16_t code = uint16_t(axis & 3);
+                             const std::array<double, 2>& hi, bool convex = false) {
+  uint16_t code = uint16_t((axis & 3) | (convex ? kExtentConvex : 0));
   for (int k = 0; k < 2; ++k) {
     const double steps = double(kExtentSteps);
     int low = int(std::floor(std::fmin(std::fmax(lo[k], 0.0), 1.0) * steps));
@@ -46,9 +54,9 @@ inline uint16_t encodeExtent(int axis, const std::array<double, 2>& lo,
   return code;
 }
 
-// False for codes the format does not allow (axis 3, bits 14-15, an interval under an eighth).
+// False for codes the format does not allow (axis 3, bit 15, an interval under an eighth).
 inline bool isValidExtent(uint16_t code) {
-  if ((code & 3u) == 3u || (code >> 14) != 0) return false;
+  if ((code & 3u) == 3u || (code >> 15) != 0) return false;
   for (int k = 0; k < 2; ++k)
     if (((code >> (2 + 6 * k)) & 7u) + ((code >> (5 + 6 * k)) & 7u) > 7u) return false;
   return true;
@@ -57,6 +65,7 @@ inline bool isValidExtent(uint16_t code) {
 inline FragmentExtent decodeExtent(uint16_t code) {
   FragmentExtent e;
   e.axis = int(code & 3u);
+  e.convex = (code & kExtentConvex) != 0;
   for (int k = 0; k < 2; ++k) {
     e.lo[k] = double((code >> (2 + 6 * k)) & 7u) / kExtentSteps;
     e.hi[k] = 1.0 - double((code >> (5 + 6 * k)) & 7u) / kExtentSteps;

@@ -11,6 +11,10 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
+// How far (voxels) a piece's point must lie behind another plane for the crease to count as
+// convex: coplanar pieces (a material border) are not clipped by each other.
+constexpr double kConvexMargin = 1e-3;
+
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -173,6 +177,14 @@ Result<PlaneFragments> buildPlaneFragments(const TriangleMesh& mesh, const Voxel
           fragment.extentHi[k] = g.boxHi[a];
         }
       fragments.push_back(fragment);
+    }
+    // Convex creases: each piece's point behind the other's plane (by more than rounding).
+    for (PlaneFragment& a : fragments) {
+      a.convex = fragments.size() > 1;
+      for (const PlaneFragment& b : fragments)
+        if (&a != &b && !(dot(a.normal, sub(b.point, a.point)) < -kConvexMargin &&
+                          dot(b.normal, sub(a.point, b.point)) < -kConvexMargin))
+          a.convex = false;
     }
     for (size_t i = 0; i < groups.size(); ++i)
       if (groups[i].weight < kMinFragmentArea && i != largestGroup) fragmentOf[i] = kLeftOut;

@@ -31,7 +31,7 @@ namespace voxlink::geometry {
 // `scene build --fragment-angle`'s default (docs/geometry.md, "Fragment lists", measures it).
 inline constexpr double kDefaultMergeAngleDegrees = 5.0;
 // Smallest area (in voxel faces) of a group's triangles inside the voxel that gets a fragment.
-inline constexpr double kMinFragmentArea = 0.35;
+inline constexpr double kMinFragmentArea = 0.05;
 // fragmentOfPair of a triangle whose group was left out.
 inline constexpr uint32_t kLeftOut = UINT32_MAX;
 
@@ -44,6 +44,9 @@ struct PlaneFragment {
   // voxel-local [0, 1] (format/fragment_extent.h stores them).
   int extentAxis = 0;
   std::array<double, 2> extentLo{0, 0}, extentHi{1, 1};
+  // Every other plane of the voxel lies behind this one's piece and this one behind theirs (by
+  // their points): a convex crease, where the surface is the planes' intersection.
+  bool convex = false;
 };
 
 struct PlaneFragments {

@@ -122,6 +122,20 @@ bool extentHolds(uint code, vec3 local) {
   return (uLo == 0.0 || u >= uLo) && (uHi == 1.0 || u <= uHi) && (vLo == 0.0 || v >= vLo) &&
          (vHi == 1.0 || v <= vHi);
 }
+
+// A convex fragment's hit (world, from the voxel centre) counts only behind or on the voxel's
+// other planes (bit 14; format/fragment_extent.h, kConvexTolerance).
+bool behindOthers(uint code, uint slot, uint self, vec3 fromCentre) {
+  if ((code & 0x4000u) == 0u) return true;
+  uint end = frofWord(slot + 1u);
+  for (uint g = frofWord(slot); g < end; ++g) {
+    if (g == self) continue;
+    uvec2 e = fragEntry(g);
+    float offset = float(int(e.y << 16u) >> 16) * (kPlaneOffsetUnit * uUnit);
+    if (dot(decodeGradient(e.x & 0xFFFFu), fromCentre) - offset > 1e-4 * uUnit) return false;
+  }
+  return true;
+}
 #endif
 #if VXL_SURFACE_MODE == 2
 vec3 trisVertex(uint b) {
@@ -163,7 +177,8 @@ bool surfaceHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, 
     if (along == 0.0) continue;
     float offset = float(int(e.y << 16u) >> 16) * (kPlaneOffsetUnit * uUnit);
     float t = (offset - dot(fn, fromCentre)) / along;
-    if (t >= ta && t < tz && t < tHit && extentHolds(e.y >> 16u, o + t * d - cell)) {
+    if (t >= ta && t < tz && t < tHit && extentHolds(e.y >> 16u, o + t * d - cell) &&
+        behindOthers(e.y >> 16u, s, f, fromCentre + t * direction)) {
       tHit = t;
       n = fn;
       material = e.x >> 16u;

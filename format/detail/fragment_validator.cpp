@@ -27,7 +27,7 @@ Status checkPlanes(const VoxLinkFile& f) {
     if (!isValidExtent(r.extent))
       return makeError(ErrorCode::kCorrupt, f.path(), ": section FRAG: fragment ", i, ".extent 0x",
                        std::hex, r.extent,
-                       " is not a box (axis 3, bits 14-15 set, or an interval under 1/8 voxel)");
+                       " is not a box (axis 3, bit 15 set, or an interval under 1/8 voxel)");
   }
   return Status::ok();
 }

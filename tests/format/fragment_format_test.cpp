@@ -214,25 +214,25 @@ TEST_F(FragmentBadInput, ListLongerThanTheFormatAllows) {
 }
 
 TEST_F(FragmentBadInput, FragmentReservedBitsSet) {
-  section<FragmentRecord>(SectionId::kFragments)[3].extent = 0x4000;
+  section<FragmentRecord>(SectionId::kFragments)[3].extent = 0x8000;
   EXPECT_EQ(problem(),
-            "bad.vxl: section FRAG: fragment 3.extent 0x4000 is not a box (axis 3, bits 14-15 "
-            "set, or an interval under 1/8 voxel)");
+            "bad.vxl: section FRAG: fragment 3.extent 0x8000 is not a box (axis 3, bit 15 set, "
+            "or an interval under 1/8 voxel)");
 }
 
 TEST_F(FragmentBadInput, FragmentExtentAxisThree) {
   section<FragmentRecord>(SectionId::kFragments)[2].extent = 3;
   EXPECT_EQ(problem(),
-            "bad.vxl: section FRAG: fragment 2.extent 0x3 is not a box (axis 3, bits 14-15 set, "
-            "or an interval under 1/8 voxel)");
+            "bad.vxl: section FRAG: fragment 2.extent 0x3 is not a box (axis 3, bit 15 set, or an "
+            "interval under 1/8 voxel)");
 }
 
 TEST_F(FragmentBadInput, FragmentExtentIntervalUnderAnEighth) {
   // u from 4/8 up to 4/8 below the top: empty.
   section<FragmentRecord>(SectionId::kFragments)[1].extent = uint16_t((4 << 2) | (4 << 5));
   EXPECT_EQ(problem(),
-            "bad.vxl: section FRAG: fragment 1.extent 0x90 is not a box (axis 3, bits 14-15 "
-            "set, or an interval under 1/8 voxel)");
+            "bad.vxl: section FRAG: fragment 1.extent 0x90 is not a box (axis 3, bit 15 set, or "
+            "an interval under 1/8 voxel)");
 }
 
 TEST_F(FragmentBadInput, FragmentExtentInAVersion21File) {
@@ -244,6 +244,7 @@ TEST_F(FragmentBadInput, FragmentExtentInAVersion21File) {
 
 TEST_F(FragmentBadInput, Version21PlanesWithoutExtentsStillValidate) {
   header().versionMinor = kVersionMinorFragments;
+  section<FragmentRecord>(SectionId::kFragments)[kMaxFragmentsPerVoxel].extent = 0;
   EXPECT_EQ(problem(), "");
 }
 
@@ -267,6 +268,8 @@ TEST(FragmentExtent, CodesRoundOutwardsAndHoldTheirBox) {
   EXPECT_TRUE(isValidExtent(encodeExtent(2, {0.5, 1.0}, {0.5, 1.0})));
   EXPECT_EQ(encodeExtent(0, {0, 0}, {1, 1}), 0);
   EXPECT_FALSE(isValidExtent(0x8000));
+  EXPECT_TRUE(decodeExtent(encodeExtent(1, {0, 0}, {1, 1}, true)).convex);
+  EXPECT_FALSE(decodeExtent(encodeExtent(1, {0, 0}, {1, 1}, false)).convex);
 }
 
 TEST_F(FragmentBadInput, FragmentMaterialOutOfTable) {
