@@ -7,13 +7,13 @@
 // Surface hits cast their shadow rays from this many voxels off the surface along the normal:
 // a voxelized surface is one to two voxels thick, and a ray started inside it would shadow
 // the surface itself. kSurfaceShadowBias in render/render_model.h.
-// A plane or triangle hit lies on the stored surface: 0.1 voxel clears the neighbouring voxels'
+// A plane or triangle hit lies on the stored surface: 0.3 voxel clears the neighbouring voxels'
 // planes yet stays inside the voxel; a triangle needs a rounding margin only
 // (kListSurfaceOffset, kTriangleSurfaceOffset in render/render_model.h).
 #if VXL_SURFACE_MODE == 0
 const float kSurfaceShadowBias = 2.0;
 #elif VXL_SURFACE_MODE == 1
-const float kSurfaceShadowBias = 0.1;  // kListSurfaceOffset
+const float kSurfaceShadowBias = 0.3;  // kListSurfaceOffset
 #else
 const float kSurfaceShadowBias = 0.01;  // kTriangleSurfaceOffset
 #endif
