@@ -41,7 +41,9 @@ void makeSceneHeader(FileHeader& h, const SceneSections& scene) {
   h.sphereVoxelCount = bits(scene.sphereMask);
   h.surfaceMode = static_cast<uint32_t>(scene.surfaceMode);
   if (scene.surfaceMode != SurfaceMode::kMean) {
-    h.versionMinor = kVersionMinorFragments;
+    // Planes carry extents (2.2); triangle lists are as in 2.1.
+    h.versionMinor =
+        scene.surfaceMode == SurfaceMode::kPlanes ? kVersionMinorExtents : kVersionMinorFragments;
     h.fragmentCount = scene.surfaceMode == SurfaceMode::kPlanes ? scene.fragments.size()
                                                                 : scene.triangleRefs.size();
     h.triangleCount = static_cast<uint32_t>(scene.triangles.size());

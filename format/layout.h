@@ -27,6 +27,8 @@ inline constexpr uint16_t kVersionMajorScene = 2;  // a scene: geometry (+ volum
 inline constexpr uint16_t kVersionMinor = 0;       // readers accept any minor version
 // Version 2.1: a scene whose surface voxels also carry fragment lists (header.surfaceMode > 0).
 inline constexpr uint16_t kVersionMinorFragments = 1;
+// Version 2.2: plane fragments carry the box their surface piece covers (format/fragment_extent.h).
+inline constexpr uint16_t kVersionMinorExtents = 2;
 // Readers accept the majors they know (1 and 2) and refuse later ones: a version 1 reader would
 // draw a version 2 file's geometry voxels as empty volume samples, so the major changed.
 inline constexpr uint32_t kByteOrderMark = 0x01020304u;  // reads 0x04030201 when swapped
@@ -224,7 +226,7 @@ struct FragmentRecord {  // 8 bytes: one plane of a surface voxel
   uint32_t word;         // 4B (0)  surfaceWord(): polar16 unit world normal, material
   int16_t offset;        // 2B (4)  plane: dot(n, p - voxelCentre) = offset * kPlaneOffsetUnit *
                          //         min(spacing), p and the centre in world units
-  uint16_t reserved;     // 2B (6)  zero
+  uint16_t extent;       // 2B (6)  version 2.2: format/fragment_extent.h; zero (reserved) in 2.1
 };
 static_assert(sizeof(FragmentRecord) == 8);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "format/fragment_extent.h"
 #include "format/gradient_codec.h"
 
 namespace voxlink::format {
@@ -61,6 +62,9 @@ Status SceneBuilder::appendList(const Entry& e, uint32_t count, SceneSections& s
         return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
                          "): fragment material ", surfaceMaterial(f.word),
                          " is not in the table of ", materials_.size());
+      if (!isValidExtent(f.extent))
+        return makeError(ErrorCode::kInvalidArgument, "voxel (", e.x, ", ", e.y, ", ", e.z,
+                         "): fragment extent 0x", std::hex, f.extent, " is not a box");
       scene.fragments.push_back(f);
     }
     return Status::ok();

@@ -11,6 +11,10 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
+// How far (voxels) a piece's point must lie behind another plane for the crease to count as
+// convex: coplanar pieces (a material border) are not clipped by each other.
+constexpr double kConvexMargin = 1e-3;
+
 Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -24,6 +28,8 @@ double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
 struct Clipped {
   double area = 0;
   Vec3 centroid{0, 0, 0};
+  bool empty = true;                    // the triangle misses the box
+  Vec3 boxLo{1, 1, 1}, boxHi{0, 0, 0};  // the part's bounds, voxel-local
 };
 
 Clipped clipToVoxel(const Vec3 (&corner)[3], const Vec3& lo) {
@@ -49,9 +55,14 @@ Clipped clipToVoxel(const Vec3 (&corner)[3], const Vec3& lo) {
     }
   }
   Clipped c;
+  c.empty = false;
   Vec3 weighted{0, 0, 0}, mean{0, 0, 0};
   for (size_t i = 0; i < poly.size(); ++i)
-    for (int a = 0; a < 3; ++a) mean[a] += poly[i][a] / double(poly.size());
+    for (int a = 0; a < 3; ++a) {
+      mean[a] += poly[i][a] / double(poly.size());
+      c.boxLo[a] = std::min(c.boxLo[a], poly[i][a] - lo[a]);
+      c.boxHi[a] = std::max(c.boxHi[a], poly[i][a] - lo[a]);
+    }
   for (size_t i = 1; i + 1 < poly.size(); ++i) {
     const double area = 0.5 * length(cross(sub(poly[i], poly[0]), sub(poly[i + 1], poly[0])));
     c.area += area;
@@ -74,6 +85,7 @@ struct Group {
   double weight = 0;
   uint32_t members = 0;
   uint16_t material;
+  Vec3 boxLo{1, 1, 1}, boxHi{0, 0, 0};  // bounds of the members' parts, voxel-local
 };
 
 }  // namespace
@@ -131,6 +143,11 @@ Result<PlaneFragments> buildPlaneFragments(const TriangleMesh& mesh, const Voxel
       }
       group.weight += w;
       ++group.members;
+      if (!t.part.empty)
+        for (int a = 0; a < 3; ++a) {
+          group.boxLo[a] = std::min(group.boxLo[a], t.part.boxLo[a]);
+          group.boxHi[a] = std::max(group.boxHi[a], t.part.boxHi[a]);
+        }
       groupOf[m] = uint32_t(g);
     }
     std::vector<PlaneFragment>& fragments = perVoxel[v];
@@ -148,7 +165,26 @@ Result<PlaneFragments> buildPlaneFragments(const TriangleMesh& mesh, const Voxel
                          : g.seed;
       Vec3 p;
       for (int a = 0; a < 3; ++a) p[a] = g.pointSum[a] / g.weight - (lo[a] + 0.5);
-      fragments.push_back({n, p, g.material});
+      // The piece's box seen along the normal's largest axis; the whole voxel face when no
+      // member reaches into the voxel.
+      PlaneFragment fragment{n, p, g.material, 0, {0, 0}, {1, 1}};
+      for (int a = 1; a < 3; ++a)
+        if (std::abs(n[a]) > std::abs(n[fragment.extentAxis])) fragment.extentAxis = a;
+      if (g.boxLo[0] <= g.boxHi[0])
+        for (int k = 0; k < 2; ++k) {
+          const int a = (fragment.extentAxis + 1 + k) % 3;
+          fragment.extentLo[k] = g.boxLo[a];
+          fragment.extentHi[k] = g.boxHi[a];
+        }
+      fragments.push_back(fragment);
+    }
+    // Convex creases: each piece's point behind the other's plane (by more than rounding).
+    for (PlaneFragment& a : fragments) {
+      a.convex = fragments.size() > 1;
+      for (const PlaneFragment& b : fragments)
+        if (&a != &b && !(dot(a.normal, sub(b.point, a.point)) < -kConvexMargin &&
+                          dot(b.normal, sub(a.point, b.point)) < -kConvexMargin))
+          a.convex = false;
     }
     for (size_t i = 0; i < groups.size(); ++i)
       if (groups[i].weight < kMinFragmentArea && i != largestGroup) fragmentOf[i] = kLeftOut;

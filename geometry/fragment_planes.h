@@ -31,7 +31,7 @@ namespace voxlink::geometry {
 // `scene build --fragment-angle`'s default (docs/geometry.md, "Fragment lists", measures it).
 inline constexpr double kDefaultMergeAngleDegrees = 5.0;
 // Smallest area (in voxel faces) of a group's triangles inside the voxel that gets a fragment.
-inline constexpr double kMinFragmentArea = 0.35;
+inline constexpr double kMinFragmentArea = 0.05;
 // fragmentOfPair of a triangle whose group was left out.
 inline constexpr uint32_t kLeftOut = UINT32_MAX;
 
@@ -39,6 +39,14 @@ struct PlaneFragment {
   std::array<double, 3> normal;  // unit, grid coordinates (the mesh's space / grid.spacing)
   std::array<double, 3> point;   // on the plane, grid coordinates relative to the voxel centre
   uint16_t material;
+  // Where the triangles' parts lie in the voxel, seen along axis `extentAxis` (the normal's
+  // largest component): bounds of axes (extentAxis + 1) % 3 and (extentAxis + 2) % 3 in
+  // voxel-local [0, 1] (format/fragment_extent.h stores them).
+  int extentAxis = 0;
+  std::array<double, 2> extentLo{0, 0}, extentHi{1, 1};
+  // Every other plane of the voxel lies behind this one's piece and this one behind theirs (by
+  // their points): a convex crease, where the surface is the planes' intersection.
+  bool convex = false;
 };
 
 struct PlaneFragments {

@@ -31,8 +31,10 @@ VoxelSceneWalker::VoxelSceneWalker(const format::VoxLinkFile& file)
   }
   unit_ = std::min({spacing_.x, spacing_.y, spacing_.z});
   mode_ = file.isScene() ? file.surfaceMode() : format::SurfaceMode::kMean;
-  for (const format::FragmentRecord& f : file.fragments())
+  for (const format::FragmentRecord& f : file.fragments()) {
     planeNormals_.push_back(glm::normalize(decoded(format::surfaceNormal(f.word))));
+    planeExtents_.push_back(format::decodeExtent(f.extent));
+  }
 }
 
 std::span<const format::MaterialRecord> VoxelSceneWalker::materials() const {
@@ -65,14 +67,27 @@ SceneEvent VoxelSceneWalker::listHit(const Ray& ray, const glm::ivec3& cell, uin
   const auto starts = file_.fragmentStarts();
   if (mode_ == format::SurfaceMode::kPlanes) {
     const auto fragments = file_.fragments();
+    const glm::dvec3 centre = origin_ + glm::dvec3(cell) * spacing_;
+    // Signed distance of world point p in front of plane f.
+    auto inFront = [&](uint32_t f, const glm::dvec3& p) {
+      return glm::dot(planeNormals_[f], p - centre) -
+             fragments[f].offset * format::kPlaneOffsetUnit * unit_;
+    };
     for (uint32_t f = starts[slot]; f < starts[slot + 1]; ++f) {
       const glm::dvec3& n = planeNormals_[f];
       const double denominator = glm::dot(n, ray.direction);
       if (denominator == 0) continue;
-      const glm::dvec3 centre = origin_ + glm::dvec3(cell) * spacing_;
-      const double offset = fragments[f].offset * format::kPlaneOffsetUnit * unit_;
-      const double t = (offset - glm::dot(n, ray.origin - centre)) / denominator;
-      if (t >= ta && t < tb && t < hit.t) {
+      const double t = -inFront(f, ray.origin) / denominator;
+      if (!(t >= ta && t < tb && t < hit.t)) continue;
+      // The hit in voxel-local coordinates ([0, 1]^3 in the cell), against the piece's box and,
+      // at a convex crease, behind the voxel's other planes.
+      const glm::dvec3 p = ray.origin + t * ray.direction;
+      const glm::dvec3 local = (p - centre) / spacing_ + 0.5;
+      const format::FragmentExtent& extent = planeExtents_[f];
+      bool inside = format::extentHolds(extent, {local.x, local.y, local.z});
+      for (uint32_t g = starts[slot]; inside && extent.convex && g < starts[slot + 1]; ++g)
+        if (g != f && inFront(g, p) > format::kConvexTolerance * unit_) inside = false;
+      if (inside) {
         hit.t = t;
         hit.normal = n;
         hit.material = format::surfaceMaterial(fragments[f].word);

@@ -5,13 +5,15 @@
 // ray tracer walks, in double precision. The surface hit of a version 2.0 file (one fragment)
 // is at the chord's entry with the stored polar normal; with fragment lists (version 2.1) it is
 // the nearest intersection inside the chord of the voxel's planes or referenced triangles, with
-// that fragment's normal and material, and a voxel crossed without one is passed. Works for
+// that fragment's normal and material, and a voxel crossed without one is passed; a plane hit
+// counts only inside its fragment's extent (version 2.2, format/fragment_extent.h). Works for
 // version 1 files too (every voxel a volume sample).
 #pragma once
 
 #include <array>
 #include <vector>
 
+#include "format/fragment_extent.h"
 #include "format/scene_index.h"
 #include "format/voxel_locator.h"
 #include "format/voxlink_file.h"
@@ -41,7 +43,8 @@ class VoxelSceneWalker : public SceneWalker {
   double unit_;
   Box box_;
   format::SurfaceMode mode_;
-  std::vector<glm::dvec3> planeNormals_;  // FRAG's normals, decoded once
+  std::vector<glm::dvec3> planeNormals_;              // FRAG's normals, decoded once
+  std::vector<format::FragmentExtent> planeExtents_;  // FRAG's extents (2.2), decoded once
 
   // The nearest hit in [ta, tb) of surface voxel `slot`'s fragment list, or t = HUGE_VAL.
   SceneEvent listHit(const Ray& ray, const glm::ivec3& cell, uint32_t slot, double ta,

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "format/fragment_extent.h"
 #include "format/gradient_codec.h"
 #include "geometry/fragment_planes.h"
 
@@ -51,6 +52,7 @@ Status appendPlanes(double mergeAngleDegrees, const geometry::TriangleMesh& mesh
       format::FragmentRecord r{};
       r.word = format::surfaceWord(code, p.material);
       r.offset = int16_t(steps);
+      r.extent = format::encodeExtent(p.extentAxis, p.extentLo, p.extentHi, p.convex);
       out.planes.push_back(r);
     }
   }

@@ -105,11 +105,37 @@ bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tH
 }
 #endif
 
-// Version 2.1 fragment lists (VXL_SURFACE_MODE 1 planes, 2 triangles; format/layout.h): the
+// Version 2.1/2.2 fragment lists (VXL_SURFACE_MODE 1 planes, 2 triangles; format/layout.h): the
 // sections come as frofWord and fragEntry (uvec2 per FragmentRecord), or tridWord and trisWord
 // (10 words per TriangleRecord). Mirrors VoxelSceneWalker::listHit.
 #if VXL_SURFACE_MODE == 1
 const float kPlaneOffsetUnit = 1.0 / 4096.0;  // format/layout.h
+
+// Whether a voxel-local point lies in a fragment's extent box (format/fragment_extent.h; code 0
+// is the whole voxel, as in version 2.1 files).
+bool extentHolds(uint code, vec3 local) {
+  uint axis = code & 3u;
+  float u = local[(axis + 1u) % 3u], v = local[(axis + 2u) % 3u];
+  float uLo = float((code >> 2u) & 7u) / 8.0, uHi = 1.0 - float((code >> 5u) & 7u) / 8.0;
+  float vLo = float((code >> 8u) & 7u) / 8.0, vHi = 1.0 - float((code >> 11u) & 7u) / 8.0;
+  // A bound on the voxel's face is no bound (a hit in the chord may round just outside).
+  return (uLo == 0.0 || u >= uLo) && (uHi == 1.0 || u <= uHi) && (vLo == 0.0 || v >= vLo) &&
+         (vHi == 1.0 || v <= vHi);
+}
+
+// A convex fragment's hit (world, from the voxel centre) counts only behind or on the voxel's
+// other planes (bit 14; format/fragment_extent.h, kConvexTolerance).
+bool behindOthers(uint code, uint slot, uint self, vec3 fromCentre) {
+  if ((code & 0x4000u) == 0u) return true;
+  uint end = frofWord(slot + 1u);
+  for (uint g = frofWord(slot); g < end; ++g) {
+    if (g == self) continue;
+    uvec2 e = fragEntry(g);
+    float offset = float(int(e.y << 16u) >> 16) * (kPlaneOffsetUnit * uUnit);
+    if (dot(decodeGradient(e.x & 0xFFFFu), fromCentre) - offset > 1e-4 * uUnit) return false;
+  }
+  return true;
+}
 #endif
 #if VXL_SURFACE_MODE == 2
 vec3 trisVertex(uint b) {
@@ -138,7 +164,8 @@ bool surfaceHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, 
   // The ray in world units, with the same parameter t.
   vec3 origin = indexToWorld(o), direction = d * uVolumeSpacing;
 #if VXL_SURFACE_MODE == 1
-  vec3 centre = indexToWorld(floor(o + 0.5 * (ta + tz) * d) + 0.5);
+  vec3 cell = floor(o + 0.5 * (ta + tz) * d);
+  vec3 centre = indexToWorld(cell + 0.5);
   vec3 fromCentre = origin - centre;
 #endif
   uint end = frofWord(s + 1u);
@@ -150,7 +177,8 @@ bool surfaceHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, 
     if (along == 0.0) continue;
     float offset = float(int(e.y << 16u) >> 16) * (kPlaneOffsetUnit * uUnit);
     float t = (offset - dot(fn, fromCentre)) / along;
-    if (t >= ta && t < tz && t < tHit) {
+    if (t >= ta && t < tz && t < tHit && extentHolds(e.y >> 16u, o + t * d - cell) &&
+        behindOthers(e.y >> 16u, s, f, fromCentre + t * direction)) {
       tHit = t;
       n = fn;
       material = e.x >> 16u;

@@ -13,7 +13,7 @@
 #if VXL_SURFACE_MODE == 0
 const float kSurfaceShadowBias = 2.0;
 #elif VXL_SURFACE_MODE == 1
-const float kSurfaceShadowBias = 0.3;
+const float kSurfaceShadowBias = 0.3;  // kListSurfaceOffset
 #else
 const float kSurfaceShadowBias = 0.01;  // kTriangleSurfaceOffset
 #endif

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "format/fragment_extent.h"
 #include "format/gradient_codec.h"
 
 namespace voxlink::format {
@@ -20,9 +21,13 @@ Status checkPlanes(const VoxLinkFile& f) {
       return makeError(ErrorCode::kCorrupt, f.path(), ": section FRAG: fragment ", i,
                        " has the reserved or non-canonical normal code 0x", std::hex,
                        surfaceNormal(r.word));
-    if (r.reserved != 0)
+    if (h.versionMinor < kVersionMinorExtents && r.extent != 0)
       return makeError(ErrorCode::kCorrupt, f.path(), ": section FRAG: fragment ", i,
-                       ".reserved is not zero");
+                       ".extent is not zero in a version 2.", h.versionMinor, " file");
+    if (!isValidExtent(r.extent))
+      return makeError(ErrorCode::kCorrupt, f.path(), ": section FRAG: fragment ", i, ".extent 0x",
+                       std::hex, r.extent,
+                       " is not a box (axis 3, bit 15 set, or an interval under 1/8 voxel)");
   }
   return Status::ok();
 }

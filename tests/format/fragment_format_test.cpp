@@ -9,6 +9,7 @@
 
 #include "base/crc32c.h"
 #include "format/bricked_volume.h"
+#include "format/fragment_extent.h"
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
 #include "format/surface_mode.h"
@@ -63,7 +64,8 @@ SceneBuilder planesScene(size_t firstListLength = 2) {
     sheet.push_back(i % 2 ? plane(0, 0, -1, 400, 1) : plane(0, 0, 1, -400, 0));
   b.addFragments(1, 2, 3, sheet);
   b.addSurface(5, 5, 5, encodeGradient(1.0, 0.0, 0.0), 1);
-  const FragmentRecord one = plane(1, 0, 0, 17, 1);
+  FragmentRecord one = plane(1, 0, 0, 17, 1);
+  one.extent = encodeExtent(0, {0.25, 0.5}, {0.75, 1.0});
   b.addFragments(5, 5, 5, std::span(&one, 1));
   return b;
 }
@@ -80,7 +82,7 @@ TEST(FragmentFormat, PlanesRoundTripPlainAndPacked) {
   ASSERT_TRUE(f) << f.message();
   ASSERT_TRUE(validateFile(*f)) << validateFile(*f).message();
   EXPECT_EQ(f->header().versionMajor, kVersionMajorScene);
-  EXPECT_EQ(f->header().versionMinor, kVersionMinorFragments);
+  EXPECT_EQ(f->header().versionMinor, kVersionMinorExtents);
   EXPECT_EQ(f->surfaceMode(), SurfaceMode::kPlanes);
   EXPECT_EQ(f->header().fragmentCount, 3u);
   // File order is (z, y, x) by brick: (1, 2, 3) before (5, 5, 5).
@@ -92,6 +94,7 @@ TEST(FragmentFormat, PlanesRoundTripPlainAndPacked) {
   EXPECT_EQ(f->fragments()[0].offset, -400);
   EXPECT_EQ(surfaceMaterial(f->fragments()[1].word), 1);
   EXPECT_EQ(f->fragments()[2].offset, 17);
+  EXPECT_EQ(f->fragments()[2].extent, encodeExtent(0, {0.25, 0.5}, {0.75, 1.0}));
   // `voxlink info` names the mode and counts the lists.
   const report::FootprintReport footprint = report::computeFootprint(*f);
   ASSERT_TRUE(footprint.scene);
@@ -152,6 +155,18 @@ TEST(FragmentFormat, BuilderRefusesWhatTheFormatCannotSay) {
     auto r = b.build();
     ASSERT_FALSE(r);
     EXPECT_EQ(r.message(), "voxel (1, 1, 1) has a surface fragment but no fragment list");
+  }
+  {
+    SceneBuilder b(smallGrid());
+    b.setMaterials({grey()});
+    b.setSurfaceMode(SurfaceMode::kPlanes);
+    b.addSurface(1, 1, 1, encodeGradient(0.0, 0.0, 1.0), 0);
+    FragmentRecord bad = plane(0, 0, 1, 0);
+    bad.extent = 3;  // axis 3
+    b.addFragments(1, 1, 1, std::span(&bad, 1));
+    auto r = b.build();
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.message(), "voxel (1, 1, 1): fragment extent 0x3 is not a box");
   }
   {
     SceneBuilder b(smallGrid());
@@ -218,8 +233,62 @@ TEST_F(FragmentBadInput, ListLongerThanTheFormatAllows) {
 }
 
 TEST_F(FragmentBadInput, FragmentReservedBitsSet) {
-  section<FragmentRecord>(SectionId::kFragments)[3].reserved = 1;
-  EXPECT_EQ(problem(), "bad.vxl: section FRAG: fragment 3.reserved is not zero");
+  section<FragmentRecord>(SectionId::kFragments)[3].extent = 0x8000;
+  EXPECT_EQ(problem(),
+            "bad.vxl: section FRAG: fragment 3.extent 0x8000 is not a box (axis 3, bit 15 set, "
+            "or an interval under 1/8 voxel)");
+}
+
+TEST_F(FragmentBadInput, FragmentExtentAxisThree) {
+  section<FragmentRecord>(SectionId::kFragments)[2].extent = 3;
+  EXPECT_EQ(problem(),
+            "bad.vxl: section FRAG: fragment 2.extent 0x3 is not a box (axis 3, bit 15 set, or an "
+            "interval under 1/8 voxel)");
+}
+
+TEST_F(FragmentBadInput, FragmentExtentIntervalUnderAnEighth) {
+  // u from 4/8 up to 4/8 below the top: empty.
+  section<FragmentRecord>(SectionId::kFragments)[1].extent = uint16_t((4 << 2) | (4 << 5));
+  EXPECT_EQ(problem(),
+            "bad.vxl: section FRAG: fragment 1.extent 0x90 is not a box (axis 3, bit 15 set, or "
+            "an interval under 1/8 voxel)");
+}
+
+TEST_F(FragmentBadInput, FragmentExtentInAVersion21File) {
+  header().versionMinor = kVersionMinorFragments;
+  section<FragmentRecord>(SectionId::kFragments)[0].extent = 1;
+  EXPECT_EQ(problem(),
+            "bad.vxl: section FRAG: fragment 0.extent is not zero in a version 2.1 file");
+}
+
+TEST_F(FragmentBadInput, Version21PlanesWithoutExtentsStillValidate) {
+  header().versionMinor = kVersionMinorFragments;
+  section<FragmentRecord>(SectionId::kFragments)[kMaxFragmentsPerVoxel].extent = 0;
+  EXPECT_EQ(problem(), "");
+}
+
+TEST(FragmentExtent, CodesRoundOutwardsAndHoldTheirBox) {
+  // A piece over u in [0.3, 0.6], v in [0, 1] seen along y: u is z, v is x.
+  const uint16_t code = encodeExtent(1, {0.3, 0.0}, {0.6, 1.0});
+  ASSERT_TRUE(isValidExtent(code));
+  const FragmentExtent e = decodeExtent(code);
+  EXPECT_EQ(e.axis, 1);
+  EXPECT_DOUBLE_EQ(e.lo[0], 0.25);
+  EXPECT_DOUBLE_EQ(e.hi[0], 0.625);
+  EXPECT_DOUBLE_EQ(e.lo[1], 0.0);
+  EXPECT_DOUBLE_EQ(e.hi[1], 1.0);
+  EXPECT_TRUE(extentHolds(e, {0.0, 0.9, 0.3}));
+  EXPECT_FALSE(extentHolds(e, {0.5, 0.5, 0.7}));  // z beyond the piece
+  EXPECT_FALSE(extentHolds(e, {0.5, 0.5, 0.2}));
+  // Bounds on the voxel's faces hold points that rounded just outside.
+  EXPECT_TRUE(extentHolds(e, {-1e-12, 0.5, 0.3}));
+  EXPECT_TRUE(extentHolds(decodeExtent(0), {1 + 1e-12, -1e-12, 1 + 1e-12}));
+  // A piece thinner than an eighth keeps an eighth; the whole voxel is code 0 on axis 0.
+  EXPECT_TRUE(isValidExtent(encodeExtent(2, {0.5, 1.0}, {0.5, 1.0})));
+  EXPECT_EQ(encodeExtent(0, {0, 0}, {1, 1}), 0);
+  EXPECT_FALSE(isValidExtent(0x8000));
+  EXPECT_TRUE(decodeExtent(encodeExtent(1, {0, 0}, {1, 1}, true)).convex);
+  EXPECT_FALSE(decodeExtent(encodeExtent(1, {0, 0}, {1, 1}, false)).convex);
 }
 
 TEST_F(FragmentBadInput, FragmentMaterialOutOfTable) {

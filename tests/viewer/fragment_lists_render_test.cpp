@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Fragment lists (format version 2.1) through the GL ray tracer against the float64 scene
-// reference (render/voxel_scene_walker.cpp): a floor plane, a wall thinner than a voxel with a
-// plane per side and a material per side, and a sphere crossing the wall, as planes; the same
-// floor and wall as referenced triangles. Plain, with shadows, and ray traced.
+// Fragment lists (format version 2.1/2.2) through the GL ray tracer against the float64 scene
+// reference (render/voxel_scene_walker.cpp): a floor plane (half of every other voxel cut away
+// by its extent), a wall thinner than a voxel with a plane per side and a material per side, and a
+// sphere crossing the wall, as planes; the same floor and wall as referenced triangles. Plain, with
+// shadows, and ray traced.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
+#include "format/fragment_extent.h"
 #include "format/gradient_codec.h"
 #include "format/scene_builder.h"
 #include "render/gl/render_target.h"
@@ -101,12 +103,18 @@ Result<format::BrickedVolume> makeScene(SurfaceMode mode, format::Axis axis) {
           continue;
         }
         if (floor) {
-          const FragmentRecord f = plane({0, 1, 0}, {0, 2.2, 0}, i, j, k, 0);
+          // Version 2.2 extents: every other floor voxel keeps only x in [0, 0.5] of the voxel
+          // (seen along y: u is z, v is x), a checkerboard of holes.
+          FragmentRecord f = plane({0, 1, 0}, {0, 2.2, 0}, i, j, k, 0);
+          if ((i + k) % 2 == 0) f.extent = format::encodeExtent(1, {0, 0}, {1, 0.5});
           b.addFragments(i, j, k, std::span(&f, 1));
         } else {
-          const FragmentRecord sides[] = {
+          // The wall's two sides lie behind each other: a convex pair, clipped by each other.
+          FragmentRecord sides[] = {
               plane(wallNormal, {kWall, 0, 0}, i, j, k, 1),
               plane(-wallNormal, {kWall - 0.4 * std::sqrt(2.0), 0, 0}, i, j, k, 2)};
+          for (FragmentRecord& side : sides)
+            side.extent = format::encodeExtent(0, {0, 0}, {1, 1}, /*convex=*/true);
           b.addFragments(i, j, k, sides);
         }
         const double dx = i - 30.0, dy = j - 14.0, dz = k - 14.0;
