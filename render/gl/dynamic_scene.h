@@ -35,6 +35,19 @@ class DynamicScene {
 
   // Places the moving meshes at `seconds` and re-voxelizes them on the GPU (queued, no read-back).
   Status setTime(double seconds);
+  // The moving meshes, numbered as setPose() numbers them: the object's index in the description
+  // and its world bounds at rest (its transform, no pose).
+  struct MovingObject {
+    size_t object = 0;
+    geometry::Bounds3 restBounds;
+  };
+  std::vector<MovingObject> movingObjects() const;
+  // Places moving mesh `index` at `pose` (instead of its animation's; the others keep their
+  // current pose) and re-voxelizes the moving meshes; the static part is kept. For a user who
+  // drags an object. Errors: an index out of range, a non-finite pose, a pose that takes the
+  // rest bounds' corners outside the grid (callers clamp first: viewer/app/detail/object_drag.h).
+  Status setPose(size_t index, const scene::Pose& pose);
+  const scene::Pose& pose(size_t index) const { return moving_.at(index).pose; }
   DynamicSceneRenderer& renderer() { return *renderer_; }
   const GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
@@ -49,7 +62,10 @@ class DynamicScene {
     std::vector<double> restPositions;  // world, 3 per vertex
     std::vector<uint32_t> triangles;
     std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
+    geometry::Bounds3 restBounds;
+    scene::Pose pose;  // the current one
   };
+  Status uploadPoses();
   DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file, GlDynamicLayer layer);
   scene::SceneDescription scene_;
   format::VoxLinkFile file_;

@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A dynamic scene (a static floor, a moving bunny): the frame drawn from the GPU-side dynamic
 // layer against the host path for the same frame (`scene build --voxelizer gl` of the scene
-// frozen at that time, drawn by VoxLinkRenderer), and the bad inputs it refuses.
+// frozen at that time, drawn by VoxLinkRenderer), a pose set directly (a dragged object), and the
+// bad inputs it refuses.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 
 #include "gl_test_context.h"
 #include "render/camera.h"
@@ -14,8 +16,10 @@
 #include "render/gl/gl_voxelizer.h"
 #include "render/gl/render_target.h"
 #include "render/image.h"
+#include "scene/scene_animation.h"
 #include "scene/scene_assembly.h"
 #include "tests/support/test_util.h"
+#include "viewer/app/detail/object_drag.h"
 
 namespace voxlink::render::gl {
 namespace {
@@ -137,6 +141,81 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
       Camera::framing((*dynamic)->renderer().geometry().worldBox(), {}), s, target);
   ASSERT_FALSE(st.isOk());
   EXPECT_NE(st.message().find("shadows"), std::string::npos) << st.message();
+}
+
+}  // namespace
+}  // namespace voxlink::render::gl
+
+namespace voxlink::render::gl {
+namespace {
+
+std::set<uint64_t> keysOf(const GlDynamicLayer& layer) {
+  std::set<uint64_t> keys;
+  for (const auto& v : layer.readVoxels()) keys.insert(v.first);
+  return keys;
+}
+
+// What the viewer does when the user drags the bunny: setPose() with a translation, clamped
+// into the grid by viewer::clampTranslation first.
+TEST(DynamicScene, ASetPoseGivesTheMovedVoxelsAndStaysInTheGrid) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(writeScene(dir, R"({"keys": [{"time": 0}]})"));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  DynamicScene& d = **dynamic;
+  const auto objects = d.movingObjects();
+  ASSERT_EQ(objects.size(), 1u);
+  EXPECT_EQ(objects[0].object, 1u);
+  ASSERT_TRUE(d.setTime(0).isOk());
+  const std::set<uint64_t> rest = keysOf(d.layer());
+  ASSERT_GT(rest.size(), 100u);
+
+  // By whole voxels: the rest voxels moved by as many.
+  const double s = d.grid().spacing;
+  scene::Pose pose;
+  pose.translate = {3 * s, -2 * s, 1 * s};
+  ASSERT_TRUE(d.setPose(0, pose).isOk());
+  ASSERT_TRUE(d.layer().checkLastUpdate().isOk());
+  std::set<uint64_t> expected;
+  for (uint64_t key : rest) {
+    const auto v = geometry::voxelFromKey(key);
+    expected.insert(geometry::voxelKey(v[0] + 3, v[1] - 2, v[2] + 1));
+  }
+  EXPECT_EQ(keysOf(d.layer()), expected);
+  EXPECT_EQ(d.pose(0).translate, pose.translate);
+
+  // Dragged far along +x: clamped to the grid's face, accepted, reaching the last column.
+  const geometry::Bounds3& b = objects[0].restBounds;
+  const geometry::Bounds3 grid = scene::gridBox(d.grid());
+  const Box restBox{{b.min[0], b.min[1], b.min[2]}, {b.max[0], b.max[1], b.max[2]}};
+  const Box limits{{grid.min[0], grid.min[1], grid.min[2]},
+                   {grid.max[0], grid.max[1], grid.max[2]}};
+  auto clamped = viewer::clampTranslation(restBox, {1e3, 0, 0}, limits);
+  ASSERT_TRUE(clamped) << clamped.message();
+  EXPECT_EQ(clamped->clamped, (std::array<bool, 3>{true, false, false}));
+  pose.translate = {clamped->translation.x, clamped->translation.y, clamped->translation.z};
+  const Status atFace = d.setPose(0, pose);
+  ASSERT_TRUE(atFace.isOk()) << atFace.message();
+  const std::set<uint64_t> atFaceKeys = keysOf(d.layer());
+  uint32_t maxX = 0;
+  for (uint64_t key : atFaceKeys) maxX = std::max(maxX, geometry::voxelFromKey(key)[0]);
+  EXPECT_EQ(maxX, d.grid().dims[0] - 1);
+
+  // A voxel further: refused in one line, the last frame kept.
+  pose.translate[0] += s;
+  const Status outside = d.setPose(0, pose);
+  ASSERT_FALSE(outside.isOk());
+  EXPECT_NE(outside.message().find(
+                "moving.scene.json: objects[1]: the pose moves the object outside the grid (x "),
+            std::string::npos)
+      << outside.message();
+  EXPECT_EQ(keysOf(d.layer()), atFaceKeys);
+  EXPECT_FALSE(d.setPose(1, {}).isOk());  // only one object moves
+  scene::Pose notFinite;
+  notFinite.rotateDegrees[1] = std::nan("");
+  EXPECT_FALSE(d.setPose(0, notFinite).isOk());
 }
 
 }  // namespace
