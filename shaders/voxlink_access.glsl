@@ -4,7 +4,8 @@
 // voxlink_sections.glsl declares the buffers (render/gl/detail/section_buffers.h: the voxel sections
 // unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
 // chunks where one exceeds a storage block) and the accessors rowsWord(), maskWord(),
-// valuWord(), gradDirWord(), brickIndexWord(), dualBoxWord(), brickEntry().
+// voxelWord(), valuWord() (values wider than 8 bits), brickIndexWord(), dualBoxWord(),
+// brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
@@ -76,9 +77,11 @@ int findVoxel(ivec3 p) {
   return voxelInRow(fetchRow(uint(k), rowOfLocal(local)), uint(local[VXL_W]));
 }
 
-uint storedBits(uint voxel) {
+// A voxel's word (render/gl/detail/voxel_words.h): gradient direction, and the value of an
+// 8-bit file in the top byte, so that one fetch gives both.
+uint storedBitsOf(uint voxel, uint word) {
 #if VXL_VALUE_BYTES == 1
-  return (valuWord(voxel >> 2u) >> ((voxel & 3u) << 3u)) & 0xFFu;
+  return word >> 24u;
 #elif VXL_VALUE_BYTES == 2
   return u16At(valuWord(voxel >> 1u), voxel);
 #else
@@ -86,10 +89,21 @@ uint storedBits(uint voxel) {
 #endif
 }
 
-// Unit gradient direction of a voxel, or zero: decoded at load time and packed as three 10-bit
-// signed integers (render/gl/detail/gradient_directions.h), renormalized here.
-vec3 gradientDirection(uint voxel) {
-  int w = int(gradDirWord(voxel));
-  vec3 v = vec3(bitfieldExtract(w, 0, 10), bitfieldExtract(w, 10, 10), bitfieldExtract(w, 20, 10));
-  return w == 0 ? vec3(0.0) : normalize(v);
+uint storedBits(uint voxel) {
+#if VXL_VALUE_BYTES == 1
+  return voxelWord(voxel) >> 24u;
+#else
+  return storedBitsOf(voxel, 0u);
+#endif
+}
+
+// Unit gradient direction of a voxel word, or zero: octahedral coordinates, two 12-bit signed
+// integers (x = -2048 for the zero gradient), unfolded and renormalized here.
+vec3 directionOfWord(uint word) {
+  int x = bitfieldExtract(int(word), 0, 12), y = bitfieldExtract(int(word), 12, 12);
+  vec2 f = vec2(x, y) * (1.0 / 2047.0);
+  vec3 n = vec3(f, 1.0 - abs(f.x) - abs(f.y));
+  float fold = max(-n.z, 0.0);
+  n.xy += mix(vec2(fold), vec2(-fold), greaterThanEqual(n.xy, vec2(0.0)));
+  return x == -2048 ? vec3(0.0) : normalize(n);
 }

@@ -65,10 +65,11 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   colorAlpha = vec4(0.0);
   gradient = vec3(0.0);
   if (voxel < 0) return;
-  vec4 c = classify(storedBits(uint(voxel)));
+  uint word = voxelWord(uint(voxel));  // value (8-bit files) and direction in one fetch
+  vec4 c = classify(storedBitsOf(uint(voxel), word));
   if (!(c.a > 0.0)) return;
   colorAlpha = vec4(c.rgb * c.a, c.a);
-  gradient = c.a * gradientDirection(uint(voxel));
+  gradient = c.a * directionOfWord(word);
   gCellVisible = true;
 }
 

@@ -8,7 +8,7 @@
 #include "format/scene_index.h"
 #include "render/brick_bounds.h"
 #include "render/brick_lookup.h"
-#include "render/gl/detail/gradient_directions.h"
+#include "render/gl/detail/voxel_words.h"
 
 namespace voxlink::render::gl {
 
@@ -59,7 +59,7 @@ Status checkUploadFits(const format::VoxLinkFile& file, const BrickRange& occupi
   uint64_t sections = 0;
   for (const format::SectionEntry& e : file.sectionTable())
     if (e.id != uint32_t(format::SectionId::kMeta)) sections += e.bytes;
-  // The GRAD section goes up decoded: 4 bytes per voxel for its 2 (gradient_directions.h).
+  // The GRAD section goes up as voxel words: 4 bytes per voxel for its 2 (voxel_words.h).
   const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections + 4 * file.voxelCount();
   const uint64_t available = base::memoryForThisProcess();
   if (needed > available)
@@ -91,17 +91,22 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   const std::vector<uint32_t> boxes = brickBounds(file);
   const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file, occupied, boxes);
   const std::vector<uint32_t> entries = brickEntries(file, boxes);
-  const std::vector<uint32_t> directions =
-      packGradientDirections(file.sectionBytes(format::SectionId::kGradients));
+  // 8-bit values ride in the voxel words; wider ones stay in VALU (VXL_VALUE_BYTES).
+  const bool valuesInWords = storedSize(static_cast<StoredType>(file.header().valueType)) == 1;
+  const auto values = file.sectionBytes(format::SectionId::kValues);
+  const std::vector<uint32_t> voxelWords =
+      packVoxelWords(file.sectionBytes(format::SectionId::kGradients),
+                     valuesInWords ? values : std::span<const uint8_t>());
   std::vector<GpuArray> arrays = {
       section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"),
       section(file, format::SectionId::kRowMask, "maskWord", "VxlMask"),
-      section(file, format::SectionId::kValues, "valuWord", "VxlValu"),
-      {"gradient directions", "gradDirWord", "VxlGradDir", 1, bytesOf(directions)},
+      {"voxel words", "voxelWord", "VxlVoxelWord", 1, bytesOf(voxelWords)},
       {"brick index table", "brickIndexWord", "VxlBrickIndex", 1, bytesOf(brickIndex)},
       {"dual brick boxes", "dualBoxWord", "VxlDualBox", 1, bytesOf(dualBoxes)},
       {"brick entries", "brickEntry", "VxlBrickEntry", 2, bytesOf(entries)},
   };
+  if (!valuesInWords)
+    arrays.push_back(section(file, format::SectionId::kValues, "valuWord", "VxlValu"));
   // Scenes (version 2): the geometry sections as they are, and per mask the set bits before
   // each word, derived here (shaders/voxlink_scene.glsl).
   const format::SceneIndex index(file);

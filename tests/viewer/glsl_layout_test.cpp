@@ -12,9 +12,9 @@
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/voxel_locator.h"
-#include "render/gl/detail/gradient_directions.h"
 #include "render/gl/detail/section_buffers.h"
 #include "render/gl/detail/volume_renderer.h"
+#include "render/gl/detail/voxel_words.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/voxlink_renderer.h"
 #include "tests/support/test_util.h"
@@ -129,7 +129,9 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   split.maxChunkBytes = std::max<uint64_t>(largest / 2, 64);
   auto sections = SectionBuffers::upload(*file, split);
   ASSERT_TRUE(sections) << sections.message();
-  EXPECT_GT(sections->bindingCount(), 7u) << "no section was split";
+  // 6 arrays, 7 with VALU (values wider than 8 bits, voxel_words.h).
+  const uint32_t unsplit = storedSize(c.type) == 1 ? 6u : 7u;
+  EXPECT_GT(sections->bindingCount(), unsplit) << "no section was split";
 
   auto defines = voxlinkDefines(file->header());
   defines.push_back({"VXL_RESULTS_BINDING", std::to_string(kLookupResultsBinding)});
@@ -189,26 +191,46 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   EXPECT_EQ(errors, 0);
 }
 
-// The packed directions the shaders read instead of codes: within 0.1 degrees of the decoded
-// code once renormalized, zero for the zero-gradient code.
-TEST(GradientDirections, PackedWithinATenthOfADegree) {
-  EXPECT_EQ(render::gl::packGradientDirection(format::kZeroGradient), 0u);
+// The packed directions the shaders read instead of codes: within 0.06 degrees of the decoded
+// code once unfolded (octahedral) and renormalized as shaders/voxlink_access.glsl does, the
+// reserved word for the zero-gradient code.
+TEST(VoxelWords, DirectionsWithinSixHundredthsOfADegree) {
+  EXPECT_EQ(render::gl::packGradientDirection(format::kZeroGradient),
+            render::gl::kZeroDirectionWord);
   double worst = 0;
   for (uint32_t code = 0; code < (1u << 16); ++code) {
     const auto v = format::decodeGradient(uint16_t(code));
     if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;
     const uint32_t w = render::gl::packGradientDirection(uint16_t(code));
-    double u[3], length = 0, dot = 0;
-    for (int a = 0; a < 3; ++a) {
-      const int32_t bits = int32_t(w >> (10 * a) & 0x3FFu);
-      u[a] = bits >= 512 ? bits - 1024 : bits;
-      length += u[a] * u[a];
+    ASSERT_EQ(w >> 24, 0u);
+    ASSERT_NE(w, render::gl::kZeroDirectionWord) << "code " << code;
+    double f[2];
+    for (int a = 0; a < 2; ++a) {
+      const int32_t bits = int32_t(w >> (12 * a) & 0xFFFu);
+      f[a] = (bits >= 2048 ? bits - 4096 : bits) / 2047.0;
     }
-    for (int a = 0; a < 3; ++a) dot += u[a] / std::sqrt(length) * v[a];
+    double u[3] = {f[0], f[1], 1 - std::fabs(f[0]) - std::fabs(f[1])};
+    const double fold = std::max(-u[2], 0.0);
+    for (int a = 0; a < 2; ++a) u[a] += u[a] >= 0 ? -fold : fold;
+    const double length = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    double dot = 0;
+    for (int a = 0; a < 3; ++a) dot += u[a] / length * v[a];
     worst = std::max(worst, std::acos(std::min(dot, 1.0)) * 180 / M_PI);
   }
-  EXPECT_LT(worst, 0.1);
+  EXPECT_LT(worst, 0.06);
   EXPECT_GT(worst, 0.0);  // the rounding is real: this test would notice a lossless change
+}
+
+// 8-bit values ride in the top byte of their voxel's word; without values it stays 0.
+TEST(VoxelWords, EightBitValuesInTheTopByte) {
+  const uint8_t codes[] = {0x34, 0x12, 0xCD, 0xAB};
+  const uint8_t values[] = {7, 255};
+  const auto words = render::gl::packVoxelWords(codes, values);
+  ASSERT_EQ(words.size(), 2u);
+  EXPECT_EQ(words[0], render::gl::packGradientDirection(0x1234) | 7u << 24);
+  EXPECT_EQ(words[1], render::gl::packGradientDirection(0xABCD) | 255u << 24);
+  const auto bare = render::gl::packVoxelWords(codes, {});
+  EXPECT_EQ(bare[1], render::gl::packGradientDirection(0xABCD));
 }
 
 std::vector<LookupCase> lookupCases() {
