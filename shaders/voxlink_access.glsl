@@ -94,13 +94,10 @@ uint storedBits(uint voxel) {
 #endif
 }
 
-// Unit gradient direction of a voxel word, or zero: octahedral coordinates, two 12-bit signed
-// integers (x = -2048 for the zero gradient), unfolded and renormalized here.
+// Gradient direction of a voxel word, or zero: three 8-bit signed integers, unit length to
+// within 1 %, used without normalizing (render/gl/detail/voxel_words.h).
 vec3 directionOfWord(uint word) {
-  int x = bitfieldExtract(int(word), 0, 12), y = bitfieldExtract(int(word), 12, 12);
-  vec2 f = vec2(x, y) * (1.0 / 2047.0);
-  vec3 n = vec3(f, 1.0 - abs(f.x) - abs(f.y));
-  float fold = max(-n.z, 0.0);
-  n.xy += mix(vec2(fold), vec2(-fold), greaterThanEqual(n.xy, vec2(0.0)));
-  return x == -2048 ? vec3(0.0) : normalize(n);
+  int w = int(word);
+  return vec3(bitfieldExtract(w, 0, 8), bitfieldExtract(w, 8, 8), bitfieldExtract(w, 16, 8)) *
+         (1.0 / 127.0);
 }

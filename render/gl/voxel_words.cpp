@@ -9,24 +9,13 @@ namespace voxlink::render::gl {
 
 namespace {
 
-uint32_t signed12(float v) { return uint32_t(int32_t(std::lround(v * 2047.0f))) & 0xFFFu; }
-
-float signNotZero(float v) { return v < 0.0f ? -1.0f : 1.0f; }
+uint32_t signed8(float v) { return uint32_t(int32_t(std::lround(v * 127.0f))) & 0xFFu; }
 
 }  // namespace
 
 uint32_t packGradientDirection(uint16_t code) {
   const auto v = format::decodeGradient(code);
-  const float l1 = std::fabs(v[0]) + std::fabs(v[1]) + std::fabs(v[2]);
-  if (!(l1 > 0.0f)) return kZeroDirectionWord;
-  // Octahedral map: the unit sphere onto the square [-1, 1]^2, the lower half folded outwards.
-  float x = v[0] / l1, y = v[1] / l1;
-  if (v[2] < 0.0f) {
-    const float fx = (1.0f - std::fabs(y)) * signNotZero(x);
-    y = (1.0f - std::fabs(x)) * signNotZero(y);
-    x = fx;
-  }
-  return signed12(x) | signed12(y) << 12;
+  return signed8(v[0]) | signed8(v[1]) << 8 | signed8(v[2]) << 16;
 }
 
 std::vector<uint32_t> packVoxelWords(std::span<const uint8_t> codes,
