@@ -9,8 +9,8 @@ uniform ivec3 uDims;
 #include "common.glsl"
 #include "voxlink_access.glsl"
 
-// Per cell: voxel index or -1, stored value bits, packed gradient direction
-// (render/gl/detail/gradient_directions.h), and the voxel found by the
+// Per cell: voxel index or -1, stored value bits, the voxel word's direction bits
+// (render/gl/detail/voxel_words.h), and the voxel found by the
 // row walk's neighbour step (the next list element along the predominant axis) or -1.
 layout(std430, binding = VXL_RESULTS_BINDING) writeonly restrict buffer Results { ivec4 results[]; };
 
@@ -22,7 +22,7 @@ void main() {
                   int(i / (uint(uDims.x) * uint(uDims.y))));
   int voxel = findVoxel(p);
   int bits = voxel >= 0 ? int(storedBits(uint(voxel))) : 0;
-  int code = voxel >= 0 ? int(gradDirWord(uint(voxel))) : 0;
+  int code = voxel >= 0 ? int(voxelWord(uint(voxel)) & 0xFFFFFFu) : 0;
   // The next stored voxel in the same row after depth w: rank of the next set bit.
   int next = -1;
   if (voxel >= 0) {

@@ -3,8 +3,9 @@
 // brick -> occupied index -> row start -> bit rank within the row mask. The generated
 // voxlink_sections.glsl declares the buffers (render/gl/detail/section_buffers.h: the voxel sections
 // unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
-// chunks where one exceeds a storage block) and the accessors rowsWord(), maskWord(),
-// valuWord(), gradDirWord(), brickIndexWord(), dualBoxWord(), brickEntry().
+// chunks where one exceeds a storage block) and the accessors rowWord() (bricks up to 16^3) or
+// rowsWord() and maskWord() (32^3), voxelWord(), valuWord() (values wider than 8 bits), brickIndexWord(), dualBoxWord(),
+// brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
@@ -32,28 +33,25 @@ struct Row {
   uint first;
 };
 
-uint rowBits(uint k, uint row) {
+// A row of occupied brick k: its mask bits (x) and the index of its first voxel among the
+// brick's voxels (y). Bricks up to 16^3 read both from one row word (render/gl/detail/row_words.h),
+// 32^3 bricks from MASK and ROWS.
+uvec2 rowInfo(uint k, uint row) {
   const uint n = uint(VXL_N);
-  uint bit = row * n;
-  uint word = maskWord(k * (n * n * n / 32u) + (bit >> 5u));
-#if VXL_N == 32
-  return word;
+#if VXL_N <= 16
+  uint word = rowWord(k * n * n + row);
+  return uvec2(word & ((1u << n) - 1u), word >> n);
 #else
-  return (word >> (bit & 31u)) & ((1u << n) - 1u);
+  uint r = k * n * n + row;
+  return uvec2(maskWord(k * (n * n * n / 32u) + row), u16At(rowsWord(r >> 1u), r));
 #endif
 }
 
-// Index of a row's first voxel among its brick's voxels (ROWS).
-uint rowStartInBrick(uint k, uint row) {
-  uint r = k * uint(VXL_N * VXL_N) + row;
-  return u16At(rowsWord(r >> 1u), r);
-}
-
-// Mask bits and first voxel of a row; the start is only read when the row holds voxels.
+// Mask bits and first voxel of a row.
 Row fetchRow(uint k, uint row) {
-  uint bits = rowBits(k, row);
-  if (bits == 0u) return Row(0u, 0u);
-  return Row(bits, firstVoxel(k) + rowStartInBrick(k, row));
+  uvec2 info = rowInfo(k, row);
+  if (info.x == 0u) return Row(0u, 0u);
+  return Row(info.x, firstVoxel(k) + info.y);
 }
 
 // Voxel index of depth d in a row, or -1: the next voxel along the predominant axis is the next
@@ -76,9 +74,11 @@ int findVoxel(ivec3 p) {
   return voxelInRow(fetchRow(uint(k), rowOfLocal(local)), uint(local[VXL_W]));
 }
 
-uint storedBits(uint voxel) {
+// A voxel's word (render/gl/detail/voxel_words.h): gradient direction, and the value of an
+// 8-bit file in the top byte, so that one fetch gives both.
+uint storedBitsOf(uint voxel, uint word) {
 #if VXL_VALUE_BYTES == 1
-  return (valuWord(voxel >> 2u) >> ((voxel & 3u) << 3u)) & 0xFFu;
+  return word >> 24u;
 #elif VXL_VALUE_BYTES == 2
   return u16At(valuWord(voxel >> 1u), voxel);
 #else
@@ -86,10 +86,18 @@ uint storedBits(uint voxel) {
 #endif
 }
 
-// Unit gradient direction of a voxel, or zero: decoded at load time and packed as three 10-bit
-// signed integers (render/gl/detail/gradient_directions.h), renormalized here.
-vec3 gradientDirection(uint voxel) {
-  int w = int(gradDirWord(voxel));
-  vec3 v = vec3(bitfieldExtract(w, 0, 10), bitfieldExtract(w, 10, 10), bitfieldExtract(w, 20, 10));
-  return w == 0 ? vec3(0.0) : normalize(v);
+uint storedBits(uint voxel) {
+#if VXL_VALUE_BYTES == 1
+  return voxelWord(voxel) >> 24u;
+#else
+  return storedBitsOf(voxel, 0u);
+#endif
+}
+
+// Gradient direction of a voxel word, or zero: three 8-bit signed integers, unit length to
+// within 1 %, used without normalizing (render/gl/detail/voxel_words.h).
+vec3 directionOfWord(uint word) {
+  int w = int(word);
+  return vec3(bitfieldExtract(w, 0, 8), bitfieldExtract(w, 8, 8), bitfieldExtract(w, 16, 8)) *
+         (1.0 / 127.0);
 }

@@ -53,7 +53,8 @@ bool rowWalkNext(inout RowWalk w, out uint voxel, out float tStart, out float tE
       w.loaded = true;
       ivec3 local = w.dda.cell - w.origin;
       uint row = rowOfLocal(local);
-      w.row = Row(rowBits(w.k, row), 0u);
+      uvec2 info = rowInfo(w.k, row);  // one read for mask and start (bricks up to 16^3)
+      w.row = Row(info.x, 0u);
       w.entryDepth = local[VXL_W];
       w.tRowEnd = min(tUV, w.tBrick);
       w.hits = 0u;
@@ -65,7 +66,7 @@ bool rowWalkNext(inout RowWalk w, out uint voxel, out float tStart, out float tE
         uint upTo = b == 31u ? 0xFFFFFFFFu : (1u << (b + 1u)) - 1u;
         w.hits = w.row.bits & upTo & ~((1u << a) - 1u);
         // The row's first voxel, only for rows the ray meets voxels in.
-        if (w.hits != 0u) w.row.first = w.base + rowStartInBrick(w.k, row);
+        if (w.hits != 0u) w.row.first = w.base + info.y;
       }
     }
     if (w.hits != 0u) {

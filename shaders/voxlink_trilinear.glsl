@@ -65,10 +65,11 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   colorAlpha = vec4(0.0);
   gradient = vec3(0.0);
   if (voxel < 0) return;
-  vec4 c = classify(storedBits(uint(voxel)));
+  uint word = voxelWord(uint(voxel));  // value (8-bit files) and direction in one fetch
+  vec4 c = classify(storedBitsOf(uint(voxel), word));
   if (!(c.a > 0.0)) return;
   colorAlpha = vec4(c.rgb * c.a, c.a);
-  gradient = c.a * gradientDirection(uint(voxel));
+  gradient = c.a * directionOfWord(word);
   gCellVisible = true;
 }
 
@@ -80,24 +81,21 @@ void dualBrick(uint m, out int k, out uint base) {
   base = v ? (u ? (w ? gB7 : gB6) : (w ? gB5 : gB4)) : (u ? (w ? gB3 : gB2) : (w ? gB1 : gB0));
 }
 
-// Mask bits of row `row` of brick k, or 0 when k is -1 (the read then stays in bounds).
-uint rowBitsOrNone(int k, uint row) {
-  return rowBits(uint(max(k, 0)), row) & (k < 0 ? 0u : 0xFFFFFFFFu);
+// Mask bits and start (rowInfo) of row `row` of brick k, or 0 when k is -1 (the read then
+// stays in bounds).
+uvec2 rowInfoOrNone(int k, uint row) {
+  return rowInfo(uint(max(k, 0)), row) & uvec2(k < 0 ? 0u : 0xFFFFFFFFu);
 }
 
-// Voxel indices (or -1) of a pair of corners: depth `depth` of row `row` in brick kA (first
-// voxel baseA) and depth `next` of the same row in brick kB (differs from kA where the pair
-// crosses a w face). One row start serves both unless the pair crosses.
-void rowPair(int kA, uint baseA, int kB, uint baseB, uint row, uint bitsA, uint bitsB,
-             uint depth, uint next, out int first, out int second) {
-  first = second = -1;
-  bool hasA = ((bitsA >> depth) & 1u) != 0u, hasB = ((bitsB >> next) & 1u) != 0u;
-  if (!(hasA || hasB)) return;
-  uint startA = baseA + rowStartInBrick(uint(max(kA, 0)), row);
-  uint startB = startA;
-  if (kB != kA) startB = baseB + rowStartInBrick(uint(max(kB, 0)), row);
-  if (hasA) first = int(startA + uint(bitCount(bitsA & ((1u << depth) - 1u))));
-  if (hasB) second = int(startB + uint(bitCount(bitsB & ((1u << next) - 1u))));
+// Voxel indices (or -1) of a pair of corners: depth `depth` of row `a` in a brick whose first
+// voxel is baseA and depth `next` of the same row in a brick with first voxel baseB (another
+// brick where the pair crosses a w face).
+void rowPair(uint baseA, uvec2 a, uint baseB, uvec2 b, uint depth, uint next, out int first,
+             out int second) {
+  first = ((a.x >> depth) & 1u) != 0u ? int(baseA + a.y + uint(bitCount(a.x & ((1u << depth) - 1u))))
+                                      : -1;
+  second = ((b.x >> next) & 1u) != 0u ? int(baseB + b.y + uint(bitCount(b.x & ((1u << next) - 1u))))
+                                      : -1;
 }
 
 // Corners are only read when gCellVisible ends up true, so an empty cell returns early without
@@ -125,21 +123,21 @@ void loadCorners(ivec3 cell) {
   dualBrick(5u & crossing, k5, s5);
   dualBrick(6u & crossing, k6, s6);
   dualBrick(7u & crossing, k7, s7);
-  uint b0 = rowBitsOrNone(k0, r0), b2 = rowBitsOrNone(k2, r1);
-  uint b4 = rowBitsOrNone(k4, r2), b6 = rowBitsOrNone(k6, r3);
-  uint b1 = b0, b3 = b2, b5 = b4, b7 = b6;
+  uvec2 i0 = rowInfoOrNone(k0, r0), i2 = rowInfoOrNone(k2, r1);
+  uvec2 i4 = rowInfoOrNone(k4, r2), i6 = rowInfoOrNone(k6, r3);
+  uvec2 i1 = i0, i3 = i2, i5 = i4, i7 = i6;
   if ((crossing & 1u) != 0u) {  // the pairs' second corners lie in the next brick along w
-    b1 = rowBitsOrNone(k1, r0);
-    b3 = rowBitsOrNone(k3, r1);
-    b5 = rowBitsOrNone(k5, r2);
-    b7 = rowBitsOrNone(k7, r3);
+    i1 = rowInfoOrNone(k1, r0);
+    i3 = rowInfoOrNone(k3, r1);
+    i5 = rowInfoOrNone(k5, r2);
+    i7 = rowInfoOrNone(k7, r3);
   }
-  uint hits = ((b0 | b2 | b4 | b6) >> w) | ((b1 | b3 | b5 | b7) >> wNext);
+  uint hits = ((i0.x | i2.x | i4.x | i6.x) >> w) | ((i1.x | i3.x | i5.x | i7.x) >> wNext);
   if ((hits & 1u) == 0u) return;
-  rowPair(k0, s0, k1, s1, r0, b0, b1, w, wNext, v0, v1);
-  rowPair(k2, s2, k3, s3, r1, b2, b3, w, wNext, v2, v3);
-  rowPair(k4, s4, k5, s5, r2, b4, b5, w, wNext, v4, v5);
-  rowPair(k6, s6, k7, s7, r3, b6, b7, w, wNext, v6, v7);
+  rowPair(s0, i0, s1, i1, w, wNext, v0, v1);
+  rowPair(s2, i2, s3, i3, w, wNext, v2, v3);
+  rowPair(s4, i4, s5, i5, w, wNext, v4, v5);
+  rowPair(s6, i6, s7, i7, w, wNext, v6, v7);
   storedCorner(v0, gA0, gL0);
   storedCorner(v1, gA1, gL1);
   storedCorner(v2, gA2, gL2);

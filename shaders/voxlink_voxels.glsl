@@ -29,16 +29,17 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
         if (!volumeSlot(voxel, slot)) continue;
         voxel = slot;  // VALU and GRAD of a scene hold the volume voxels only
 #endif
-        vec4 c = classify(storedBits(voxel));
+        uint word = voxelWord(voxel);  // value (8-bit files) and direction in one fetch
+        vec4 c = classify(storedBitsOf(voxel, word));
         float a = correctedAlpha(c.a, tz - ta);
         if (a > 0.0) {
 #if VXL_EFFECTS
           color += transmittance * a *
-                   effectsVolumeShade(c.rgb, gradientDirection(voxel),
+                   effectsVolumeShade(c.rgb, directionOfWord(word),
                                       indexToWorld(o + 0.5 * (ta + tz) * d), toEye);
 #else
           vec3 ambient, lit;
-          shadeSample(c.rgb, 1.0, gradientDirection(voxel), toEye, ambient, lit);
+          shadeSample(c.rgb, 1.0, directionOfWord(word), toEye, ambient, lit);
           float shadow = 1.0;
 #if VXL_SHADOWS
           shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));

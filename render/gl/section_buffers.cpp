@@ -8,7 +8,8 @@
 #include "format/scene_index.h"
 #include "render/brick_bounds.h"
 #include "render/brick_lookup.h"
-#include "render/gl/detail/gradient_directions.h"
+#include "render/gl/detail/row_words.h"
+#include "render/gl/detail/voxel_words.h"
 
 namespace voxlink::render::gl {
 
@@ -59,8 +60,11 @@ Status checkUploadFits(const format::VoxLinkFile& file, const BrickRange& occupi
   uint64_t sections = 0;
   for (const format::SectionEntry& e : file.sectionTable())
     if (e.id != uint32_t(format::SectionId::kMeta)) sections += e.bytes;
-  // The GRAD section goes up decoded: 4 bytes per voxel for its 2 (gradient_directions.h).
-  const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections + 4 * file.voxelCount();
+  // The GRAD section goes up as voxel words: 4 bytes per voxel for its 2 (voxel_words.h); rows
+  // as row words, 4 bytes per row (row_words.h).
+  const uint64_t n = file.header().brickSize;
+  const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections + 4 * file.voxelCount() +
+                          8 * occupiedBricks * n * n;
   const uint64_t available = base::memoryForThisProcess();
   if (needed > available)
     return makeError(ErrorCode::kTooLarge, file.path(), ": rendering needs ", needed,
@@ -91,17 +95,32 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   const std::vector<uint32_t> boxes = brickBounds(file);
   const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file, occupied, boxes);
   const std::vector<uint32_t> entries = brickEntries(file, boxes);
-  const std::vector<uint32_t> directions =
-      packGradientDirections(file.sectionBytes(format::SectionId::kGradients));
+  // 8-bit values ride in the voxel words; wider ones stay in VALU (VXL_VALUE_BYTES).
+  const bool valuesInWords = storedSize(static_cast<StoredType>(file.header().valueType)) == 1;
+  const auto values = file.sectionBytes(format::SectionId::kValues);
+  const std::vector<uint32_t> voxelWords =
+      packVoxelWords(file.sectionBytes(format::SectionId::kGradients),
+                     valuesInWords ? values : std::span<const uint8_t>());
+  // Bricks up to 16^3: mask and start of a row in one word, in place of MASK and ROWS.
+  const uint32_t n = file.header().brickSize;
+  const std::vector<uint32_t> rowWords =
+      rowWordsFit(n)
+          ? packRowWords(n, file.occupiedBrickCount(), file.rowMaskWords(), file.rowStarts())
+          : std::vector<uint32_t>();
   std::vector<GpuArray> arrays = {
-      section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"),
-      section(file, format::SectionId::kRowMask, "maskWord", "VxlMask"),
-      section(file, format::SectionId::kValues, "valuWord", "VxlValu"),
-      {"gradient directions", "gradDirWord", "VxlGradDir", 1, bytesOf(directions)},
+      {"voxel words", "voxelWord", "VxlVoxelWord", 1, bytesOf(voxelWords)},
       {"brick index table", "brickIndexWord", "VxlBrickIndex", 1, bytesOf(brickIndex)},
       {"dual brick boxes", "dualBoxWord", "VxlDualBox", 1, bytesOf(dualBoxes)},
       {"brick entries", "brickEntry", "VxlBrickEntry", 2, bytesOf(entries)},
   };
+  if (!valuesInWords)
+    arrays.push_back(section(file, format::SectionId::kValues, "valuWord", "VxlValu"));
+  if (rowWordsFit(n)) {
+    arrays.push_back({"row words", "rowWord", "VxlRowWord", 1, bytesOf(rowWords)});
+  } else {
+    arrays.push_back(section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"));
+    arrays.push_back(section(file, format::SectionId::kRowMask, "maskWord", "VxlMask"));
+  }
   // Scenes (version 2): the geometry sections as they are, and per mask the set bits before
   // each word, derived here (shaders/voxlink_scene.glsl).
   const format::SceneIndex index(file);

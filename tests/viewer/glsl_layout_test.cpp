@@ -12,9 +12,9 @@
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/voxel_locator.h"
-#include "render/gl/detail/gradient_directions.h"
 #include "render/gl/detail/section_buffers.h"
 #include "render/gl/detail/volume_renderer.h"
+#include "render/gl/detail/voxel_words.h"
 #include "render/gl/shader_program.h"
 #include "render/gl/voxlink_renderer.h"
 #include "tests/support/test_util.h"
@@ -129,7 +129,10 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   split.maxChunkBytes = std::max<uint64_t>(largest / 2, 64);
   auto sections = SectionBuffers::upload(*file, split);
   ASSERT_TRUE(sections) << sections.message();
-  EXPECT_GT(sections->bindingCount(), 7u) << "no section was split";
+  // 5 arrays, one more with VALU (values wider than 8 bits, voxel_words.h), one more with MASK
+  // and ROWS in place of row words (32^3 bricks, row_words.h).
+  const uint32_t unsplit = 5u + (storedSize(c.type) == 1 ? 0u : 1u) + (c.brick > 16 ? 1u : 0u);
+  EXPECT_GT(sections->bindingCount(), unsplit) << "no section was split";
 
   auto defines = voxlinkDefines(file->header());
   defines.push_back({"VXL_RESULTS_BINDING", std::to_string(kLookupResultsBinding)});
@@ -189,26 +192,43 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   EXPECT_EQ(errors, 0);
 }
 
-// The packed directions the shaders read instead of codes: within 0.1 degrees of the decoded
-// code once renormalized, zero for the zero-gradient code.
-TEST(GradientDirections, PackedWithinATenthOfADegree) {
+// The packed directions the shaders read instead of codes, used without normalizing: within
+// 0.4 degrees of the decoded code and of unit length to within 1 %, zero for the zero-gradient
+// code.
+TEST(VoxelWords, DirectionsWithinFourTenthsOfADegree) {
   EXPECT_EQ(render::gl::packGradientDirection(format::kZeroGradient), 0u);
-  double worst = 0;
+  double worst = 0, worstLength = 0;
   for (uint32_t code = 0; code < (1u << 16); ++code) {
     const auto v = format::decodeGradient(uint16_t(code));
     if (v[0] == 0 && v[1] == 0 && v[2] == 0) continue;
     const uint32_t w = render::gl::packGradientDirection(uint16_t(code));
+    ASSERT_EQ(w >> 24, 0u);
     double u[3], length = 0, dot = 0;
     for (int a = 0; a < 3; ++a) {
-      const int32_t bits = int32_t(w >> (10 * a) & 0x3FFu);
-      u[a] = bits >= 512 ? bits - 1024 : bits;
+      const int32_t bits = int32_t(w >> (8 * a) & 0xFFu);
+      u[a] = (bits >= 128 ? bits - 256 : bits) / 127.0;
       length += u[a] * u[a];
     }
-    for (int a = 0; a < 3; ++a) dot += u[a] / std::sqrt(length) * v[a];
+    length = std::sqrt(length);
+    for (int a = 0; a < 3; ++a) dot += u[a] / length * v[a];
     worst = std::max(worst, std::acos(std::min(dot, 1.0)) * 180 / M_PI);
+    worstLength = std::max(worstLength, std::fabs(length - 1));
   }
-  EXPECT_LT(worst, 0.1);
+  EXPECT_LT(worst, 0.4);
   EXPECT_GT(worst, 0.0);  // the rounding is real: this test would notice a lossless change
+  EXPECT_LT(worstLength, 0.01);
+}
+
+// 8-bit values ride in the top byte of their voxel's word; without values it stays 0.
+TEST(VoxelWords, EightBitValuesInTheTopByte) {
+  const uint8_t codes[] = {0x34, 0x12, 0xCD, 0xAB};
+  const uint8_t values[] = {7, 255};
+  const auto words = render::gl::packVoxelWords(codes, values);
+  ASSERT_EQ(words.size(), 2u);
+  EXPECT_EQ(words[0], render::gl::packGradientDirection(0x1234) | 7u << 24);
+  EXPECT_EQ(words[1], render::gl::packGradientDirection(0xABCD) | 255u << 24);
+  const auto bare = render::gl::packVoxelWords(codes, {});
+  EXPECT_EQ(bare[1], render::gl::packGradientDirection(0xABCD));
 }
 
 std::vector<LookupCase> lookupCases() {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A VoxLink file in GPU buffers: its voxel sections (ROWS, MASK, VALU) unchanged, GRAD as decoded
-// gradient directions (gradient_directions.h), and in
+// A VoxLink file in GPU buffers: its voxel sections as words derived at load time, ROWS and MASK
+// as row words (row_words.h: a row's mask and start in one word; as they are for 32^3 bricks),
+// GRAD as voxel words (voxel_words.h: decoded gradient directions, with the values of 8-bit
+// files; VALU goes up as it is only for wider values), and in
 // place of its brick sections (BOCC, BRNK, BVOX) brick tables derived from them when it is
 // loaded (render/brick_lookup.h, brick_bounds.h): an occupied index per brick, the box of
 // cells samples can meet voxels in per dual brick, and per occupied brick its box and first
@@ -36,8 +38,9 @@ class SectionBuffers {
 
   // Binds every chunk to its texture unit.
   void bind() const;
-  // Sampler declarations and the accessors rowsWord(), maskWord(), valuWord(), gradDirWord(),
-  // brickIndexWord(), dualBoxWord() and brickEntry() for the shaders.
+  // Sampler declarations and the accessors rowWord() (or rowsWord() and maskWord()), voxelWord(),
+  // valuWord() (wider values only), brickIndexWord(), dualBoxWord() and brickEntry() for the
+  // shaders.
   const std::string& glsl() const { return glsl_; }
   uint64_t gpuBytes() const { return gpuBytes_; }
   uint32_t bindingCount() const { return static_cast<uint32_t>(chunks_.size()); }
