@@ -11,11 +11,11 @@
 
 #include "cli/command.h"
 #include "render/camera.h"
-#include "render/gl/dynamic_scene.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/render_target.h"
 #include "render/image.h"
 #include "scene/scene_description.h"
+#include "viewer/dynamic_scene.h"
 
 namespace voxlink::cli {
 namespace {
@@ -84,9 +84,9 @@ int runAnimateBenchmark(const AnimateBenchOptions& o, const render::RenderOption
       scene::SceneDescription d = *description;
       d.grid.resolution = resolution;
       d.grid.brickSize = brick;
-      auto dynamic = render::gl::DynamicScene::load(d, scratch.path);
+      auto dynamic = viewer::DynamicScene::load(d, scratch.path);
       if (!dynamic) return reportError(dynamic.error());
-      render::gl::DynamicScene& ds = **dynamic;
+      viewer::DynamicScene& ds = **dynamic;
       auto staticFile = format::VoxLinkFile::open(scratch.path);
       if (!staticFile) return reportError(staticFile.error());
       auto settings = renderOptions.settings(*staticFile);

@@ -12,7 +12,6 @@
 
 #include "gl_test_context.h"
 #include "render/camera.h"
-#include "render/gl/dynamic_scene.h"
 #include "render/gl/gl_voxelizer.h"
 #include "render/gl/render_target.h"
 #include "render/image.h"
@@ -20,9 +19,13 @@
 #include "scene/scene_assembly.h"
 #include "tests/support/test_util.h"
 #include "viewer/app/detail/object_drag.h"
+#include "viewer/dynamic_scene.h"
 
-namespace voxlink::render::gl {
+namespace voxlink::viewer {
 namespace {
+
+using namespace render;  // the images and settings a dynamic scene is checked with
+using namespace render::gl;  // the renderers and the voxelizer
 
 std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys) {
   std::ofstream(dir.file("floor.obj")) << "v -0.3 0 -0.3\nv -0.3 0 0.3\nv 0.3 0 0.3\nv 0.3 0 -0.3\n"
@@ -144,10 +147,13 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
 }
 
 }  // namespace
-}  // namespace voxlink::render::gl
+}  // namespace voxlink::viewer
 
-namespace voxlink::render::gl {
+namespace voxlink::viewer {
 namespace {
+
+using namespace render;  // the images and settings a dynamic scene is checked with
+using namespace render::gl;  // the renderers and the voxelizer
 
 std::set<uint64_t> keysOf(const GlDynamicLayer& layer) {
   std::set<uint64_t> keys;
@@ -219,4 +225,4 @@ TEST(DynamicScene, ASetPoseGivesTheMovedVoxelsAndStaysInTheGrid) {
 }
 
 }  // namespace
-}  // namespace voxlink::render::gl
+}  // namespace voxlink::viewer

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "render/gl/dynamic_scene.h"
+#include "viewer/dynamic_scene.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,12 @@
 #include "scene/scene_assembly.h"
 #include "scene/scene_geometry.h"
 
-namespace voxlink::render::gl {
+namespace voxlink::viewer {
+
+using render::gl::dynamicBrickBound;
+using render::gl::dynamicFragmentBound;
+using render::gl::DynamicSceneRenderer;
+using render::gl::GlDynamicLayer;
 namespace {
 
 // The affine map p -> applyPose(pose, centre, M p) as a Transform.
@@ -197,4 +202,4 @@ scene::SceneDescription DynamicScene::frozenAt(double seconds) const {
   return frozen;
 }
 
-}  // namespace voxlink::render::gl
+}  // namespace voxlink::viewer

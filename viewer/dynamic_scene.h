@@ -2,8 +2,8 @@
 // A dynamic scene (docs/dynamic-scenes.md): a scene file whose meshes with an `animation` move.
 // The static objects are voxelized once (scene::buildScene, the exact CPU path) into a scene
 // file; every frame, setTime() places the moving meshes at their pose and re-voxelizes only them
-// into the GPU-side dynamic layer (gl_dynamic_layer.h); renderer() draws both. The grid is the
-// whole scene's at rest, and every moving object must stay inside it at every key.
+// into the GPU-side dynamic layer (render/gl/gl_dynamic_layer.h); renderer() draws both. The grid
+// is the whole scene's at rest, and every moving object must stay inside it at every key.
 #pragma once
 
 #include <memory>
@@ -17,7 +17,7 @@
 #include "render/gl/gl_dynamic_layer.h"
 #include "scene/scene_description.h"
 
-namespace voxlink::render::gl {
+namespace voxlink::viewer {
 
 struct DynamicSceneStats {
   double staticBuildSeconds = 0;  // the static objects, once
@@ -29,7 +29,7 @@ class DynamicScene {
  public:
   // Needs a current GL 4.5 context. `staticFile`: where the static part is written (a scratch
   // path the caller owns). Errors: no moving object, none static, an object that leaves the grid,
-  // and what buildScene and GlDynamicLayer::create return.
+  // and what buildScene and render::gl::GlDynamicLayer::create return.
   static Result<std::unique_ptr<DynamicScene>> load(const scene::SceneDescription& scene,
                                                     const std::string& staticFile);
 
@@ -48,8 +48,8 @@ class DynamicScene {
   // rest bounds' corners outside the grid (callers clamp first: viewer/app/detail/object_drag.h).
   Status setPose(size_t index, const scene::Pose& pose);
   const scene::Pose& pose(size_t index) const { return moving_.at(index).pose; }
-  DynamicSceneRenderer& renderer() { return *renderer_; }
-  const GlDynamicLayer& layer() const { return layer_; }
+  render::gl::DynamicSceneRenderer& renderer() { return *renderer_; }
+  const render::gl::GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }
   // The scene with every moving object frozen at its pose at `seconds` (its transform composed
@@ -66,11 +66,12 @@ class DynamicScene {
     scene::Pose pose;  // the current one
   };
   Status uploadPoses();
-  DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file, GlDynamicLayer layer);
+  DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
+               render::gl::GlDynamicLayer layer);
   scene::SceneDescription scene_;
   format::VoxLinkFile file_;
-  GlDynamicLayer layer_;
-  std::unique_ptr<DynamicSceneRenderer> renderer_;
+  render::gl::GlDynamicLayer layer_;
+  std::unique_ptr<render::gl::DynamicSceneRenderer> renderer_;
   geometry::VoxelGrid grid_;
   std::vector<Moving> moving_;
   std::vector<uint32_t> triangles_, materials_;  // all moving meshes, concatenated
@@ -79,4 +80,4 @@ class DynamicScene {
   DynamicSceneStats stats_;
 };
 
-}  // namespace voxlink::render::gl
+}  // namespace voxlink::viewer
