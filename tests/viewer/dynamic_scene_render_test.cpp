@@ -24,7 +24,7 @@
 namespace voxlink::viewer {
 namespace {
 
-using namespace render;  // the images and settings a dynamic scene is checked with
+using namespace render;      // the images and settings a dynamic scene is checked with
 using namespace render::gl;  // the renderers and the voxelizer
 
 std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys) {
@@ -152,7 +152,7 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
 namespace voxlink::viewer {
 namespace {
 
-using namespace render;  // the images and settings a dynamic scene is checked with
+using namespace render;      // the images and settings a dynamic scene is checked with
 using namespace render::gl;  // the renderers and the voxelizer
 
 std::set<uint64_t> keysOf(const GlDynamicLayer& layer) {
