@@ -181,7 +181,8 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
   const size_t n = p.size();
   const Variogram& v = kriger.variogram();
   for (size_t c = 0; c < count; ++c) {
-    const Point3 q = nodeAndDrift(kriger, grid, externalDrift, z0, first + c, &s.f0[c * terms]);
+    const Point3 q =
+        nodeAndDrift(kriger, grid, externalDrift, z0, first + c, s.f0.data() + c * terms);
     double* column = &s.k[c * n];
     for (size_t i = 0; i < n; ++i) {
       const double dx = p[i][0] - q[0], dy = p[i][1] - q[1], dz = p[i][2] - q[2];
@@ -200,8 +201,8 @@ void solveBlock(const Kriger& kriger, const GridSpec& grid, const Factor& f,
     const double* y = &s.k[c * n];
     double value = mean + spd::dot(f.r.data(), y, n);
     double variance = sill - spd::dot(y, y, n);
-    f.drift.correct(f.u.data(), n, y, &s.f0[c * terms], f.ur.data(), &s.f0[count * terms], value,
-                    variance);
+    f.drift.correct(f.u.data(), n, y, s.f0.data() + c * terms, f.ur.data(),
+                    s.f0.data() + count * terms, value, variance);
     values[c] = value;
     variances[c] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
   }
@@ -238,13 +239,14 @@ void solveDenseWithInverse(const Kriger& kriger, const Factor& f, size_t count, 
   double* out = s.k.data() + n * (kBlockNodes / 2);
   cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, ni, static_cast<int>(dense), ni, 1.0,
               inv.kinv.data(), ni, in, ni, 0.0, out, ni);
-  double* wc = &s.f0[(count + 2) * terms];
+  double* wc = s.f0.data() + (count + 2) * terms;
   for (size_t d = 0; d < dense; ++d) {
     const double* c = in + d * n;
     for (size_t j = 0; j < terms; ++j) wc[j] = spd::dot(&inv.w[j * n], c, n);
     const size_t node = s.denseNodes[d];
     finishNode(kriger, f, spd::dot(inv.alpha.data(), c, n), spd::dot(c, out + d * n, n), wc,
-               &s.f0[node * terms], &s.f0[count * terms], values[node], variances[node]);
+               s.f0.data() + node * terms, s.f0.data() + count * terms, values[node],
+               variances[node]);
   }
   s.denseNodes.clear();
 }
@@ -258,10 +260,11 @@ void solveBlockWithInverse(const Kriger& kriger, const GridSpec& grid, const Fac
                            BlockScratch& s, double* values, double* variances) {
   const size_t terms = f.ur.size(), n = f.inverse.n;
   s.f0.resize((count + 3) * terms);  // the nodes' drift terms, then a, mu and W^T c
-  double* wc = &s.f0[(count + 2) * terms];
+  double* wc = s.f0.data() + (count + 2) * terms;
   const double denseFlops = 2.0 * double(n) * double(n);
   for (size_t c = 0; c < count; ++c) {
-    const Point3 q = nodeAndDrift(kriger, grid, externalDrift, z0, first + c, &s.f0[c * terms]);
+    const Point3 q =
+        nodeAndDrift(kriger, grid, externalDrift, z0, first + c, s.f0.data() + c * terms);
     gatherer.gather(q, s.support);
     const size_t nnz = s.support.index.size();
     if (!allSparse && kSparsePairFlops * double(nnz) * double(nnz) > denseFlops) {
@@ -274,8 +277,8 @@ void solveBlockWithInverse(const Kriger& kriger, const GridSpec& grid, const Fac
       continue;
     }
     const SparseForms forms = sparseForms(f.inverse, s.support, terms, wc);
-    finishNode(kriger, f, forms.dotAlpha, forms.quadratic, wc, &s.f0[c * terms],
-               &s.f0[count * terms], values[c], variances[c]);
+    finishNode(kriger, f, forms.dotAlpha, forms.quadratic, wc, s.f0.data() + c * terms,
+               s.f0.data() + count * terms, values[c], variances[c]);
     ++s.sparseNodes;
     s.sparseNonzeros += nnz;
     s.sparseMostNonzeros = std::max<uint64_t>(s.sparseMostNonzeros, nnz);
