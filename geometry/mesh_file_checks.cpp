@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/detail/mesh_file_checks.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string_view>
-#include <vector>
 
 #include "base/limits.h"
+#include "geometry/detail/ply_header.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -62,66 +63,23 @@ bool looksLikeOff(const std::string& path) {
 }
 
 Status checkPlyFile(const std::string& path) {
-  const std::string head = readHead(path, limits::kMaxTextHeaderBytes);
-  size_t end = std::string::npos;
-  for (size_t at = head.find("\nend_header"); at != std::string::npos;
-       at = head.find("\nend_header", at + 1)) {
-    const size_t after = at + 11;
-    if (after == head.size() || head[after] == '\n' || head[after] == '\r') {
-      end = after;
-      break;
-    }
-  }
-  if (end == std::string::npos)
-    return makeError(ErrorCode::kCorrupt, path, ": PLY header has no 'end_header' line",
-                     head.size() == limits::kMaxTextHeaderBytes ? " in its first 1 MiB" : "");
+  VOXLINK_ASSIGN_OR_RETURN(const PlyHeader header, readPlyHeader(path));
   // Each element's count times the least bytes one item takes must fit in the data: binary, the
   // scalars and list counts (lists may be empty); ASCII, a character and a separator per value.
-  std::istringstream header(head.substr(0, end));
-  size_t dataStart = end;  // after end_header's line end
-  if (dataStart < head.size() && head[dataStart] == '\r') ++dataStart;
-  if (dataStart < head.size() && head[dataStart] == '\n') ++dataStart;
+  const bool ascii = header.encoding == PlyEncoding::kAscii;
   const uint64_t fileSize = fileBytes(path);
-  const uint64_t dataBytes = fileSize - std::min<uint64_t>(fileSize, dataStart);
-  bool ascii = false;
-  struct Element {
-    std::string name;
-    uint64_t count = 0, itemBytes = 0;
-  };
-  std::vector<Element> elements;
-  std::string line;
-  while (std::getline(header, line)) {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if (keyword == "format") {
-      std::string kind;
-      words >> kind;
-      ascii = kind == "ascii";
-    } else if (keyword == "element") {
-      Element e;
-      std::string count;
-      words >> e.name >> count;
-      if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos ||
-          count.size() > 19)
-        return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, ": count '", count,
-                         "' is not a whole number");
-      e.count = std::stoull(count);
-      elements.push_back(e);
-    } else if (keyword == "property" && !elements.empty()) {
-      std::string type;
-      words >> type;
-      if (type == "list") words >> type;  // the count's type
-      const uint64_t bytes = plyTypeBytes(type);
-      if (bytes == 0) return Status::ok();  // a type assimp may know; its own error then
-      elements.back().itemBytes += ascii ? 2 : bytes;
-    }
-  }
+  const uint64_t dataBytes = fileSize - std::min<uint64_t>(fileSize, header.dataStart);
   // ASCII: the last value needs no separator after it.
   uint64_t left = dataBytes + (ascii ? 1 : 0);
   bool earlier = false;  // elements before this one took bytes
-  for (const Element& e : elements) {
-    const uint64_t itemBytes = std::max<uint64_t>(e.itemBytes, 1);
+  for (const PlyElement& e : header.elements) {
+    uint64_t itemBytes = 0;
+    for (const PlyProperty& p : e.properties) {
+      const uint64_t bytes = plyTypeBytes(p.list ? p.countType : p.type);
+      if (bytes == 0) return Status::ok();  // a type assimp may know; its own error then
+      itemBytes += ascii ? 2 : bytes;
+    }
+    itemBytes = std::max<uint64_t>(itemBytes, 1);
     if (e.count > left / itemBytes)
       return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, " ", e.count,
                        ": needs at least ", e.count, " x ", itemBytes, " bytes, but the file has ",
@@ -181,17 +139,9 @@ Status checkOffFile(const std::string& path) {
 
 uint64_t declaredFaceCount(const std::string& path) {
   if (looksLikePly(path)) {
-    std::istringstream header(readHead(path, limits::kMaxTextHeaderBytes));
-    std::string line;
-    while (std::getline(header, line)) {
-      std::istringstream words(line);
-      std::string keyword, name;
-      uint64_t count = 0;
-      words >> keyword >> name;
-      if (keyword == "end_header") break;
-      if (keyword == "element" && name == "face" && words >> count) return count;
-    }
-    return 0;
+    const auto header = readPlyHeader(path);
+    const PlyElement* faces = header ? header->find("face") : nullptr;
+    return faces ? faces->count : 0;
   }
   if (!looksLikeOff(path)) return 0;
   std::ifstream in(path, std::ios::binary);
@@ -205,16 +155,6 @@ uint64_t declaredFaceCount(const std::string& path) {
   if (!nextDataLine(in, line, number)) return 0;
   std::istringstream counts(line);
   return counts >> vertices >> faces ? faces : 0;
-}
-
-uint64_t plyTypeBytes(const std::string& type) {
-  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" ||
-      type == "float32")
-    return 4;
-  if (type == "double" || type == "float64") return 8;
-  return 0;
 }
 
 }  // namespace voxlink::geometry

@@ -7,80 +7,26 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
-#include <sstream>
 #include <utility>
 #include <vector>
 
-#include "base/limits.h"
-#include "geometry/detail/mesh_file_checks.h"
+#include "geometry/detail/ply_header.h"
 
 namespace voxlink::geometry {
 namespace {
 
-enum class PlyEncoding { kAscii, kLittle, kBig };
-
-struct PlyProperty {
-  std::string name, type;  // a list: `type` of its items, `countType` of its length
-  std::string countType;
-  bool list = false;
-};
-
-struct PlyElement {
-  std::string name;
-  uint64_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-struct PlyHeader {
-  PlyEncoding encoding = PlyEncoding::kAscii;
-  std::vector<PlyElement> elements;
-  size_t dataStart = 0;
-};
-
-Result<PlyHeader> parseHeader(const std::string& path, const std::string& text) {
-  const size_t end = text.find("\nend_header");
-  if (end == std::string::npos)
-    return makeError(ErrorCode::kCorrupt, path, ": PLY header has no 'end_header' line");
-  PlyHeader header;
-  header.dataStart = text.find('\n', end + 1);
-  header.dataStart = header.dataStart == std::string::npos ? text.size() : header.dataStart + 1;
-  std::istringstream lines(text.substr(0, end));
-  std::string line;
-  while (std::getline(lines, line)) {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if (keyword == "format") {
-      std::string kind;
-      words >> kind;
-      if (kind == "binary_little_endian")
-        header.encoding = PlyEncoding::kLittle;
-      else if (kind == "binary_big_endian")
-        header.encoding = PlyEncoding::kBig;
-      else if (kind != "ascii")
-        return makeError(ErrorCode::kCorrupt, path, ": format '", kind, "' is not a PLY format");
-    } else if (keyword == "element") {
-      PlyElement e;
-      words >> e.name >> e.count;  // the counts were checked against the file size before
-      header.elements.push_back(e);
-    } else if (keyword == "property" && !header.elements.empty()) {
-      PlyProperty p;
-      words >> p.type;
-      if (p.type == "list") {
-        p.list = true;
-        words >> p.countType >> p.type;
-        if (plyTypeBytes(p.countType) == 0)
-          return makeError(ErrorCode::kCorrupt, path, ": element ", header.elements.back().name,
-                           ": list length type '", p.countType, "' is not a PLY type");
-      }
-      words >> p.name;
+// The strip reader decodes every property, so it needs each type's size.
+Status checkTypesKnown(const std::string& path, const PlyHeader& header) {
+  for (const PlyElement& e : header.elements)
+    for (const PlyProperty& p : e.properties) {
+      if (p.list && plyTypeBytes(p.countType) == 0)
+        return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, ": list length type '",
+                         p.countType, "' is not a PLY type");
       if (plyTypeBytes(p.type) == 0)
-        return makeError(ErrorCode::kCorrupt, path, ": element ", header.elements.back().name,
-                         ": property ", p.name, ": type '", p.type, "' is not a PLY type");
-      header.elements.back().properties.push_back(p);
+        return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, ": property ", p.name,
+                         ": type '", p.type, "' is not a PLY type");
     }
-  }
-  return header;
+  return Status::ok();
 }
 
 // Reads PLY values in file order, whatever the encoding.
@@ -186,17 +132,8 @@ Status addFace(const std::vector<double>& indices, uint64_t vertices, const std:
 }  // namespace
 
 bool plyHasTriangleStrips(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  for (size_t bytes = 0; bytes < limits::kMaxTextHeaderBytes && std::getline(in, line);
-       bytes += line.size() + 1) {
-    std::istringstream words(line);
-    std::string keyword, name;
-    words >> keyword >> name;
-    if (keyword == "end_header") return false;
-    if (keyword == "element" && name == "tristrips") return true;
-  }
-  return false;
+  const auto header = readPlyHeader(path);
+  return header && header->find("tristrips") != nullptr;
 }
 
 Result<TriangleMesh> loadPlyWithStrips(const std::string& path, uint64_t maxTriangles) {
@@ -205,7 +142,8 @@ Result<TriangleMesh> loadPlyWithStrips(const std::string& path, uint64_t maxTria
   in.seekg(0);
   if (!in || !in.read(data.data(), static_cast<std::streamsize>(data.size())))
     return makeError(ErrorCode::kIo, path, ": cannot read");
-  VOXLINK_ASSIGN_OR_RETURN(PlyHeader header, parseHeader(path, data));
+  VOXLINK_ASSIGN_OR_RETURN(const PlyHeader header, readPlyHeader(path));
+  VOXLINK_RETURN_IF_ERROR(checkTypesKnown(path, header));
   ValueReader reader(data, header.dataStart, header.encoding);
   TriangleMesh mesh;
   uint64_t vertices = 0;

@@ -23,7 +23,4 @@ Status checkOffFile(const std::string& path);
 // loadMesh compares it with the triangles it got: far fewer means faces were lost.
 uint64_t declaredFaceCount(const std::string& path);
 
-// Bytes of one PLY scalar type (`uchar`, `int32`, `float`, ...); 0 for a name PLY does not have.
-uint64_t plyTypeBytes(const std::string& type);
-
 }  // namespace voxlink::geometry

@@ -190,6 +190,17 @@ TEST(MeshLoaderErrors, Unparseable) {
   EXPECT_EQ(mesh.message().find('\n'), std::string::npos);
 }
 
+TEST(MeshLoaderErrors, PlyFormatThatIsNoPlyFormatNamesTheField) {
+  TempDir dir;
+  writeText(dir.file("middle.ply"),
+            "ply\nformat binary_middle_endian 1.0\nelement vertex 3\nproperty float x\n"
+            "property float y\nproperty float z\nend_header\n");
+  auto mesh = loadMesh(dir.file("middle.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_NE(mesh.message().find("middle.ply: format 'binary_middle_endian'"), std::string::npos)
+      << mesh.message();
+}
+
 TEST(MeshLoaderErrors, NoTriangles) {
   TempDir dir;
   writeText(dir.file("points.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
