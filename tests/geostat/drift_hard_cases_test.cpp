@@ -17,27 +17,10 @@ using test::kriger;
 using test::model;
 using test::randomPoints;
 
-struct Grid {
-  std::vector<double> values, variances;
-  KrigingSummary summary;
-};
+using Grid = test::KrigedGrid;
 
 Grid krige(const Kriger& k, const GridSpec& grid, const double* externalDrift = nullptr) {
-  Grid out;
-  GridKrigingOptions options;
-  options.threads = 2;
-  options.externalDrift = externalDrift;
-  auto summary = krigeGrid(
-      k, grid,
-      [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
-        out.values.insert(out.values.end(), v, v + count * grid.sliceNodes());
-        out.variances.insert(out.variances.end(), s, s + count * grid.sliceNodes());
-        return Status::ok();
-      },
-      options);
-  EXPECT_TRUE(summary) << summary.message();
-  if (summary) out.summary = *summary;
-  return out;
+  return test::krigeInMemory(k, grid, {.threads = 2, .externalDrift = externalDrift});
 }
 
 // Samples on the line y = 2 x with values 3 + 0.5 x: under a linear drift the y term is

@@ -24,30 +24,15 @@ using test::kriger;
 using test::model;
 using test::randomPoints;
 
-struct Grid {
-  std::vector<double> values, variances;
-  KrigingSummary summary;
-};
+using Grid = test::KrigedGrid;
 
 Grid krige(const Kriger& k, const GridSpec& grid, Solver solver, unsigned threads = 2,
            const double* externalDrift = nullptr) {
-  Grid g;
   GridKrigingOptions options;
   options.threads = threads;
   options.globalSolver = solver;
   options.externalDrift = externalDrift;
-  auto summary = krigeGrid(
-      k, grid,
-      [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
-        g.values.insert(g.values.end(), v, v + count * grid.sliceNodes());
-        g.variances.insert(g.variances.end(), s, s + count * grid.sliceNodes());
-        return Status::ok();
-      },
-      options);
-  EXPECT_TRUE(summary) << summary.message();
-  if (summary) g.summary = *summary;
-  EXPECT_EQ(g.values.size(), grid.nodeCount());
-  return g;
+  return test::krigeInMemory(k, grid, options);
 }
 
 // Largest |a - b| relative to max(|b|, scale): relative where |b| is large, relative to the

@@ -24,17 +24,7 @@ struct Worst {
 
 // Largest |grid - predict| over every node, relative to `scale` (values) and the sill.
 Worst compareWithPredict(const Kriger& k, const GridSpec& grid, double scale, unsigned threads) {
-  std::vector<double> values, variances;
-  auto summary =
-      krigeGrid(k, grid,
-                [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
-                  values.insert(values.end(), v, v + count * grid.sliceNodes());
-                  variances.insert(variances.end(), s, s + count * grid.sliceNodes());
-                  return Status::ok();
-                },
-                {.threads = threads});
-  EXPECT_TRUE(summary) << summary.message();
-  EXPECT_EQ(values.size(), grid.nodeCount());
+  const test::KrigedGrid got = test::krigeInMemory(k, grid, {.threads = threads});
   Worst w;
   KrigingWorkspace ws;
   for (uint32_t z = 0; z < grid.dims[2]; ++z)
@@ -44,13 +34,13 @@ Worst compareWithPredict(const Kriger& k, const GridSpec& grid, double scale, un
         auto p = k.predict(grid.node(x, y, z), ws);
         EXPECT_TRUE(p) << p.message();
         if (!p->hasData) {
-          EXPECT_TRUE(std::isnan(values[at]) && std::isnan(variances[at])) << at;
+          EXPECT_TRUE(std::isnan(got.values[at]) && std::isnan(got.variances[at])) << at;
           ++w.noData;
           continue;
         }
-        w.value = std::max(w.value, std::fabs(values[at] - p->value) / scale);
+        w.value = std::max(w.value, std::fabs(got.values[at] - p->value) / scale);
         w.variance =
-            std::max(w.variance, std::fabs(variances[at] - p->variance) / k.variogram().sill());
+            std::max(w.variance, std::fabs(got.variances[at] - p->variance) / k.variogram().sill());
       }
   return w;
 }

@@ -15,24 +15,10 @@ using test::kriger;
 using test::model;
 using test::randomPoints;
 
-struct Grid {
-  std::vector<double> values, variances;
-  KrigingSummary summary;
-};
+using Grid = test::KrigedGrid;
 
 Grid krige(const Kriger& k, const GridSpec& grid) {
-  Grid out;
-  auto summary =
-      krigeGrid(k, grid,
-                [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
-                  out.values.insert(out.values.end(), v, v + count * grid.sliceNodes());
-                  out.variances.insert(out.variances.end(), s, s + count * grid.sliceNodes());
-                  return Status::ok();
-                },
-                {.threads = 2});
-  EXPECT_TRUE(summary) << summary.message();
-  if (summary) out.summary = *summary;
-  return out;
+  return test::krigeInMemory(k, grid, {.threads = 2});
 }
 
 // Every node finite and equal to Kriger::predict within `tolerance` (times `scale` for values,

@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Small point sets for the kriging tests.
+// Small point sets for the kriging tests, and a grid kriged into memory.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <random>
+#include <vector>
 
 #include "geostat/detail/kriging.h"
+#include "geostat/krige_grid.h"
 
 namespace voxlink::geostat::test {
 
@@ -30,6 +34,30 @@ inline Kriger kriger(const PointSet& s, const Variogram& v, KrigingOptions o = {
   auto k = Kriger::make(s, v, o);
   if (!k) throw std::runtime_error(k.message());
   return std::move(k).value();
+}
+
+// Every node's value and variance (x fastest) and the run's summary.
+struct KrigedGrid {
+  std::vector<double> values, variances;
+  KrigingSummary summary;
+};
+
+// krigeGrid into memory; a failed run or a short grid fails the calling test.
+inline KrigedGrid krigeInMemory(const Kriger& k, const GridSpec& grid,
+                                const GridKrigingOptions& options) {
+  KrigedGrid out;
+  auto summary = krigeGrid(
+      k, grid,
+      [&](uint32_t, uint32_t count, const double* v, const double* s) -> Status {
+        out.values.insert(out.values.end(), v, v + count * grid.sliceNodes());
+        out.variances.insert(out.variances.end(), s, s + count * grid.sliceNodes());
+        return Status::ok();
+      },
+      options);
+  EXPECT_TRUE(summary) << summary.message();
+  if (summary) out.summary = *summary;
+  EXPECT_EQ(out.values.size(), grid.nodeCount());
+  return out;
 }
 
 }  // namespace voxlink::geostat::test
