@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # Smoke test of the viewer's commands through the executable: convert the tooth CT, render PNG
 # and EXR headless (EGL) with the reference comparison, a tiny benchmark, and the interactive
-# viewer for a few frames under Xvfb (a .vxl, and a scene file against bench-render --animate). Exit 77 (skipped) when the data is missing.
+# viewer for a few frames under Xvfb (a .vxl, and a scene file against bench-render
+# --animate). Exit 77 (skipped) when the data is missing.
 # usage: cli_smoke_test.sh VOXLINK DATA_DIR
 set -euo pipefail
 voxlink=$1
