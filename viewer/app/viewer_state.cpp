@@ -163,6 +163,9 @@ bool drawTransferFunctionPanel(ViewerState& s) {
                        s.reclassifier.stage().c_str());
     ImGui::SameLine();
     if (ImGui::Button("cancel")) s.reclassifier.cancel();
+  } else if (!s.visibleButRemoved.empty() && !s.shownPath.empty()) {
+    // The renderer of a scene built in memory draws that build; a new file would lose it.
+    ImGui::TextDisabled("re-classification: build the scene again (scene build) instead");
   } else if (!s.visibleButRemoved.empty()) {
     const std::string out = Reclassifier::outputPathFor(s.file->path());
     if (ImGui::Button("Re-classify from the source")) {
