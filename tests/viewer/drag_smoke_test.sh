@@ -25,35 +25,49 @@ cleanup() {
 }
 trap cleanup EXIT
 cd "$work"
-"$voxlink" bench-render --animate "$scene" --resolutions 64 --sizes 400x300 --frames 1 \
+"$voxlink" bench-render --animate "$scene" --resolutions 64 --sizes 800x600 --frames 1 \
     --pictures bench >/dev/null
-"$voxlink" view "$scene" --resolution 64 --window 400x300 --time 0 >view.log 2>&1 &
+# The panels cover the window's left part; the drag happens right of them, over the dragon.
+"$voxlink" view "$scene" --resolution 64 --window 800x600 --time 0 >view.log 2>&1 &
 viewer=$!
 # No window manager: the window sits at the screen's corner, and keys go to the window under
-# the pointer.
+# the pointer. The viewer polls key states once a frame, so a key is held over several frames.
+press() {
+  xdotool keydown "$1"
+  sleep 0.5
+  xdotool keyup "$1"
+}
+# P until the viewer has written screenshot number $1 (a press while it still starts is lost).
+shoot() {
+  for _ in $(seq 1 60); do
+    [[ -s voxlink-screenshot-$1.png ]] && return 0
+    press p
+    sleep 1
+  done
+  echo "no screenshot $1"
+  cat view.log
+  exit 1
+}
 xdotool search --sync --onlyvisible --name "VoxLink" >/dev/null
-sleep 3  # the first frames
-xdotool mousemove 200 150
-xdotool key h  # hide the panels: the whole window is the view
-sleep 1
-xdotool key p  # before the drag: voxlink-screenshot-1.png
-for _ in $(seq 1 60); do [[ -s voxlink-screenshot-1.png ]] && break; sleep 1; done
-# Ctrl + left drag from the middle (the dragon) 60 pixels right, in steps.
+xdotool mousemove 530 400
+shoot 1  # before the drag
+sleep 2  # a press that came late may still write a second one
+before=$(ls voxlink-screenshot-*.png | wc -l)
+# Ctrl + left drag from over the dragon 60 pixels right, in steps.
 xdotool keydown ctrl mousedown 1
 for i in $(seq 1 6); do
-  xdotool mousemove $((200 + 10 * i)) 150
+  xdotool mousemove $((530 + 10 * i)) 400
   sleep 0.3
 done
 xdotool mouseup 1 keyup ctrl
 sleep 2
-xdotool key p  # after it: voxlink-screenshot-2.png
-for _ in $(seq 1 60); do [[ -s voxlink-screenshot-2.png ]] && break; sleep 1; done
-xdotool key q
+after=$((before + 1))
+shoot $after
+press q
 wait "$viewer" || { cat view.log; exit 1; }
 viewer=""
-[[ -s voxlink-screenshot-1.png && -s voxlink-screenshot-2.png ]] || { echo "no screenshots"; cat view.log; exit 1; }
-idiff voxlink-screenshot-1.png bench/animate_64_8_400x300.png  # not dragged yet: the same frame
-if idiff voxlink-screenshot-2.png bench/animate_64_8_400x300.png >diff.txt; then
+idiff voxlink-screenshot-1.png bench/animate_64_8_800x600.png  # not dragged yet: the same frame
+if idiff voxlink-screenshot-$after.png bench/animate_64_8_800x600.png >diff.txt; then
   echo "the dragged frame equals the undragged one: the drag did not move the dragon"
   exit 1
 fi

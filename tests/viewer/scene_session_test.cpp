@@ -196,7 +196,7 @@ TEST(ViewerSceneSession, ModifierDragMovesTheObjectUnderTheCursorWithinTheGrid) 
 
   DragGesture drag;
   auto step = [&](bool modifier, bool left, double x, double y) {
-    auto r = drag.update(s, camera, {modifier, left, x, y}, w, h, std::nullopt);
+    auto r = drag.update(s, camera, {modifier, left, x, y, {}}, w, h, std::nullopt);
     EXPECT_TRUE(r) << r.message();
     return r && *r;
   };
@@ -233,9 +233,12 @@ TEST(ViewerSceneSession, ModifierDragMovesTheObjectUnderTheCursorWithinTheGrid) 
     EXPECT_LE(moved.hi[a], grid.hi[a] + 1e-9);
   }
   ASSERT_TRUE(s.dynamic()->layer().checkLastUpdate().isOk());
-  // Released: the drag ends, the object stays where it was dragged until sent back.
-  EXPECT_FALSE(step(false, false, (*over)[0] + 1e4, (*over)[1]));
+  // Released, the cursor back at the press: the drag ends there (the release position
+  // counts), the object stays where it was dragged until sent back.
+  EXPECT_FALSE(step(false, false, (*over)[0], (*over)[1]));
   EXPECT_TRUE(s.held(0));
+  ASSERT_TRUE(s.update(0).isOk());
+  EXPECT_EQ(s.dynamic()->pose(0).translate, before.translate);
   s.clock().setPlaying(true);
   EXPECT_FALSE(*s.update(0.25));  // only the held object moves: nothing to re-voxelize
   s.release(0);
@@ -245,7 +248,23 @@ TEST(ViewerSceneSession, ModifierDragMovesTheObjectUnderTheCursorWithinTheGrid) 
                 .translate);
   // A selected object is dragged from anywhere with the modifier.
   EXPECT_TRUE(
-      drag.update(s, camera, {true, true, (*empty)[0], (*empty)[1]}, w, h, size_t(0)).value());
+      drag.update(s, camera, {true, true, (*empty)[0], (*empty)[1], {}}, w, h, size_t(0)).value());
+  EXPECT_FALSE(step(false, false, (*empty)[0], (*empty)[1]));
+  // A press seen a frame late, the cursor 6 pixels on: the drag starts where it went down.
+  s.release(0);
+  s.clock().setPlaying(false);
+  s.setTime(0);  // where `over` was found over the bunny
+  ASSERT_TRUE(s.update(0).isOk());
+  const scene::Pose start = s.dynamic()->pose(0);
+  PointerState late{true, true, (*over)[0] + 6, (*over)[1], std::array{(*over)[0], (*over)[1]}};
+  DragGesture fresh;
+  EXPECT_TRUE(fresh.update(s, camera, late, w, h, std::nullopt).value());
+  ASSERT_TRUE(s.update(0).isOk());
+  auto six = viewPlaneTranslation(camera, s.dynamic()->posedBox(0, start).center(), 6, 0, h);
+  ASSERT_TRUE(six);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_NEAR(s.dynamic()->pose(0).translate[size_t(a)], start.translate[size_t(a)] + (*six)[a],
+                1e-12);
 }
 
 }  // namespace

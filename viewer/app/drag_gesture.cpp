@@ -10,19 +10,24 @@ Result<bool> DragGesture::update(SceneSession& session, const render::Camera& ca
                                  std::optional<size_t> selected) {
   const bool pressed = pointer.left && !wasLeft_;
   wasLeft_ = pointer.left;
-  if (active_ && !pointer.left) {
+  if (active_ && !pointer.left) {  // released: where the cursor was let go counts too
+    const Status last =
+        session.dragTo(camera, pointer.x - startX_, pointer.y - startY_, double(height)).status();
     session.endDrag();
     active_ = false;
+    VOXLINK_RETURN_IF_ERROR(last);
+    return false;
   }
   if (!active_ && pressed && pointer.modifier && session.dynamic()) {
+    const std::array<double, 2> at = pointer.pressedAt.value_or(std::array{pointer.x, pointer.y});
     std::optional<size_t> target =
-        pickBox(camera, pointer.x, pointer.y, width, height, session.movingBoxes());
+        pickBox(camera, at[0], at[1], width, height, session.movingBoxes());
     if (!target) target = selected;
     if (target && *target < session.movingCount()) {
       VOXLINK_RETURN_IF_ERROR(session.beginDrag(*target));
       active_ = true;
-      startX_ = pointer.x;
-      startY_ = pointer.y;
+      startX_ = at[0];
+      startY_ = at[1];
     }
   }
   if (!active_) return false;

@@ -181,6 +181,9 @@ Status runViewer(const ViewerOptions& options) {
                         : input.left;
       pointer.x = input.mouseX * toPixels;
       pointer.y = input.mouseY * toPixels;
+      // The cursor may have moved on since the press within this frame: start where it was.
+      if (const auto at = window->takeLeftPressPosition())
+        pointer.pressedAt = std::array{(*at)[0] * toPixels, (*at)[1] * toPixels};
       auto dragging = drag.update(*scene, controller.camera(), pointer, uint32_t(size[0]),
                                   uint32_t(size[1]), selected);
       if (!dragging) state.message = dragging.message();

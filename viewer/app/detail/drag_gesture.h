@@ -2,10 +2,11 @@
 // The mouse gesture that drags a moving object of a scene (docs/viewer.md): a modifier + left
 // press picks the object under the cursor (else the one selected in the panel) and starts a
 // drag; while the button stays down the object follows the cursor in the view plane, clamped
-// into the grid; releasing ends it. Free of GLFW and ImGui: the window loop feeds it the
-// pointer, tests feed it made-up pointers.
+// into the grid; releasing ends it (at the release position). Free of GLFW and ImGui: the window
+// loop feeds it the pointer, tests feed it made-up pointers.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "viewer/app/scene_session.h"
@@ -16,6 +17,9 @@ struct PointerState {
   bool modifier = false;  // Ctrl
   bool left = false;
   double x = 0, y = 0;  // framebuffer pixels, y down
+  // Where the left button went down this frame, when known (GlfwWindow::takeLeftPressPosition):
+  // the drag starts and picks there rather than at (x, y).
+  std::optional<std::array<double, 2>> pressedAt;
 };
 
 class DragGesture {
