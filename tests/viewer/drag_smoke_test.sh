@@ -67,7 +67,7 @@ press q
 wait "$viewer" || { cat view.log; exit 1; }
 viewer=""
 # Not dragged yet: the same frame. Once in more than ten runs 9 of its 480,000 pixels differed
-# (cause not found; bench-render alone gave the same picture four times): up to 0.01 % may.
+# (the dynamic layer's update is not bit-reproducible: docs/dynamic-scenes.md): up to 0.01 % may.
 idiff -fail 0.004 -failpercent 0.01 voxlink-screenshot-1.png bench/animate_64_8_800x600.png
 # Dragged: more than 1 % of the pixels differ.
 if idiff -fail 0.004 -failpercent 1 voxlink-screenshot-$after.png bench/animate_64_8_800x600.png >diff.txt; then
