@@ -11,7 +11,8 @@
 # frameworks, tools the tests call, Python, ParaView, clang, R and Open MPI (the build enables
 # MPI when it finds Open MPI; without it `voxlink` is the same program minus mpirun support).
 # matplotlib and the zstd tool are for bench/report.py and its ctest (docs/report.md); scipy is
-# for bench/neighbour_set_changes.py (docs/kriging.md).
+# for bench/neighbour_set_changes.py (docs/kriging.md). xdotool drags with the mouse in the viewer
+# under Xvfb (tests/viewer/drag_smoke_test.sh).
 set -euo pipefail
 export DEBIAN_FRONTEND=noninteractive
 sample=(
@@ -33,7 +34,7 @@ tests=(
   git ca-certificates time file
   libgtest-dev libgmock-dev libbenchmark-dev
   libgdcm-tools
-  xvfb xauth
+  xvfb xauth xdotool
   python3 pybind11-dev python3-dev python3-numpy python3-pytest
   python3-venv python3-pip python3-setuptools python3-wheel
   python3-pydicom

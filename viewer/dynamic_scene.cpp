@@ -42,8 +42,9 @@ DynamicScene::DynamicScene(scene::SceneDescription scene, format::VoxLinkFile fi
                            GlDynamicLayer layer)
     : scene_(std::move(scene)), file_(std::move(file)), layer_(std::move(layer)) {}
 
-Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescription& scene,
-                                                         const std::string& staticFile) {
+Result<DynamicScene::Prepared> DynamicScene::prepare(const scene::SceneDescription& scene,
+                                                     const std::string& staticFile,
+                                                     const scene::SceneProgress& progress) {
   const auto start = std::chrono::steady_clock::now();
   scene::SceneDescription still = scene;  // the static objects
   still.objects.clear();
@@ -63,7 +64,7 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
   // The grid of the whole scene at rest, kept while objects move.
   VOXLINK_ASSIGN_OR_RETURN(scene::PlacedScene all, scene::placeSceneGeometry(scene));
   still.grid.fitBounds = all.bounds;
-  VOXLINK_ASSIGN_OR_RETURN(scene::SceneBuildOutput built, scene::buildScene(still));
+  VOXLINK_ASSIGN_OR_RETURN(scene::SceneBuildOutput built, scene::buildScene(still, progress));
   VOXLINK_RETURN_IF_ERROR(format::writeBrickedVolume(staticFile, built.volume));
   VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile file, format::VoxLinkFile::open(staticFile));
   geometry::VoxelGrid grid;
@@ -111,11 +112,35 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
     triangles += placed.mesh.triangleCount();
     moving.push_back(std::move(m));
   }
-  VOXLINK_ASSIGN_OR_RETURN(GlDynamicLayer layer,
-                           GlDynamicLayer::create(grid.dims, brick, bricks, fragments));
+  Prepared p;
+  p.scene = scene;
+  p.staticFile = staticFile;
+  p.grid = grid;
+  p.moving = std::move(moving);
+  p.fragments = fragments;
+  p.bricks = bricks;
+  p.triangles = triangles;
+  p.restBounds = all.bounds;
+  p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return p;
+}
+
+Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescription& scene,
+                                                         const std::string& staticFile) {
+  VOXLINK_ASSIGN_OR_RETURN(Prepared prepared, prepare(scene, staticFile));
+  return load(std::move(prepared));
+}
+
+Result<std::unique_ptr<DynamicScene>> DynamicScene::load(Prepared p) {
+  const auto start = std::chrono::steady_clock::now();
+  VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile file, format::VoxLinkFile::open(p.staticFile));
+  VOXLINK_ASSIGN_OR_RETURN(
+      GlDynamicLayer layer,
+      GlDynamicLayer::create(p.grid.dims, file.header().brickSize, p.bricks, p.fragments));
+  const scene::SceneDescription& scene = p.scene;
   std::unique_ptr<DynamicScene> d(new DynamicScene(scene, std::move(file), std::move(layer)));
-  d->grid_ = grid;
-  d->moving_ = std::move(moving);
+  d->grid_ = p.grid;
+  d->moving_ = std::move(p.moving);
   for (const Moving& m : d->moving_) {
     const uint32_t base = uint32_t(d->gridPositions_.size() / 3);
     for (uint32_t t : m.triangles) d->triangles_.push_back(base + t);
@@ -129,10 +154,10 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
   }
   VOXLINK_ASSIGN_OR_RETURN(d->renderer_, DynamicSceneRenderer::create(d->file_, d->layer_));
   d->stats_.staticBuildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  d->stats_.movingTriangles = triangles;
+      p.seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  d->stats_.movingTriangles = p.triangles;
   d->stats_.layerBytes = d->layer_.gpuBytes();
-  d->restBounds_ = all.bounds;
+  d->restBounds_ = p.restBounds;
   return d;
 }
 
@@ -148,10 +173,41 @@ std::vector<DynamicScene::MovingObject> DynamicScene::movingObjects() const {
 }
 
 Status DynamicScene::setPose(size_t index, const scene::Pose& pose) {
+  VOXLINK_RETURN_IF_ERROR(checkPose(index, pose));
+  moving_[index].pose = pose;
+  return uploadPoses();
+}
+
+Status DynamicScene::setPoses(const std::vector<scene::Pose>& poses) {
+  if (poses.size() != moving_.size())
+    return makeError(ErrorCode::kInvalidArgument, "dynamic scene: ", poses.size(), " poses for ",
+                     moving_.size(), " moving objects");
+  for (size_t i = 0; i < poses.size(); ++i) VOXLINK_RETURN_IF_ERROR(checkPose(i, poses[i]));
+  for (size_t i = 0; i < poses.size(); ++i) moving_[i].pose = poses[i];
+  return uploadPoses();
+}
+
+render::Box DynamicScene::posedBox(size_t index, const scene::Pose& pose) const {
+  const Moving& m = moving_.at(index);
+  render::Box r{glm::dvec3(1e300), glm::dvec3(-1e300)};
+  for (int c = 0; c < 8; ++c) {
+    const auto p = scene::applyPose(pose, m.centre,
+                                    {(c & 1) ? m.restBounds.max[0] : m.restBounds.min[0],
+                                     (c & 2) ? m.restBounds.max[1] : m.restBounds.min[1],
+                                     (c & 4) ? m.restBounds.max[2] : m.restBounds.min[2]});
+    for (int a = 0; a < 3; ++a) {
+      r.lo[a] = std::min(r.lo[a], p[size_t(a)]);
+      r.hi[a] = std::max(r.hi[a], p[size_t(a)]);
+    }
+  }
+  return r;
+}
+
+Status DynamicScene::checkPose(size_t index, const scene::Pose& pose) const {
   if (index >= moving_.size())
     return makeError(ErrorCode::kInvalidArgument, "dynamic scene: moving object ", index,
                      " does not exist (", moving_.size(), " move)");
-  Moving& m = moving_[index];
+  const Moving& m = moving_[index];
   const std::string where = cat(scene_.path, ": objects[", m.object, "]");
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(pose.translate[size_t(a)]) || !std::isfinite(pose.rotateDegrees[size_t(a)]))
@@ -161,21 +217,13 @@ Status DynamicScene::setPose(size_t index, const scene::Pose& pose) {
   // face rounding past it (the test's clamp passes without it; the layer skips voxels outside).
   const geometry::Bounds3 box = scene::gridBox(grid_);
   const double slack = 1e-6 * grid_.spacing;
-  std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-  for (int c = 0; c < 8; ++c) {
-    const auto p = scene::applyPose(pose, m.centre,
-                                    {(c & 1) ? m.restBounds.max[0] : m.restBounds.min[0],
-                                     (c & 2) ? m.restBounds.max[1] : m.restBounds.min[1],
-                                     (c & 4) ? m.restBounds.max[2] : m.restBounds.min[2]});
-    for (size_t a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-  }
-  for (size_t a = 0; a < 3; ++a)
-    if (lo[a] < box.min[a] - slack || hi[a] > box.max[a] + slack)
+  const render::Box posed = posedBox(index, pose);
+  for (int a = 0; a < 3; ++a)
+    if (posed.lo[a] < box.min[a] - slack || posed.hi[a] > box.max[a] + slack)
       return makeError(ErrorCode::kInvalidArgument, where,
-                       ": the pose moves the object outside the grid (", "xyz"[a], " ", lo[a], "..",
-                       hi[a], " not in ", box.min[a], "..", box.max[a], ")");
-  m.pose = pose;
-  return uploadPoses();
+                       ": the pose moves the object outside the grid (", "xyz"[a], " ", posed.lo[a],
+                       "..", posed.hi[a], " not in ", box.min[a], "..", box.max[a], ")");
+  return Status::ok();
 }
 
 Status DynamicScene::uploadPoses() {

@@ -13,8 +13,10 @@
 #include "base/error.h"
 #include "format/voxlink_file.h"
 #include "geometry/voxel_grid.h"
+#include "render/camera.h"
 #include "render/gl/dynamic_scene_renderer.h"
 #include "render/gl/gl_dynamic_layer.h"
+#include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 
 namespace voxlink::viewer {
@@ -26,10 +28,38 @@ struct DynamicSceneStats {
 };
 
 class DynamicScene {
+  struct Moving {
+    size_t object = 0;                  // index in the description
+    std::vector<double> restPositions;  // world, 3 per vertex
+    std::vector<uint32_t> triangles;
+    std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
+    geometry::Bounds3 restBounds;
+    scene::Pose pose;  // the current one
+  };
+
  public:
-  // Needs a current GL 4.5 context. `staticFile`: where the static part is written (a scratch
-  // path the caller owns). Errors: no moving object, none static, an object that leaves the grid,
-  // and what buildScene and render::gl::GlDynamicLayer::create return.
+  // What load() does without GL: the static part built and written, the moving meshes placed
+  // and checked against the grid, the layer's sizes. The viewer runs it before it opens a
+  // window, so a bad scene is an error before anything shows.
+  struct Prepared {
+    scene::SceneDescription scene;
+    std::string staticFile;
+    geometry::VoxelGrid grid;
+    std::vector<Moving> moving;
+    uint64_t fragments = 0, bricks = 0, triangles = 0;
+    geometry::Bounds3 restBounds;
+    double seconds = 0;
+  };
+  // `staticFile`: where the static part is written (a scratch path the caller owns); `progress`
+  // follows scene::buildScene's stages. Errors: no moving object, none static, an object that
+  // leaves the grid, and what buildScene returns.
+  static Result<Prepared> prepare(const scene::SceneDescription& scene,
+                                  const std::string& staticFile,
+                                  const scene::SceneProgress& progress = {});
+  // Needs a current GL 4.5 context. Errors: what render::gl::GlDynamicLayer::create and the
+  // renderer return.
+  static Result<std::unique_ptr<DynamicScene>> load(Prepared prepared);
+  // prepare() and load() in one.
   static Result<std::unique_ptr<DynamicScene>> load(const scene::SceneDescription& scene,
                                                     const std::string& staticFile);
 
@@ -52,19 +82,20 @@ class DynamicScene {
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }
+  // Places every moving mesh at once (`poses` in movingObjects()' order) and re-voxelizes them
+  // once: a frame where some follow their animation and a dragged one does not. Errors as
+  // setPose's; on an error no pose changes.
+  Status setPoses(const std::vector<scene::Pose>& poses);
+  // Mesh `index`'s world box at `pose`: the box around its rest bounds' corners, posed (in
+  // double, as setPose checks them against the grid).
+  render::Box posedBox(size_t index, const scene::Pose& pose) const;
+  const scene::SceneDescription& description() const { return scene_; }
   // The scene with every moving object frozen at its pose at `seconds` (its transform composed
   // with the pose, no animation) and the same grid: what `scene build` makes of that frame.
   scene::SceneDescription frozenAt(double seconds) const;
 
  private:
-  struct Moving {
-    size_t object = 0;                  // index in the description
-    std::vector<double> restPositions;  // world, 3 per vertex
-    std::vector<uint32_t> triangles;
-    std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
-    geometry::Bounds3 restBounds;
-    scene::Pose pose;  // the current one
-  };
+  Status checkPose(size_t index, const scene::Pose& pose) const;
   Status uploadPoses();
   DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
                render::gl::GlDynamicLayer layer);

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace voxlink::viewer {
 namespace {
 
@@ -73,6 +75,42 @@ TEST(ObjectDrag, ClampsEachAxisIntoTheGridAndSaysWhich) {
   auto wide = clampTranslation({{-1, 0, 0}, {11, 1, 1}}, {0, 0, 0}, grid);
   ASSERT_FALSE(wide);
   EXPECT_NE(wide.message().find("wider than the grid"), std::string::npos) << wide.message();
+}
+
+}  // namespace
+}  // namespace voxlink::viewer
+
+namespace voxlink::viewer {
+namespace {
+
+// A drag as the viewer applies it: the box's centre follows the cursor at its depth, the pose's
+// rotation is kept, and the translation stops at the grid's faces.
+TEST(ObjectDrag, DragPoseFollowsTheCursorAndStopsAtTheGrid) {
+  const Camera camera = Camera::lookAt({0, 0, 20}, {0, 0, 0}, {0, 1, 0}, 30);
+  scene::Pose start;
+  start.translate = {1, 0, 0};
+  start.rotateDegrees = {0, 30, 0};
+  const Box box{{0, -1, -1}, {2, 1, 1}};  // the object's box at `start`
+  const Box grid{{-10, -10, -10}, {10, 10, 10}};
+  const double h = 400;
+  auto small = dragPose(camera, start, box, grid, 10, -20, h);
+  ASSERT_TRUE(small) << small.message();
+  auto expected = viewPlaneTranslation(camera, box.center(), 10, -20, h);
+  ASSERT_TRUE(expected);
+  for (int a = 0; a < 3; ++a)
+    EXPECT_DOUBLE_EQ(small->pose.translate[size_t(a)], start.translate[size_t(a)] + (*expected)[a]);
+  EXPECT_EQ(small->pose.rotateDegrees, start.rotateDegrees);
+  EXPECT_EQ(small->clamped, (std::array<bool, 3>{false, false, false}));
+  EXPECT_GT(small->pose.translate[0], start.translate[0]);  // right on screen is +x here
+  EXPECT_GT(small->pose.translate[1], 0.0);                 // up on screen (dy < 0) is +y
+
+  // Far to the right: the box's right face stops at the grid's (x 2 + t = 10).
+  auto far = dragPose(camera, start, box, grid, 1e5, 0, h);
+  ASSERT_TRUE(far) << far.message();
+  EXPECT_EQ(far->clamped, (std::array<bool, 3>{true, false, false}));
+  EXPECT_DOUBLE_EQ(far->pose.translate[0], start.translate[0] + 8);
+  EXPECT_FALSE(dragPose(camera, start, box, grid, std::nan(""), 0, h));
+  EXPECT_FALSE(dragPose(camera, start, Box{{-30, 0, 0}, {30, 1, 1}}, grid, 1, 0, h));
 }
 
 }  // namespace

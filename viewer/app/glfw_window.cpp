@@ -7,6 +7,7 @@
 #include <GLFW/glfw3.h>
 
 #include <array>
+#include <utility>
 
 namespace voxlink::viewer {
 
@@ -41,6 +42,11 @@ Result<std::unique_ptr<GlfwWindow>> GlfwWindow::create(int width, int height,
   glfwMakeContextCurrent(w);
   glfwSwapInterval(0);  // llvmpipe frames are slow enough; never wait for a vertical retrace
   std::unique_ptr<GlfwWindow> window(new GlfwWindow(w));
+  // Installed before ImGui's backend, which chains them.
+  glfwSetWindowUserPointer(w, window.get());
+  glfwGetCursorPos(w, &window->cursor_[0], &window->cursor_[1]);
+  glfwSetCursorPosCallback(w, &GlfwWindow::onCursor);
+  glfwSetMouseButtonCallback(w, &GlfwWindow::onButton);
   VOXLINK_RETURN_IF_ERROR(checkGlCapabilities());
   return window;
 }
@@ -54,6 +60,19 @@ void GlfwWindow::makeCurrent() { glfwMakeContextCurrent(window_); }
 bool GlfwWindow::shouldClose() const { return glfwWindowShouldClose(window_); }
 void GlfwWindow::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 void GlfwWindow::swapBuffers() { glfwSwapBuffers(window_); }
+
+void GlfwWindow::onCursor(GLFWwindow* w, double x, double y) {
+  static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w))->cursor_ = {x, y};
+}
+
+void GlfwWindow::onButton(GLFWwindow* w, int button, int action, int) {
+  auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(w));
+  if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS) self->leftPress_ = self->cursor_;
+}
+
+std::optional<std::array<double, 2>> GlfwWindow::takeLeftPressPosition() {
+  return std::exchange(leftPress_, std::nullopt);
+}
 
 std::array<int, 2> GlfwWindow::framebufferSize() const {
   std::array<int, 2> size{0, 0};

@@ -38,4 +38,18 @@ Result<ClampedTranslation> clampTranslation(const Box& box, const glm::dvec3& wa
   return r;
 }
 
+Result<DraggedPose> dragPose(const Camera& camera, const scene::Pose& start, const Box& startBox,
+                             const Box& grid, double dxPixels, double dyPixels,
+                             double viewportHeight) {
+  VOXLINK_ASSIGN_OR_RETURN(
+      glm::dvec3 wanted,
+      viewPlaneTranslation(camera, startBox.center(), dxPixels, dyPixels, viewportHeight));
+  VOXLINK_ASSIGN_OR_RETURN(ClampedTranslation clamped, clampTranslation(startBox, wanted, grid));
+  DraggedPose r;
+  r.pose = start;
+  for (int a = 0; a < 3; ++a) r.pose.translate[size_t(a)] += clamped.translation[a];
+  r.clamped = clamped.clamped;
+  return r;
+}
+
 }  // namespace voxlink::viewer

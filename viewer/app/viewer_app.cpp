@@ -14,8 +14,11 @@
 
 #include "viewer/app/detail/camera_controller.h"
 #include "viewer/app/detail/display.h"
+#include "viewer/app/detail/drag_gesture.h"
 #include "viewer/app/detail/glfw_window.h"
+#include "viewer/app/detail/scene_panel.h"
 #include "viewer/app/detail/viewer_state.h"
+#include "viewer/app/scene_session.h"
 
 namespace voxlink::viewer {
 
@@ -113,7 +116,26 @@ Status runViewer(const ViewerOptions& options) {
   ViewerState state;
   state.settings = options.settings;
   if (options.tf) state.tf = *options.tf;
-  VOXLINK_RETURN_IF_ERROR(state.load(options.path, options.tf.has_value()));
+  SceneSession* scene = options.scene.get();
+  // The session's GL objects go while the window's context lives, however this returns.
+  struct DetachOnExit {
+    SceneSession* session;
+    ~DetachOnExit() {
+      if (session) session->detach();
+    }
+  } detachOnExit{scene};
+  if (scene) {
+    VOXLINK_RETURN_IF_ERROR(scene->attach());
+    if (options.sceneTime) {
+      scene->setTime(*options.sceneTime);
+      scene->clock().setPlaying(false);
+    }
+    VOXLINK_RETURN_IF_ERROR(
+        state.load(scene->volumeFile(), options.tf.has_value(), scene->renderer()));
+    state.shownPath = options.path;
+  } else {
+    VOXLINK_RETURN_IF_ERROR(state.load(options.path, options.tf.has_value()));
+  }
   VOXLINK_ASSIGN_OR_RETURN(Display display, Display::create());
   CameraController controller(
       Camera::framing(state.renderer->geometry().worldBox(), options.camera));
@@ -130,6 +152,9 @@ Status runViewer(const ViewerOptions& options) {
   bool dirty = true, showUi = true;
   int frame = 0, screenshots = 0;
   std::array<int, 2> lastSize{0, 0};
+  DragGesture drag;
+  std::optional<size_t> selected;
+  double lastFrameMs = nowMs();
   Status result;
   while (!window->shouldClose()) {
     glfwPollEvents();
@@ -141,8 +166,40 @@ Status runViewer(const ViewerOptions& options) {
     if (size != lastSize) dirty = true;
     lastSize = size;
     const bool keysFree = !io.WantCaptureKeyboard;
-    const bool moved = controller.update(
-        collectInput(window->handle(), keys, !io.WantCaptureMouse, keysFree), std::max(size[1], 1));
+    InputFrame input = collectInput(window->handle(), keys, !io.WantCaptureMouse, keysFree);
+    // Ctrl + left drag moves a scene's moving object; the camera does not see that button then.
+    bool objectMoving = false;
+    if (scene && scene->moves() && size[0] > 0 && size[1] > 0) {
+      int windowWidth = 0, windowHeight = 0;
+      glfwGetWindowSize(window->handle(), &windowWidth, &windowHeight);
+      const double toPixels = windowWidth > 0 ? double(size[0]) / windowWidth : 1.0;
+      PointerState pointer;
+      pointer.modifier = keys.held(GLFW_KEY_LEFT_CONTROL) || keys.held(GLFW_KEY_RIGHT_CONTROL);
+      // A drag goes on over the panels; a press there does not start one.
+      pointer.left =
+          drag.active() ? glfwGetMouseButton(window->handle(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS
+                        : input.left;
+      pointer.x = input.mouseX * toPixels;
+      pointer.y = input.mouseY * toPixels;
+      // The cursor may have moved on since the press within this frame: start where it was.
+      if (const auto at = window->takeLeftPressPosition())
+        pointer.pressedAt = std::array{(*at)[0] * toPixels, (*at)[1] * toPixels};
+      auto dragging = drag.update(*scene, controller.camera(), pointer, uint32_t(size[0]),
+                                  uint32_t(size[1]), selected);
+      if (!dragging) state.message = dragging.message();
+      objectMoving = drag.active();
+      if (objectMoving || pointer.modifier) input.left = false;
+      const double now = nowMs();
+      auto updated = scene->update((now - lastFrameMs) / 1000.0);
+      lastFrameMs = now;
+      if (!updated) {
+        state.message = updated.message();
+      } else if (*updated) {
+        dirty = true;
+        objectMoving = true;
+      }
+    }
+    const bool moved = controller.update(input, std::max(size[1], 1));
     if (keysFree) {
       if (keys.pressed(GLFW_KEY_ESCAPE) || keys.pressed(GLFW_KEY_Q)) window->requestClose();
       if (keys.pressed(GLFW_KEY_H)) showUi = !showUi;
@@ -164,6 +221,9 @@ Status runViewer(const ViewerOptions& options) {
       ImGui::Begin("VoxLink");
       drawStatsPanel(state, glDescription, state.lastFrameReduced ? target.width() : size[0],
                      state.lastFrameReduced ? target.height() : size[1]);
+      if (scene && scene->moves() &&
+          ImGui::CollapsingHeader("Moving objects", ImGuiTreeNodeFlags_DefaultOpen))
+        dirty |= drawScenePanel(*scene, selected);
       if (ImGui::CollapsingHeader("Rendering")) dirty |= drawSettingsPanel(state);
       if (ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen)) {
         const bool changed = drawTransferFunctionPanel(state);
@@ -185,7 +245,7 @@ Status runViewer(const ViewerOptions& options) {
     }
 
     // Reduced resolution while anything moves, full resolution once it is still.
-    const bool interacting = controller.dragging() || moved || tfDragging;
+    const bool interacting = controller.dragging() || moved || tfDragging || objectMoving;
     if (size[0] > 0 && size[1] > 0 && (interacting || dirty || state.lastFrameReduced)) {
       const double scale = interacting ? state.interactiveScale : 1.0;
       state.settings.width = std::max(1u, uint32_t(std::lround(size[0] * scale)));

@@ -23,13 +23,17 @@ using render::gl::VoxLinkRenderer;
 using tf::defaultTransferFunction;
 using tf::displayRange;
 
-Status ViewerState::load(const std::string& path, bool keepTf) {
+Status ViewerState::load(const std::string& path, bool keepTf, VoxLinkRenderer* drawWith) {
   VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile opened, pack::openValidatedFile(path));
   auto next = std::make_unique<format::VoxLinkFile>(std::move(opened));
-  VOXLINK_ASSIGN_OR_RETURN(auto r, VoxLinkRenderer::create(*next));
+  std::unique_ptr<VoxLinkRenderer> own;
+  if (!drawWith) {
+    VOXLINK_ASSIGN_OR_RETURN(own, VoxLinkRenderer::create(*next));
+  }
   VOXLINK_ASSIGN_OR_RETURN(std::vector<Light> lights, render::sceneLights(next->metaJson()));
   file = std::move(next);
-  renderer = std::move(r);
+  ownRenderer = std::move(own);
+  renderer = drawWith ? drawWith : ownRenderer.get();
   sceneLights = std::move(lights);
   settings.lights = settings.effects.any() ? sceneLights : std::vector<Light>{};
   if (!keepTf) tf = defaultTransferFunction(*file);
@@ -55,7 +59,7 @@ void ViewerState::transferFunctionChanged() {
 bool drawStatsPanel(ViewerState& s, const std::string& glDescription, uint32_t width,
                     uint32_t height) {
   const auto& h = s.file->header();
-  ImGui::Text("%s", s.file->path().c_str());
+  ImGui::Text("%s", s.shownPath.empty() ? s.file->path().c_str() : s.shownPath.c_str());
   ImGui::Text("%ux%ux%u, brick %u, %llu voxels in %llu of %llu bricks", h.dims[0], h.dims[1],
               h.dims[2], h.brickSize, (unsigned long long)h.voxelCount,
               (unsigned long long)h.occupiedBrickCount,
@@ -159,6 +163,9 @@ bool drawTransferFunctionPanel(ViewerState& s) {
                        s.reclassifier.stage().c_str());
     ImGui::SameLine();
     if (ImGui::Button("cancel")) s.reclassifier.cancel();
+  } else if (!s.visibleButRemoved.empty() && !s.shownPath.empty()) {
+    // The renderer of a scene built in memory draws that build; a new file would lose it.
+    ImGui::TextDisabled("re-classification: build the scene again (scene build) instead");
   } else if (!s.visibleButRemoved.empty()) {
     const std::string out = Reclassifier::outputPathFor(s.file->path());
     if (ImGui::Button("Re-classify from the source")) {

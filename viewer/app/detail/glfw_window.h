@@ -3,7 +3,9 @@
 // Xvfb; headless rendering uses EGL instead, see render/gl/gl_context.h).
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "render/gl/gl_context.h"
@@ -26,10 +28,17 @@ class GlfwWindow : public GlContext {
   void swapBuffers();
   // Framebuffer size in pixels (may differ from the window size on scaled displays).
   std::array<int, 2> framebufferSize() const;
+  // Where the cursor was (window coordinates) when the left button last went down, in event
+  // order: the polled position may already be further on when a frame sees the press. Once.
+  std::optional<std::array<double, 2>> takeLeftPressPosition();
 
  private:
   explicit GlfwWindow(GLFWwindow* w) : window_(w) {}
+  static void onCursor(GLFWwindow* w, double x, double y);
+  static void onButton(GLFWwindow* w, int button, int action, int mods);
   GLFWwindow* window_;
+  std::array<double, 2> cursor_{0, 0};
+  std::optional<std::array<double, 2>> leftPress_;
 };
 
 }  // namespace voxlink::viewer

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "render/camera.h"
+#include "scene/scene_animation.h"
 
 namespace voxlink::viewer {
 
@@ -30,5 +31,17 @@ struct ClampedTranslation {
 // `limits`. Errors: a box wider than the limits on an axis (no translation fits).
 Result<ClampedTranslation> clampTranslation(const Box& box, const glm::dvec3& wanted,
                                             const Box& limits);
+
+struct DraggedPose {
+  scene::Pose pose;
+  std::array<bool, 3> clamped{};  // per axis: the grid stopped the drag
+};
+
+// The pose of an object dragged by (dx, dy) pixels since the drag began: `start` translated in
+// the view plane at the depth of `startBox`'s centre (its world box at `start`), the translation
+// clamped so that the box stays inside `grid`. Errors: those of the two functions above.
+Result<DraggedPose> dragPose(const Camera& camera, const scene::Pose& start, const Box& startBox,
+                             const Box& grid, double dxPixels, double dyPixels,
+                             double viewportHeight);
 
 }  // namespace voxlink::viewer

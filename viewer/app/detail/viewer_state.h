@@ -24,7 +24,9 @@ using render::gl::VoxLinkRenderer;
 
 struct ViewerState {
   std::unique_ptr<format::VoxLinkFile> file;
-  std::unique_ptr<VoxLinkRenderer> renderer;
+  // What draws: the file's own renderer, or a scene session's (moving meshes included).
+  VoxLinkRenderer* renderer = nullptr;
+  std::unique_ptr<VoxLinkRenderer> ownRenderer;
   tf::TransferFunction tf;
   FileClassification classification;
   std::vector<tf::ValueInterval> removed;            // what the file does not hold
@@ -37,10 +39,12 @@ struct ViewerState {
   double interactiveScale = 0.5;   // resolution factor while the user drags
   double lastRenderMs = 0;
   bool lastFrameReduced = false;
-  std::string message;  // last screenshot / reload / error line
+  std::string message;    // last screenshot / reload / error line
+  std::string shownPath;  // the scene file a scratch .vxl was built from (else empty)
 
   // Opens `path` and builds its renderer (GL context current); keeps the TF when `keepTf`.
-  Status load(const std::string& path, bool keepTf);
+  // With `drawWith` (a renderer over the same file, owned by the caller) it draws with that.
+  Status load(const std::string& path, bool keepTf, VoxLinkRenderer* drawWith = nullptr);
   // After the TF changed: uploads it and re-checks it against the classification.
   void transferFunctionChanged();
 };

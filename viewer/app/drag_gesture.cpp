@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "viewer/app/detail/drag_gesture.h"
+
+#include "viewer/app/detail/object_pick.h"
+
+namespace voxlink::viewer {
+
+Result<bool> DragGesture::update(SceneSession& session, const render::Camera& camera,
+                                 const PointerState& pointer, uint32_t width, uint32_t height,
+                                 std::optional<size_t> selected) {
+  const bool pressed = pointer.left && !wasLeft_;
+  wasLeft_ = pointer.left;
+  if (active_ && !pointer.left) {  // released: where the cursor was let go counts too
+    const Status last =
+        session.dragTo(camera, pointer.x - startX_, pointer.y - startY_, double(height)).status();
+    session.endDrag();
+    active_ = false;
+    VOXLINK_RETURN_IF_ERROR(last);
+    return false;
+  }
+  if (!active_ && pressed && pointer.modifier && session.dynamic()) {
+    const std::array<double, 2> at = pointer.pressedAt.value_or(std::array{pointer.x, pointer.y});
+    std::optional<size_t> target =
+        pickBox(camera, at[0], at[1], width, height, session.movingBoxes());
+    if (!target) target = selected;
+    if (target && *target < session.movingCount()) {
+      VOXLINK_RETURN_IF_ERROR(session.beginDrag(*target));
+      active_ = true;
+      startX_ = at[0];
+      startY_ = at[1];
+    }
+  }
+  if (!active_) return false;
+  VOXLINK_RETURN_IF_ERROR(
+      session.dragTo(camera, pointer.x - startX_, pointer.y - startY_, double(height)).status());
+  return true;
+}
+
+}  // namespace voxlink::viewer
