@@ -58,6 +58,7 @@ def parse_args():
     p.add_argument("--markdown", default=None, help="write the tables here (default: stdout)")
     p.add_argument("--frames-per-turn", default="12", help="bench-render's, two turns")
     p.add_argument("--resume", action="store_true", help="keep --csv's rows, measure the rest")
+    p.add_argument("--tables-only", action="store_true", help="write the tables of --csv, measure nothing")
     p.add_argument("--no-gl", action="store_true")
     return p.parse_args()
 
@@ -166,16 +167,19 @@ def main():
     os.makedirs(work, exist_ok=True)
     csv_path = args.csv or f"{work}/surface-modes.csv"
     done = set()
-    if args.resume and os.path.exists(csv_path):
+    if (args.resume or args.tables_only) and os.path.exists(csv_path):
         with open(csv_path) as f:
             done = {(r["scene"], r["resolution"], r["mode"]) for r in csv.DictReader(f)}
     else:
         with open(csv_path, "w", newline="") as f:
             csv.DictWriter(f, FIELDS).writeheader()
     commands = []
+    if args.tables_only:
+        scenes, args.resolutions = {}, ""
+    else:
+        scenes = scene_files(args, work)
     # Resolution outermost: an interrupted run has every scene at the lower resolutions.
-    scenes = scene_files(args, work)
-    for res in [int(r) for r in args.resolutions.split(",")]:
+    for res in [int(r) for r in args.resolutions.split(",") if r]:
         for name, (scene, effects) in scenes.items():
             for mode in args.modes.split(","):
                 if (name, str(res), mode) in done:
@@ -187,8 +191,9 @@ def main():
     with open(csv_path) as f:
         rows = list(csv.DictReader(f))
     text = write_tables(rows, args.modes.split(","))
-    text += "\nCommands of the rows measured in this run:\n\n" + "".join(
-        "    " + c + "\n" for c in commands)
+    if commands:
+        text += "\nCommands of the rows measured in this run:\n\n" + "".join(
+            "    " + c + "\n" for c in commands)
     if args.markdown:
         with open(args.markdown, "w") as f:
             f.write(text)

@@ -58,15 +58,13 @@ def write_tables(rows, modes):
         for r in rows:
             if r["mode"] != mode:
                 continue
-            size = ""
-            if r["bytes"]:
-                size = f"{int(r['bytes']) / int(r['voxels']):.2f} | " \
-                       f"{paper_bytes_per_voxel(r['scene'], r['resolution'])} | " \
-                       f"{int(r['bytes']) / 1e6:.1f}"
-            else:
-                size = " | | "
+            measured = bool(r["bytes"])
+            bytes_per_voxel = f"{int(r['bytes']) / int(r['voxels']):.2f}" if measured else ""
+            megabytes = f"{int(r['bytes']) / 1e6:.1f}" if measured else ""
+            paper = paper_bytes_per_voxel(r["scene"], r["resolution"])
             cells = [r["scene"], r["resolution"], r["effects"], r["voxels"],
-                     r["fragments_per_surface_voxel"], size, r["build_s"], r["build_rss_mib"],
+                     r["fragments_per_surface_voxel"], bytes_per_voxel, paper, megabytes,
+                     r["build_s"], r["build_rss_mib"],
                      r["normal_p95"], r["psnr"], r["edge_psnr"], r["first_hit_pct"],
                      r["fps_512"], r["fps_1000"], goals(r), r["note"]]
             out.append("| " + " | ".join(str(c) if c != "" else "-" for c in cells) + " |")
