@@ -18,7 +18,9 @@ shadow rays) and the sample scenes of --samples (their own camera, lights and ma
 grid's resolution replaced; images with every effect on). `all` is every one of both. Each
 measured row is appended to --csv as soon as it is done; with --resume the rows already there
 are kept and skipped, so an interrupted run goes on where it stopped (else the CSV starts
-anew); the Markdown tables (surface_tables.py) are written from the CSV at the end. A command that fails or runs past --timeout seconds is recorded with its reason.
+anew); the Markdown tables (surface_tables.py) are written from the CSV at the end
+(--tables-only: only that). A command that fails or runs past --timeout seconds is recorded
+with its reason.
 Work files go to $VOXLINK_BENCH_DIR (default /tmp/voxlink-bench)/surface-modes.
 """
 import argparse
@@ -58,7 +60,8 @@ def parse_args():
     p.add_argument("--markdown", default=None, help="write the tables here (default: stdout)")
     p.add_argument("--frames-per-turn", default="12", help="bench-render's, two turns")
     p.add_argument("--resume", action="store_true", help="keep --csv's rows, measure the rest")
-    p.add_argument("--tables-only", action="store_true", help="write the tables of --csv, measure nothing")
+    p.add_argument("--tables-only", action="store_true",
+                   help="write the tables of --csv, measure nothing")
     p.add_argument("--no-gl", action="store_true")
     return p.parse_args()
 
@@ -97,7 +100,8 @@ def scene_files(args, work):
                           "camera": {"azimuth": 30, "elevation": 20, "up": "y"}}, "shadows")
         elif name in samples:
             with open(samples[name]) as f:
-                scene = absolute_paths(json.load(f), os.path.dirname(os.path.abspath(samples[name])))
+                folder = os.path.dirname(os.path.abspath(samples[name]))
+                scene = absolute_paths(json.load(f), folder)
             out["sample " + name] = (scene, "all")
         else:
             sys.exit(f"unknown scene {name}: not in {sorted(MESHES)} nor {args.samples}")
