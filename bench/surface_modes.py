@@ -6,7 +6,7 @@ memory, the normal error it reports), `voxlink render-exact --compare` (the voxe
 original meshes through the same float64 effects tracer: PSNR of the whole image, of the edge
 mask, and the share of pixels whose first hit differs) and, unless --no-gl, `voxlink
 bench-render` (GL frames per second at 512x512 and 1000x1000 over two turns of --frames-per-turn
-frames, on this machine's GL: llvmpipe without a GPU).
+frames, plain shading unless --gl-effects, on this machine's GL: llvmpipe without a GPU).
 
 usage: surface_modes.py VOXLINK DATA_DIR [--scenes all|dragon,bunny,cornell-spheres,...]
                         [--resolutions 256,512,1024] [--modes mean,planes,triangles]
@@ -62,6 +62,8 @@ def parse_args():
     p.add_argument("--resume", action="store_true", help="keep --csv's rows, measure the rest")
     p.add_argument("--tables-only", action="store_true",
                    help="write the tables of --csv, measure nothing")
+    p.add_argument("--gl-effects", action="store_true",
+                   help="GL fps with the image's effects (default: plain shading)")
     p.add_argument("--no-gl", action="store_true")
     return p.parse_args()
 
@@ -152,8 +154,8 @@ def measure(args, work, name, scene, effects, res, mode, commands):
     if not args.no_gl:
         bench = [args.voxlink, "bench-render", vxl, "--sizes", "512x512", "1000x1000",
                  "--no-dense", "--no-reference", "--frames-per-turn", args.frames_per_turn]
-        if effects == "all":
-            bench += ["--effects", "all"]
+        if args.gl_effects:
+            bench += ["--effects", effects]
         commands.append(" ".join(bench))
         ok, text, _, _ = run(bench, args.timeout)
         found = re.findall(r"\| (\d+)x(\d+) \| \d+ \| [\d.]+ \| [\d.]+ \| [\d.]+ \| ([\d.]+) \|",
