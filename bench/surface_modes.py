@@ -15,8 +15,9 @@ usage: surface_modes.py VOXLINK DATA_DIR [--scenes all|dragon,bunny,cornell-sphe
 
 Scenes are the meshes of DATA_DIR alone (MESHES below: default camera, one light, images with
 shadow rays) and the sample scenes of --samples (their own camera, lights and materials, the
-grid's resolution replaced; images with every effect on). `all` is every one of both. Each
-measured row is appended to --csv as soon as it is done; with --resume the rows already there
+grid's resolution replaced; images with every effect on; a scene with a CT volume keeps the
+volume's grid and is measured once, at the first of --resolutions). `all` is every one of
+both. Each measured row is appended to --csv as soon as it is done; with --resume the rows already there
 are kept and skipped, so an interrupted run goes on where it stopped (else the CSV starts
 anew); the Markdown tables (surface_tables.py) are written from the CSV at the end
 (--tables-only: only that). A command that fails or runs past --timeout seconds is recorded
@@ -91,7 +92,9 @@ def scene_files(args, work):
     """name -> (scene dict, effects) for every scene named by --scenes."""
     samples = {os.path.basename(f)[:-len(".scene.json")]: f
                for f in sorted(glob.glob(os.path.join(args.samples, "*.scene.json")))}
-    names = list(MESHES) + list(samples) if args.scenes == "all" else args.scenes.split(",")
+    # A sample scene may share a mesh's name (dragon): "sample:NAME" names the sample.
+    names = (list(MESHES) + ["sample:" + n for n in samples] if args.scenes == "all"
+             else args.scenes.split(","))
     out = {}
     for name in names:
         if name in MESHES:
@@ -100,11 +103,14 @@ def scene_files(args, work):
                                                             MESHES[name])}],
                           "lights": [{"position": [3, 4, 5]}],
                           "camera": {"azimuth": 30, "elevation": 20, "up": "y"}}, "shadows")
-        elif name in samples:
+        elif name.removeprefix("sample:") in samples:
+            name = name.removeprefix("sample:")
             with open(samples[name]) as f:
                 folder = os.path.dirname(os.path.abspath(samples[name]))
                 scene = absolute_paths(json.load(f), folder)
             out["sample " + name] = (scene, "all")
+            if any(o.get("type") == "volume" for o in scene.get("objects", [])):
+                out["sample " + name] = (scene, "all", "volume")
         else:
             sys.exit(f"unknown scene {name}: not in {sorted(MESHES)} nor {args.samples}")
     return out
@@ -175,7 +181,8 @@ def main():
     done = set()
     if (args.resume or args.tables_only) and os.path.exists(csv_path):
         with open(csv_path) as f:
-            done = {(r["scene"], r["resolution"], r["mode"]) for r in csv.DictReader(f)}
+            done = {(r["scene"], r["resolution"].split()[0], r["mode"])
+                    for r in csv.DictReader(f)}
     else:
         with open(csv_path, "w", newline="") as f:
             csv.DictWriter(f, FIELDS).writeheader()
@@ -185,12 +192,19 @@ def main():
     else:
         scenes = scene_files(args, work)
     # Resolution outermost: an interrupted run has every scene at the lower resolutions.
-    for res in [int(r) for r in args.resolutions.split(",") if r]:
-        for name, (scene, effects) in scenes.items():
+    resolutions = [int(r) for r in args.resolutions.split(",") if r]
+    for res in resolutions:
+        for name, (scene, effects, *volume) in scenes.items():
+            # A scene with a volume takes the volume's grid (docs/scene.md: grid.resolution is
+            # ignored): one row per mode, at the first resolution.
+            if volume and res != resolutions[0]:
+                continue
             for mode in args.modes.split(","):
                 if (name, str(res), mode) in done:
                     continue
                 row = measure(args, work, name, scene, effects, res, mode, commands)
+                if volume:
+                    row["resolution"] = f"{res} (ignored: the volume's grid)"
                 with open(csv_path, "a", newline="") as f:
                     csv.DictWriter(f, FIELDS).writerow(row)
                 print(f"{name} {res} {mode}: {row['note'] or 'done'}", file=sys.stderr, flush=True)

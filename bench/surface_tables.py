@@ -19,7 +19,7 @@ PAPER_SCENE = {"dragon": "dragon", "sample dragon": "dragon", "sample house": "h
 
 
 def paper_bytes_per_voxel(scene, resolution):
-    entry = PAPER_TABLE1.get(PAPER_SCENE.get(scene, ""), {}).get(int(resolution))
+    entry = PAPER_TABLE1.get(PAPER_SCENE.get(scene, ""), {}).get(int(str(resolution).split()[0]))
     return f"{entry[1] * 1e6 / (entry[0] * 1e3):.1f}" if entry else ""
 
 
