@@ -45,7 +45,12 @@ def goals(row):
 
 
 def write_tables(rows, modes):
-    """Markdown: a table per mode, rows in measured order."""
+    """Markdown: a table per mode, each scene's rows together (scenes in the order first
+    measured), by resolution."""
+    first = {}
+    for r in rows:
+        first.setdefault(r["scene"], len(first))
+    rows = sorted(rows, key=lambda r: (first[r["scene"]], int(r["resolution"].split()[0])))
     out = []
     for mode in modes:
         out.append(f"\n**{mode}**\n")
