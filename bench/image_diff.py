@@ -67,39 +67,44 @@ def write_png(path, width, height, rows):
                 + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
 
 
-parser = argparse.ArgumentParser()
-parser.add_argument("exact")
-parser.add_argument("voxel")
-parser.add_argument("diff")
-parser.add_argument("--threshold", type=float, default=0.1)
-args = parser.parse_args()
-w, h, exact = read_png(args.exact)
-w2, h2, voxel = read_png(args.voxel)
-if (w, h) != (w2, h2):
-    sys.exit(f"{args.voxel}: IHDR: {w2}x{h2}, the exact image is {w}x{h}")
-background = exact[0][0]
-counts = {"extra": 0, "miss": 0, "shade": 0}
-error = {"extra": 0.0, "miss": 0.0, "shade": 0.0, "agree": 0.0}
-colours = {"extra": (255, 0, 0), "miss": (0, 0, 255), "shade": (255, 255, 0)}
-out = []
-for y in range(h):
-    row = []
-    for x in range(w):
-        e, v = exact[y][x], voxel[y][x]
-        sq = sum(((a - b) / 255.0) ** 2 for a, b in zip(e, v)) / 3
-        if max(abs(a - b) for a, b in zip(e, v)) / 255.0 <= args.threshold:
-            error["agree"] += sq
-            row.append(tuple(c // 3 for c in e))
-            continue
-        kind = ("extra" if e == background else "miss" if v == background else "shade")
-        counts[kind] += 1
-        error[kind] += sq
-        row.append(colours[kind])
-    out.append(row)
-write_png(args.diff, w, h, out)
-total = sum(error.values()) or 1.0
-print(f"{args.voxel} against {args.exact}: {w}x{h}, background {background}, threshold {args.threshold}")
-for kind in ("extra", "miss", "shade"):
-    print(f"  {kind}: {counts[kind]} pixels ({100 * counts[kind] / (w * h):.3f} %), "
-          f"{100 * error[kind] / total:.1f} % of the squared error")
-print(f"  within the threshold: {100 * error['agree'] / total:.1f} % of the squared error")
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("exact")
+    parser.add_argument("voxel")
+    parser.add_argument("diff")
+    parser.add_argument("--threshold", type=float, default=0.1)
+    args = parser.parse_args()
+    w, h, exact = read_png(args.exact)
+    w2, h2, voxel = read_png(args.voxel)
+    if (w, h) != (w2, h2):
+        sys.exit(f"{args.voxel}: IHDR: {w2}x{h2}, the exact image is {w}x{h}")
+    background = exact[0][0]
+    counts = {"extra": 0, "miss": 0, "shade": 0}
+    error = {"extra": 0.0, "miss": 0.0, "shade": 0.0, "agree": 0.0}
+    colours = {"extra": (255, 0, 0), "miss": (0, 0, 255), "shade": (255, 255, 0)}
+    out = []
+    for y in range(h):
+        row = []
+        for x in range(w):
+            e, v = exact[y][x], voxel[y][x]
+            sq = sum(((a - b) / 255.0) ** 2 for a, b in zip(e, v)) / 3
+            if max(abs(a - b) for a, b in zip(e, v)) / 255.0 <= args.threshold:
+                error["agree"] += sq
+                row.append(tuple(c // 3 for c in e))
+                continue
+            kind = ("extra" if e == background else "miss" if v == background else "shade")
+            counts[kind] += 1
+            error[kind] += sq
+            row.append(colours[kind])
+        out.append(row)
+    write_png(args.diff, w, h, out)
+    total = sum(error.values()) or 1.0
+    print(f"{args.voxel} against {args.exact}: {w}x{h}, background {background}, threshold {args.threshold}")
+    for kind in ("extra", "miss", "shade"):
+        print(f"  {kind}: {counts[kind]} pixels ({100 * counts[kind] / (w * h):.3f} %), "
+              f"{100 * error[kind] / total:.1f} % of the squared error")
+    print(f"  within the threshold: {100 * error['agree'] / total:.1f} % of the squared error")
+
+
+if __name__ == "__main__":
+    main()

@@ -79,7 +79,10 @@ Status checkFragmentCounts(const FileHeader& h, const std::string& where) {
     return makeError(ErrorCode::kCorrupt, where, ": header.fragmentCount: ", h.fragmentCount,
                      " does not give the ", h.surfaceVoxelCount, " surface voxels 1..",
                      kMaxFragmentsPerVoxel, " fragments each");
-  if ((mode == SurfaceMode::kTriangles) != (h.triangleCount > 0))
+  // Triangles come with surface voxels: a triangles file of a scene without meshes (only
+  // spheres or a volume) has neither.
+  if (mode == SurfaceMode::kTriangles ? (h.surfaceVoxelCount > 0) != (h.triangleCount > 0)
+                                      : h.triangleCount > 0)
     return makeError(ErrorCode::kCorrupt, where, ": header.triangleCount: ", h.triangleCount,
                      " with surfaceMode ", h.surfaceMode);
   return Status::ok();

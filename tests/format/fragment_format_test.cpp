@@ -140,6 +140,27 @@ TEST(FragmentFormat, TrianglesRoundTrip) {
       << report::footprintTable(footprint);
 }
 
+// `scene build --surface triangles` on a scene without meshes (a protein alone) wrote a file
+// with no triangles that every reader refused ("header.triangleCount: 0 with surfaceMode 2").
+TEST(FragmentFormat, TrianglesModeWithoutSurfaceVoxelsOpens) {
+  SceneBuilder b(smallGrid());
+  b.setMaterials({grey()});
+  b.setSurfaceMode(SurfaceMode::kTriangles);
+  SphereRecord atom{};
+  atom.center[0] = atom.center[1] = atom.center[2] = 3;
+  atom.radius = 0.5f;
+  b.setSpheres({atom});
+  b.addSphereRef(3, 3, 3, 0);
+  testing::TempDir dir;
+  auto f = writeAndOpen(b, dir.file("no-meshes.vxl"));
+  ASSERT_TRUE(f) << f.message();
+  ASSERT_TRUE(validateFile(*f)) << validateFile(*f).message();
+  EXPECT_EQ(f->surfaceMode(), SurfaceMode::kTriangles);
+  EXPECT_EQ(f->header().triangleCount, 0u);
+  EXPECT_EQ(f->header().surfaceVoxelCount, 0u);
+  EXPECT_EQ(f->header().sphereVoxelCount, 1u);
+}
+
 TEST(FragmentFormat, BuilderRefusesWhatTheFormatCannotSay) {
   {
     auto r = planesScene(kMaxFragmentsPerVoxel + 1).build();
