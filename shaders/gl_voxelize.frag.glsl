@@ -14,6 +14,7 @@
 //   a triangle whose extent starts on the upper face of a voxel does not enter it.
 noperspective in float vDepth;
 flat in uint vTriangle;
+flat in vec3 vCorner0, vCorner1, vCorner2;  // (u, v, depth), gl_voxelize.vert.glsl
 
 uniform int uAxis;
 uniform uvec3 uDims;     // voxels along u, v and the depth axis
@@ -24,24 +25,16 @@ uniform bool uConservative;
 // column in place of the link and the depth, and no list.
 uniform bool uColumnInFragment;
 
-layout(std430, binding = 2) readonly buffer Positions { float positions[]; };
-layout(std430, binding = 3) readonly buffer Indices { uint indices[]; };
 layout(binding = 0, offset = 0) uniform atomic_uint fragmentCount;
 layout(std430, binding = 0) coherent buffer Heads { uint heads[]; };  // 0xffffffff: empty
 layout(std430, binding = 1) writeonly buffer Fragments {
   uvec4 fragments[];  // first | last << 16 voxel along depth, triangle, next slot, depth bits
 };
 
-vec3 corner(uint c) {
-  uint vertex = indices[3u * vTriangle + c];
-  vec3 g = vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]);
-  return vec3(g[(uAxis + 1) % 3], g[(uAxis + 2) % 3], g[uAxis]);
-}
-
 // Depth range of the triangle over the square lo..lo+1; false when they do not meet. zMin: the
 // triangle's lowest depth.
 bool depthOverSquare(vec2 lo, out float dMin, out float dMax, out float zMin) {
-  vec3 p[3] = vec3[3](corner(0u), corner(1u), corner(2u));
+  vec3 p[3] = vec3[3](vCorner0, vCorner1, vCorner2);
   vec2 hi = lo + 1.0;
   // Tie rule: an extent that starts on the square's upper edge does not enter it.
   if (min(p[0].x, min(p[1].x, p[2].x)) >= hi.x || min(p[0].y, min(p[1].y, p[2].y)) >= hi.y)
