@@ -24,20 +24,43 @@ uniform bool uConservative;
 // The dynamic layer (shaders/dynamic_layer_build.comp.glsl) takes the fragments in any order: the
 // column in place of the link and the depth, and no list.
 uniform bool uColumnInFragment;
+// The dynamic layer, uBrickSize > 0: each fragment also claims the bricks of its voxels in the
+// brick map (the first claimant of a brick takes the next pool slot), so the build needs no pass
+// over the fragments or over the whole map to find the bricks.
+uniform uint uBrickSize;
+uniform uvec3 uBrickGrid;  // bricks per axis (x, y, z)
+uniform uint uBrickCapacity;
 
 layout(binding = 0, offset = 0) uniform atomic_uint fragmentCount;
 layout(std430, binding = 0) coherent buffer Heads { uint heads[]; };  // 0xffffffff: empty
 layout(std430, binding = 1) writeonly buffer Fragments {
   uvec4 fragments[];  // first | last << 16 voxel along depth, triangle, next slot, depth bits
 };
+const uint kEmpty = 0xffffffffu, kClaimed = 0xfffffffeu;  // brick map entries without a slot
+layout(std430, binding = 5) buffer BrickMap { uint brickMap[]; };
+layout(std430, binding = 7) buffer Counters { uint brickCount; uint bricksDropped; };
+
+// Gives brick `b` a pool slot unless another fragment did; one past the pool is counted and the
+// brick stays kClaimed (no slot: the frame is an error, GlDynamicLayer::checkLastUpdate).
+void claimBrick(uint b) {
+  if (brickMap[b] != kEmpty || atomicCompSwap(brickMap[b], kEmpty, kClaimed) != kEmpty) return;
+  uint slot = atomicAdd(brickCount, 1u);
+  if (slot < uBrickCapacity)
+    brickMap[b] = slot;
+  else
+    atomicAdd(bricksDropped, 1u);
+}
 
 // Depth range of the triangle over the square lo..lo+1; false when they do not meet. zMin: the
 // triangle's lowest depth.
 bool depthOverSquare(vec2 lo, out float dMin, out float dMax, out float zMin) {
   vec3 p[3] = vec3[3](vCorner0, vCorner1, vCorner2);
   vec2 hi = lo + 1.0;
-  // Tie rule: an extent that starts on the square's upper edge does not enter it.
-  if (min(p[0].x, min(p[1].x, p[2].x)) >= hi.x || min(p[0].y, min(p[1].y, p[2].y)) >= hi.y)
+  // Tie rule: an extent that starts on the square's upper edge does not enter it. A triangle
+  // whose box ends before the square does not meet it either: the emulated conservative raster's
+  // corners reach far past thin triangles, so this spares most of the tests below.
+  if (min(p[0].x, min(p[1].x, p[2].x)) >= hi.x || min(p[0].y, min(p[1].y, p[2].y)) >= hi.y ||
+      max(p[0].x, max(p[1].x, p[2].x)) < lo.x || max(p[0].y, max(p[1].y, p[2].y)) < lo.y)
     return false;
   dMin = 1e30;
   dMax = -1e30;
@@ -97,6 +120,14 @@ void main() {
   uint column = (uint(uAxis) * uColumns + v) * uColumns + u;
   if (uColumnInFragment) {
     fragments[slot] = uvec4(first | (last << 16), vTriangle, column, 0u);
+    if (uBrickSize == 0u) return;
+    uvec3 brick;
+    brick[(uAxis + 1) % 3] = u / uBrickSize;
+    brick[(uAxis + 2) % 3] = v / uBrickSize;
+    for (uint k = first / uBrickSize; k <= last / uBrickSize; ++k) {
+      brick[uAxis] = k;
+      claimBrick((brick.z * uBrickGrid.y + brick.y) * uBrickGrid.x + brick.x);
+    }
     return;
   }
   uint next = atomicExchange(heads[column], slot);

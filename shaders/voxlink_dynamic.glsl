@@ -32,7 +32,7 @@ bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
     float tOut = min(max(bricks.tMax[axis], t), tb);
     ivec3 c = bricks.cell;
     uint slot = dynBrickMap[(c.z * uDynBrickGrid.y + c.y) * uDynBrickGrid.x + c.x];
-    if (slot != 0xffffffffu && tOut > t) {
+    if (slot < 0xfffffffeu && tOut > t) {  // not empty, nor claimed without a pool slot
       Dda voxels = ddaInit(o, d, t, c * bn, c * bn + (bn - 1));
       float tv = t;
       for (int j = 0; j < 3 * bn + 3 && tv < tOut; ++j) {

@@ -15,6 +15,7 @@ namespace {
 constexpr GLuint kEmpty = 0xffffffffu;
 constexpr uint64_t kFragmentBytes = 16;   // uvec4, shaders/gl_voxelize.frag.glsl
 constexpr uint64_t kPoolVoxelBytes = 16;  // ivec4, shaders/dynamic_layer_build.comp.glsl
+constexpr double kFixedPoint = 4096;      // units per voxel^2 of area x unit normal
 
 GLint getInteger(GLenum name) {
   GLint value = 0;
@@ -38,8 +39,8 @@ struct GlDynamicLayer::State {
   GLuint raster = 0, vertexArray = 0;
   ComputeProgram build;
   GlFramebuffer framebuffer;
-  GlBuffer fragments, fragmentCount, dispatchSize, positions, indices, order, materials, brickMap,
-      pool, counters;
+  GlBuffer fragments, fragmentCount, dispatchSizes, positions, indices, order, contributions,
+      brickMap, pool, counters;
   ~State() {
     if (raster) glDeleteProgram(raster);
     if (vertexArray) glDeleteVertexArrays(1, &vertexArray);
@@ -139,7 +140,7 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(s->edge));
   s->fragments = storage(fragmentCapacity * kFragmentBytes, 0);
   s->fragmentCount = storage(4, GL_DYNAMIC_STORAGE_BIT);
-  s->dispatchSize = storage(12);
+  s->dispatchSizes = storage(32);
   s->brickMap = storage(uint64_t(s->brickGrid[0]) * s->brickGrid[1] * s->brickGrid[2] * 4);
   s->pool = storage(brickCapacity * n3 * kPoolVoxelBytes, 0);
   s->counters = storage(8);
@@ -159,9 +160,12 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     return makeError(ErrorCode::kSizeMismatch, "dynamic layer: ", triangleMaterials.size(),
                      " triangle materials for ", triangles.size() / 3, " triangles");
   State& s = *s_;
-  // Triangles binned by dominant axis (the voxelizer's swizzle), zero-area ones left out; the
-  // voxel box of the vertices for the ray tracer.
+  // Triangles binned by dominant axis (the voxelizer's swizzle), zero-area ones left out; per
+  // triangle its contribution to a voxel (shaders/dynamic_layer_build.comp.glsl: area x unit
+  // normal in fixed point, the area clamped to [1/256, 256] voxel^2 so that a sum of 2^13 fits an
+  // int, and material + 1); the voxel box of the vertices for the ray tracer.
   std::array<std::vector<uint32_t>, 3> byAxis;
+  std::vector<std::array<int32_t, 4>> contributions(triangleMaterials.size(), {0, 0, 0, 0});
   const size_t vertexCount = positions.size() / 3;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const float* c[3];
@@ -176,6 +180,11 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                          e1[0] * e2[1] - e1[1] * e2[0]};
     if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) continue;
+    const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double scale = 0.5 / area * std::clamp(area, 1.0 / 256, 256.0) * kFixedPoint;
+    auto& c4 = contributions[t / 3];
+    for (int a = 0; a < 3; ++a) c4[size_t(a)] = int32_t(std::lround(n[a] * scale));
+    c4[3] = int32_t(triangleMaterials[t / 3]) + 1;
     int w = 0;
     if (std::abs(n[1]) > std::abs(n[w])) w = 1;
     if (std::abs(n[2]) > std::abs(n[w])) w = 2;
@@ -208,13 +217,13 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   if (triangles.size() > s.triangleIndices) {
     s.indices = storage(triangles.size() * 4);
     s.order = storage(triangles.size() / 3 * 4);
-    s.materials = storage(triangles.size() / 3 * 4);
+    s.contributions = storage(triangles.size() / 3 * 16);
     s.triangleIndices = triangles.size();
   }
   glNamedBufferSubData(s.positions.id(), 0, GLsizeiptr(positions.size() * 4), positions.data());
   glNamedBufferSubData(s.indices.id(), 0, GLsizeiptr(triangles.size() * 4), triangles.data());
-  glNamedBufferSubData(s.materials.id(), 0, GLsizeiptr(triangleMaterials.size() * 4),
-                       triangleMaterials.data());
+  glNamedBufferSubData(s.contributions.id(), 0, GLsizeiptr(contributions.size() * 16),
+                       contributions.data());
   if (!order.empty())
     glNamedBufferSubData(s.order.id(), 0, GLsizeiptr(order.size() * 4), order.data());
 
@@ -224,7 +233,8 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
 
-  // Raster: gl_voxelize writes each fragment with its column (uColumnInFragment), no lists.
+  // Raster: gl_voxelize writes each fragment with its column (uColumnInFragment), no lists, and
+  // claims the bricks of its voxels (uBrickSize).
   glUseProgram(s.raster);
   glBindFramebuffer(GL_FRAMEBUFFER, s.framebuffer.id());
   glViewport(0, 0, GLsizei(s.edge), GLsizei(s.edge));
@@ -237,12 +247,17 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s.indices.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s.order.id());
   glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, s.fragmentCount.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s.brickMap.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, s.counters.id());
   auto at = [&](const char* name) { return glGetUniformLocation(s.raster, name); };
   glUniform1f(at("uViewportEdge"), float(s.edge));
   glUniform1ui(at("uColumns"), s.edge);
   glUniform1i(at("uConservative"), 1);
   glUniform1i(at("uColumnInFragment"), 1);
   glUniform1ui(at("uCapacity"), GLuint(s.fragmentCapacity));
+  glUniform1ui(at("uBrickSize"), s.brickSize);
+  glUniform3ui(at("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
+  glUniform1ui(at("uBrickCapacity"), GLuint(s.brickCapacity));
   for (uint32_t w = 0; w < 3; ++w) {
     if (first[w] == first[w + 1]) continue;
     glUniform1i(at("uAxis"), GLint(w));
@@ -253,7 +268,7 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
 
-  // Build: mark bricks, allocate them, accumulate normals (shaders/dynamic_layer_build.comp.glsl).
+  // Build: zero the claimed bricks, accumulate (shaders/dynamic_layer_build.comp.glsl).
   s.build.use();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s.brickMap.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
@@ -262,21 +277,18 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glUniform3ui(s.build.uniform("uDims"), s.dims[0], s.dims[1], s.dims[2]);
   glUniform3ui(s.build.uniform("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
   glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.materials.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.contributions.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, s.fragmentCount.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSize.id());
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s.dispatchSize.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSizes.id());
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s.dispatchSizes.id());
   glUniform1ui(s.build.uniform("uCapacity"), GLuint(s.fragmentCapacity));
-  const uint64_t bricks = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2];
-  // The fragment passes are sized on the GPU from the counter (pass 3): no count comes back.
-  for (int pass : {3, 0, 1, 2}) {
+  // Passes 1 and 2 are sized on the GPU from the counters (pass 3): no count comes back.
+  for (int pass : {3, 1, 2}) {
     glUniform1i(s.build.uniform("uPass"), pass);
     if (pass == 3)
       glDispatchCompute(1, 1, 1);
-    else if (pass == 1)
-      glDispatchCompute(GLuint((bricks + 63) / 64), 1, 1);
     else
-      glDispatchComputeIndirect(0);
+      glDispatchComputeIndirect(pass == 1 ? 16 : 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
   }
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
