@@ -15,41 +15,26 @@
 noperspective in float vDepth;
 flat in uint vTriangle;
 flat in vec3 vCorner0, vCorner1, vCorner2;  // (u, v, depth), gl_voxelize.vert.glsl
+flat in ivec4 vContribution;                // VXL_DYN_N: area x normal, material + 1
 
 uniform int uAxis;
 uniform uvec3 uDims;     // voxels along u, v and the depth axis
 uniform uint uColumns;   // heads per axis row (the viewport edge)
 uniform uint uCapacity;  // fragment slots
 uniform bool uConservative;
-// The dynamic layer (shaders/dynamic_layer_build.comp.glsl) takes the fragments in any order: the
-// column in place of the link and the depth, and no list.
-uniform bool uColumnInFragment;
-// The dynamic layer, uBrickSize > 0: each fragment also claims the bricks of its voxels in the
-// brick map (the first claimant of a brick takes the next pool slot), so the build needs no pass
-// over the fragments or over the whole map to find the bricks.
-uniform uint uBrickSize;
-uniform uvec3 uBrickGrid;  // bricks per axis (x, y, z)
-uniform uint uBrickCapacity;
+// VXL_DYN_N defined (the brick edge): the dynamic layer (render/gl/gl_dynamic_layer.h). No list:
+// each fragment adds its triangle's contribution (vContribution) to its voxels in a pool of
+// bricks right here (atomics), the bricks found through a hash table of pool slots
+// (shaders/dynamic_layer.glsl).
 
 layout(binding = 0, offset = 0) uniform atomic_uint fragmentCount;
 layout(std430, binding = 0) coherent buffer Heads { uint heads[]; };  // 0xffffffff: empty
 layout(std430, binding = 1) writeonly buffer Fragments {
   uvec4 fragments[];  // first | last << 16 voxel along depth, triangle, next slot, depth bits
 };
-const uint kEmpty = 0xffffffffu, kClaimed = 0xfffffffeu;  // brick map entries without a slot
-layout(std430, binding = 5) buffer BrickMap { uint brickMap[]; };
-layout(std430, binding = 7) buffer Counters { uint brickCount; uint bricksDropped; };
-
-// Gives brick `b` a pool slot unless another fragment did; one past the pool is counted and the
-// brick stays kClaimed (no slot: the frame is an error, GlDynamicLayer::checkLastUpdate).
-void claimBrick(uint b) {
-  if (brickMap[b] != kEmpty || atomicCompSwap(brickMap[b], kEmpty, kClaimed) != kEmpty) return;
-  uint slot = atomicAdd(brickCount, 1u);
-  if (slot < uBrickCapacity)
-    brickMap[b] = slot;
-  else
-    atomicAdd(bricksDropped, 1u);
-}
+#ifdef VXL_DYN_N
+#include "dynamic_layer.glsl"
+#endif
 
 // Depth range of the triangle over the square lo..lo+1; false when they do not meet. zMin: the
 // triangle's lowest depth.
@@ -115,21 +100,19 @@ void main() {
   if (!(dMax >= 0.0) || low >= float(uDims.z)) return;
   uint first = uint(max(low, 0.0));
   uint last = min(uint(floor(dMax)), uDims.z - 1u);
+#ifdef VXL_DYN_N
+  uvec3 voxel;  // grid order x, y, z
+  voxel[(uAxis + 1) % 3] = u;
+  voxel[(uAxis + 2) % 3] = v;
+  for (uint k = first; k <= last; ++k) {
+    voxel[uAxis] = k;
+    addToLayer(voxel, vContribution);
+  }
+#else
   uint slot = atomicCounterIncrement(fragmentCount);
   if (slot >= uCapacity) return;  // counted: the host grows the buffer and draws again
   uint column = (uint(uAxis) * uColumns + v) * uColumns + u;
-  if (uColumnInFragment) {
-    fragments[slot] = uvec4(first | (last << 16), vTriangle, column, 0u);
-    if (uBrickSize == 0u) return;
-    uvec3 brick;
-    brick[(uAxis + 1) % 3] = u / uBrickSize;
-    brick[(uAxis + 2) % 3] = v / uBrickSize;
-    for (uint k = first / uBrickSize; k <= last / uBrickSize; ++k) {
-      brick[uAxis] = k;
-      claimBrick((brick.z * uBrickGrid.y + brick.y) * uBrickGrid.x + brick.x);
-    }
-    return;
-  }
   uint next = atomicExchange(heads[column], slot);
   fragments[slot] = uvec4(first | (last << 16), vTriangle, next, floatBitsToUint(dMin));
+#endif
 }

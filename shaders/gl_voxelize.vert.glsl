@@ -15,6 +15,10 @@
 layout(std430, binding = 2) readonly buffer Positions { float positions[]; };  // grid coords
 layout(std430, binding = 3) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 4) readonly buffer Order { uint order[]; };  // triangles by axis
+#ifdef VXL_DYN_N
+// The dynamic layer: per triangle area x unit normal in fixed point, material + 1.
+layout(std430, binding = 8) readonly buffer Contributions { ivec4 contributions[]; };
+#endif
 
 uniform int uAxis;
 uniform float uViewportEdge;  // square viewport, pixels
@@ -27,6 +31,7 @@ flat out uint vTriangle;
 // reads them here instead of from the buffers, once per fragment (measured: the raster is the
 // dynamic layer's largest cost on llvmpipe).
 flat out vec3 vCorner0, vCorner1, vCorner2;
+flat out ivec4 vContribution;
 
 vec3 corner(uint triangle, uint c) {
   uint vertex = indices[3u * triangle + c];
@@ -56,4 +61,9 @@ void main() {
   vCorner0 = corner(triangle, 0u);
   vCorner1 = corner(triangle, 1u);
   vCorner2 = corner(triangle, 2u);
+#ifdef VXL_DYN_N
+  vContribution = contributions[triangle];
+#else
+  vContribution = ivec4(0);
+#endif
 }

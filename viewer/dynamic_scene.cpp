@@ -13,7 +13,6 @@
 namespace voxlink::viewer {
 
 using render::gl::dynamicBrickBound;
-using render::gl::dynamicFragmentBound;
 using render::gl::DynamicSceneRenderer;
 using render::gl::GlDynamicLayer;
 namespace {
@@ -77,7 +76,7 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
                      ": moving meshes need cubic voxels (the scene's volume has other spacings)");
 
   std::vector<Moving> moving;
-  uint64_t fragments = 0, bricks = 0, triangles = 0;
+  uint64_t bricks = 0, triangles = 0;
   const uint32_t brick = file.header().brickSize;
   for (size_t i : movingObjects) {
     const scene::SceneObject& o = scene.objects[i];
@@ -92,7 +91,6 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
     m.triangles = placed.mesh.triangles;
     m.restBounds = placed.bounds;
     m.pose = samplePose(*o.animation, 0);
-    std::vector<float> rest(placed.mesh.positions.size());
     std::array<double, 3> extent{};
     for (int a = 0; a < 3; ++a) {
       m.centre[size_t(a)] = 0.5 * (double(placed.bounds.min[a]) + placed.bounds.max[a]);
@@ -104,15 +102,11 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
       extent.fill(diameter);
     }
     for (double& e : extent) e += 2;  // the conservative raster's touching voxels
-    for (size_t k = 0; k < rest.size(); ++k)
-      rest[k] = float(m.restPositions[k] / grid.spacing);  // lengths in voxels suffice
-    fragments += dynamicFragmentBound(rest, m.triangles);
     bricks += dynamicBrickBound(extent, brick, grid.dims);
     triangles += placed.mesh.triangleCount();
     moving.push_back(std::move(m));
   }
-  VOXLINK_ASSIGN_OR_RETURN(GlDynamicLayer layer,
-                           GlDynamicLayer::create(grid.dims, brick, bricks, fragments));
+  VOXLINK_ASSIGN_OR_RETURN(GlDynamicLayer layer, GlDynamicLayer::create(grid.dims, brick, bricks));
   std::unique_ptr<DynamicScene> d(new DynamicScene(scene, std::move(file), std::move(layer)));
   d->grid_ = grid;
   d->moving_ = std::move(moving);
