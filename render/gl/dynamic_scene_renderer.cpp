@@ -25,10 +25,9 @@ DynamicSceneRenderer::DynamicSceneRenderer(const format::VoxLinkFile& file, Sect
 
 Status DynamicSceneRenderer::checkSupported(const RenderSettings& settings) const {
   VOXLINK_RETURN_IF_ERROR(VoxLinkRenderer::checkSupported(settings));
-  if (settings.effects.any() || settings.shading.shadows)
+  if (settings.effects.any())
     return makeError(ErrorCode::kUnsupported, name(),
-                     ": shadows and --effects do not see the moving objects yet; render plain "
-                     "frames");
+                     ": --effects does not see the moving objects yet; render without it");
   return Status::ok();
 }
 

@@ -2,8 +2,8 @@
 // The GL ray tracer over a dynamic scene (docs/dynamic-scenes.md): the static scene file as
 // VoxLinkRenderer draws it, plus the dynamic layer (gl_dynamic_layer.h) the moving meshes were
 // voxelized into this frame; each ray takes the nearest of the two (shaders/voxlink_dynamic.glsl).
-// Plain frames only: shadow rays and the ray-traced mode would not see the moving meshes, so
-// they are refused rather than drawn wrong.
+// Shadow rays test the layer too (shaders/voxlink_shadow.glsl). The ray-traced mode would not see
+// the moving meshes, so it is refused rather than drawn wrong.
 #pragma once
 
 #include <memory>

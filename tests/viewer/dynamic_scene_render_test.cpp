@@ -44,14 +44,28 @@ std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string
 const char* kKeys = R"({"period": 2, "keys": [{"time": 0, "translate": [-0.1, 0, 0]},
                        {"time": 1, "translate": [0.1, 0, 0.05], "rotate": [0, 60, 0]}]})";
 
-Image renderWith(VolumeRenderer& renderer, const Camera& camera) {
-  RenderSettings s;
-  s.width = 128;
-  s.height = 128;
+Image renderWith(VolumeRenderer& renderer, const Camera& camera, const RenderSettings& s) {
   RenderTarget target;
   const Status st = renderer.render(camera, s, target);
   EXPECT_TRUE(st.isOk()) << (st ? "" : st.message());
   return target.read();
+}
+
+Image renderWith(VolumeRenderer& renderer, const Camera& camera) {
+  RenderSettings s;
+  s.width = 128;
+  s.height = 128;
+  return renderWith(renderer, camera, s);
+}
+
+// A light from above and the right, so that the bunny casts its shadow on the floor in view.
+Image renderLitFromAbove(VolumeRenderer& renderer, const Camera& camera, bool shadows) {
+  RenderSettings s;
+  s.width = 128;
+  s.height = 128;
+  s.shading.shadows = shadows;
+  s.shading.lightDirection = {0.6, 1.0, 0.3};
+  return renderWith(renderer, camera, s);
 }
 
 TEST(DynamicScene, FrameMatchesTheHostPathForTheSameFrame) {
@@ -130,7 +144,7 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
                                   "object outside the grid (x "),
             std::string::npos)
       << loaded.message();
-  // Shadows would not see the moving bunny: refused, not drawn wrong.
+  // The ray-traced mode would not see the moving bunny: refused, not drawn wrong.
   auto description = scene::readSceneDescription(writeScene(dir, kKeys));
   ASSERT_TRUE(description);
   auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
@@ -138,12 +152,66 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
   ASSERT_TRUE((*dynamic)->setTime(0).isOk());
   RenderSettings s;
   s.width = s.height = 32;
-  s.shading.shadows = true;
+  s.effects.reflect = true;
   RenderTarget target;
   const Status st = (*dynamic)->renderer().render(
       Camera::framing((*dynamic)->renderer().geometry().worldBox(), {}), s, target);
   ASSERT_FALSE(st.isOk());
-  EXPECT_NE(st.message().find("shadows"), std::string::npos) << st.message();
+  EXPECT_NE(st.message().find("--effects"), std::string::npos) << st.message();
+}
+
+// Pixels a shadow darkens: darker with shadows than without by more than 0.05 in green.
+std::set<size_t> shadowedPixels(const Image& lit, const Image& unshadowed) {
+  std::set<size_t> r;
+  for (size_t i = 0; i < size_t(lit.width) * lit.height; ++i)
+    if (unshadowed.rgba[4 * i + 1] - lit.rgba[4 * i + 1] > 0.05f) r.insert(i);
+  return r;
+}
+
+// Shadow rays test the dynamic layer: the frame with shadows matches the host path's for the
+// same frame (the scene frozen at that time, its shadows from the static file), and the bunny's
+// shadow on the floor moves with it.
+TEST(DynamicScene, TheMovingMeshCastsAShadowThatMovesWithIt) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(writeScene(dir, kKeys));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  CameraSpec spec;
+  spec.azimuthDeg = 30;
+  spec.elevationDeg = 35;
+  spec.up = UpAxis::kY;
+  const Camera camera = Camera::framing((*dynamic)->renderer().geometry().worldBox(), spec);
+  std::vector<std::set<size_t>> shadows;
+  for (double t : {0.0, 1.0}) {
+    ASSERT_TRUE((*dynamic)->setTime(t).isOk());
+    ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
+    const Image frame = renderLitFromAbove((*dynamic)->renderer(), camera, true);
+    const Image unshadowed = renderLitFromAbove((*dynamic)->renderer(), camera, false);
+    auto built = scene::buildScene((*dynamic)->frozenAt(t));
+    ASSERT_TRUE(built) << built.message();
+    ASSERT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
+    auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
+    ASSERT_TRUE(file) << file.message();
+    auto host = VoxLinkRenderer::create(*file);
+    ASSERT_TRUE(host) << host.message();
+    auto e = compareImages(frame, renderLitFromAbove(**host, camera, true));
+    ASSERT_TRUE(e);
+    shadows.push_back(shadowedPixels(frame, unshadowed));
+    std::printf(
+        "t %.1f: with shadows, dynamic layer vs host path %.2f dB, %llu pixels over "
+        "1/255; %zu pixels shadowed\n",
+        t, e->psnr, static_cast<unsigned long long>(e->pixelsOver), shadows.back().size());
+    EXPECT_GE(e->psnr, 35.0) << "t " << t;
+    EXPECT_GT(shadows.back().size(), 100u) << "t " << t;
+  }
+  size_t onlyBefore = 0, onlyAfter = 0;
+  for (size_t i : shadows[0]) onlyBefore += shadows[1].count(i) == 0;
+  for (size_t i : shadows[1]) onlyAfter += shadows[0].count(i) == 0;
+  std::printf("shadowed only at 0: %zu pixels, only at 1: %zu\n", onlyBefore, onlyAfter);
+  EXPECT_GT(onlyBefore, 50u);
+  EXPECT_GT(onlyAfter, 50u);
 }
 
 }  // namespace
