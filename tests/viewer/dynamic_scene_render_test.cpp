@@ -27,13 +27,16 @@ namespace {
 using namespace render;      // the images and settings a dynamic scene is checked with
 using namespace render::gl;  // the renderers and the voxelizer
 
-std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys) {
+const char* kMaterials =
+    R"({"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]}})";
+
+std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys,
+                       const std::string& materials = kMaterials) {
   std::ofstream(dir.file("floor.obj")) << "v -0.3 0 -0.3\nv -0.3 0 0.3\nv 0.3 0 0.3\nv 0.3 0 -0.3\n"
                                           "f 1 2 3\nf 1 3 4\n";
   const std::string path = dir.file("moving.scene.json");
-  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": 8},
-    "materials": {"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]}},
-    "objects": [
+  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": 8}, "materials": )" + materials +
+                             R"(, "objects": [
       {"type": "mesh", "file": "floor.obj", "material": "clay"},
       {"type": "mesh", "file": ")" +
                              ::voxlink::testing::dataPath("mesh/vtk_bunny.ply") +
@@ -59,13 +62,41 @@ Image renderWith(VolumeRenderer& renderer, const Camera& camera) {
 }
 
 // A light from above and the right, so that the bunny casts its shadow on the floor in view.
-Image renderLitFromAbove(VolumeRenderer& renderer, const Camera& camera, bool shadows) {
+RenderSettings litFromAbove(bool shadows) {
   RenderSettings s;
   s.width = 128;
   s.height = 128;
   s.shading.shadows = shadows;
   s.shading.lightDirection = {0.6, 1.0, 0.3};
-  return renderWith(renderer, camera, s);
+  return s;
+}
+
+Image renderLitFromAbove(VolumeRenderer& renderer, const Camera& camera, bool shadows) {
+  return renderWith(renderer, camera, litFromAbove(shadows));
+}
+
+// The host path's frame: the scene frozen at `t` built by the exact CPU path into a static file,
+// drawn by VoxLinkRenderer with the same settings.
+Image hostFrame(const DynamicScene& dynamic, double t, const ::voxlink::testing::TempDir& dir,
+                const Camera& camera, const RenderSettings& s) {
+  auto built = scene::buildScene(dynamic.frozenAt(t));
+  EXPECT_TRUE(built) << built.message();
+  if (!built) return {};
+  EXPECT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
+  auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
+  EXPECT_TRUE(file) << file.message();
+  if (!file) return {};
+  auto host = VoxLinkRenderer::create(*file);
+  EXPECT_TRUE(host) << host.message();
+  return host ? renderWith(**host, camera, s) : Image{};
+}
+
+Camera cameraFor(DynamicScene& dynamic) {
+  CameraSpec spec;
+  spec.azimuthDeg = 30;
+  spec.elevationDeg = 35;
+  spec.up = UpAxis::kY;
+  return Camera::framing(dynamic.renderer().geometry().worldBox(), spec);
 }
 
 TEST(DynamicScene, FrameMatchesTheHostPathForTheSameFrame) {
@@ -131,7 +162,7 @@ TEST(DynamicScene, FrameMatchesTheHostPathForTheSameFrame) {
   EXPECT_GE(again->psnr, 60.0);
 }
 
-TEST(DynamicScene, RefusesWhatItCannotDraw) {
+TEST(DynamicScene, RefusesAnAnimationThatLeavesTheGrid) {
   VOXLINK_REQUIRE_GL();
   ::voxlink::testing::TempDir dir;
   // A key that carries the bunny off the floor's grid.
@@ -144,20 +175,6 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
                                   "object outside the grid (x "),
             std::string::npos)
       << loaded.message();
-  // The ray-traced mode would not see the moving bunny: refused, not drawn wrong.
-  auto description = scene::readSceneDescription(writeScene(dir, kKeys));
-  ASSERT_TRUE(description);
-  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
-  ASSERT_TRUE(dynamic) << dynamic.message();
-  ASSERT_TRUE((*dynamic)->setTime(0).isOk());
-  RenderSettings s;
-  s.width = s.height = 32;
-  s.effects.reflect = true;
-  RenderTarget target;
-  const Status st = (*dynamic)->renderer().render(
-      Camera::framing((*dynamic)->renderer().geometry().worldBox(), {}), s, target);
-  ASSERT_FALSE(st.isOk());
-  EXPECT_NE(st.message().find("--effects"), std::string::npos) << st.message();
 }
 
 // Pixels a shadow darkens: darker with shadows than without by more than 0.05 in green.
@@ -178,25 +195,14 @@ TEST(DynamicScene, TheMovingMeshCastsAShadowThatMovesWithIt) {
   ASSERT_TRUE(description) << description.message();
   auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
   ASSERT_TRUE(dynamic) << dynamic.message();
-  CameraSpec spec;
-  spec.azimuthDeg = 30;
-  spec.elevationDeg = 35;
-  spec.up = UpAxis::kY;
-  const Camera camera = Camera::framing((*dynamic)->renderer().geometry().worldBox(), spec);
+  const Camera camera = cameraFor(**dynamic);
   std::vector<std::set<size_t>> shadows;
   for (double t : {0.0, 1.0}) {
     ASSERT_TRUE((*dynamic)->setTime(t).isOk());
     ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
     const Image frame = renderLitFromAbove((*dynamic)->renderer(), camera, true);
     const Image unshadowed = renderLitFromAbove((*dynamic)->renderer(), camera, false);
-    auto built = scene::buildScene((*dynamic)->frozenAt(t));
-    ASSERT_TRUE(built) << built.message();
-    ASSERT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
-    auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
-    ASSERT_TRUE(file) << file.message();
-    auto host = VoxLinkRenderer::create(*file);
-    ASSERT_TRUE(host) << host.message();
-    auto e = compareImages(frame, renderLitFromAbove(**host, camera, true));
+    auto e = compareImages(frame, hostFrame(**dynamic, t, dir, camera, litFromAbove(true)));
     ASSERT_TRUE(e);
     shadows.push_back(shadowedPixels(frame, unshadowed));
     std::printf(
@@ -212,6 +218,46 @@ TEST(DynamicScene, TheMovingMeshCastsAShadowThatMovesWithIt) {
   std::printf("shadowed only at 0: %zu pixels, only at 1: %zu\n", onlyBefore, onlyAfter);
   EXPECT_GT(onlyBefore, 50u);
   EXPECT_GT(onlyAfter, 50u);
+}
+
+// The ray-traced mode's rays test the dynamic layer: a mirror floor shows the moving bunny, whose
+// glass refracts; the frame matches the host path's for the same frame.
+TEST(DynamicScene, TheRayTracedModeSeesTheMovingMesh) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(
+      writeScene(dir, kKeys,
+                 R"({"jade": {"color": [0.35, 0.65, 0.45], "reflectivity": 0.2, "transmission": 0.4,
+                   "ior": 1.3},
+          "clay": {"color": [0.8, 0.6, 0.5], "reflectivity": 0.5}})"));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  const Camera camera = cameraFor(**dynamic);
+  RenderSettings s = litFromAbove(true);
+  s.effects.reflect = s.effects.refract = s.effects.shadows = true;
+  Image previous;
+  for (double t : {0.0, 1.0}) {
+    ASSERT_TRUE((*dynamic)->setTime(t).isOk());
+    const Image frame = renderWith((*dynamic)->renderer(), camera, s);
+    ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
+    auto e = compareImages(frame, hostFrame(**dynamic, t, dir, camera, s));
+    ASSERT_TRUE(e);
+    auto plain = compareImages(frame, renderLitFromAbove((*dynamic)->renderer(), camera, true));
+    ASSERT_TRUE(plain);
+    std::printf(
+        "t %.1f: ray-traced, dynamic layer vs host path %.2f dB, %llu pixels over 1/255; "
+        "vs the plain frame %.2f dB\n",
+        t, e->psnr, static_cast<unsigned long long>(e->pixelsOver), plain->psnr);
+    EXPECT_GE(e->psnr, 35.0) << "t " << t;
+    EXPECT_LT(plain->psnr, 35.0) << "t " << t;  // the mirror and the glass show
+    if (!previous.rgba.empty()) {
+      auto moved = compareImages(frame, previous);
+      ASSERT_TRUE(moved);
+      EXPECT_LT(moved->psnr, 30.0);
+    }
+    previous = frame;
+  }
 }
 
 }  // namespace
