@@ -77,7 +77,11 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
 
   std::vector<Moving> moving;
   uint64_t bricks = 0, triangles = 0;
-  const uint32_t brick = file.header().brickSize;
+  // The layer's bricks hold at most 8^3 voxels whatever the file's: its own brick map and pool
+  // need not match the file's, and a 16^3 brick of 16-byte voxels, mostly empty around a
+  // surface, is 64 KiB to zero per brick (the dragon at 512 needed 2862 of them, more than one
+  // llvmpipe storage buffer of 128 MiB holds).
+  const uint32_t brick = std::min(file.header().brickSize, 8u);
   for (size_t i : movingObjects) {
     const scene::SceneObject& o = scene.objects[i];
     scene::SceneDescription one = scene;

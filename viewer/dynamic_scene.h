@@ -49,6 +49,7 @@ class DynamicScene {
   Status setPose(size_t index, const scene::Pose& pose);
   const scene::Pose& pose(size_t index) const { return moving_.at(index).pose; }
   render::gl::DynamicSceneRenderer& renderer() { return *renderer_; }
+  // The moving meshes' layer; its bricks are the file's, or 8^3 voxels where those are bigger.
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }

@@ -31,11 +31,12 @@ const char* kMaterials =
     R"({"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]}})";
 
 std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys,
-                       const std::string& materials = kMaterials) {
+                       const std::string& materials = kMaterials, int brick = 8) {
   std::ofstream(dir.file("floor.obj")) << "v -0.3 0 -0.3\nv -0.3 0 0.3\nv 0.3 0 0.3\nv 0.3 0 -0.3\n"
                                           "f 1 2 3\nf 1 3 4\n";
   const std::string path = dir.file("moving.scene.json");
-  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": 8}, "materials": )" + materials +
+  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": )" + std::to_string(brick) +
+                             R"(}, "materials": )" + materials +
                              R"(, "objects": [
       {"type": "mesh", "file": "floor.obj", "material": "clay"},
       {"type": "mesh", "file": ")" +
@@ -160,6 +161,28 @@ TEST(DynamicScene, FrameMatchesTheHostPathForTheSameFrame) {
   auto again = compareImages(renderWith((*dynamic)->renderer(), camera), half);
   ASSERT_TRUE(again);
   EXPECT_GE(again->psnr, 60.0);
+}
+
+// A file of 16^3 bricks: the layer keeps bricks of 8^3 voxels (viewer/dynamic_scene.cpp) and the
+// frame still matches the host path's.
+TEST(DynamicScene, AFileOfBigBricksGetsALayerOf8CubedBricks) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(writeScene(dir, kKeys, kMaterials, 16));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  EXPECT_EQ((*dynamic)->layer().brickSize(), 8u);
+  const Camera camera = cameraFor(**dynamic);
+  ASSERT_TRUE((*dynamic)->setTime(0.5).isOk());
+  ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
+  RenderSettings s;
+  s.width = s.height = 128;
+  auto e = compareImages(renderWith((*dynamic)->renderer(), camera, s),
+                         hostFrame(**dynamic, 0.5, dir, camera, s));
+  ASSERT_TRUE(e);
+  std::printf("brick 16 file, t 0.5: dynamic layer vs host path %.2f dB\n", e->psnr);
+  EXPECT_GE(e->psnr, 35.0);
 }
 
 TEST(DynamicScene, RefusesAnAnimationThatLeavesTheGrid) {
