@@ -7,7 +7,6 @@
 // VXL_DYN_N: the brick edge.
 const uint kDynEmpty = 0xffffffffu;    // brick map: no slot yet
 const uint kDynDropped = 0xfffffffeu;  // brick map: no slot left (counted; the frame is an error)
-const uint kDynProbes = 64u;           // slots tried per brick before it is dropped
 
 uniform uvec3 uBrickGrid;     // bricks per axis (x, y, z)
 uniform uint uBrickCapacity;  // pool slots, the hash table's size
@@ -28,7 +27,9 @@ uint dynamicSlot(uint b) {
   if (known != kDynEmpty) return known;
   uint h, low;  // the hash scaled to [0, capacity) by a multiply, not a division
   umulExtended(b * 2654435761u, uBrickCapacity, h, low);
-  for (uint i = 0u; i < kDynProbes; ++i) {
+  // Every slot may be tried: a brick is dropped only when the pool is full, and then once (the
+  // map marks it), so a crowded table costs probes, never a spurious error.
+  for (uint i = 0u; i < uBrickCapacity; ++i) {
     uint old = atomicCompSwap(slotKeys[h], 0u, b + 1u);
     if (old == 0u) {
       brickMap[b] = h;
