@@ -42,8 +42,8 @@ bool depthOverSquare(vec2 lo, out float dMin, out float dMax, out float zMin) {
   vec3 p[3] = vec3[3](vCorner0, vCorner1, vCorner2);
   vec2 hi = lo + 1.0;
   // Tie rule: an extent that starts on the square's upper edge does not enter it. A triangle
-  // whose box ends before the square does not meet it either: the emulated conservative raster's
-  // corners reach far past thin triangles, so this spares most of the tests below.
+  // whose box ends before the square does not meet it either (the emulated conservative
+  // raster's corners reach past thin triangles): those pixels skip the tests below.
   if (min(p[0].x, min(p[1].x, p[2].x)) >= hi.x || min(p[0].y, min(p[1].y, p[2].y)) >= hi.y ||
       max(p[0].x, max(p[1].x, p[2].x)) < lo.x || max(p[0].y, max(p[1].y, p[2].y)) < lo.y)
     return false;
