@@ -14,37 +14,38 @@
 //   a triangle whose extent starts on the upper face of a voxel does not enter it.
 noperspective in float vDepth;
 flat in uint vTriangle;
+flat in vec3 vCorner0, vCorner1, vCorner2;  // (u, v, depth), gl_voxelize.vert.glsl
+flat in ivec4 vContribution;                // VXL_DYN_N: area x normal, material + 1
 
 uniform int uAxis;
 uniform uvec3 uDims;     // voxels along u, v and the depth axis
 uniform uint uColumns;   // heads per axis row (the viewport edge)
 uniform uint uCapacity;  // fragment slots
 uniform bool uConservative;
-// The dynamic layer (shaders/dynamic_layer_build.comp.glsl) takes the fragments in any order: the
-// column in place of the link and the depth, and no list.
-uniform bool uColumnInFragment;
+// VXL_DYN_N defined (the brick edge): the dynamic layer (render/gl/gl_dynamic_layer.h). No list:
+// each fragment adds its triangle's contribution (vContribution) to its voxels in a pool of
+// bricks right here (atomics), the bricks found through a hash table of pool slots
+// (shaders/dynamic_layer.glsl).
 
-layout(std430, binding = 2) readonly buffer Positions { float positions[]; };
-layout(std430, binding = 3) readonly buffer Indices { uint indices[]; };
 layout(binding = 0, offset = 0) uniform atomic_uint fragmentCount;
 layout(std430, binding = 0) coherent buffer Heads { uint heads[]; };  // 0xffffffff: empty
 layout(std430, binding = 1) writeonly buffer Fragments {
   uvec4 fragments[];  // first | last << 16 voxel along depth, triangle, next slot, depth bits
 };
-
-vec3 corner(uint c) {
-  uint vertex = indices[3u * vTriangle + c];
-  vec3 g = vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]);
-  return vec3(g[(uAxis + 1) % 3], g[(uAxis + 2) % 3], g[uAxis]);
-}
+#ifdef VXL_DYN_N
+#include "dynamic_layer.glsl"
+#endif
 
 // Depth range of the triangle over the square lo..lo+1; false when they do not meet. zMin: the
 // triangle's lowest depth.
 bool depthOverSquare(vec2 lo, out float dMin, out float dMax, out float zMin) {
-  vec3 p[3] = vec3[3](corner(0u), corner(1u), corner(2u));
+  vec3 p[3] = vec3[3](vCorner0, vCorner1, vCorner2);
   vec2 hi = lo + 1.0;
-  // Tie rule: an extent that starts on the square's upper edge does not enter it.
-  if (min(p[0].x, min(p[1].x, p[2].x)) >= hi.x || min(p[0].y, min(p[1].y, p[2].y)) >= hi.y)
+  // Tie rule: an extent that starts on the square's upper edge does not enter it. A triangle
+  // whose box ends before the square does not meet it either (the emulated conservative
+  // raster's corners reach past thin triangles): those pixels skip the tests below.
+  if (min(p[0].x, min(p[1].x, p[2].x)) >= hi.x || min(p[0].y, min(p[1].y, p[2].y)) >= hi.y ||
+      max(p[0].x, max(p[1].x, p[2].x)) < lo.x || max(p[0].y, max(p[1].y, p[2].y)) < lo.y)
     return false;
   dMin = 1e30;
   dMax = -1e30;
@@ -99,13 +100,19 @@ void main() {
   if (!(dMax >= 0.0) || low >= float(uDims.z)) return;
   uint first = uint(max(low, 0.0));
   uint last = min(uint(floor(dMax)), uDims.z - 1u);
+#ifdef VXL_DYN_N
+  uvec3 voxel;  // grid order x, y, z
+  voxel[(uAxis + 1) % 3] = u;
+  voxel[(uAxis + 2) % 3] = v;
+  for (uint k = first; k <= last; ++k) {
+    voxel[uAxis] = k;
+    addToLayer(voxel, vContribution);
+  }
+#else
   uint slot = atomicCounterIncrement(fragmentCount);
   if (slot >= uCapacity) return;  // counted: the host grows the buffer and draws again
   uint column = (uint(uAxis) * uColumns + v) * uColumns + u;
-  if (uColumnInFragment) {
-    fragments[slot] = uvec4(first | (last << 16), vTriangle, column, 0u);
-    return;
-  }
   uint next = atomicExchange(heads[column], slot);
   fragments[slot] = uvec4(first | (last << 16), vTriangle, next, floatBitsToUint(dMin));
+#endif
 }

@@ -15,6 +15,10 @@
 layout(std430, binding = 2) readonly buffer Positions { float positions[]; };  // grid coords
 layout(std430, binding = 3) readonly buffer Indices { uint indices[]; };
 layout(std430, binding = 4) readonly buffer Order { uint order[]; };  // triangles by axis
+#ifdef VXL_DYN_N
+// The dynamic layer: per triangle area x unit normal in fixed point, material + 1.
+layout(std430, binding = 8) readonly buffer Contributions { ivec4 contributions[]; };
+#endif
 
 uniform int uAxis;
 uniform float uViewportEdge;  // square viewport, pixels
@@ -23,6 +27,11 @@ uniform bool uConservative;
 
 noperspective out float vDepth;
 flat out uint vTriangle;
+// The triangle's corners in (u, v, depth), the same from each of its vertices: the fragment stage
+// reads them here instead of from the buffers, once per fragment (measured: the raster is the
+// dynamic layer's largest cost on llvmpipe).
+flat out vec3 vCorner0, vCorner1, vCorner2;
+flat out ivec4 vContribution;
 
 vec3 corner(uint triangle, uint c) {
   uint vertex = indices[3u * triangle + c];
@@ -49,4 +58,12 @@ void main() {
   gl_Position = vec4(uv / uViewportEdge * 2.0 - 1.0, 0.0, 1.0);
   vDepth = p.z;
   vTriangle = triangle;
+  vCorner0 = corner(triangle, 0u);
+  vCorner1 = corner(triangle, 1u);
+  vCorner2 = corner(triangle, 2u);
+#ifdef VXL_DYN_N
+  vContribution = contributions[triangle];
+#else
+  vContribution = ivec4(0);
+#endif
 }

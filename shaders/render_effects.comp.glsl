@@ -22,6 +22,7 @@ layout(local_size_x = 64) in;
 #include "voxlink_brick_bounds.glsl"
 #include "voxlink_row_walk.glsl"
 #include "voxlink_scene.glsl"
+#include "voxlink_dynamic.glsl"
 #include "voxlink_shadow.glsl"
 #include "voxlink_scene_shading.glsl"
 #include "voxlink_effects.glsl"
@@ -49,7 +50,22 @@ void traceEffectsRay(vec3 originWorld, vec3 direction, out vec3 color, out float
   float t0 = max(range.x, 0.0), t1 = range.y;
   color = vec3(0.0);
   transmittance = 1.0;
-  if (t0 < t1) traceVoxels(o, d, t0, t1, -direction, color, transmittance);
+  if (!(t0 < t1)) return;
+#ifdef VXL_DYNAMIC_LAYER
+  // As render_main.glsl: the static file up to the moving meshes' first voxel, then its surface
+  // (which spawns this ray's reflected and refracted rays). A ray that stopped for this pass
+  // (transmittance 0, continued in the next) tests the layer again from where it goes on.
+  float tDynamic;
+  vec3 nDynamic;
+  uint mDynamic;
+  bool dynamic = dynamicHit(o, d, t0, t1, tDynamic, nDynamic, mDynamic);
+  traceVoxels(o, d, t0, dynamic ? tDynamic : t1, -direction, color, transmittance);
+  if (dynamic && transmittance > uStopTransmittance)
+    compositeSurface(fetchMaterial(mDynamic), nDynamic, o + tDynamic * d, -direction, color,
+                     transmittance);
+#else
+  traceVoxels(o, d, t0, t1, -direction, color, transmittance);
+#endif
 }
 
 void main() {

@@ -32,12 +32,15 @@ bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
     float tOut = min(max(bricks.tMax[axis], t), tb);
     ivec3 c = bricks.cell;
     uint slot = dynBrickMap[(c.z * uDynBrickGrid.y + c.y) * uDynBrickGrid.x + c.x];
-    if (slot != 0xffffffffu && tOut > t) {
+    if (slot < 0xfffffffeu && tOut > t) {  // not empty, nor claimed without a pool slot
       Dda voxels = ddaInit(o, d, t, c * bn, c * bn + (bn - 1));
       float tv = t;
       for (int j = 0; j < 3 * bn + 3 && tv < tOut; ++j) {
         int va = minAxis(voxels.tMax);
         ivec3 l = voxels.cell - c * bn;
+        // The voxel walk's exit times round differently from the brick walk's: a step past the
+        // brick's face before tOut would read another voxel of the pool (another brick's).
+        if (any(lessThan(l, ivec3(0))) || any(greaterThanEqual(l, ivec3(bn)))) break;
         ivec4 e = dynPool[slot * uint(bn * bn * bn) + uint((l.z * bn + l.y) * bn + l.x)];
         if (e.w != 0) {
           tHit = tv;

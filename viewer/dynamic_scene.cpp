@@ -13,7 +13,6 @@
 namespace voxlink::viewer {
 
 using render::gl::dynamicBrickBound;
-using render::gl::dynamicFragmentBound;
 using render::gl::DynamicSceneRenderer;
 using render::gl::GlDynamicLayer;
 namespace {
@@ -78,8 +77,12 @@ Result<DynamicScene::Prepared> DynamicScene::prepare(const scene::SceneDescripti
                      ": moving meshes need cubic voxels (the scene's volume has other spacings)");
 
   std::vector<Moving> moving;
-  uint64_t fragments = 0, bricks = 0, triangles = 0;
-  const uint32_t brick = file.header().brickSize;
+  uint64_t bricks = 0, triangles = 0;
+  // The layer's bricks hold at most 8^3 voxels whatever the file's: its own brick map and pool
+  // need not match the file's, and a 16^3 brick of 16-byte voxels, mostly empty around a
+  // surface, is 64 KiB to zero per brick (the dragon at 512 needed 2862 of them, more than one
+  // llvmpipe storage buffer of 128 MiB holds).
+  const uint32_t brick = std::min(file.header().brickSize, 8u);
   for (size_t i : movingObjects) {
     const scene::SceneObject& o = scene.objects[i];
     scene::SceneDescription one = scene;
@@ -93,7 +96,6 @@ Result<DynamicScene::Prepared> DynamicScene::prepare(const scene::SceneDescripti
     m.triangles = placed.mesh.triangles;
     m.restBounds = placed.bounds;
     m.pose = samplePose(*o.animation, 0);
-    std::vector<float> rest(placed.mesh.positions.size());
     std::array<double, 3> extent{};
     for (int a = 0; a < 3; ++a) {
       m.centre[size_t(a)] = 0.5 * (double(placed.bounds.min[a]) + placed.bounds.max[a]);
@@ -105,9 +107,6 @@ Result<DynamicScene::Prepared> DynamicScene::prepare(const scene::SceneDescripti
       extent.fill(diameter);
     }
     for (double& e : extent) e += 2;  // the conservative raster's touching voxels
-    for (size_t k = 0; k < rest.size(); ++k)
-      rest[k] = float(m.restPositions[k] / grid.spacing);  // lengths in voxels suffice
-    fragments += dynamicFragmentBound(rest, m.triangles);
     bricks += dynamicBrickBound(extent, brick, grid.dims);
     triangles += placed.mesh.triangleCount();
     moving.push_back(std::move(m));
@@ -117,7 +116,7 @@ Result<DynamicScene::Prepared> DynamicScene::prepare(const scene::SceneDescripti
   p.staticFile = staticFile;
   p.grid = grid;
   p.moving = std::move(moving);
-  p.fragments = fragments;
+  p.brick = brick;
   p.bricks = bricks;
   p.triangles = triangles;
   p.restBounds = all.bounds;
@@ -134,9 +133,8 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
 Result<std::unique_ptr<DynamicScene>> DynamicScene::load(Prepared p) {
   const auto start = std::chrono::steady_clock::now();
   VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile file, format::VoxLinkFile::open(p.staticFile));
-  VOXLINK_ASSIGN_OR_RETURN(
-      GlDynamicLayer layer,
-      GlDynamicLayer::create(p.grid.dims, file.header().brickSize, p.bricks, p.fragments));
+  VOXLINK_ASSIGN_OR_RETURN(GlDynamicLayer layer,
+                           GlDynamicLayer::create(p.grid.dims, p.brick, p.bricks));
   const scene::SceneDescription& scene = p.scene;
   std::unique_ptr<DynamicScene> d(new DynamicScene(scene, std::move(file), std::move(layer)));
   d->grid_ = p.grid;

@@ -46,7 +46,8 @@ class DynamicScene {
     std::string staticFile;
     geometry::VoxelGrid grid;
     std::vector<Moving> moving;
-    uint64_t fragments = 0, bricks = 0, triangles = 0;
+    uint32_t brick = 0;  // the layer's brick edge (dynamic_scene.cpp says why it may differ)
+    uint64_t bricks = 0, triangles = 0;
     geometry::Bounds3 restBounds;
     double seconds = 0;
   };
@@ -79,6 +80,7 @@ class DynamicScene {
   Status setPose(size_t index, const scene::Pose& pose);
   const scene::Pose& pose(size_t index) const { return moving_.at(index).pose; }
   render::gl::DynamicSceneRenderer& renderer() { return *renderer_; }
+  // The moving meshes' layer; its bricks are the file's, or 8^3 voxels where those are bigger.
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }

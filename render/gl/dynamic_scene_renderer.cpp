@@ -23,15 +23,6 @@ DynamicSceneRenderer::DynamicSceneRenderer(const format::VoxLinkFile& file, Sect
   for (int a = 0; a < 3; ++a) dims_[a] = file.header().dims[a];
 }
 
-Status DynamicSceneRenderer::checkSupported(const RenderSettings& settings) const {
-  VOXLINK_RETURN_IF_ERROR(VoxLinkRenderer::checkSupported(settings));
-  if (settings.effects.any() || settings.shading.shadows)
-    return makeError(ErrorCode::kUnsupported, name(),
-                     ": shadows and --effects do not see the moving objects yet; render plain "
-                     "frames");
-  return Status::ok();
-}
-
 std::vector<ShaderDefine> DynamicSceneRenderer::dataDefines() const {
   std::vector<ShaderDefine> defines = VoxLinkRenderer::dataDefines();
   defines.push_back({"VXL_DYNAMIC_LAYER", "1"});

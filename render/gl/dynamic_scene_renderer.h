@@ -2,8 +2,8 @@
 // The GL ray tracer over a dynamic scene (docs/dynamic-scenes.md): the static scene file as
 // VoxLinkRenderer draws it, plus the dynamic layer (gl_dynamic_layer.h) the moving meshes were
 // voxelized into this frame; each ray takes the nearest of the two (shaders/voxlink_dynamic.glsl).
-// Plain frames only: shadow rays and the ray-traced mode would not see the moving meshes, so
-// they are refused rather than drawn wrong.
+// Shadow rays (shaders/voxlink_shadow.glsl) and the ray-traced mode's rays
+// (shaders/render_effects.comp.glsl) test the layer too.
 #pragma once
 
 #include <memory>
@@ -21,7 +21,6 @@ class DynamicSceneRenderer : public VoxLinkRenderer {
   std::string name() const override { return "voxlink-dynamic"; }
 
  protected:
-  Status checkSupported(const RenderSettings& settings) const override;
   std::vector<ShaderDefine> dataDefines() const override;
   void bindData(const ComputeProgram& program) const override;
 

@@ -13,8 +13,8 @@ namespace voxlink::render::gl {
 namespace {
 
 constexpr GLuint kEmpty = 0xffffffffu;
-constexpr uint64_t kFragmentBytes = 16;   // uvec4, shaders/gl_voxelize.frag.glsl
 constexpr uint64_t kPoolVoxelBytes = 16;  // ivec4, shaders/dynamic_layer_build.comp.glsl
+constexpr double kFixedPoint = 4096;      // units per voxel^2 of area x unit normal
 
 GLint getInteger(GLenum name) {
   GLint value = 0;
@@ -33,13 +33,13 @@ GlBuffer storage(uint64_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
 struct GlDynamicLayer::State {
   std::array<uint32_t, 3> dims{}, brickGrid{};
   uint32_t brickSize = 8, edge = 0;
-  uint64_t brickCapacity = 0, fragmentCapacity = 0;
+  uint64_t brickCapacity = 0;
   size_t vertexFloats = 0, triangleIndices = 0;
   GLuint raster = 0, vertexArray = 0;
   ComputeProgram build;
   GlFramebuffer framebuffer;
-  GlBuffer fragments, fragmentCount, dispatchSize, positions, indices, order, materials, brickMap,
-      pool, counters;
+  GlBuffer dispatchSize, positions, indices, order, contributions, brickMap, pool, counters,
+      slotKeys, usedSlots;
   ~State() {
     if (raster) glDeleteProgram(raster);
     if (vertexArray) glDeleteVertexArrays(1, &vertexArray);
@@ -57,33 +57,7 @@ uint32_t GlDynamicLayer::brickSize() const { return s_->brickSize; }
 uint64_t GlDynamicLayer::gpuBytes() const {
   const uint64_t bricks = uint64_t(s_->brickGrid[0]) * s_->brickGrid[1] * s_->brickGrid[2];
   const uint64_t n3 = uint64_t(s_->brickSize) * s_->brickSize * s_->brickSize;
-  return s_->fragmentCapacity * kFragmentBytes + bricks * 4 +
-         s_->brickCapacity * n3 * kPoolVoxelBytes;
-}
-
-uint64_t dynamicFragmentBound(const std::vector<float>& p, const std::vector<uint32_t>& tri) {
-  double sum = 0;
-  for (size_t t = 0; t + 2 < tri.size(); t += 3) {
-    double c[3][3];
-    for (int k = 0; k < 3; ++k)
-      for (int a = 0; a < 3; ++a) c[k][a] = p[3 * size_t(tri[t + size_t(k)]) + size_t(a)];
-    double e1[3], e2[3], perimeter = 0;
-    for (int a = 0; a < 3; ++a) {
-      e1[a] = c[1][a] - c[0][a];
-      e2[a] = c[2][a] - c[0][a];
-    }
-    for (int k = 0; k < 3; ++k) {
-      double l2 = 0;
-      for (int a = 0; a < 3; ++a)
-        l2 += (c[(k + 1) % 3][a] - c[k][a]) * (c[(k + 1) % 3][a] - c[k][a]);
-      perimeter += std::sqrt(l2);
-    }
-    const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                         e1[0] * e2[1] - e1[1] * e2[0]};
-    sum +=
-        0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) + std::sqrt(2.0) * perimeter + 4.0;
-  }
-  return uint64_t(std::ceil(sum)) + 1024;
+  return bricks * 4 + s_->brickCapacity * (n3 * kPoolVoxelBytes + 8);
 }
 
 uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSize,
@@ -97,33 +71,27 @@ uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSi
 }
 
 Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dims,
-                                              uint32_t brickSize, uint64_t brickCapacity,
-                                              uint64_t fragmentCapacity) {
+                                              uint32_t brickSize, uint64_t brickCapacity) {
   auto s = std::make_unique<State>();
   s->dims = dims;
   s->brickSize = brickSize;
   s->edge = std::max({dims[0], dims[1], dims[2]});
   for (int a = 0; a < 3; ++a) s->brickGrid[a] = (dims[a] + brickSize - 1) / brickSize;
-  s->fragmentCapacity = fragmentCapacity;
   const uint64_t maxBlock = uint64_t(std::max(getInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 0));
   const uint64_t n3 = uint64_t(brickSize) * brickSize * brickSize;
   // The bound from the moving objects' boxes can exceed one storage buffer (128 MiB on
   // llvmpipe) where the surface itself would fit: the pool takes what fits, and an update that
   // needs more is an error (checkLastUpdate), never a frame with missing bricks.
-  brickCapacity = std::min(brickCapacity, maxBlock / (n3 * kPoolVoxelBytes));
+  brickCapacity = std::max<uint64_t>(1, std::min(brickCapacity, maxBlock / (n3 * kPoolVoxelBytes)));
   s->brickCapacity = brickCapacity;
   if (int64_t(s->edge) > getInteger(GL_MAX_FRAMEBUFFER_WIDTH))
     return makeError(ErrorCode::kTooLarge, "dynamic layer: grid edge ", s->edge,
                      " exceeds the largest framebuffer");
-  for (const auto& [what, bytes] :
-       {std::pair<const char*, uint64_t>{"fragments", fragmentCapacity * kFragmentBytes}})
-    if (bytes > maxBlock)
-      return makeError(ErrorCode::kTooLarge, "dynamic layer: ", bytes >> 20, " MiB of ", what,
-                       " exceed the largest storage buffer (", maxBlock >> 20, " MiB)");
-
-  VOXLINK_ASSIGN_OR_RETURN(GLuint vertex,
-                           compileShaderStage(GL_VERTEX_SHADER, "gl_voxelize.vert.glsl"));
-  auto fragment = compileShaderStage(GL_FRAGMENT_SHADER, "gl_voxelize.frag.glsl");
+  // VXL_DYN_N: the voxelizer's stages write the layer; a constant brick edge spares divisions.
+  const std::vector<ShaderDefine> layerDefines = {{"VXL_DYN_N", std::to_string(brickSize)}};
+  VOXLINK_ASSIGN_OR_RETURN(
+      GLuint vertex, compileShaderStage(GL_VERTEX_SHADER, "gl_voxelize.vert.glsl", layerDefines));
+  auto fragment = compileShaderStage(GL_FRAGMENT_SHADER, "gl_voxelize.frag.glsl", layerDefines);
   if (!fragment) {
     glDeleteShader(vertex);
     return fragment.error();
@@ -137,14 +105,17 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   s->framebuffer = GlFramebuffer(fb);
   glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_WIDTH, GLint(s->edge));
   glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(s->edge));
-  s->fragments = storage(fragmentCapacity * kFragmentBytes, 0);
-  s->fragmentCount = storage(4, GL_DYNAMIC_STORAGE_BIT);
   s->dispatchSize = storage(12);
   s->brickMap = storage(uint64_t(s->brickGrid[0]) * s->brickGrid[1] * s->brickGrid[2] * 4);
   s->pool = storage(brickCapacity * n3 * kPoolVoxelBytes, 0);
   s->counters = storage(8);
-  const GLuint empty = kEmpty;  // an empty layer until the first update
+  s->slotKeys = storage(brickCapacity * 4);
+  s->usedSlots = storage(brickCapacity * 4);
+  // An empty layer until the first update; from then on each update zeroes what the last used.
+  const GLuint empty = kEmpty, zero = 0;
   glClearNamedBufferData(s->brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
+  for (const GlBuffer* b : {&s->pool, &s->counters, &s->slotKeys, &s->dispatchSize})
+    glClearNamedBufferData(b->id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     return makeError(ErrorCode::kTooLarge, "dynamic layer: GL error 0x", std::hex, e,
                      " allocating ", (brickCapacity * n3 * kPoolVoxelBytes) >> 20,
@@ -159,9 +130,12 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     return makeError(ErrorCode::kSizeMismatch, "dynamic layer: ", triangleMaterials.size(),
                      " triangle materials for ", triangles.size() / 3, " triangles");
   State& s = *s_;
-  // Triangles binned by dominant axis (the voxelizer's swizzle), zero-area ones left out; the
-  // voxel box of the vertices for the ray tracer.
+  // Triangles binned by dominant axis (the voxelizer's swizzle), zero-area ones left out; per
+  // triangle its contribution to a voxel (shaders/dynamic_layer_build.comp.glsl: area x unit
+  // normal in fixed point, the area clamped to [1/256, 256] voxel^2 so that a sum of 2^13 fits an
+  // int, and material + 1); the voxel box of the vertices for the ray tracer.
   std::array<std::vector<uint32_t>, 3> byAxis;
+  std::vector<std::array<int32_t, 4>> contributions(triangleMaterials.size(), {0, 0, 0, 0});
   const size_t vertexCount = positions.size() / 3;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const float* c[3];
@@ -176,6 +150,11 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                          e1[0] * e2[1] - e1[1] * e2[0]};
     if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) continue;
+    const double area = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double scale = 0.5 / area * std::clamp(area, 1.0 / 256, 256.0) * kFixedPoint;
+    auto& c4 = contributions[t / 3];
+    for (int a = 0; a < 3; ++a) c4[size_t(a)] = int32_t(std::lround(n[a] * scale));
+    c4[3] = int32_t(triangleMaterials[t / 3]) + 1;
     int w = 0;
     if (std::abs(n[1]) > std::abs(n[w])) w = 1;
     if (std::abs(n[2]) > std::abs(n[w])) w = 2;
@@ -208,23 +187,39 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   if (triangles.size() > s.triangleIndices) {
     s.indices = storage(triangles.size() * 4);
     s.order = storage(triangles.size() / 3 * 4);
-    s.materials = storage(triangles.size() / 3 * 4);
+    s.contributions = storage(triangles.size() / 3 * 16);
     s.triangleIndices = triangles.size();
   }
   glNamedBufferSubData(s.positions.id(), 0, GLsizeiptr(positions.size() * 4), positions.data());
   glNamedBufferSubData(s.indices.id(), 0, GLsizeiptr(triangles.size() * 4), triangles.data());
-  glNamedBufferSubData(s.materials.id(), 0, GLsizeiptr(triangleMaterials.size() * 4),
-                       triangleMaterials.data());
+  glNamedBufferSubData(s.contributions.id(), 0, GLsizeiptr(contributions.size() * 16),
+                       contributions.data());
   if (!order.empty())
     glNamedBufferSubData(s.order.id(), 0, GLsizeiptr(order.size() * 4), order.data());
 
+  // Reset (shaders/dynamic_layer_build.comp.glsl): zero and free the pool slots the last update
+  // used, sized on the GPU from its count (no read-back); then an empty brick map.
+  s.build.use();
+  glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, s.counters.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSize.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, s.slotKeys.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, s.usedSlots.id());
+  glUniform1i(s.build.uniform("uPass"), 0);
+  glDispatchCompute(1, 1, 1);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s.dispatchSize.id());
+  glUniform1i(s.build.uniform("uPass"), 1);
+  glDispatchComputeIndirect(0);
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
   const GLuint empty = kEmpty, zero = 0;
   glClearNamedBufferData(s.brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-  glClearNamedBufferData(s.fragmentCount.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
 
-  // Raster: gl_voxelize writes each fragment with its column (uColumnInFragment), no lists.
+  // Raster: gl_voxelize adds each fragment's triangle to its voxels in the layer (VXL_DYN_N).
   glUseProgram(s.raster);
   glBindFramebuffer(GL_FRAMEBUFFER, s.framebuffer.id());
   glViewport(0, 0, GLsizei(s.edge), GLsizei(s.edge));
@@ -232,17 +227,16 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   glBindVertexArray(s.vertexArray);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, s.fragments.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, s.positions.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, s.indices.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s.order.id());
-  glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, 0, s.fragmentCount.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s.brickMap.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.contributions.id());
   auto at = [&](const char* name) { return glGetUniformLocation(s.raster, name); };
   glUniform1f(at("uViewportEdge"), float(s.edge));
-  glUniform1ui(at("uColumns"), s.edge);
   glUniform1i(at("uConservative"), 1);
-  glUniform1i(at("uColumnInFragment"), 1);
-  glUniform1ui(at("uCapacity"), GLuint(s.fragmentCapacity));
+  glUniform3ui(at("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
+  glUniform1ui(at("uBrickCapacity"), GLuint(s.brickCapacity));
   for (uint32_t w = 0; w < 3; ++w) {
     if (first[w] == first[w + 1]) continue;
     glUniform1i(at("uAxis"), GLint(w));
@@ -251,51 +245,19 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     glDrawArrays(GL_TRIANGLES, 0, GLsizei(3 * (first[w + 1] - first[w])));
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT);
-
-  // Build: mark bricks, allocate them, accumulate normals (shaders/dynamic_layer_build.comp.glsl).
-  s.build.use();
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, s.brickMap.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, s.counters.id());
-  glUniform1ui(s.build.uniform("uColumns"), s.edge);
-  glUniform3ui(s.build.uniform("uDims"), s.dims[0], s.dims[1], s.dims[2]);
-  glUniform3ui(s.build.uniform("uBrickGrid"), s.brickGrid[0], s.brickGrid[1], s.brickGrid[2]);
-  glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, s.materials.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, s.fragmentCount.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSize.id());
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, s.dispatchSize.id());
-  glUniform1ui(s.build.uniform("uCapacity"), GLuint(s.fragmentCapacity));
-  const uint64_t bricks = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2];
-  // The fragment passes are sized on the GPU from the counter (pass 3): no count comes back.
-  for (int pass : {3, 0, 1, 2}) {
-    glUniform1i(s.build.uniform("uPass"), pass);
-    if (pass == 3)
-      glDispatchCompute(1, 1, 1);
-    else if (pass == 1)
-      glDispatchCompute(GLuint((bricks + 63) / 64), 1, 1);
-    else
-      glDispatchComputeIndirect(0);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
-  }
-  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     return makeError(ErrorCode::kUnsupported, "dynamic layer: GL error 0x", std::hex, e);
   return Status::ok();
 }
 
 Status GlDynamicLayer::checkLastUpdate() const {
-  GLuint fragments = 0, counters[2] = {0, 0};
+  GLuint counters[2] = {0, 0};  // slots used, bricks dropped
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glGetNamedBufferSubData(s_->fragmentCount.id(), 0, 4, &fragments);
   glGetNamedBufferSubData(s_->counters.id(), 0, 8, counters);
-  if (fragments > s_->fragmentCapacity)
-    return makeError(ErrorCode::kTooLarge, "dynamic layer: ", fragments, " fragments exceed its ",
-                     s_->fragmentCapacity);
   if (counters[1] > 0)
-    return makeError(ErrorCode::kTooLarge, "dynamic layer: ", counters[0], " bricks exceed its ",
-                     s_->brickCapacity);
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: ", uint64_t(counters[0]) + counters[1],
+                     " bricks exceed its ", s_->brickCapacity);
   return Status::ok();
 }
 

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The dynamic layer of a dynamic scene (docs/dynamic-scenes.md): the moving meshes re-voxelized
 // every frame by the GL voxelizer's raster stage (shaders/gl_voxelize.*.glsl, conservative
-// coverage, each fragment stored with its column instead of in a list) and turned into a
-// GPU-side structure by compute passes sized on the GPU (shaders/dynamic_layer_build.comp.glsl),
-// with nothing read back:
+// coverage), whose fragments add their triangle straight into a GPU-side structure
+// (shaders/dynamic_layer.glsl), with nothing stored per fragment and nothing read back:
 //   - a brick map over the whole grid: per brick a pool slot, or empty;
 //   - a pool of bricks (sized from the moving objects' bounds): per voxel the sum of its
-//     triangles' area x unit normal in fixed point (atomic adds) and material + 1.
+//     triangles' area x unit normal in fixed point (atomic adds) and material + 1; a brick gets
+//     its slot from a hash table over the slots, and only the slots an update used are zeroed
+//     by the next (shaders/dynamic_layer_build.comp.glsl).
 // The ray tracer (DynamicSceneRenderer) reads both beside the static file. The rule is the host's
 // mean rule (area-weighted normal) in fixed point, without the host's depth sort (a sum does not
 // need it) and, per voxel, the highest material index of its triangles (the host: the largest
@@ -25,11 +26,6 @@
 
 namespace voxlink::render::gl {
 
-// Fragments the conservative raster can append for these triangles in any orientation (per
-// triangle: its area + sqrt(2) x its perimeter + 4 pixels), grid coordinates.
-uint64_t dynamicFragmentBound(const std::vector<float>& gridPositions,
-                              const std::vector<uint32_t>& triangles);
-
 // Bricks a box of `extent` voxels can touch anywhere in the grid.
 uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSize,
                            const std::array<uint32_t, 3>& dims);
@@ -37,18 +33,17 @@ uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSi
 class GlDynamicLayer {
  public:
   // Needs a current GL 4.5 context. The pool holds `brickCapacity` bricks, or as many as the
-  // largest storage buffer does. Errors: a fragment buffer beyond the largest storage buffer, a
-  // grid wider than the largest framebuffer.
+  // largest storage buffer does. Errors: a grid wider than the largest framebuffer.
   static Result<GlDynamicLayer> create(const std::array<uint32_t, 3>& dims, uint32_t brickSize,
-                                       uint64_t brickCapacity, uint64_t fragmentCapacity);
+                                       uint64_t brickCapacity);
 
   // Re-voxelizes the triangles (vertices in grid coordinates: voxel i spans [i, i + 1)) into the
   // layer, each with its material (a voxel keeps the highest of its triangles'). Queues uploads,
   // draws and dispatches; reads nothing back.
   Status update(const std::vector<float>& gridPositions, const std::vector<uint32_t>& triangles,
                 const std::vector<uint32_t>& triangleMaterials);
-  // Waits and reads two counters: an error when the last update had more fragments or bricks
-  // than the buffers hold (its layer would miss voxels).
+  // Waits and reads two counters: an error when the last update had more bricks than the pool
+  // holds (its layer would miss voxels).
   Status checkLastUpdate() const;
   // Reads the layer back (tests, diagnostics): per occupied voxel its key
   // (geometry::voxelKey) and (normal sum x, y, z, material + 1), sorted by key.

@@ -27,13 +27,17 @@ namespace {
 using namespace render;      // the images and settings a dynamic scene is checked with
 using namespace render::gl;  // the renderers and the voxelizer
 
-std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys) {
+const char* kMaterials =
+    R"({"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]}})";
+
+std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string& keys,
+                       const std::string& materials = kMaterials, int brick = 8) {
   std::ofstream(dir.file("floor.obj")) << "v -0.3 0 -0.3\nv -0.3 0 0.3\nv 0.3 0 0.3\nv 0.3 0 -0.3\n"
                                           "f 1 2 3\nf 1 3 4\n";
   const std::string path = dir.file("moving.scene.json");
-  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": 8},
-    "materials": {"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]}},
-    "objects": [
+  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": )" + std::to_string(brick) +
+                             R"(}, "materials": )" + materials +
+                             R"(, "objects": [
       {"type": "mesh", "file": "floor.obj", "material": "clay"},
       {"type": "mesh", "file": ")" +
                              ::voxlink::testing::dataPath("mesh/vtk_bunny.ply") +
@@ -44,14 +48,56 @@ std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string
 const char* kKeys = R"({"period": 2, "keys": [{"time": 0, "translate": [-0.1, 0, 0]},
                        {"time": 1, "translate": [0.1, 0, 0.05], "rotate": [0, 60, 0]}]})";
 
-Image renderWith(VolumeRenderer& renderer, const Camera& camera) {
-  RenderSettings s;
-  s.width = 128;
-  s.height = 128;
+Image renderWith(VolumeRenderer& renderer, const Camera& camera, const RenderSettings& s) {
   RenderTarget target;
   const Status st = renderer.render(camera, s, target);
   EXPECT_TRUE(st.isOk()) << (st ? "" : st.message());
   return target.read();
+}
+
+Image renderWith(VolumeRenderer& renderer, const Camera& camera) {
+  RenderSettings s;
+  s.width = 128;
+  s.height = 128;
+  return renderWith(renderer, camera, s);
+}
+
+// A light from above and the right, so that the bunny casts its shadow on the floor in view.
+RenderSettings litFromAbove(bool shadows) {
+  RenderSettings s;
+  s.width = 128;
+  s.height = 128;
+  s.shading.shadows = shadows;
+  s.shading.lightDirection = {0.6, 1.0, 0.3};
+  return s;
+}
+
+Image renderLitFromAbove(VolumeRenderer& renderer, const Camera& camera, bool shadows) {
+  return renderWith(renderer, camera, litFromAbove(shadows));
+}
+
+// The host path's frame: the scene frozen at `t` built by the exact CPU path into a static file,
+// drawn by VoxLinkRenderer with the same settings.
+Image hostFrame(const DynamicScene& dynamic, double t, const ::voxlink::testing::TempDir& dir,
+                const Camera& camera, const RenderSettings& s) {
+  auto built = scene::buildScene(dynamic.frozenAt(t));
+  EXPECT_TRUE(built) << built.message();
+  if (!built) return {};
+  EXPECT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
+  auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
+  EXPECT_TRUE(file) << file.message();
+  if (!file) return {};
+  auto host = VoxLinkRenderer::create(*file);
+  EXPECT_TRUE(host) << host.message();
+  return host ? renderWith(**host, camera, s) : Image{};
+}
+
+Camera cameraFor(DynamicScene& dynamic) {
+  CameraSpec spec;
+  spec.azimuthDeg = 30;
+  spec.elevationDeg = 35;
+  spec.up = UpAxis::kY;
+  return Camera::framing(dynamic.renderer().geometry().worldBox(), spec);
 }
 
 TEST(DynamicScene, FrameMatchesTheHostPathForTheSameFrame) {
@@ -117,7 +163,29 @@ TEST(DynamicScene, FrameMatchesTheHostPathForTheSameFrame) {
   EXPECT_GE(again->psnr, 60.0);
 }
 
-TEST(DynamicScene, RefusesWhatItCannotDraw) {
+// A file of 16^3 bricks: the layer keeps bricks of 8^3 voxels (viewer/dynamic_scene.cpp) and the
+// frame still matches the host path's.
+TEST(DynamicScene, AFileOfBigBricksGetsALayerOf8CubedBricks) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(writeScene(dir, kKeys, kMaterials, 16));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  EXPECT_EQ((*dynamic)->layer().brickSize(), 8u);
+  const Camera camera = cameraFor(**dynamic);
+  ASSERT_TRUE((*dynamic)->setTime(0.5).isOk());
+  ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
+  RenderSettings s;
+  s.width = s.height = 128;
+  auto e = compareImages(renderWith((*dynamic)->renderer(), camera, s),
+                         hostFrame(**dynamic, 0.5, dir, camera, s));
+  ASSERT_TRUE(e);
+  std::printf("brick 16 file, t 0.5: dynamic layer vs host path %.2f dB\n", e->psnr);
+  EXPECT_GE(e->psnr, 35.0);
+}
+
+TEST(DynamicScene, RefusesAnAnimationThatLeavesTheGrid) {
   VOXLINK_REQUIRE_GL();
   ::voxlink::testing::TempDir dir;
   // A key that carries the bunny off the floor's grid.
@@ -130,20 +198,89 @@ TEST(DynamicScene, RefusesWhatItCannotDraw) {
                                   "object outside the grid (x "),
             std::string::npos)
       << loaded.message();
-  // Shadows would not see the moving bunny: refused, not drawn wrong.
+}
+
+// Pixels a shadow darkens: darker with shadows than without by more than 0.05 in green.
+std::set<size_t> shadowedPixels(const Image& lit, const Image& unshadowed) {
+  std::set<size_t> r;
+  for (size_t i = 0; i < size_t(lit.width) * lit.height; ++i)
+    if (unshadowed.rgba[4 * i + 1] - lit.rgba[4 * i + 1] > 0.05f) r.insert(i);
+  return r;
+}
+
+// Shadow rays test the dynamic layer: the frame with shadows matches the host path's for the
+// same frame (the scene frozen at that time, its shadows from the static file), and the bunny's
+// shadow on the floor moves with it.
+TEST(DynamicScene, TheMovingMeshCastsAShadowThatMovesWithIt) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
   auto description = scene::readSceneDescription(writeScene(dir, kKeys));
-  ASSERT_TRUE(description);
+  ASSERT_TRUE(description) << description.message();
   auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
   ASSERT_TRUE(dynamic) << dynamic.message();
-  ASSERT_TRUE((*dynamic)->setTime(0).isOk());
-  RenderSettings s;
-  s.width = s.height = 32;
-  s.shading.shadows = true;
-  RenderTarget target;
-  const Status st = (*dynamic)->renderer().render(
-      Camera::framing((*dynamic)->renderer().geometry().worldBox(), {}), s, target);
-  ASSERT_FALSE(st.isOk());
-  EXPECT_NE(st.message().find("shadows"), std::string::npos) << st.message();
+  const Camera camera = cameraFor(**dynamic);
+  std::vector<std::set<size_t>> shadows;
+  for (double t : {0.0, 1.0}) {
+    ASSERT_TRUE((*dynamic)->setTime(t).isOk());
+    ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
+    const Image frame = renderLitFromAbove((*dynamic)->renderer(), camera, true);
+    const Image unshadowed = renderLitFromAbove((*dynamic)->renderer(), camera, false);
+    auto e = compareImages(frame, hostFrame(**dynamic, t, dir, camera, litFromAbove(true)));
+    ASSERT_TRUE(e);
+    shadows.push_back(shadowedPixels(frame, unshadowed));
+    std::printf(
+        "t %.1f: with shadows, dynamic layer vs host path %.2f dB, %llu pixels over "
+        "1/255; %zu pixels shadowed\n",
+        t, e->psnr, static_cast<unsigned long long>(e->pixelsOver), shadows.back().size());
+    EXPECT_GE(e->psnr, 35.0) << "t " << t;
+    EXPECT_GT(shadows.back().size(), 100u) << "t " << t;
+  }
+  size_t onlyBefore = 0, onlyAfter = 0;
+  for (size_t i : shadows[0]) onlyBefore += shadows[1].count(i) == 0;
+  for (size_t i : shadows[1]) onlyAfter += shadows[0].count(i) == 0;
+  std::printf("shadowed only at 0: %zu pixels, only at 1: %zu\n", onlyBefore, onlyAfter);
+  EXPECT_GT(onlyBefore, 50u);
+  EXPECT_GT(onlyAfter, 50u);
+}
+
+// The ray-traced mode's rays test the dynamic layer: a mirror floor shows the moving bunny, whose
+// glass refracts; the frame matches the host path's for the same frame.
+TEST(DynamicScene, TheRayTracedModeSeesTheMovingMesh) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(
+      writeScene(dir, kKeys,
+                 R"({"jade": {"color": [0.35, 0.65, 0.45], "reflectivity": 0.2, "transmission": 0.4,
+                   "ior": 1.3},
+          "clay": {"color": [0.8, 0.6, 0.5], "reflectivity": 0.5}})"));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  const Camera camera = cameraFor(**dynamic);
+  RenderSettings s = litFromAbove(true);
+  s.effects.reflect = s.effects.refract = s.effects.shadows = true;
+  Image previous;
+  for (double t : {0.0, 1.0}) {
+    ASSERT_TRUE((*dynamic)->setTime(t).isOk());
+    const Image frame = renderWith((*dynamic)->renderer(), camera, s);
+    ASSERT_TRUE((*dynamic)->layer().checkLastUpdate().isOk());
+    auto e = compareImages(frame, hostFrame(**dynamic, t, dir, camera, s));
+    ASSERT_TRUE(e);
+    auto plain = compareImages(frame, renderLitFromAbove((*dynamic)->renderer(), camera, true));
+    ASSERT_TRUE(plain);
+    std::printf(
+        "t %.1f: ray-traced, dynamic layer vs host path %.2f dB, %llu pixels over 1/255; "
+        "vs the plain frame %.2f dB\n",
+        t, e->psnr, static_cast<unsigned long long>(e->pixelsOver), plain->psnr);
+    EXPECT_GE(e->psnr, 35.0) << "t " << t;
+    EXPECT_LT(plain->psnr, 35.0) << "t " << t;  // the mirror and the glass show
+    if (!previous.rgba.empty()) {
+      auto moved = compareImages(frame, previous);
+      ASSERT_TRUE(moved);
+      EXPECT_LT(moved->psnr, 30.0);
+    }
+    previous = frame;
+  }
 }
 
 }  // namespace
