@@ -86,7 +86,18 @@ class BrickSolver {
       for (uint32_t y = box.lo[1]; y < box.hi[1]; ++y)
         for (uint32_t x = box.lo[0]; x < box.hi[0]; ++x)
           VOXLINK_RETURN_IF_ERROR(solveNode(x, y, z, ts));
-    return flush(ts);  // the queue reads this brick's candidates
+    return Status::ok();
+  }
+
+  // Factors the queued systems, then solves the nodes that waited for them, in order.
+  Status flush(ThreadState& ts) const {
+    VOXLINK_RETURN_IF_ERROR(systems_.flush(ts));
+    for (const WaitingNode& w : ts.waiting)
+      VOXLINK_RETURN_IF_ERROR(
+          finishNode(w.node[0], w.node[1], w.node[2], *w.f, &ts.waitingRhs[w.rhs], ts));
+    ts.waiting.clear();
+    ts.waitingRhs.clear();
+    return Status::ok();
   }
 
  private:
@@ -189,17 +200,6 @@ class BrickSolver {
     ts.waitingRhs.resize(offset + n);
     kriger_.variogram().covariancesOfSquared(ts.work.data(), &ts.waitingRhs[offset], n);
     ts.waiting.push_back({{x, y, z}, f, offset});
-    return Status::ok();
-  }
-
-  // Factors the queued systems, then solves the nodes that waited for them, in order.
-  Status flush(ThreadState& ts) const {
-    VOXLINK_RETURN_IF_ERROR(systems_.flush(ts));
-    for (const WaitingNode& w : ts.waiting)
-      VOXLINK_RETURN_IF_ERROR(
-          finishNode(w.node[0], w.node[1], w.node[2], *w.f, &ts.waitingRhs[w.rhs], ts));
-    ts.waiting.clear();
-    ts.waitingRhs.clear();
     return Status::ok();
   }
 
@@ -307,6 +307,12 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
           if (!failure) failure = s.error();
           stop = true;
         }
+      }
+      // The nodes still waiting belong to this slab.
+      if (Status s = solver.flush(ts); !stop && !s) {
+        std::lock_guard lock(failureLock);
+        if (!failure) failure = s.error();
+        stop = true;
       }
     });
     if (failure) return *failure;

@@ -34,18 +34,24 @@ void LocalSystems::loadCandidates(ThreadState& ts) const {
   ts.pair.assign(m * m, NAN);
 }
 
-// The covariances among the picked candidates (lower triangle, column-major, leading dimension
-// ld) plus jitter on the diagonal; returns the 1-norm of that matrix.
-double LocalSystems::gather(ThreadState& ts, const std::vector<uint32_t>& picked, double jitter,
+// The covariances among the samples of f.key (lower triangle, column-major, leading dimension
+// ld) plus jitter on the diagonal, computed as pairCovariance() computes them (the same bits);
+// returns the 1-norm of that matrix.
+double LocalSystems::gather(ThreadState& ts, const std::vector<uint32_t>& key, double jitter,
                             double* a, size_t ld) const {
-  const size_t n = picked.size();
+  const size_t n = key.size();
+  const auto& coords = kriger_.centredSamples();
   ts.work.assign(n, 0.0);  // column sums of |A|
   for (size_t j = 0; j < n; ++j) {
     double* column = a + j * ld;
     column[j] = sill_ + jitter;
     double sum = sill_ + jitter;
+    const Point3& p = coords[key[j]];
     for (size_t i = j + 1; i < n; ++i) {  // the upper part is never read
-      const double c = pairCovariance(ts, picked[j], picked[i]);
+      const Point3& q = coords[key[i]];
+      const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+      const double c =
+          kriger_.variogram().covariance(std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300));
       column[i] = c;
       sum += std::fabs(c);
       ts.work[i] += std::fabs(c);
@@ -57,13 +63,12 @@ double LocalSystems::gather(ThreadState& ts, const std::vector<uint32_t>& picked
 
 // One system alone: the first attempt, then jitter growing tenfold while the condition exceeds
 // --max-condition (docs/kriging.md, "Numerical safeguards").
-Status LocalSystems::factor(ThreadState& ts, const std::vector<uint32_t>& picked,
-                            Factorization& f) const {
-  const size_t n = picked.size(), ld = spd::paddedSize(n);
+Status LocalSystems::factor(ThreadState& ts, Factorization& f) const {
+  const size_t n = f.key.size(), ld = spd::paddedSize(n);
   double jitter = 0;
   f.l.resize(ld * n);
   for (;;) {
-    const double norm1 = gather(ts, picked, jitter, f.l.data(), ld);
+    const double norm1 = gather(ts, f.key, jitter, f.l.data(), ld);
     // With a nugget the matrix is nugget I plus a positive semidefinite one, so its smallest
     // eigenvalue is >= nugget and cond_1 <= sqrt(n) ||A||_1 / nugget (doubled for rounding):
     // below --max-condition that bound makes the estimate (10 triangular solves) needless.
@@ -119,41 +124,30 @@ void LocalSystems::finish(ThreadState& ts, Factorization& f) const {
 
 void LocalSystems::queue(ThreadState& ts, Factorization& f) const {
   f.pending = true;
-  QueuedSystem& q = ts.queued[ts.queuedCount++];
-  q.f = &f;
-  q.picked = ts.picked;
+  const size_t lane = ts.queuedCount++, n = ts.picked.size();
+  ts.queued[lane] = &f;
+  ts.compact.resize(n * n * kLanes);
+  // gather()'s sums in gather()'s order (the same norm bits), from the brick's pair cache.
+  ts.work.assign(n, 0.0);  // column sums of |A|
+  for (size_t j = 0; j < n; ++j) {
+    double* column = &ts.compact[spd::batch::at(0, j, n, lane)];
+    column[j * kLanes] = sill_;
+    double sum = sill_;
+    for (size_t i = j + 1; i < n; ++i) {
+      const double c = pairCovariance(ts, ts.picked[j], ts.picked[i]);
+      column[i * kLanes] = c;
+      sum += std::fabs(c);
+      ts.work[i] += std::fabs(c);
+    }
+    ts.work[j] += sum;
+  }
+  ts.queuedNorm[lane] = *std::max_element(ts.work.begin(), ts.work.end());
 }
 
-// The first attempt of factor() on `count` (> 1) queued systems at once; done[lane] where it
+// The first attempt of factor() on `count` (> 0) queued systems at once; done[lane] where it
 // settled the system as factor() would have.
 void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kLanes>& done) const {
-  const size_t n = ts.queued[0].picked.size();
-  ts.compact.resize(n * n * kLanes);
-  // gather() lane by lane, each lane's sums in gather()'s order (the same norm bits), written
-  // across the lanes so that each cache line of the batch is filled at once.
-  const uint32_t* picked[kLanes];
-  for (size_t lane = 0; lane < count; ++lane) picked[lane] = ts.queued[lane].picked.data();
-  ts.work.assign(n * kLanes, 0.0);  // column sums of |A|, lane-minor
-  double sum[kLanes];
-  for (size_t j = 0; j < n; ++j) {
-    for (size_t lane = 0; lane < count; ++lane) {
-      ts.compact[spd::batch::at(j, j, n, lane)] = sill_;
-      sum[lane] = sill_;
-    }
-    for (size_t i = j + 1; i < n; ++i) {
-      double* out = &ts.compact[spd::batch::at(i, j, n, 0)];
-      for (size_t lane = 0; lane < count; ++lane) {
-        const double c = pairCovariance(ts, picked[lane][j], picked[lane][i]);
-        out[lane] = c;
-        sum[lane] += std::fabs(c);
-        ts.work[i * kLanes + lane] += std::fabs(c);
-      }
-    }
-    for (size_t lane = 0; lane < count; ++lane) ts.work[j * kLanes + lane] += sum[lane];
-  }
-  std::array<double, kLanes> norm1{};
-  for (size_t lane = 0; lane < count; ++lane)
-    for (size_t i = 0; i < n; ++i) norm1[lane] = std::max(norm1[lane], ts.work[i * kLanes + lane]);
+  const size_t n = ts.queued[0]->key.size();
   for (size_t lane = count; lane < kLanes; ++lane)  // an idle lane factors the identity
     for (size_t j = 0; j < n; ++j)
       for (size_t i = j; i < n; ++i) ts.compact[spd::batch::at(i, j, n, lane)] = i == j;
@@ -163,8 +157,8 @@ void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kL
   const size_t ld = spd::paddedSize(n);
   double* factors[kLanes];
   for (size_t lane = 0; lane < count; ++lane) {
-    ts.queued[lane].f->l.resize(ld * n);
-    factors[lane] = ts.queued[lane].f->l.data();
+    ts.queued[lane]->l.resize(ld * n);
+    factors[lane] = ts.queued[lane]->l.data();
   }
   for (size_t j = 0; j < n; ++j)
     for (size_t i = j; i < n; ++i) {
@@ -174,12 +168,14 @@ void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kL
   for (size_t lane = 0; lane < count; ++lane) {
     done[lane] = false;
     if (!ok[lane]) continue;  // factor() takes it further
-    Factorization& f = *ts.queued[lane].f;
+    Factorization& f = *ts.queued[lane];
     // factor()'s first attempt from here on.
-    double bound = nugget_ > 0 ? 2 * std::sqrt(double(n)) * norm1[lane] / nugget_ : INFINITY;
+    double bound =
+        nugget_ > 0 ? 2 * std::sqrt(double(n)) * ts.queuedNorm[lane] / nugget_ : INFINITY;
     if (!(bound <= maxCondition_)) {
       ts.work.resize(2 * n);
-      bound = 2 * norm1[lane] * spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
+      bound = 2 * ts.queuedNorm[lane] *
+              spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
       if (!(bound <= maxCondition_)) continue;
     }
     f.bounded = true;
@@ -194,11 +190,12 @@ Status LocalSystems::flush(ThreadState& ts) const {
   const size_t count = ts.queuedCount;
   ts.queuedCount = 0;
   std::array<bool, kLanes> done{};
-  // A batch costs about three scalar factorizations (docs/kriging.md).
-  if (count >= 3) flushLanes(ts, count, done);
+  // Even a part-filled batch: its systems are gathered already, and factor() would gather
+  // them again without the brick's pair cache.
+  if (count > 0) flushLanes(ts, count, done);
   for (size_t lane = 0; lane < count; ++lane) {
-    Factorization& f = *ts.queued[lane].f;
-    if (!done[lane]) VOXLINK_RETURN_IF_ERROR(factor(ts, ts.queued[lane].picked, f));
+    Factorization& f = *ts.queued[lane];
+    if (!done[lane]) VOXLINK_RETURN_IF_ERROR(factor(ts, f));
     if (f.bounded) ++ts.summary.systemsBounded;
   }
   return Status::ok();

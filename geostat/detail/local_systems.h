@@ -21,11 +21,6 @@
 
 namespace voxlink::geostat {
 
-struct QueuedSystem {
-  Factorization* f = nullptr;    // its slot in the cache; f->key is the neighbour set
-  std::vector<uint32_t> picked;  // candidate positions of the set
-};
-
 // A node whose system was queued: solved once the queue is factored.
 struct WaitingNode {
   std::array<uint32_t, 3> node;
@@ -42,9 +37,10 @@ struct ThreadState : PickState {
   std::vector<uint32_t> lastPicked, key;
   FactorizationCache cache;
   const Factorization* last = nullptr;  // the previous node's, valid while lastPicked is
-  std::array<QueuedSystem, spd::batch::kLanes> queued;
+  std::array<Factorization*, spd::batch::kLanes> queued{};  // slots; f->key is the set
+  std::array<double, spd::batch::kLanes> queuedNorm{};      // their 1-norms
   size_t queuedCount = 0;
-  std::vector<double> compact;  // the queued systems, spd::batch layout
+  std::vector<double> compact;  // the queued systems, gathered, spd::batch layout
   std::vector<WaitingNode> waiting;
   std::vector<double> waitingRhs;
   KrigingSummary summary;
@@ -57,12 +53,13 @@ class LocalSystems {
 
   // Coordinates of ts.candidates, and their pair covariances marked not yet evaluated.
   void loadCandidates(ThreadState& ts) const;
-  // Queues the system of ts.picked (f.key set; f.pending from now on). The caller flushes
-  // first when the queue is full or holds systems of another size (one size per batch).
+  // Queues the system of ts.picked (f.key set; f.pending from now on), gathering it from the
+  // brick's pair covariances: a flush needs nothing of the brick. The caller flushes first
+  // when the queue is full or holds systems of another size (one size per batch).
   void queue(ThreadState& ts, Factorization& f) const;
   bool queueTakes(const ThreadState& ts, size_t n) const {
     return ts.queuedCount < spd::batch::kLanes &&
-           (ts.queuedCount == 0 || ts.queued[0].picked.size() == n);
+           (ts.queuedCount == 0 || ts.queued[0]->key.size() == n);
   }
   // Factors every queued system (pending no more); counts the bounded ones in ts.summary.
   Status flush(ThreadState& ts) const;
@@ -80,9 +77,9 @@ class LocalSystems {
     }
     return c;
   }
-  double gather(ThreadState& ts, const std::vector<uint32_t>& picked, double jitter, double* a,
+  double gather(ThreadState& ts, const std::vector<uint32_t>& key, double jitter, double* a,
                 size_t ld) const;
-  Status factor(ThreadState& ts, const std::vector<uint32_t>& picked, Factorization& f) const;
+  Status factor(ThreadState& ts, Factorization& f) const;
   void finish(ThreadState& ts, Factorization& f) const;
   void flushLanes(ThreadState& ts, size_t count, std::array<bool, spd::batch::kLanes>& done) const;
 

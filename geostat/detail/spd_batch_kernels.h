@@ -14,7 +14,9 @@
 
 namespace voxlink::geostat::spd::batch {
 
-constexpr size_t kLanes = 8;  // one AVX-512 vector of doubles, two AVX2 ones
+// Four lanes: one AVX2 vector of doubles, and four 32 x 32 systems (16.5 KiB of lower
+// triangles) stay in L1; eight (AVX-512) measured no faster on this machine (docs/kriging.md).
+constexpr size_t kLanes = 4;
 
 // Element (i, j) of lane `lane` of n x n systems stored in the compact layout.
 constexpr size_t at(size_t i, size_t j, size_t n, size_t lane) {
