@@ -19,7 +19,9 @@ namespace {
 constexpr uint32_t kBrickEdge = 16;     // nodes along x and y of a brick before it is split
 constexpr uint32_t kSlabDepth = 8;      // slices kriged (and bricks deep) at a time in 3-D
 constexpr size_t kCandidateFactor = 4;  // a brick with more than 4 (k + 1) candidates is split
-constexpr size_t kCacheBytes = size_t{8} << 20;  // factorizations kept per thread
+// Factorizations kept per thread: 1 MiB (~120 systems of 32) stays in cache, where 8 MiB sent
+// each new system's writes to memory (docs/kriging.md, "Where a 3-D node's time goes").
+constexpr size_t kCacheBytes = size_t{1} << 20;
 
 struct Box {
   std::array<uint32_t, 3> lo, hi;  // node index ranges [lo, hi)
