@@ -9,7 +9,7 @@
 
 #include "base/parallel_for.h"
 #include "geostat/detail/drift.h"
-#include "geostat/detail/factorization_cache.h"
+#include "geostat/detail/local_systems.h"
 #include "geostat/detail/neighbour_pick.h"
 #include "geostat/detail/spd_kernels.h"
 
@@ -19,24 +19,13 @@ namespace {
 constexpr uint32_t kBrickEdge = 16;     // nodes along x and y of a brick before it is split
 constexpr uint32_t kSlabDepth = 8;      // slices kriged (and bricks deep) at a time in 3-D
 constexpr size_t kCandidateFactor = 4;  // a brick with more than 4 (k + 1) candidates is split
-constexpr size_t kCacheBytes = size_t{8} << 20;  // factorizations kept per thread
+// Factorizations kept per thread: 1 MiB (~120 systems of 32) stays in cache, where 8 MiB sent
+// each new system's writes to memory (docs/kriging.md, "Where a 3-D node's time goes").
+constexpr size_t kCacheBytes = size_t{1} << 20;
 
 struct Box {
   std::array<uint32_t, 3> lo, hi;  // node index ranges [lo, hi)
   uint64_t nodes() const { return uint64_t{hi[0] - lo[0]} * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
-};
-
-struct ThreadState : PickState {
-  explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
-  std::vector<Neighbour> nearest;
-  std::vector<uint32_t> candidates;  // sample indices, ascending
-  std::vector<double> pair;          // the candidates' covariances (m x m)
-  std::vector<double> rhs, work, drift;
-  std::vector<uint32_t> lastPicked, key;
-  FactorizationCache cache;
-  const Factorization* last = nullptr;  // the previous node's, valid while lastPicked is
-  KrigingSummary summary;
-  double neighbourSum = 0;
 };
 
 class BrickSolver {
@@ -45,6 +34,7 @@ class BrickSolver {
   BrickSolver(const Kriger& kriger, const GridSpec& grid, uint32_t z0, uint32_t y0, uint32_t rows,
               double* values, double* variances, double noData, const double* externalDrift)
       : kriger_(kriger),
+        systems_(kriger),
         grid_(grid),
         z0_(z0),
         y0_(y0),
@@ -91,13 +81,24 @@ class BrickSolver {
         return split(box, ts);
     }
     std::sort(ts.candidates.begin(), ts.candidates.end());
-    loadCandidates(ts);
+    systems_.loadCandidates(ts);
     ts.lastPicked.clear();
     ts.lastKth = -1;
     for (uint32_t z = box.lo[2]; z < box.hi[2]; ++z)
       for (uint32_t y = box.lo[1]; y < box.hi[1]; ++y)
         for (uint32_t x = box.lo[0]; x < box.hi[0]; ++x)
           VOXLINK_RETURN_IF_ERROR(solveNode(x, y, z, ts));
+    return Status::ok();
+  }
+
+  // Factors the queued systems, then solves the nodes that waited for them, in order.
+  Status flush(ThreadState& ts) const {
+    VOXLINK_RETURN_IF_ERROR(systems_.flush(ts));
+    for (const WaitingNode& w : ts.waiting)
+      VOXLINK_RETURN_IF_ERROR(
+          finishNode(w.node[0], w.node[1], w.node[2], *w.f, &ts.waitingRhs[w.rhs], ts));
+    ts.waiting.clear();
+    ts.waitingRhs.clear();
     return Status::ok();
   }
 
@@ -155,117 +156,13 @@ class BrickSolver {
     return solve(second, ts);
   }
 
-  // Coordinates of the candidates and their covariances, once per brick.
-  void loadCandidates(ThreadState& ts) const {
-    const size_t m = ts.candidates.size();
-    const auto& coords = kriger_.centredSamples();
-    ts.cx.resize(m);
-    ts.cy.resize(m);
-    ts.cz.resize(m);
-    for (size_t i = 0; i < m; ++i) {
-      const Point3& p = coords[ts.candidates[i]];
-      ts.cx[i] = p[0];
-      ts.cy[i] = p[1];
-      ts.cz[i] = p[2];
-    }
-    // Filled on first use (NaN: not yet): in 3-D most nodes have their own neighbour set,
-    // and all pairs of a crowded brick cost more exp() calls than its nodes ever read.
-    ts.pair.assign(m * m, NAN);
-  }
-
-  double pairCovariance(ThreadState& ts, uint32_t i, uint32_t j) const {
-    const size_t m = ts.candidates.size();
-    double& c = ts.pair[i * m + j];
-    if (std::isnan(c)) {
-      const double dx = ts.cx[i] - ts.cx[j], dy = ts.cy[i] - ts.cy[j], dz = ts.cz[i] - ts.cz[j];
-      c = i == j ? sill_
-                 : kriger_.variogram().covariance(
-                       std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300));
-      ts.pair[j * m + i] = c;
-    }
-    return c;
-  }
-
-  // The covariances among the picked candidates (lower triangle, column-major) plus jitter on
-  // the diagonal, into f.l; returns the 1-norm of that matrix.
-  double gather(ThreadState& ts, double jitter, Factorization& f) const {
-    const size_t n = ts.picked.size(), ld = spd::paddedSize(n);
-    f.l.resize(ld * n);
-    ts.work.assign(n, 0.0);  // column sums of |A|
-    for (size_t j = 0; j < n; ++j) {
-      double* column = &f.l[j * ld];
-      column[j] = sill_ + jitter;
-      double sum = column[j];
-      for (size_t i = j + 1; i < n; ++i) {  // the upper part is never read
-        const double a = pairCovariance(ts, ts.picked[j], ts.picked[i]);
-        column[i] = a;
-        sum += std::fabs(a);
-        ts.work[i] += std::fabs(a);
-      }
-      ts.work[j] += sum;
-    }
-    return *std::max_element(ts.work.begin(), ts.work.end());
-  }
-
-  Status factor(ThreadState& ts, Factorization& f) const {
-    const size_t n = ts.picked.size(), ld = spd::paddedSize(n);
-    const double maxCondition = kriger_.options().maxCondition;
-    const double nugget = kriger_.variogram().params().nugget;
-    double jitter = 0;
-    for (;;) {
-      const double norm1 = gather(ts, jitter, f);
-      // With a nugget the matrix is nugget I plus a positive semidefinite one, so its smallest
-      // eigenvalue is >= nugget and cond_1 <= sqrt(n) ||A||_1 / nugget (doubled for rounding):
-      // below --max-condition that bound makes the estimate (10 triangular solves) needless.
-      double bound = nugget > 0 ? 2 * std::sqrt(double(n)) * norm1 / nugget : INFINITY;
-      if (spd::factorLower(f.l.data(), n, ld)) {
-        f.bounded = jitter == 0 && bound <= maxCondition;
-        // Without a nugget, ||A^-1||_1 <= a bound from L^-1 (a third of the estimate's cost,
-        // at most n^1.5 x the true norm) settles most systems as the estimate would.
-        if (!f.bounded && jitter == 0) {
-          ts.work.resize(n * (n + 1));
-          double inverseBound =
-              2 * norm1 * spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
-          if (!(inverseBound <= maxCondition))
-            inverseBound = 2 * norm1 * spd::inverseNormBound(f.l.data(), n, ld, ts.work.data());
-          if (inverseBound <= maxCondition) f.bounded = true, bound = inverseBound;
-        }
-        if (!f.bounded) ts.work.resize(3 * n);
-        f.condition =
-            f.bounded ? bound : norm1 * spd::inverseNormEstimate(f.l.data(), n, ld, ts.work.data());
-        if (f.condition <= maxCondition) break;
-      }
-      jitter = jitter == 0 ? kFirstJitter * sill_ : jitter * 10;
-      if (jitter > kLastJitter * sill_ * 1.0000001) return singularSystemError(n, maxCondition);
-    }
-    f.jitter = jitter;
-    const double mean = kriger_.dataMean();
-    const size_t p = terms_;
-    f.u.resize(n * p);
-    ts.drift.resize(p);
-    for (size_t i = 0; i < n; ++i) {
-      kriger_.sampleDriftTerms(ts.key[i], ts.drift.data());
-      for (size_t j = 0; j < p; ++j) f.u[j * n + i] = ts.drift[j];
-    }
-    f.r.resize(n);
-    for (size_t i = 0; i < n; ++i) f.r[i] = kriger_.values()[ts.key[i]] - mean;
-    if (p > 0)
-      spd::solveLower(f.l.data(), n, ld, f.u.data(), f.r.data());
-    else
-      spd::solveLower(f.l.data(), n, ld, f.r.data());
-    for (size_t j = 1; j < p; ++j) spd::solveLower(f.l.data(), n, ld, &f.u[j * n]);
-    f.drift.factor(f.u.data(), n, n, p);
-    f.ur.resize(p);
-    for (size_t j = 0; j < p; ++j) f.ur[j] = spd::dot(&f.u[j * n], f.r.data(), n);
-    f.key = ts.key;
-    return Status::ok();
-  }
-
+  // Picks the node's neighbours and finds or queues its system; the node is solved at once
+  // when its system is factored, else once the queue is.
   Status solveNode(uint32_t x, uint32_t y, uint32_t z, ThreadState& ts) const {
-    const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
     const Point3 q = centred(x, y, z);
     ++ts.summary.nodes;
     if (!pickNeighbours(q, k_, maxDistance_, ts)) {
+      const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
       values_[at] = variances_[at] = noData_;
       ++ts.summary.nodesWithoutData;
       return Status::ok();
@@ -280,32 +177,51 @@ class BrickSolver {
       const uint64_t hash = hashKey(ts.key);
       f = ts.cache.find(hash, ts.key);
       if (!f) {
+        // A queued system's slot is not reused before the nodes waiting for it are solved.
+        if (ts.cache.victim(hash).pending || !systems_.queueTakes(ts, n))
+          VOXLINK_RETURN_IF_ERROR(flush(ts));
         Factorization& fresh = ts.cache.insert(hash);
-        VOXLINK_RETURN_IF_ERROR(factor(ts, fresh));
+        fresh.key = ts.key;
+        systems_.queue(ts, fresh);
         f = &fresh;
         ++ts.summary.systemsFactored;
-        if (fresh.bounded) ++ts.summary.systemsBounded;
         --ts.summary.systemsReused;  // counted below; this node did not reuse
       }
       ts.last = f;
       ts.lastPicked = ts.picked;
     }
     ++ts.summary.systemsReused;
-    ts.rhs.resize(n);
     ts.work.resize(n);
     for (size_t i = 0; i < n; ++i) ts.work[i] = ts.d2[ts.picked[i]];
-    kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
-    spd::solveLower(f->l.data(), n, spd::paddedSize(n), ts.rhs.data());
-    const double yy = spd::dot(ts.rhs.data(), ts.rhs.data(), n);
-    const double ry = spd::dot(f->r.data(), ts.rhs.data(), n);
+    if (!f->pending) {
+      ts.rhs.resize(n);
+      kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
+      return finishNode(x, y, z, *f, ts.rhs.data(), ts);
+    }
+    const size_t offset = ts.waitingRhs.size();
+    ts.waitingRhs.resize(offset + n);
+    kriger_.variogram().covariancesOfSquared(ts.work.data(), &ts.waitingRhs[offset], n);
+    ts.waiting.push_back({{x, y, z}, f, offset});
+    return Status::ok();
+  }
+
+  // The node's estimate and variance from its factored system and covariances `rhs` (n).
+  Status finishNode(uint32_t x, uint32_t y, uint32_t z, const Factorization& f, double* rhs,
+                    ThreadState& ts) const {
+    const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
+    const size_t n = f.key.size();
+    spd::solveLower(f.l.data(), n, spd::paddedSize(n), rhs);
+    const double yy = spd::dot(rhs, rhs, n);
+    const double ry = spd::dot(f.r.data(), rhs, n);
     double value = kriger_.dataMean() + ry, variance = sill_ - yy;
     if (terms_ > 0) {  // the drift's Lagrange multipliers (drift.h)
       const uint64_t node = (uint64_t{z} * grid_.dims[1] + y) * grid_.dims[0] + x;
       ts.drift.resize(3 * terms_);
-      kriger_.driftBasis().at(q, externalDrift_ ? externalDrift_[node] : NAN, ts.drift.data());
-      f->drift.correct(f->u.data(), n, ts.rhs.data(), ts.drift.data(), f->ur.data(),
-                       ts.drift.data() + terms_, value, variance);
-      if (f->drift.dropped() > 0) ++ts.summary.driftReducedNodes;
+      kriger_.driftBasis().at(centred(x, y, z), externalDrift_ ? externalDrift_[node] : NAN,
+                              ts.drift.data());
+      f.drift.correct(f.u.data(), n, rhs, ts.drift.data(), f.ur.data(), ts.drift.data() + terms_,
+                      value, variance);
+      if (f.drift.dropped() > 0) ++ts.summary.driftReducedNodes;
     }
     if (!std::isfinite(value) || !std::isfinite(variance)) {
       const Point3 p = grid_.node(x, y, z);
@@ -315,16 +231,17 @@ class BrickSolver {
     values_[at] = value;
     variances_[at] = std::max(variance, 0.0);  // -1e-16 * sill at a sample is 0
     ts.neighbourSum += static_cast<double>(n);
-    if (f->bounded)
-      ts.summary.worstConditionBound = std::max(ts.summary.worstConditionBound, f->condition);
+    if (f.bounded)
+      ts.summary.worstConditionBound = std::max(ts.summary.worstConditionBound, f.condition);
     else
-      ts.summary.worstCondition = std::max(ts.summary.worstCondition, f->condition);
-    if (f->jitter > 0) ++ts.summary.regularizedNodes;
-    ts.summary.largestJitter = std::max(ts.summary.largestJitter, f->jitter);
+      ts.summary.worstCondition = std::max(ts.summary.worstCondition, f.condition);
+    if (f.jitter > 0) ++ts.summary.regularizedNodes;
+    ts.summary.largestJitter = std::max(ts.summary.largestJitter, f.jitter);
     return Status::ok();
   }
 
   const Kriger& kriger_;
+  LocalSystems systems_;
   const GridSpec& grid_;
   uint32_t z0_, y0_, rows_;
   double* values_;
@@ -392,6 +309,12 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
           if (!failure) failure = s.error();
           stop = true;
         }
+      }
+      // The nodes still waiting belong to this slab.
+      if (Status s = solver.flush(ts); !stop && !s) {
+        std::lock_guard lock(failureLock);
+        if (!failure) failure = s.error();
+        stop = true;
       }
     });
     if (failure) return *failure;

@@ -19,6 +19,7 @@ struct Factorization {
   DriftSystem drift;          // G = U^T U
   double condition = 0, jitter = 0;
   bool bounded = false;  // condition is the nugget's bound, not an estimate
+  bool pending = false;  // queued, not yet factored (local_systems.h)
 };
 
 // Factorizations of recently seen neighbour sets, found by the hash of the set: 4-way set
@@ -36,6 +37,11 @@ class FactorizationCache {
     for (size_t i = first; i < first + kWays; ++i)
       if (hashes_[i] == hash && entries_[i].key == key) return &entries_[i];
     return nullptr;
+  }
+  // The slot insert(hash) would reuse next.
+  const Factorization& victim(uint64_t hash) const {
+    const size_t set = hash % sets_;
+    return entries_[set * kWays + next_[set]];
   }
   // A slot for a new set (reusing an old slot's memory).
   Factorization& insert(uint64_t hash) {

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "geostat/detail/spd_batch_kernels.h"
+
+#include <algorithm>
+#include <cmath>
+
+// Built like spd_kernels.cpp (baseline and AVX2 + FMA, picked at load time), plus AVX-512: the
+// lanes hold the scalar kernel's operations, and every clone with FMA contracts them alike.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define VOXLINK_BATCH_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define VOXLINK_BATCH_CLONES
+#endif
+
+namespace voxlink::geostat::spd::batch {
+namespace {
+
+constexpr size_t W = kLanes;
+
+// finishColumn of spd_kernels.cpp on every lane: column j of L from the updated column j.
+// The pivots' check is a loop of its own so that the square roots and divisions vectorize.
+[[gnu::always_inline]] inline void finishColumn(double* a, size_t j, size_t n, uint8_t* ok) {
+  double* cj = a + at(0, j, n, 0);
+  for (size_t l = 0; l < W; ++l) ok[l] &= cj[j * W + l] > 0.0 && cj[j * W + l] < INFINITY;
+  double inverse[W];
+  for (size_t l = 0; l < W; ++l) {
+    inverse[l] = 1.0 / std::sqrt(cj[j * W + l]);
+    cj[j * W + l] = inverse[l];
+  }
+  for (size_t i = j + 1; i < n; ++i)
+    for (size_t l = 0; l < W; ++l) cj[i * W + l] *= inverse[l];
+}
+
+// The scalar kernel's two-columns-at-a-time right-looking order; kN > 0 fixes the size. Inlined
+// into each clone (a separate function would be built for the baseline only, without FMA).
+template <size_t kN>
+[[gnu::always_inline]] inline void factorLowerBody(double* a, size_t n, uint8_t* ok) {
+  if constexpr (kN > 0) n = kN;
+  size_t j = 0;
+  for (; j + 1 < n; j += 2) {
+    double* c0 = a + at(0, j, n, 0);
+    double* c1 = a + at(0, j + 1, n, 0);
+    finishColumn(a, j, n, ok);
+    double l10[W];
+    for (size_t l = 0; l < W; ++l) l10[l] = c0[(j + 1) * W + l];
+    for (size_t i = j + 1; i < n; ++i)
+      for (size_t l = 0; l < W; ++l) c1[i * W + l] -= c0[i * W + l] * l10[l];
+    finishColumn(a, j + 1, n, ok);
+    for (size_t k = j + 2; k < n; ++k) {
+      double lk0[W], lk1[W];
+      for (size_t l = 0; l < W; ++l) lk0[l] = c0[k * W + l], lk1[l] = c1[k * W + l];
+      double* ck = a + at(0, k, n, 0);
+      for (size_t i = k; i < n; ++i)
+        for (size_t l = 0; l < W; ++l)
+          ck[i * W + l] -= c0[i * W + l] * lk0[l] + c1[i * W + l] * lk1[l];
+    }
+  }
+  if (j < n) finishColumn(a, j, n, ok);
+}
+
+}  // namespace
+
+VOXLINK_BATCH_CLONES void factorLower(double* a, size_t n, uint8_t ok[kLanes]) {
+  std::fill(ok, ok + W, uint8_t{1});
+  if (n == 32) return factorLowerBody<32>(a, n, ok);
+  factorLowerBody<0>(a, n, ok);
+}
+
+}  // namespace voxlink::geostat::spd::batch
