@@ -59,9 +59,8 @@ if command -v xvfb-run >/dev/null; then
         --window 160x120 --frames 2 --time 0 --screenshot-on-exit scene-view.png
     "$voxlink" bench-render --animate "$scene" --resolutions 64 --sizes 160x120 --frames 1 \
         --pictures scene-bench
-    # Up to 0.1 % of the pixels (19) may differ: the dynamic layer is not bit-reproducible
-    # (docs/dynamic-scenes.md; 10 did once).
-    idiff -fail 0.004 -failpercent 0.1 scene-view.png scene-bench/animate_64_8_160x120.png
+    # The same frame, pixel for pixel (docs/dynamic-scenes.md).
+    idiff -fail 0.004 scene-view.png scene-bench/animate_64_8_160x120.png
   else
     echo "the dragon mesh or idiff missing: a scene in the viewer not tested"
   fi
