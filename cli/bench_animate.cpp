@@ -33,16 +33,6 @@ double quantile(std::vector<double> v, double q) {
   return v[std::min(v.size() - 1, rank > 0 ? rank - 1 : 0)];
 }
 
-// The time one loop of the animation takes: the longest period, or the latest key.
-double animationSpan(const scene::SceneDescription& scene) {
-  double span = 0;
-  for (const scene::SceneObject& o : scene.objects)
-    if (o.animation)
-      span = std::max(
-          span, o.animation->period > 0 ? o.animation->period : o.animation->keys.back().time);
-  return span > 0 ? span : 1.0;
-}
-
 // The static part's scratch file: removed when the run ends, however it ends.
 struct ScratchFile {
   std::string path;
@@ -64,7 +54,7 @@ int runAnimateBenchmark(const AnimateBenchOptions& o, const render::RenderOption
       o.resolutions.empty() ? std::vector<uint32_t>{description->grid.resolution} : o.resolutions;
   const std::vector<uint32_t> bricks =
       o.bricks.empty() ? std::vector<uint32_t>{description->grid.brickSize} : o.bricks;
-  const double span = animationSpan(*description);
+  const double span = description->animationSpan();
   const char* threads = std::getenv("LP_NUM_THREADS");
   out.print("scene: %s, %u frames over %.3g s of animation\nGL: %s%s%s\n", o.scenePath.c_str(),
             o.frames, span, (*context)->description().c_str(), threads ? ", LP_NUM_THREADS=" : "",

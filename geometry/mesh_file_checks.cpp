@@ -14,14 +14,6 @@
 namespace voxlink::geometry {
 namespace {
 
-std::string readHead(const std::string& path, size_t bytes) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(bytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  return head;
-}
-
 uint64_t fileBytes(const std::string& path) {
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
@@ -49,14 +41,22 @@ bool nextDataLine(std::istream& in, std::string& line, uint64_t& number) {
 
 }  // namespace
 
+std::string readFileHead(const std::string& path, size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(bytes, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(in.gcount()));
+  return head;
+}
+
 bool looksLikePly(const std::string& path) {
-  const std::string magic = readHead(path, 4);
+  const std::string magic = readFileHead(path, 4);
   return magic.size() == 4 && magic.compare(0, 3, "ply") == 0 &&
          (magic[3] == '\n' || magic[3] == '\r');
 }
 
 bool looksLikeOff(const std::string& path) {
-  std::istringstream head(readHead(path, 16));
+  std::istringstream head(readFileHead(path, 16));
   std::string token;
   head >> token;
   return offKeywordLength(token) != std::string_view::npos;

@@ -1,21 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/detail/ply_header.h"
 
-#include <fstream>
 #include <sstream>
 
 #include "base/limits.h"
+#include "geometry/detail/mesh_file_checks.h"
 
 namespace voxlink::geometry {
 namespace {
-
-std::string readHead(const std::string& path, size_t bytes) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(bytes, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<size_t>(in.gcount()));
-  return head;
-}
 
 // The offset just past the line `end_header` (before its line end), or npos.
 size_t endOfHeaderLine(const std::string& head) {
@@ -36,7 +28,7 @@ const PlyElement* PlyHeader::find(const std::string& name) const {
 }
 
 Result<PlyHeader> readPlyHeader(const std::string& path) {
-  const std::string head = readHead(path, limits::kMaxTextHeaderBytes);
+  const std::string head = readFileHead(path, limits::kMaxTextHeaderBytes);
   const size_t end = endOfHeaderLine(head);
   if (end == std::string::npos)
     return makeError(ErrorCode::kCorrupt, path, ": PLY header has no 'end_header' line",

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "scene/scene_description.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -320,6 +321,15 @@ double Transform::uniformScale() const {
   if (std::abs(len[0] - len[1]) > 1e-9 * len[0] || std::abs(len[0] - len[2]) > 1e-9 * len[0])
     return 0;
   return len[0];
+}
+
+double SceneDescription::animationSpan() const {
+  double span = 0;
+  for (const SceneObject& o : objects)
+    if (o.animation)
+      span = std::max(
+          span, o.animation->period > 0 ? o.animation->period : o.animation->keys.back().time);
+  return span > 0 ? span : 1.0;
 }
 
 const SceneMaterial* SceneDescription::findMaterial(const std::string& name) const {

@@ -82,6 +82,10 @@ struct SceneDescription {
   std::vector<Light> lights;
   std::string cameraJson;  // the "camera" object as written, or empty
   const SceneMaterial* findMaterial(const std::string& name) const;
+  // The time one loop of the scene's motion takes: the longest animation `period`, else the
+  // latest key (1 s when nothing moves or every key is at 0); the viewer's clock and
+  // `bench-render --animate` run over it.
+  double animationSpan() const;
 };
 
 // Reads and checks a scene file; every error is one line naming the file and the JSON path of

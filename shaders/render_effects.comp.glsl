@@ -55,14 +55,7 @@ void traceEffectsRay(vec3 originWorld, vec3 direction, out vec3 color, out float
   // As render_main.glsl: the static file up to the moving meshes' first voxel, then its surface
   // (which spawns this ray's reflected and refracted rays). A ray that stopped for this pass
   // (transmittance 0, continued in the next) tests the layer again from where it goes on.
-  float tDynamic;
-  vec3 nDynamic;
-  uint mDynamic;
-  bool dynamic = dynamicHit(o, d, t0, t1, tDynamic, nDynamic, mDynamic);
-  traceVoxels(o, d, t0, dynamic ? tDynamic : t1, -direction, color, transmittance);
-  if (dynamic && transmittance > uStopTransmittance)
-    compositeSurface(fetchMaterial(mDynamic), nDynamic, o + tDynamic * d, -direction, color,
-                     transmittance);
+  traceVoxelsAndLayer(o, d, t0, t1, -direction, color, transmittance);
 #else
   traceVoxels(o, d, t0, t1, -direction, color, transmittance);
 #endif

@@ -24,15 +24,7 @@ void main() {
 #if VXL_TRILINEAR
     traceTrilinear(o, d, t0, t1, -direction, color, transmittance);
 #elif defined(VXL_DYNAMIC_LAYER)
-    // The static file up to the dynamic layer's first voxel, then that voxel's surface.
-    float tDynamic;
-    vec3 nDynamic;
-    uint mDynamic;
-    bool dynamic = dynamicHit(o, d, t0, t1, tDynamic, nDynamic, mDynamic);
-    traceVoxels(o, d, t0, dynamic ? tDynamic : t1, -direction, color, transmittance);
-    if (dynamic && transmittance > uStopTransmittance)
-      compositeSurface(fetchMaterial(mDynamic), nDynamic, o + tDynamic * d, -direction, color,
-                       transmittance);
+    traceVoxelsAndLayer(o, d, t0, t1, -direction, color, transmittance);
 #else
     traceVoxels(o, d, t0, t1, -direction, color, transmittance);
 #endif

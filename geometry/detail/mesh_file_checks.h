@@ -6,12 +6,16 @@
 // mesh). Each error names the file and the field.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include "base/error.h"
 
 namespace voxlink::geometry {
+
+// The file's first `bytes` bytes, fewer when it is shorter, empty when it cannot be read.
+std::string readFileHead(const std::string& path, size_t bytes);
 
 bool looksLikePly(const std::string& path);  // starts with "ply" and a line end
 bool looksLikeOff(const std::string& path);  // starts with [ST][C][N][4][n]OFF

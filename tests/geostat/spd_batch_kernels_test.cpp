@@ -10,26 +10,12 @@
 #include <vector>
 
 #include "geostat/detail/spd_kernels.h"
+#include "tests/geostat/spd_test_util.h"
 
 namespace voxlink::geostat {
 namespace {
 
 using spd::batch::kLanes;
-
-// Exponential covariances of n random points in a unit cube (range r), column-major, padded.
-std::vector<double> covariances(size_t n, double r, std::mt19937& rng) {
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<std::array<double, 3>> p(n);
-  for (auto& q : p) q = {u(rng), u(rng), u(rng)};
-  const size_t ld = spd::paddedSize(n);
-  std::vector<double> a(ld * n, 0.0);
-  for (size_t j = 0; j < n; ++j)
-    for (size_t i = 0; i < n; ++i) {
-      const double h = std::hypot(p[i][0] - p[j][0], p[i][1] - p[j][1], p[i][2] - p[j][2]);
-      a[j * ld + i] = std::exp(-3 * h / r);
-    }
-  return a;
-}
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -43,7 +29,7 @@ TEST(SpdBatchKernels, EveryLaneEqualsTheScalarKernelsBitForBit) {
       std::vector<std::vector<double>> scalar(kLanes);
       std::vector<double> compact(n * n * kLanes, 0.0);
       for (size_t lane = 0; lane < kLanes; ++lane) {
-        scalar[lane] = covariances(n, range, rng);
+        scalar[lane] = test::randomCovariances(n, range, rng);
         // Lane 3 is made indefinite (a negative last pivot) where the size allows it.
         if (lane == 3 && n > 1) scalar[lane][(n - 1) * ld + n - 1] = -1;
         for (size_t j = 0; j < n; ++j)

@@ -9,23 +9,14 @@
 #include <random>
 #include <vector>
 
+#include "tests/geostat/spd_test_util.h"
+
 namespace voxlink::geostat {
 namespace {
 
-// Exponential covariances of n random points in a unit cube (range r), column-major, padded.
 std::vector<double> covariances(size_t n, double r, unsigned seed) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<std::array<double, 3>> p(n);
-  for (auto& q : p) q = {u(rng), u(rng), u(rng)};
-  const size_t ld = spd::paddedSize(n);
-  std::vector<double> a(ld * n, 0.0);
-  for (size_t j = 0; j < n; ++j)
-    for (size_t i = 0; i < n; ++i) {
-      const double h = std::hypot(p[i][0] - p[j][0], p[i][1] - p[j][1], p[i][2] - p[j][2]);
-      a[j * ld + i] = std::exp(-3 * h / r);
-    }
-  return a;
+  return test::randomCovariances(n, r, rng);
 }
 
 double norm1(const std::vector<double>& a, size_t n) {

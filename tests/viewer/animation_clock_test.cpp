@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include "scene/scene_description.h"
+
 namespace voxlink::viewer {
 namespace {
 
@@ -35,16 +37,16 @@ TEST(AnimationClock, RunsLoopsAndPauses) {
 
 TEST(AnimationClock, SpanIsTheLongestPeriodOrLastKey) {
   scene::SceneDescription d;
-  EXPECT_DOUBLE_EQ(animationSpan(d), 1.0);
+  EXPECT_DOUBLE_EQ(d.animationSpan(), 1.0);
   scene::SceneObject keyed;
   keyed.animation = scene::Animation{};
   keyed.animation->keys = {{0.0, {}, {}}, {2.0, {}, {}}};
   d.objects.push_back(keyed);
-  EXPECT_DOUBLE_EQ(animationSpan(d), 2.0);
+  EXPECT_DOUBLE_EQ(d.animationSpan(), 2.0);
   scene::SceneObject looped = keyed;
   looped.animation->period = 5.0;
   d.objects.push_back(looped);
-  EXPECT_DOUBLE_EQ(animationSpan(d), 5.0);
+  EXPECT_DOUBLE_EQ(d.animationSpan(), 5.0);
 }
 
 }  // namespace

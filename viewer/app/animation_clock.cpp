@@ -1,19 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "viewer/app/detail/animation_clock.h"
 
-#include <algorithm>
 #include <cmath>
 
 namespace voxlink::viewer {
-
-double animationSpan(const scene::SceneDescription& scene) {
-  double span = 0;
-  for (const scene::SceneObject& o : scene.objects)
-    if (o.animation)
-      span = std::max(
-          span, o.animation->period > 0 ? o.animation->period : o.animation->keys.back().time);
-  return span > 0 ? span : 1.0;
-}
 
 AnimationClock::AnimationClock(double span) : span_(std::isfinite(span) && span > 0 ? span : 1.0) {}
 

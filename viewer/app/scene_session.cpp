@@ -41,7 +41,7 @@ Result<std::unique_ptr<SceneSession>> SceneSession::prepare(const std::string& s
                            scene::readSceneDescription(scenePath));
   if (options.resolution) description.grid.resolution = options.resolution;
   if (options.brick) description.grid.brickSize = options.brick;
-  std::unique_ptr<SceneSession> s(new SceneSession(scratchPath(), animationSpan(description)));
+  std::unique_ptr<SceneSession> s(new SceneSession(scratchPath(), description.animationSpan()));
   bool moves = false;
   for (const scene::SceneObject& o : description.objects) moves |= o.animation.has_value();
   if (moves) {

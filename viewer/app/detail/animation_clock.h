@@ -4,17 +4,11 @@
 // Free of GL and GLFW so tests can drive it.
 #pragma once
 
-#include "scene/scene_description.h"
-
 namespace voxlink::viewer {
-
-// The time one loop of a scene's animation takes: the longest `period`, else the latest key
-// (1 s when nothing moves or every key is at 0).
-double animationSpan(const scene::SceneDescription& scene);
 
 class AnimationClock {
  public:
-  // `span` > 0 seconds (animationSpan); the clock starts at 0, playing.
+  // `span` > 0 seconds (SceneDescription::animationSpan); the clock starts at 0, playing.
   explicit AnimationClock(double span);
   double time() const { return time_; }
   double span() const { return span_; }
