@@ -17,6 +17,23 @@
 int gK0, gK1, gK2, gK3, gK4, gK5, gK6, gK7;
 uint gB0, gB1, gB2, gB3, gB4, gB5, gB6, gB7;  // their first voxels (BVOX), 0 for -1
 ivec3 gDualBase;  // D n: the first cell of the dual brick, in index space
+// After loadCorners: the cells [gRunLo, gRunHi) along w (dual-brick-local) around the current
+// cell, in its u and v, that are known empty; just the cell itself when it is visible.
+uint gRunLo, gRunHi;
+
+// The run of empty cells along w around the empty cell at depth w < n - 1, from the mask bits
+// `rows` of the four rows its corners lie in: cell w' < n - 1 is empty when bits w' and w' + 1
+// are clear; the last cell's corners lie in the next brick, so a run stops before it. An empty
+// cell then costs one pass of traceTrilinear's loop per run, not per cell (5 % fewer passes
+// on the foot, firstSampleAfterRun).
+void emptyRun(uint rows, uint w) {
+  const uint last = uint(VXL_N - 1);
+  uint filled = rows | (rows >> 1u) | (1u << last);
+  uint below = (1u << w) - 1u;
+  bool inside = w < last;
+  gRunLo = inside ? uint(findMSB(filled & below) + 1) : w;
+  gRunHi = inside ? uint(findLSB(filled & ~below)) : w + 1u;
+}
 
 // How far (voxels) rounding may put a sample outside its dual brick; see traceTrilinear.
 const float kFaceTolerance = 0.01;
@@ -92,6 +109,8 @@ void loadCorners(ivec3 cell) {
   ivec3 local = cell - gDualBase;
   const uint last = uint(VXL_N - 1);
   uint w = uint(local[VXL_W]), u = uint(local[VXL_U]), v = uint(local[VXL_V]);
+  gRunLo = w;  // a cell that the TF leaves invisible is its own run
+  gRunHi = w + 1u;
   uint crossing = (w == last ? 1u : 0u) | (u == last ? 2u : 0u) | (v == last ? 4u : 0u);
   uint wNext = (w + 1u) & last, uNext = (u + 1u) & last, vNext = (v + 1u) & last;
   uint r0 = v * uint(VXL_N) + u, r1 = v * uint(VXL_N) + uNext;
@@ -115,7 +134,10 @@ void loadCorners(ivec3 cell) {
     i7 = rowInfoOrNone(k7, r3);
   }
   uint hits = ((i0.x | i2.x | i4.x | i6.x) >> w) | ((i1.x | i3.x | i5.x | i7.x) >> wNext);
-  if ((hits & 1u) == 0u) return;
+  if ((hits & 1u) == 0u) {
+    emptyRun(i0.x | i2.x | i4.x | i6.x, w);
+    return;
+  }
   rowPair(s0, i0, s1, i1, w, wNext, v0, v1);
   rowPair(s2, i2, s3, i3, w, wNext, v2, v3);
   rowPair(s4, i4, s5, i5, w, wNext, v4, v5);
@@ -156,6 +178,20 @@ bool placeSample(vec3 o, vec3 d, float ts, out vec3 qIn, out ivec3 cell) {
   qIn = clamp(q, vec3(gDualBase), vec3(gDualBase + VXL_N));
   cell = min(ivec3(floor(qIn)), gDualBase + (VXL_N - 1));
   return all(lessThanEqual(abs(qIn - q), vec3(kFaceTolerance)));
+}
+
+// Index of the first sample t_k = t0 + (k + 1/2) step at or after the ray leaves the empty cell
+// `cell` and its run along w (as firstSampleAfterCell in compositing.glsl).
+int firstSampleAfterRun(vec3 o, vec3 d, ivec3 cell, float t0) {
+  vec3 lo = vec3(cell), hi = vec3(cell + 1);
+  lo[VXL_W] = float(gDualBase[VXL_W] + int(gRunLo));
+  hi[VXL_W] = float(gDualBase[VXL_W] + int(gRunHi));
+  float tExit = kBig;
+  for (int a = 0; a < 3; ++a) {
+    if (abs(d[a]) < kParallelEpsilon) continue;
+    tExit = min(tExit, ((d[a] > 0.0 ? hi[a] : lo[a]) + 0.5 - o[a]) / d[a]);
+  }
+  return int(ceil((tExit - t0) / uStep - 0.5));
 }
 
 // One flat loop: each pass either moves to the next dual brick or takes one sample. Nested
@@ -220,7 +256,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       loadCorners(cell);
     }
     if (!gCellVisible) {
-      k = max(k + 1, firstSampleAfterCell(o, d, cell, t0));
+      k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
       continue;
     }
     // Every sample of a visible cell in this pass: its corners are loaded, and a pass of this
