@@ -6,6 +6,8 @@
 # `voxlink bench-render` (voxel and trilinear sampling, PSNR against the float64 reference,
 # GPU memory) and bench/paraview_render_bench.py in pvpython (trilinear, step 0.5 voxels,
 # shading on, the same camera orbit). Prints one summary table at the end.
+# Early ray termination as ParaView's: VTK 5.11's vtkOpenGLGPUVolumeRayCastMapper stops a ray once
+# its accumulated opacity exceeds g_opacityThreshold = 1 - 1/255; voxlink gets the same threshold.
 # usage: bench/render_vs_paraview.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN] [SIZE]
 # OCCUPANCY=1 runs the occupancy sweep instead: the tooth CT kept at thresholds that keep about
 # 1 %, 6 %, 20 % and 50 % of its voxels, each shown with a ramp TF over what it keeps.
@@ -28,6 +30,7 @@ xvfb=$!
 trap 'kill $xvfb 2>/dev/null || true' EXIT
 sleep 2
 
+paraview_termination=$(awk 'BEGIN {printf "%.9f", 1 - 1 / 255}')
 summary="$out/summary.md"
 {
   echo "| data | voxels kept | file MB | GPU MiB | voxlink voxel ms | voxlink trilinear ms | ParaView ms | voxel speed-up | trilinear speed-up | PSNR voxel / trilinear dB |"
@@ -45,6 +48,7 @@ run() {  # name source tf [convert options...]
   "$voxlink" export "$out/$name.vxl" -o "$out/$name.nrrd" -q
   # shellcheck disable=SC2086
   "$voxlink" bench-render "$out/$name.vxl" --tf "$tf" --sizes "$size" --no-dense ${BENCH_FLAGS:-} \
+      --termination-alpha "$paraview_termination" \
       --frames-per-turn "$frames" --pictures "$out/$name" | tee "$out/$name.md"
   DISPLAY=":$display" pvpython --no-mpi "$here/paraview_render_bench.py" "$out/$name.nrrd" "$tf" \
       --size "$size" --frames-per-turn "$frames" --picture "$out/$name/paraview.png" \

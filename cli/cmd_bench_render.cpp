@@ -167,11 +167,13 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
     args->out.print("GL: %s%s%s\n", (*context)->description().c_str(),
                     threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
     args->out.print(
-        "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; shading %s; "
-        "shadows %s; effects %s (max %d bounces, %zu scene lights)\n\n",
-        o.framesPerTurn, o.base.stepVoxels, o.base.shading.enabled ? "on" : "off",
-        o.base.shading.shadows ? "on" : "off", render::effectsName(o.base.effects).c_str(),
-        o.base.effects.maxBounces, o.base.lights.size());
+        "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; rays stop "
+        "at opacity %.6f; shading %s; shadows %s; effects %s (max %d bounces, %zu scene "
+        "lights)\n\n",
+        o.framesPerTurn, o.base.stepVoxels, o.base.terminationAlpha,
+        o.base.shading.enabled ? "on" : "off", o.base.shading.shadows ? "on" : "off",
+        render::effectsName(o.base.effects).c_str(), o.base.effects.maxBounces,
+        o.base.lights.size());
     auto rows =
         render::gl::runRenderBenchmark(renderers, reference, (*voxlink)->geometry().worldBox(), o);
     if (!rows) return reportError(rows.error());

@@ -24,6 +24,11 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
       ->capture_default_str();
   cmd->add_option("--step", step, "Trilinear step in units of the smallest voxel spacing")
       ->capture_default_str();
+  cmd->add_option(
+         "--termination-alpha", terminationAlpha,
+         "Rays stop once their accumulated opacity reaches this, in (0, 1] (ParaView 5.11: "
+         "1 - 1/255)")
+      ->capture_default_str();
   cmd->add_flag("--shadows", shadows, "Shadow rays towards the light");
   cmd->add_flag("--no-shading", noShading, "Unlit colours (no Phong shading)");
   cmd->add_option(

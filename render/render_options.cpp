@@ -23,6 +23,7 @@ Result<RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) 
   s.height = wh[1];
   s.sampling = *parseSampling(sampling);
   s.stepVoxels = step;
+  s.terminationAlpha = terminationAlpha;
   s.shading.shadows = shadows;
   s.shading.enabled = !noShading;
   std::stringstream in(background);

@@ -23,6 +23,7 @@ struct RenderOptions {
   std::string up;  // empty: the scene's camera, else z
   std::string sampling = "voxel";
   double step = 0.5;
+  double terminationAlpha = 0.99;  // RenderSettings::terminationAlpha
   bool shadows = false;
   bool noShading = false;
   std::string effects = "none";

@@ -41,7 +41,7 @@ void compositeSample(vec3 q, vec3 fraction, vec3 toEye, inout vec3 color, inout 
   if (!(c.a > 0.0)) return;
   vec3 ambient, lit;
   shadeSample(c.rgb, c.a, gradient, toEye, ambient, lit);
-  float a = correctedAlpha(c.a, uStep);
+  float a = stepAlpha(c.a);
   float shadow = 1.0;
 #if VXL_SHADOWS
   shadow = shadowTransmittance(indexToWorld(q + 0.5));

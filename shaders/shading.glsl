@@ -9,10 +9,44 @@ uniform float uStopTransmittance;  // 1 - termination alpha: rays stop at or bel
 uniform float uShadowStop;         // shadow rays stop below this transmittance
 uniform float uStep;               // trilinear step, world units
 
+// Specialisations the renderer defines when the settings allow (VolumeRenderer::program):
+// llvmpipe evaluates pow() as exp2(log2()), two polynomial approximations per SIMD vector, at
+// every trilinear sample, twice.
+#ifndef VXL_HALF_VOXEL_STEP
+#define VXL_HALF_VOXEL_STEP 0  // 1: uStep is half the smallest spacing, pow(x, 0.5) = sqrt(x)
+#endif
+#ifndef VXL_SHININESS
+#define VXL_SHININESS 0  // 1..127: the specular exponent, an integer; 0: uPhong.w
+#endif
+
 // Opacity of a chord of `len` through matter of opacity `alpha` per unit length.
 float correctedAlpha(float alpha, float len) {
   if (alpha <= 0.0 || len <= 0.0) return 0.0;
   return 1.0 - pow(1.0 - min(alpha, kMaxUnitAlpha), len / uUnit);
+}
+
+// correctedAlpha(alpha, uStep): the opacity of one trilinear step.
+float stepAlpha(float alpha) {
+#if VXL_HALF_VOXEL_STEP
+  if (alpha <= 0.0) return 0.0;
+  return 1.0 - sqrt(1.0 - min(alpha, kMaxUnitAlpha));
+#else
+  return correctedAlpha(alpha, uStep);
+#endif
+}
+
+// x^shininess for x in [0, 1]: an integer exponent by 7 squarings, which the compiler unrolls.
+float specularPower(float x) {
+#if VXL_SHININESS > 0
+  float r = 1.0, b = x;
+  for (int i = 0; i < 7; ++i) {
+    if (((VXL_SHININESS >> i) & 1) != 0) r *= b;
+    b *= b;
+  }
+  return r;
+#else
+  return pow(x, uPhong.w);
+#endif
 }
 
 // Phong terms of a sample with (premultiplied) colour c and opacity alpha: colour = ambient +
@@ -34,7 +68,7 @@ void shadeSampleToward(vec3 c, float alpha, vec3 gradient, vec3 toEye, vec3 toLi
   if (ndl > 0.0) {
     diffuse = ndl;
     vec3 r = 2.0 * ndl * n - toLight;
-    specular = pow(max(dot(r, toEye), 0.0), uPhong.w);
+    specular = specularPower(max(dot(r, toEye), 0.0));
   }
   ambient = c * (1.0 - m + m * uPhong.x);
   lit = m * (c * (uPhong.y * diffuse) + vec3(alpha * uPhong.z * specular));

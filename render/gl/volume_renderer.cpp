@@ -92,7 +92,13 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
 Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
   const bool effects = pass != Pass::kPlain;
   const bool shadows = s.shading.enabled && (s.shading.shadows || (effects && s.effects.shadows));
-  const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()));
+  // pow() specialised away where the settings allow (shading.glsl): a half-voxel step, an
+  // integer specular exponent.
+  const bool halfVoxelStep = s.stepVoxels == 0.5;
+  const double e = s.shading.shininess;
+  const int shininess = e >= 1 && e <= 127 && e == std::floor(e) ? int(e) : 0;
+  const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()),
+                                   halfVoxelStep, shininess);
   if (auto it = programs_.find(key); it != programs_.end()) return &it->second;
   if (pass == Pass::kEffectsResolve) {
     VOXLINK_ASSIGN_OR_RETURN(
@@ -111,6 +117,8 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
     defines.push_back({"VXL_ACCUM_BINDING", std::to_string(kAccumBinding)});
   }
   defines.push_back({"VXL_TRILINEAR", s.sampling == Sampling::kTrilinear ? "1" : "0"});
+  defines.push_back({"VXL_HALF_VOXEL_STEP", halfVoxelStep ? "1" : "0"});
+  defines.push_back({"VXL_SHININESS", std::to_string(shininess)});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});

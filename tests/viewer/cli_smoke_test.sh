@@ -26,6 +26,17 @@ awk -v p="$psnr" 'BEGIN { exit !(p >= 45) }' || { echo "PSNR $psnr below 45 dB";
 # Bad input: one line, non-zero status, nothing written.
 if "$voxlink" render tooth.vxl -o bad.png --size 0x10 2>err.txt; then exit 1; fi
 [[ $(wc -l <err.txt) -eq 1 && ! -e bad.png ]]
+if "$voxlink" render tooth.vxl -o bad.png --termination-alpha 1.5 2>err.txt; then exit 1; fi
+[[ $(wc -l <err.txt) -eq 1 && ! -e bad.png ]] && grep -q "termination alpha" err.txt
+
+# Early ray termination reaches the image: ParaView's threshold (1 - 1/255) still agrees with the
+# reference at the same setting, and stopping rays at opacity 0.3 changes the picture.
+out=$("$voxlink" render tooth.vxl -o late.png --size 64x48 --sampling trilinear \
+    --termination-alpha 0.996078431 --reference)
+psnr=$(sed -n 's/.*PSNR \([0-9.]*\) dB.*/\1/p' <<<"$out")
+awk -v p="$psnr" 'BEGIN { exit !(p >= 45) }' || { echo "PSNR $psnr below 45 dB"; exit 1; }
+"$voxlink" render tooth.vxl -o early.png --size 64x48 --sampling trilinear --termination-alpha 0.3
+if cmp -s late.png early.png; then echo "--termination-alpha changed nothing"; exit 1; fi
 
 "$voxlink" bench-render tooth.vxl --sizes 32x32 --frames-per-turn 2 --samplings voxel | tee bench.txt
 grep -q "| voxlink | voxel | 32x32 |" bench.txt

@@ -104,7 +104,7 @@ class VolumeRenderer {
   GlTexture tfTexels_;  // tfBuffer_ as a buffer texture of RGBA texels
   uint64_t tfBytes_ = 0;
   GlStorageBuffer gradientTable_;
-  std::map<std::tuple<int, bool, int, int>, ComputeProgram> programs_;
+  std::map<std::tuple<int, bool, int, int, bool, int>, ComputeProgram> programs_;
   EffectsBuffers effects_;
   EffectsStats effectsStats_;
 };
