@@ -13,6 +13,7 @@
 #include "cli/command.h"
 #include "cli/printable_message.h"
 #include "cli/process_ranks.h"
+#include "geostat/blas_threads.h"
 
 namespace voxlink::cli {
 
@@ -87,6 +88,8 @@ int runCommand(const CommandRunner& run) {
 
 int main(int argc, char** argv) {
   using namespace voxlink::cli;
+  // A core back for short jobs (geostat/blas_threads.h).
+  voxlink::geostat::stopIdleBlasThreads();
   // MPI first (it may edit argv); MPI_Finalize when main returns, on every path.
   startProcessRanks(&argc, &argv);
   struct EndRanks {
