@@ -29,6 +29,22 @@ inline constexpr uint16_t kExtentConvex = 1u << 14;
 // How far (in the voxel's smallest spacing) a convex piece's hit may lie in front of another
 // plane of its voxel and still count: rounding, not geometry.
 inline constexpr double kConvexTolerance = 1e-4;
+// How far (in the voxel's smallest spacing) a plane hit may lie outside its voxel's chord, along
+// the plane's normal, and still count. Neighbouring voxels' planes do
+// not meet exactly: each has its own quantized normal (up to 0.78 degrees off) and passes through
+// its own piece's centroid, so at a shared face they part by up to a few thousandths of a voxel,
+// and a ray crossing the surface there is in front of one plane and already behind the next
+// (docs/surface-modes.md, "Rays through the red wall"). 1/64 voxel closes those cracks.
+inline constexpr double kPlaneHitTolerance = 1.0 / 64.0;
+// How far (voxel-local) a plane hit may lie outside its extent box: the plane's hit lies off the
+// real surface's by the normal's quantization, so a piece ending on an eighth lost hits just
+// inside its edge (0.003 voxel on the Cornell box's red wall). Half the chord's tolerance: a
+// full 1/64 let planes reach past silhouettes (4 extra pixels on molecule-glass at 512).
+inline constexpr double kExtentTolerance = 1.0 / 128.0;
+// The chord grows by kPlaneHitTolerance / |cos| along the ray, where cos is between the ray and the
+// normal, at most this many tolerances (1/8 voxel): rays within 7.2 degrees of the plane grow no
+// further, so planes seen edge-on at silhouettes do not reach out of their voxels.
+inline constexpr double kPlaneHitReach = 8.0;
 
 struct FragmentExtent {
   int axis = 0;                    // the box is seen along this axis
@@ -73,13 +89,15 @@ inline FragmentExtent decodeExtent(uint16_t code) {
   return e;
 }
 
-// Whether a point (voxel-local, [0, 1]^3) lies in the extent's box, bounds included. A bound on
-// the voxel's face is no bound: a hit inside the chord may round to just outside the voxel, and
-// code 0 must keep every hit, as in version 2.1.
+// Whether a point (voxel-local, [0, 1]^3) lies in the extent's box grown by kExtentTolerance. A
+// bound on the voxel's face is no bound: a hit inside the chord may round to just outside the
+// voxel, and code 0 must keep every hit, as in version 2.1.
 inline bool extentHolds(const FragmentExtent& e, const std::array<double, 3>& local) {
   for (int k = 0; k < 2; ++k) {
     const double x = local[(e.axis + 1 + k) % 3];
-    if ((e.lo[k] > 0 && x < e.lo[k]) || (e.hi[k] < 1 && x > e.hi[k])) return false;
+    if ((e.lo[k] > 0 && x < e.lo[k] - kExtentTolerance) ||
+        (e.hi[k] < 1 && x > e.hi[k] + kExtentTolerance))
+      return false;
   }
   return true;
 }

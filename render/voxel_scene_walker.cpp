@@ -78,7 +78,14 @@ SceneEvent VoxelSceneWalker::listHit(const Ray& ray, const glm::ivec3& cell, uin
       const double denominator = glm::dot(n, ray.direction);
       if (denominator == 0) continue;
       const double t = -inFront(f, ray.origin) / denominator;
-      if (!(t >= ta && t < tb && t < hit.t)) continue;
+      // The chord grown at both ends by kPlaneHitTolerance along the normal (never before the
+      // ray's origin, t = 0, as in the GL ray tracer): where neighbouring planes part at their
+      // shared face, a ray crossing the surface between them hits one of them. At most
+      // kPlaneHitReach along the ray, so a plane seen edge-on (a silhouette) does not reach far out
+      // of its voxel.
+      const double grow = format::kPlaneHitTolerance * unit_ *
+                          std::min(1 / std::abs(denominator), format::kPlaneHitReach);
+      if (!(t >= std::max(ta - grow, 0.0) && t < tb + grow && t < hit.t)) continue;
       // The hit in voxel-local coordinates ([0, 1]^3 in the cell), against the piece's box and,
       // at a convex crease, behind the voxel's other planes.
       const glm::dvec3 p = ray.origin + t * ray.direction;

@@ -46,7 +46,8 @@ class VoxelSceneWalker : public SceneWalker {
   std::vector<glm::dvec3> planeNormals_;              // FRAG's normals, decoded once
   std::vector<format::FragmentExtent> planeExtents_;  // FRAG's extents (2.2), decoded once
 
-  // The nearest hit in [ta, tb) of surface voxel `slot`'s fragment list, or t = HUGE_VAL.
+  // The nearest hit in [ta, tb) of surface voxel `slot`'s fragment list (planes: the chord grown
+  // by kPlaneHitTolerance, not before t = 0), or t = HUGE_VAL.
   SceneEvent listHit(const Ray& ray, const glm::ivec3& cell, uint32_t slot, double ta,
                      double tb) const;
 };

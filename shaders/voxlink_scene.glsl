@@ -110,6 +110,11 @@ bool firstSphereHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tH
 // (10 words per TriangleRecord). Mirrors VoxelSceneWalker::listHit.
 #if VXL_SURFACE_MODE == 1
 const float kPlaneOffsetUnit = 1.0 / 4096.0;  // format/layout.h
+// Plane hits count this far (voxels) outside the chord along the normal, and kExtentTolerance
+// outside the extent box, so neighbouring voxels' planes leave no crack (format/fragment_extent.h).
+const float kPlaneHitTolerance = 1.0 / 64.0;
+const float kPlaneHitReach = 8.0;            // at most 8 tolerances along the ray (edge-on planes)
+const float kExtentTolerance = 1.0 / 128.0;  // outside the extent box
 
 // Whether a voxel-local point lies in a fragment's extent box (format/fragment_extent.h; code 0
 // is the whole voxel, as in version 2.1 files).
@@ -118,9 +123,11 @@ bool extentHolds(uint code, vec3 local) {
   float u = local[(axis + 1u) % 3u], v = local[(axis + 2u) % 3u];
   float uLo = float((code >> 2u) & 7u) / 8.0, uHi = 1.0 - float((code >> 5u) & 7u) / 8.0;
   float vLo = float((code >> 8u) & 7u) / 8.0, vHi = 1.0 - float((code >> 11u) & 7u) / 8.0;
-  // A bound on the voxel's face is no bound (a hit in the chord may round just outside).
-  return (uLo == 0.0 || u >= uLo) && (uHi == 1.0 || u <= uHi) && (vLo == 0.0 || v >= vLo) &&
-         (vHi == 1.0 || v <= vHi);
+  // A bound on the voxel's face is no bound (a hit in the chord may round just outside); the
+  // others are grown by kExtentTolerance.
+  return (uLo == 0.0 || u >= uLo - kExtentTolerance) &&
+         (uHi == 1.0 || u <= uHi + kExtentTolerance) &&
+         (vLo == 0.0 || v >= vLo - kExtentTolerance) && (vHi == 1.0 || v <= vHi + kExtentTolerance);
 }
 
 // A convex fragment's hit (world, from the voxel centre) counts only behind or on the voxel's
@@ -177,7 +184,11 @@ bool surfaceHit(uint voxel, vec3 o, vec3 d, float ta, float tz, out float tHit, 
     if (along == 0.0) continue;
     float offset = float(int(e.y << 16u) >> 16) * (kPlaneOffsetUnit * uUnit);
     float t = (offset - dot(fn, fromCentre)) / along;
-    if (t >= ta && t < tz && t < tHit && extentHolds(e.y >> 16u, o + t * d - cell) &&
+    // The chord grown at both ends (not before the ray's start, t = 0), as the float64 walker.
+    float grow =
+        kPlaneHitTolerance * uUnit * min(1.0 / abs(along), kPlaneHitReach / length(direction));
+    if (t >= max(ta - grow, 0.0) && t < tz + grow && t < tHit &&
+        extentHolds(e.y >> 16u, o + t * d - cell) &&
         behindOthers(e.y >> 16u, s, f, fromCentre + t * direction)) {
       tHit = t;
       n = fn;
