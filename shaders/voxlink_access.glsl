@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Lookups in a VoxLink file on the GPU (format/layout.h, the same steps as format::VoxelLocator):
 // brick -> occupied index -> row start -> bit rank within the row mask. The generated
-// voxlink_sections.glsl declares the buffers (render/gl/detail/section_buffers.h: the voxel sections
-// unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
+// voxlink_sections.glsl declares the buffers (render/gl/detail/section_buffers.h: the voxel
+// sections unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
 // chunks where one exceeds a storage block) and the accessors rowWord() (bricks up to 16^3) or
-// rowsWord() and maskWord() (32^3), voxelWord(), valuWord() (values wider than 8 bits), brickIndexWord(), dualBoxWord(),
-// brickEntry().
+// rowsWord() and maskWord() (32^3), voxelWord(), valuWord() (values wider than 8 bits),
+// brickIndexWord(), dualBoxWord(), brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
@@ -18,8 +18,8 @@ uniform ivec3 uBrickGrid;
 int occupiedIndex(ivec3 b) {
   ivec3 r = b - kVxlIndexLo;
   if (any(lessThan(r, ivec3(0))) || any(greaterThanEqual(r, kVxlIndexSize))) return -1;
-  return int(brickIndexWord((uint(r.z) * uint(kVxlIndexSize.y) + uint(r.y)) * uint(kVxlIndexSize.x) +
-                            uint(r.x)));
+  return int(brickIndexWord(
+      (uint(r.z) * uint(kVxlIndexSize.y) + uint(r.y)) * uint(kVxlIndexSize.x) + uint(r.x)));
 }
 
 // First voxel (BVOX) of occupied brick k.
@@ -47,11 +47,26 @@ uvec2 rowInfo(uint k, uint row) {
 #endif
 }
 
+// The file-wide index of a row's first voxel from rowInfo's start: row words of bricks up to 8^3
+// already hold it (VXL_ROW_GLOBAL, render/gl/detail/row_words.h), otherwise the brick's first
+// voxel `base` is added.
+uint rowFirst(uint base, uint start) {
+#if VXL_N <= 16 && VXL_ROW_GLOBAL
+  return start;
+#else
+  return base + start;
+#endif
+}
+
 // Mask bits and first voxel of a row.
 Row fetchRow(uint k, uint row) {
   uvec2 info = rowInfo(k, row);
   if (info.x == 0u) return Row(0u, 0u);
+#if VXL_N <= 16 && VXL_ROW_GLOBAL
+  return Row(info.x, info.y);
+#else
   return Row(info.x, firstVoxel(k) + info.y);
+#endif
 }
 
 // Voxel index of depth d in a row, or -1: the next voxel along the predominant axis is the next

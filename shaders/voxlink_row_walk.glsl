@@ -15,15 +15,15 @@ struct RowWalk {
   float tBrick;  // where it leaves the brick
   bool loaded;   // the row below is the current cell's
   Row row;
-  uint hits;     // stored voxels of the row still ahead within this stretch
+  uint hits;  // stored voxels of the row still ahead within this stretch
   int entryDepth;
   float tRowEnd;
 };
 
 // Starts the walk at t through the cells [lo, hi] of occupied brick k (grid cell `brick`, first
 // voxel `base`), which the ray leaves at tBrick.
-RowWalk rowWalkBegin(vec3 o, vec3 d, float t, float tBrick, ivec3 brick, uint k, uint base, ivec3 lo,
-                     ivec3 hi) {
+RowWalk rowWalkBegin(vec3 o, vec3 d, float t, float tBrick, ivec3 brick, uint k, uint base,
+                     ivec3 lo, ivec3 hi) {
   RowWalk w;
   w.origin = brick * VXL_N;
   w.lo = lo;
@@ -66,7 +66,7 @@ bool rowWalkNext(inout RowWalk w, out uint voxel, out float tStart, out float tE
         uint upTo = b == 31u ? 0xFFFFFFFFu : (1u << (b + 1u)) - 1u;
         w.hits = w.row.bits & upTo & ~((1u << a) - 1u);
         // The row's first voxel, only for rows the ray meets voxels in.
-        if (w.hits != 0u) w.row.first = w.base + info.y;
+        if (w.hits != 0u) w.row.first = rowFirst(w.base, info.y);
       }
     }
     if (w.hits != 0u) {

@@ -15,7 +15,9 @@
 // Occupied indices (or -1) of the bricks dual brick D reads, numbered like the corners of a cell
 // (cornerOffset in compositing.glsl): bit 0 is brick D + 1 along w, bit 1 along u, bit 2 along v.
 int gK0, gK1, gK2, gK3, gK4, gK5, gK6, gK7;
-uint gB0, gB1, gB2, gB3, gB4, gB5, gB6, gB7;  // their first voxels (BVOX), 0 for -1
+// Their first voxels (BVOX), 0 for -1; all 0 when row words hold file-wide indices
+// (VXL_ROW_GLOBAL): no fetch on entering a dual brick and no select per corner then.
+uint gB0, gB1, gB2, gB3, gB4, gB5, gB6, gB7;
 ivec3 gDualBase;  // D n: the first cell of the dual brick, in index space
 // After loadCorners: the cells [gRunLo, gRunHi) along w (dual-brick-local) around the current
 // cell, in its u and v, that are known empty; just the cell itself when it is visible.
@@ -41,7 +43,11 @@ const float kFaceTolerance = 0.01;
 // Occupied index (or -1) of brick `dual + cornerOffset(m)` and its first voxel (0 for -1).
 int dualBrickIndex(ivec3 dual, int m, out uint base) {
   int k = occupiedIndex(dual + cornerOffset(m));  // -1 outside the grid too
+#if VXL_N <= 16 && VXL_ROW_GLOBAL
+  base = 0u;
+#else
   base = k < 0 ? 0u : firstVoxel(uint(k));
+#endif
   return k;
 }
 

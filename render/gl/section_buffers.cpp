@@ -103,9 +103,11 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
                      valuesInWords ? values : std::span<const uint8_t>());
   // Bricks up to 16^3: mask and start of a row in one word, in place of MASK and ROWS.
   const uint32_t n = file.header().brickSize;
+  const bool rowsGlobal = rowWordsGlobal(n, file.voxelCount());
   const std::vector<uint32_t> rowWords =
       rowWordsFit(n)
-          ? packRowWords(n, file.occupiedBrickCount(), file.rowMaskWords(), file.rowStarts())
+          ? packRowWords(n, file.occupiedBrickCount(), file.rowMaskWords(), file.rowStarts(),
+                         rowsGlobal ? file.brickVoxelBase() : std::span<const uint32_t>())
           : std::vector<uint32_t>();
   std::vector<GpuArray> arrays = {
       {"voxel words", "voxelWord", "VxlVoxelWord", 1, bytesOf(voxelWords)},
@@ -159,7 +161,9 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
                   "const ivec3 kVxlIndexLo = ", ivec3Of(occupied.lo), ";\n",
                   "const ivec3 kVxlIndexSize = ", ivec3Of(occupied.size), ";\n",
                   "const ivec3 kVxlDualLo = ", ivec3Of(dual.lo), ";\n",
-                  "const ivec3 kVxlDualSize = ", ivec3Of(dual.size), ";\n");
+                  "const ivec3 kVxlDualSize = ", ivec3Of(dual.size), ";\n",
+                  "// Row words hold file-wide voxel indices (row_words.h).\n",
+                  "#define VXL_ROW_GLOBAL ", rowsGlobal ? 1 : 0, "\n");
   GLuint unit = options.firstUnit;
   for (const GpuArray& s : arrays) {
     const uint64_t elementBytes = 4 * s.wordsPerElement;

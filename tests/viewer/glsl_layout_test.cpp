@@ -12,6 +12,7 @@
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/voxel_locator.h"
+#include "render/gl/detail/row_words.h"
 #include "render/gl/detail/section_buffers.h"
 #include "render/gl/detail/volume_renderer.h"
 #include "render/gl/detail/voxel_words.h"
@@ -229,6 +230,27 @@ TEST(VoxelWords, EightBitValuesInTheTopByte) {
   EXPECT_EQ(words[1], render::gl::packGradientDirection(0xABCD) | 255u << 24);
   const auto bare = render::gl::packVoxelWords(codes, {});
   EXPECT_EQ(bare[1], render::gl::packGradientDirection(0xABCD));
+}
+
+TEST(RowWords, FileWideStartsAddTheBricksFirstVoxel) {
+  // Two 4^3 bricks: 16 rows of 4 bits each, two MASK words per brick.
+  const uint32_t masks[] = {0x0000000Bu, 0, 0x00000001u, 0};
+  std::vector<uint16_t> starts(32, 0);
+  starts[1] = 3;   // brick 0, row 1: after the 3 voxels of row 0
+  starts[17] = 1;  // brick 1, row 1
+  const uint32_t first[] = {0, 4};
+  const auto local = packRowWords(4, 2, masks, starts);
+  const auto global = packRowWords(4, 2, masks, starts, first);
+  EXPECT_EQ(local[0], 0xBu);
+  EXPECT_EQ(global[0], 0xBu);
+  EXPECT_EQ(local[1], 3u << 4);
+  EXPECT_EQ(global[1], 3u << 4);
+  EXPECT_EQ(local[16], 1u);
+  EXPECT_EQ(global[16], 1u | 4u << 4);
+  EXPECT_EQ(global[17], (4u + 1u) << 4);
+  EXPECT_TRUE(rowWordsGlobal(8, (1u << 24) - 1));
+  EXPECT_FALSE(rowWordsGlobal(8, 1u << 24));
+  EXPECT_FALSE(rowWordsGlobal(16, 100));
 }
 
 std::vector<LookupCase> lookupCases() {

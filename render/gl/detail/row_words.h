@@ -14,9 +14,19 @@ namespace voxlink::render::gl {
 
 inline constexpr bool rowWordsFit(uint32_t brickSize) { return brickSize <= 16; }
 
+// Whether the start above the mask bits can be the row's first voxel in the whole file (its
+// brick's first voxel added): bricks up to 8^3 leave 24 bits, files below 16.7M voxels. The
+// trilinear caster then reads no brick's first voxel (8 fetches per dual brick) and selects none
+// per corner (docs/rendering-trilinear-profile.md, fourth session). Shaders see VXL_ROW_GLOBAL.
+inline constexpr bool rowWordsGlobal(uint32_t brickSize, uint64_t voxelCount) {
+  return brickSize <= 8 && voxelCount < (uint64_t(1) << (32 - brickSize));
+}
+
 // The words of `bricks` occupied bricks of size n (rowWordsFit(n)) from MASK (n^3 / 32 words per
-// brick, n bits per row) and ROWS (n^2 starts per brick).
+// brick, n bits per row) and ROWS (n^2 starts per brick); with firstVoxels (BVOX, one per brick,
+// rowWordsGlobal) the starts are the file's voxel indices, without it the brick's.
 std::vector<uint32_t> packRowWords(uint32_t n, uint64_t bricks, std::span<const uint32_t> maskWords,
-                                   std::span<const uint16_t> rowStarts);
+                                   std::span<const uint16_t> rowStarts,
+                                   std::span<const uint32_t> firstVoxels = {});
 
 }  // namespace voxlink::render::gl
