@@ -66,8 +66,10 @@ TEST(CliVocabulary, EverySubcommandTakesQuietAndProgressWhereItReports) {
   for (const char* expected : {"convert", "info", "validate", "export", "pack", "unpack", "stats",
                                "scene build", "dicom list", "krige", "grf"})
     EXPECT_TRUE(names.count(expected)) << expected << " missing from voxlink --help";
-  const std::set<std::string> withProgress = {"convert",  "stats",  "scene build", "krige", "grf",
-                                              "validate", "export", "pack",        "unpack"};
+  // view: the progress of building a scene file before its window opens.
+  const std::set<std::string> withProgress = {"convert", "stats",    "scene build", "krige",
+                                              "grf",     "validate", "export",      "pack",
+                                              "unpack",  "view"};
   for (const auto& [name, help] : leaves) {
     EXPECT_NE(help.find("-q,--quiet"), std::string::npos) << name << ":\n" << help;
     EXPECT_EQ(help.find("--progress") != std::string::npos, withProgress.count(name) == 1)
