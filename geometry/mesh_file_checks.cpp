@@ -9,7 +9,6 @@
 #include <string_view>
 
 #include "base/limits.h"
-#include "geometry/detail/ply_header.h"
 
 namespace voxlink::geometry {
 namespace {
@@ -62,8 +61,7 @@ bool looksLikeOff(const std::string& path) {
   return offKeywordLength(token) != std::string_view::npos;
 }
 
-Status checkPlyFile(const std::string& path) {
-  VOXLINK_ASSIGN_OR_RETURN(const PlyHeader header, readPlyHeader(path));
+Status checkPlyFile(const std::string& path, const PlyHeader& header) {
   // Each element's count times the least bytes one item takes must fit in the data: binary, the
   // scalars and list counts (lists may be empty); ASCII, a character and a separator per value.
   const bool ascii = header.encoding == PlyEncoding::kAscii;
@@ -137,12 +135,7 @@ Status checkOffFile(const std::string& path) {
   return Status::ok();
 }
 
-uint64_t declaredFaceCount(const std::string& path) {
-  if (looksLikePly(path)) {
-    const auto header = readPlyHeader(path);
-    const PlyElement* faces = header ? header->find("face") : nullptr;
-    return faces ? faces->count : 0;
-  }
+uint64_t declaredOffFaceCount(const std::string& path) {
   if (!looksLikeOff(path)) return 0;
   std::ifstream in(path, std::ios::binary);
   std::string line, token;

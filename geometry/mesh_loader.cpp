@@ -215,9 +215,14 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   }
   importer.SetIOHandler(new MtlFallbackIo(fallbackMtl));  // the importer owns it
   // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
+  uint64_t declaredFaces = 0;  // what the header says, to catch a load that lost faces
   if (extension == ".ply" || looksLikePly(path)) {
-    VOXLINK_RETURN_IF_ERROR(checkPlyFile(path));
-    if (plyHasTriangleStrips(path)) return loadPlyWithStrips(path, options.maxTriangles);
+    VOXLINK_ASSIGN_OR_RETURN(const PlyHeader header, readPlyHeader(path));
+    VOXLINK_RETURN_IF_ERROR(checkPlyFile(path, header));
+    if (header.find("tristrips")) return loadPlyWithStrips(path, header, options.maxTriangles);
+    if (const PlyElement* faces = header.find("face")) declaredFaces = faces->count;
+  } else {
+    declaredFaces = declaredOffFaceCount(path);
   }
   if (extension == ".off" || looksLikeOff(path)) VOXLINK_RETURN_IF_ERROR(checkOffFile(path));
   assimpAssertion.clear();
@@ -247,8 +252,8 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   if (mesh.triangleCount() == 0) return makeError(ErrorCode::kCorrupt, path, ": no triangles");
   // A polygon gives at least one triangle: far fewer than the header's faces means faces were
   // lost (points and lines, or a layout assimp misreads), not a smaller mesh.
-  if (const uint64_t declared = declaredFaceCount(path); mesh.triangleCount() < declared / 2)
-    return makeError(ErrorCode::kCorrupt, path, ": the header declares ", declared,
+  if (mesh.triangleCount() < declaredFaces / 2)
+    return makeError(ErrorCode::kCorrupt, path, ": the header declares ", declaredFaces,
                      " faces but only ", mesh.triangleCount(),
                      " triangles loaded; refusing a mesh that lost faces");
   if (mesh.triangleCount() > options.maxTriangles) {

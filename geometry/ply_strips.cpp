@@ -131,18 +131,13 @@ Status addFace(const std::vector<double>& indices, uint64_t vertices, const std:
 
 }  // namespace
 
-bool plyHasTriangleStrips(const std::string& path) {
-  const auto header = readPlyHeader(path);
-  return header && header->find("tristrips") != nullptr;
-}
-
-Result<TriangleMesh> loadPlyWithStrips(const std::string& path, uint64_t maxTriangles) {
+Result<TriangleMesh> loadPlyWithStrips(const std::string& path, const PlyHeader& header,
+                                       uint64_t maxTriangles) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   std::string data(in ? static_cast<size_t>(in.tellg()) : 0, '\0');
   in.seekg(0);
   if (!in || !in.read(data.data(), static_cast<std::streamsize>(data.size())))
     return makeError(ErrorCode::kIo, path, ": cannot read");
-  VOXLINK_ASSIGN_OR_RETURN(const PlyHeader header, readPlyHeader(path));
   VOXLINK_RETURN_IF_ERROR(checkTypesKnown(path, header));
   ValueReader reader(data, header.dataStart, header.encoding);
   TriangleMesh mesh;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "base/error.h"
+#include "geometry/detail/ply_header.h"
 
 namespace voxlink::geometry {
 
@@ -20,11 +21,13 @@ std::string readFileHead(const std::string& path, size_t bytes);
 bool looksLikePly(const std::string& path);  // starts with "ply" and a line end
 bool looksLikeOff(const std::string& path);  // starts with [ST][C][N][4][n]OFF
 
-Status checkPlyFile(const std::string& path);
+// `header`: readPlyHeader(path), read once by the loader.
+Status checkPlyFile(const std::string& path, const PlyHeader& header);
 Status checkOffFile(const std::string& path);
 
-// The faces a PLY (`element face N`) or OFF header declares; 0 when it says none or is neither.
-// loadMesh compares it with the triangles it got: far fewer means faces were lost.
-uint64_t declaredFaceCount(const std::string& path);
+// The faces an OFF header declares; 0 when it says none or is no OFF file (a PLY's are its
+// header's `face` element). loadMesh compares it with the triangles it got: far fewer means
+// faces were lost.
+uint64_t declaredOffFaceCount(const std::string& path);
 
 }  // namespace voxlink::geometry
