@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace voxlink::geostat {
 namespace {
 
@@ -13,7 +17,7 @@ namespace {
 // pick is exact whatever they are, as long as fewer than k lie below and k in all up to the
 // band's top (else the band is widened to everything).
 void pickNearest(const Point3& q, size_t k, PickState& s) {
-  const size_t m = s.d2.size();
+  const size_t m = s.d2.size(), words = (m + 63) / 64;
   double below = 0, above = INFINITY;
   if (s.lastKth >= 0) {
     const double dk = std::sqrt(s.lastKth);
@@ -23,34 +27,54 @@ void pickNearest(const Point3& q, size_t k, PickState& s) {
     below = dk > step ? (dk - step) * (dk - step) * (1 - 1e-9) : 0.0;
     above = (dk + step) * (dk + step) * (1 + 1e-9);
   }
-  // Branch-free passes: the distances come in sample order, so which side of the band a
-  // candidate falls is a coin toss the branch predictor loses (it was most of solveNode).
-  s.band.resize(m);
-  s.taken.resize(m);
+  // Which side of the band each candidate falls, as bit masks (64 candidates a word): the
+  // distances come in sample order, so a branch per candidate is a coin toss the predictor
+  // loses, and a list of every candidate written per node cost as much as the comparisons.
+  s.inside.resize(words);
+  s.banded.resize(words);
   size_t inside = 0, banded = 0;
   for (;;) {
     inside = banded = 0;
-    for (size_t j = 0; j < m; ++j) {
-      const double d = s.d2[j];
-      const bool in = d < below;
-      s.taken[j] = in;
-      s.band[banded] = {d, static_cast<uint32_t>(j)};
-      banded += !in & (d <= above);
-      inside += in;
+    for (size_t w = 0; w < words; ++w) {
+      const double* d = s.d2.data() + 64 * w;
+      const size_t count = std::min<size_t>(64, m - 64 * w);
+      uint64_t in = 0, band = 0;
+      size_t b = 0;
+#if defined(__SSE2__)
+      const __m128d low = _mm_set1_pd(below), high = _mm_set1_pd(above);
+      for (; b + 2 <= count; b += 2) {  // two candidates per compare, their bits by movmsk
+        const __m128d x = _mm_loadu_pd(d + b);
+        in |= uint64_t(_mm_movemask_pd(_mm_cmplt_pd(x, low))) << b;
+        band |= uint64_t(_mm_movemask_pd(_mm_cmple_pd(x, high))) << b;
+      }
+#endif
+      for (; b < count; ++b) {
+        in |= uint64_t{d[b] < below} << b;
+        band |= uint64_t{d[b] <= above} << b;
+      }
+      band &= ~in;
+      s.inside[w] = in;
+      s.banded[w] = band;
+      inside += static_cast<size_t>(__builtin_popcountll(in));
+      banded += static_cast<size_t>(__builtin_popcountll(band));
     }
     if (inside < k && inside + banded >= k) break;
     below = 0, above = INFINITY;
   }
+  s.band.clear();  // the band's candidates in sample order, as ranked before
+  for (size_t w = 0; w < words; ++w)
+    for (uint64_t band = s.banded[w]; band != 0; band &= band - 1) {
+      const uint32_t j = static_cast<uint32_t>(64 * w + static_cast<size_t>(__builtin_ctzll(band)));
+      s.band.emplace_back(s.d2[j], j);
+    }
   const auto nth = s.band.begin() + static_cast<long>(k - inside - 1);
-  std::nth_element(s.band.begin(), nth, s.band.begin() + static_cast<long>(banded));
-  for (auto it = s.band.begin(); it <= nth; ++it) s.taken[it->second] = 1;
-  s.picked.resize(m);
-  size_t picked = 0;
-  for (size_t j = 0; j < m; ++j) {
-    s.picked[picked] = static_cast<uint32_t>(j);
-    picked += s.taken[j];
-  }
-  s.picked.resize(picked);
+  std::nth_element(s.band.begin(), nth, s.band.end());
+  for (auto it = s.band.begin(); it <= nth; ++it)
+    s.inside[it->second / 64] |= uint64_t{1} << (it->second % 64);
+  s.picked.clear();
+  for (size_t w = 0; w < words; ++w)
+    for (uint64_t in = s.inside[w]; in != 0; in &= in - 1)
+      s.picked.push_back(static_cast<uint32_t>(64 * w + static_cast<size_t>(__builtin_ctzll(in))));
   s.lastKth = nth->first;
   s.lastNode = q;
 }

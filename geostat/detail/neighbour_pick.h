@@ -18,7 +18,7 @@ struct PickState {
   std::vector<double> d2;          // their squared distances to the last node
   std::vector<uint32_t> picked;    // the last node's neighbours (candidate positions, ascending)
   std::vector<std::pair<double, uint32_t>> band;  // (squared distance, candidate) to rank
-  std::vector<uint8_t> taken;
+  std::vector<uint64_t> inside, banded;           // bit masks over the candidates (pickNearest)
   double lastKth = -1;  // the brick's previous node's k-th squared distance (-1: none yet)
   Point3 lastNode{};
 };
