@@ -27,13 +27,14 @@ void DriftBasis::at(const Point3& q, double externalValue, double* f) const {
   if (!constant) return;
   size_t j = 0;
   f[j++] = 1.0;
-  const int d = dimension;
-  double s[3] = {q[0] / coordinateScale, q[1] / coordinateScale, q[2] / coordinateScale};
-  if (kind != DriftKind::kNone)
+  if (kind != DriftKind::kNone) {  // ordinary kriging (every node of it) skips the divisions
+    const int d = dimension;
+    const double s[3] = {q[0] / coordinateScale, q[1] / coordinateScale, q[2] / coordinateScale};
     for (int a = 0; a < d; ++a) f[j++] = s[a];
-  if (kind == DriftKind::kQuadratic)
-    for (int a = 0; a < d; ++a)
-      for (int b = a; b < d; ++b) f[j++] = s[a] * s[b];
+    if (kind == DriftKind::kQuadratic)
+      for (int a = 0; a < d; ++a)
+        for (int b = a; b < d; ++b) f[j++] = s[a] * s[b];
+  }
   if (external) f[j] = (externalValue - externalMean) / externalScale;
 }
 

@@ -129,17 +129,24 @@ void LocalSystems::queue(ThreadState& ts, Factorization& f) const {
   ts.compact.resize(n * n * kLanes);
   // gather()'s sums in gather()'s order (the same norm bits), from the brick's pair cache.
   ts.work.assign(n, 0.0);  // column sums of |A|
+  // Pointers held in registers: through the vectors every store reloaded them (the stores
+  // may alias a vector's pointer), and that was most of the gather's time.
+  const size_t m = ts.candidates.size();
+  const uint32_t* picked = ts.picked.data();
+  double* __restrict sums = ts.work.data();
   for (size_t j = 0; j < n; ++j) {
-    double* column = &ts.compact[spd::batch::at(0, j, n, lane)];
+    double* __restrict column = &ts.compact[spd::batch::at(0, j, n, lane)];
+    const double* row = ts.pair.data() + size_t{picked[j]} * m;
     column[j * kLanes] = sill_;
     double sum = sill_;
     for (size_t i = j + 1; i < n; ++i) {
-      const double c = pairCovariance(ts, ts.picked[j], ts.picked[i]);
+      double c = row[picked[i]];
+      if (std::isnan(c)) c = pairCovariance(ts, picked[j], picked[i]);  // first use in the brick
       column[i * kLanes] = c;
       sum += std::fabs(c);
-      ts.work[i] += std::fabs(c);
+      sums[i] += std::fabs(c);
     }
-    ts.work[j] += sum;
+    sums[j] += sum;
   }
   ts.queuedNorm[lane] = *std::max_element(ts.work.begin(), ts.work.end());
 }

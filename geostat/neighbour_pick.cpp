@@ -87,12 +87,16 @@ bool pickNeighbours(const Point3& q, size_t k, double maxDistance, PickState& s)
   const size_t m = s.cx.size();
   s.d2.resize(m);
   const double reach2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : INFINITY;
-  size_t inReach = 0;
-  for (size_t j = 0; j < m; ++j) {  // as KdTree computes them, so ties break alike
-    const double dx = s.cx[j] - q[0], dy = s.cy[j] - q[1], dz = s.cz[j] - q[2];
-    s.d2[j] = dx * dx + dy * dy + dz * dz;
-    inReach += s.d2[j] <= reach2;
+  const double *cx = s.cx.data(), *cy = s.cy.data(), *cz = s.cz.data();
+  double* __restrict d2 = s.d2.data();  // so the loop keeps its pointers in registers
+  for (size_t j = 0; j < m; ++j) {      // as KdTree computes them, so ties break alike
+    const double dx = cx[j] - q[0], dy = cy[j] - q[1], dz = cz[j] - q[2];
+    d2[j] = dx * dx + dy * dy + dz * dz;
   }
+  size_t inReach = m;  // without --max-distance every candidate is in reach
+  if (std::isfinite(maxDistance))
+    inReach =
+        static_cast<size_t>(std::count_if(d2, d2 + m, [reach2](double d) { return d <= reach2; }));
   s.picked.clear();
   if (inReach <= k) {
     for (size_t j = 0; j < m; ++j)
