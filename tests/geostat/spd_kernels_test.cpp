@@ -75,5 +75,36 @@ TEST(SpdKernels, ApplyInverseIsTheTwoTriangularSolvesBitForBit) {
   }
 }
 
+// n = 32 (ld 32) takes a register-held path (local kriging's size); it must give the general
+// loop's bits (ld 36 takes that loop) and never read the upper triangle (NaN here).
+TEST(SpdKernels, SolveLowerOfThirtyTwoIsTheGeneralLoopBitForBit) {
+  constexpr size_t n = 32, wide = 36;
+  std::vector<double> l = covariances(n, 1.0, 5);
+  const double norm = norm1(l, n);
+  ASSERT_TRUE(spd::factorLower(l.data(), n, n));
+  std::vector<double> padded(wide * n, NAN);
+  for (size_t j = 0; j < n; ++j)
+    for (size_t i = 0; i < n; ++i) {
+      if (i < j) l[j * n + i] = NAN;
+      padded[j * wide + i] = l[j * n + i];
+    }
+  std::vector<double> b(n), c(n), d(n), e(n);
+  for (size_t i = 0; i < n; ++i) {
+    b[i] = c[i] = std::sin(1.0 + double(i)) * norm;
+    d[i] = e[i] = std::cos(2.0 + double(i)) * norm;
+  }
+  spd::solveLower(l.data(), n, n, b.data());
+  spd::solveLower(padded.data(), n, wide, c.data());
+  for (size_t i = 0; i < n; ++i) ASSERT_EQ(b[i], c[i]) << i;
+  std::vector<double> b2(n), d2(d);
+  for (size_t i = 0; i < n; ++i) b2[i] = std::sin(1.0 + double(i)) * norm;
+  spd::solveLower(l.data(), n, n, b2.data(), d2.data());
+  spd::solveLower(padded.data(), n, wide, e.data());
+  for (size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(b2[i], b[i]) << i;
+    EXPECT_EQ(d2[i], e[i]) << i;
+  }
+}
+
 }  // namespace
 }  // namespace voxlink::geostat
