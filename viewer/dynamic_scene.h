@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct DynamicSceneStats {
   double staticBuildSeconds = 0;  // the static objects, once
   uint64_t movingTriangles = 0;
   uint64_t layerBytes = 0;  // GPU memory of the dynamic layer
+  // The last update: triangles re-voxelized, and moving meshes restored from the kept layer
+  // (unmoved for two updates in a row) instead.
+  uint64_t reVoxelizedTriangles = 0;
+  uint32_t keptMeshes = 0;
 };
 
 class DynamicScene {
@@ -35,6 +40,13 @@ class DynamicScene {
     std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
     geometry::Bounds3 restBounds;
     scene::Pose pose;  // the current one
+    // In the layer: the pose of the last update, the updates in a row it has not moved for,
+    // whether the layer's kept part holds it; where its vertices and triangles start in
+    // gridPositions_ (floats) and triangles_ (indices).
+    std::optional<scene::Pose> uploaded;
+    uint32_t unmovedUpdates = 0;
+    bool kept = false;
+    size_t firstFloat = 0, firstIndex = 0;
   };
 
  public:
@@ -99,6 +111,8 @@ class DynamicScene {
  private:
   Status checkPose(size_t index, const scene::Pose& pose) const;
   Status uploadPoses();
+  // Re-voxelizes `meshes` (indices into moving_) into the layer, on its kept part or not.
+  Status reVoxelize(const std::vector<size_t>& meshes, bool onKept);
   DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
                render::gl::GlDynamicLayer layer);
   scene::SceneDescription scene_;
