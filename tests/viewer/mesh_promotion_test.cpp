@@ -227,6 +227,24 @@ TEST(MeshPromotion, ACtrlPressOnAStaticMeshMakesItMoveAndDragsIt) {
   EXPECT_FALSE(drag.holding());
   EXPECT_TRUE(s.held(*index));  // stays where it was dragged
 
+  // With a moving mesh selected, a press over a static mesh (no moving one under it) drags the
+  // selected mesh, as before static meshes could move; nothing is promoted.
+  std::optional<std::array<double, 2>> overStatic;
+  for (uint32_t y = 0; y < h && !overStatic; y += 2)
+    for (uint32_t x = 0; x < w && !overStatic; x += 2)
+      if (!pickBox(camera, x, y, w, h, s.movingBoxes()) &&
+          pickBox(camera, x, y, w, h, s.staticBoxes()))
+        overStatic = {{double(x), double(y)}};
+  ASSERT_TRUE(overStatic);
+  DragGesture second;
+  auto r =
+      second.update(s, camera, {true, true, (*overStatic)[0], (*overStatic)[1], {}}, w, h, index);
+  ASSERT_TRUE(r && *r);
+  EXPECT_EQ(s.dragging(), index);
+  EXPECT_FALSE(s.promoting().has_value());
+  r = second.update(s, camera, {true, false, (*overStatic)[0], (*overStatic)[1], {}}, w, h, index);
+  ASSERT_TRUE(r && !*r);
+
   // A sphere under the press is no mesh: nothing to promote (not listed, so not picked).
   for (const StaticMesh& m : s.staticMeshes()) EXPECT_NE(m.object, 2u);
 }

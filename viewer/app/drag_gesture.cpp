@@ -23,21 +23,20 @@ Result<bool> DragGesture::update(SceneSession& session, const render::Camera& ca
     const std::array<double, 2> at = pointer.pressedAt.value_or(std::array{pointer.x, pointer.y});
     startX_ = at[0];
     startY_ = at[1];
-    // Moving meshes' boxes first, then the static meshes': the nearest under the cursor.
-    std::vector<render::Box> boxes = session.movingBoxes();
-    const size_t moving = boxes.size();
-    for (const render::Box& b : session.staticBoxes()) boxes.push_back(b);
-    std::optional<size_t> target = pickBox(camera, at[0], at[1], width, height, boxes);
-    if (target && *target >= moving) {
-      const size_t object = session.staticMeshes().at(*target - moving).object;
+    // A moving mesh under the cursor (its box), else the one selected in the panel (dragged
+    // from anywhere, as before static meshes could move), else a static mesh under the cursor,
+    // which is made to move.
+    std::optional<size_t> target =
+        pickBox(camera, at[0], at[1], width, height, session.movingBoxes());
+    if (!target) target = selected;
+    if (target && *target < session.movingCount()) {
+      VOXLINK_RETURN_IF_ERROR(session.beginDrag(*target));
+      active_ = true;
+    } else if (const auto hit =
+                   pickBox(camera, at[0], at[1], width, height, session.staticBoxes())) {
+      const size_t object = session.staticMeshes().at(*hit).object;
       VOXLINK_RETURN_IF_ERROR(session.promote(object));
       pending_ = object;
-    } else {
-      if (!target) target = selected;
-      if (target && *target < session.movingCount()) {
-        VOXLINK_RETURN_IF_ERROR(session.beginDrag(*target));
-        active_ = true;
-      }
     }
   }
   if (pending_) {  // the pressed static mesh is being made to move

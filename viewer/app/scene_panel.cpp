@@ -22,7 +22,8 @@ bool drawScenePanel(SceneSession& s, std::optional<size_t>& selected, std::strin
   ImGui::TextDisabled("Ctrl + left drag: move the object under the cursor, else the selected one");
   for (size_t i = 0; i < s.movingCount(); ++i) {
     ImGui::PushID(int(i));
-    if (ImGui::Selectable(s.movingName(i).c_str(), selected == i, 0, ImVec2(220, 0))) selected = i;
+    if (ImGui::Selectable(s.movingName(i).c_str(), selected == i, 0, ImVec2(220, 0)))
+      selected = selected == i ? std::nullopt : std::optional(i);  // a second click deselects
     ImGui::SameLine();
     if (s.held(i)) {
       ImGui::Text("held where dragged");

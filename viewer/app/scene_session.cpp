@@ -32,6 +32,10 @@ SceneSession::SceneSession(std::string volumeFile, double span)
 
 SceneSession::~SceneSession() {
   std::error_code ignored;
+  if (promotion_) {  // a rebuild under way: its scratch file goes too
+    promotion_->take(true);
+    std::filesystem::remove(promotion_->staticFile(), ignored);
+  }
   std::filesystem::remove(volumeFile_, ignored);
 }
 
