@@ -2,7 +2,8 @@
 // A dynamic scene (docs/dynamic-scenes.md): a scene file whose meshes with an `animation` move.
 // The static objects are voxelized once (scene::buildScene, the exact CPU path) into a scene
 // file; every frame, setTime() places the moving meshes at their pose and re-voxelizes only them
-// into the GPU-side dynamic layer (render/gl/gl_dynamic_layer.h); renderer() draws both. The grid
+// into the GPU-side dynamic layer (render/gl/gl_dynamic_layer.h); of those, a mesh that has stood
+// for two updates is kept in the layer and not re-voxelized again; renderer() draws both. The grid
 // is the whole scene's at rest, and every moving object must stay inside it at every key.
 #pragma once
 
@@ -76,7 +77,8 @@ class DynamicScene {
   static Result<std::unique_ptr<DynamicScene>> load(const scene::SceneDescription& scene,
                                                     const std::string& staticFile);
 
-  // Places the moving meshes at `seconds` and re-voxelizes them on the GPU (queued, no read-back).
+  // Places the moving meshes at `seconds` and re-voxelizes those that moved on the GPU (queued,
+  // no read-back; uploadPoses() says which).
   Status setTime(double seconds);
   // The moving meshes, numbered as setPose() numbers them: the object's index in the description
   // and its world bounds at rest (its transform, no pose).
@@ -86,7 +88,7 @@ class DynamicScene {
   };
   std::vector<MovingObject> movingObjects() const;
   // Places moving mesh `index` at `pose` (instead of its animation's; the others keep their
-  // current pose) and re-voxelizes the moving meshes; the static part is kept. For a user who
+  // current pose) and re-voxelizes those that moved; the static part is kept. For a user who
   // drags an object. Errors: an index out of range, a non-finite pose, a pose that takes the
   // rest bounds' corners outside the grid (callers clamp first: viewer/app/detail/object_drag.h).
   Status setPose(size_t index, const scene::Pose& pose);
@@ -96,8 +98,9 @@ class DynamicScene {
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }
-  // Places every moving mesh at once (`poses` in movingObjects()' order) and re-voxelizes them
-  // once: a frame where some follow their animation and a dragged one does not. Errors as
+  // Places every moving mesh at once (`poses` in movingObjects()' order) and re-voxelizes those
+  // that moved in one update: a frame where some follow their animation and a dragged one does
+  // not. Errors as
   // setPose's; on an error no pose changes.
   Status setPoses(const std::vector<scene::Pose>& poses);
   // Mesh `index`'s world box at `pose`: the box around its rest bounds' corners, posed (in
