@@ -5,7 +5,8 @@
 # per build the median over the rounds of each run's frame median, frame p95, voxelize and render
 # medians (ms), and B's FPS over A's.
 # Usage: bash bench/animate_ab.sh BUILD_A BUILD_B [ROUNDS] [SIZE] [FRAMES] [RESOLUTION] [BRICK]
-#        (defaults 5 rounds, 512x512, 30 frames, 256, 4).
+#        [SCENE] (defaults 5 rounds, 512x512, 30 frames, 256, 4,
+#        samples/scenes/dragon-animated.scene.json).
 set -euo pipefail
 a=${1:?build dir A}
 b=${2:?build dir B}
@@ -15,10 +16,10 @@ frames=${5:-30}
 res=${6:-256}
 brick=${7:-4}
 here=$(cd "$(dirname "$0")/.." && pwd)
-scene="$here/samples/scenes/dragon-animated.scene.json"
+scene=${8:-$here/samples/scenes/dragon-animated.scene.json}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "## dragon-animated at $res, brick $brick, $size, $frames frames, $rounds rounds A/B"
+echo "## $(basename "$scene" .scene.json) at $res, brick $brick, $size, $frames frames, $rounds rounds A/B"
 echo "load before: $(uptime | sed 's/.*load average: //')"
 for ((r = 1; r <= rounds; ++r)); do
   for side in A B; do

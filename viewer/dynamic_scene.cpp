@@ -139,8 +139,10 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(Prepared p) {
   std::unique_ptr<DynamicScene> d(new DynamicScene(scene, std::move(file), std::move(layer)));
   d->grid_ = p.grid;
   d->moving_ = std::move(p.moving);
-  for (const Moving& m : d->moving_) {
+  for (Moving& m : d->moving_) {
     const uint32_t base = uint32_t(d->gridPositions_.size() / 3);
+    m.firstFloat = d->gridPositions_.size();
+    m.firstIndex = d->triangles_.size();
     for (uint32_t t : m.triangles) d->triangles_.push_back(base + t);
     d->gridPositions_.resize(d->gridPositions_.size() + m.restPositions.size());
     // Materials: the moving object's scene material, whose index in every placement's table
@@ -224,17 +226,78 @@ Status DynamicScene::checkPose(size_t index, const scene::Pose& pose) const {
   return Status::ok();
 }
 
+// Only what moved is re-voxelized: a mesh that kept its pose for two updates in a row goes into
+// the layer's kept part (re-voxelized once more, alone, then saved), and later updates restore
+// that part by a copy and re-voxelize the others on top, until a kept mesh moves. A mesh must
+// stay still for two updates so that a drag that pauses for a frame does not rebuild the kept
+// part twice. Integer sums do not depend on order: the layer is the full update's.
 Status DynamicScene::uploadPoses() {
-  size_t out = 0;
-  for (const Moving& m : moving_) {
+  std::vector<bool> still(moving_.size());
+  bool keptStill = layer_.hasKept(), newlyStable = false;
+  std::vector<size_t> stable, others;
+  for (size_t i = 0; i < moving_.size(); ++i) {
+    const Moving& m = moving_[i];
+    still[i] = m.uploaded && m.uploaded->translate == m.pose.translate &&
+               m.uploaded->rotateDegrees == m.pose.rotateDegrees;
+    if (m.kept && !still[i]) keptStill = false;
+    const bool isStable = still[i] && m.unmovedUpdates >= 1;
+    if (isStable && !m.kept) newlyStable = true;
+    (isStable ? stable : others).push_back(i);
+  }
+  stats_.reVoxelizedTriangles = 0;
+  if (keptStill && !newlyStable) {  // the kept part as it is; everything else re-voxelized
+    others.clear();
+    for (size_t i = 0; i < moving_.size(); ++i)
+      if (!moving_[i].kept) others.push_back(i);
+    VOXLINK_RETURN_IF_ERROR(reVoxelize(others, true));
+  } else {
+    layer_.forgetKept();
+    for (Moving& m : moving_) m.kept = false;
+    if (!stable.empty()) {
+      VOXLINK_RETURN_IF_ERROR(reVoxelize(stable, false));
+      VOXLINK_RETURN_IF_ERROR(layer_.keep());
+      for (size_t i : stable) moving_[i].kept = true;
+    }
+    VOXLINK_RETURN_IF_ERROR(reVoxelize(others, !stable.empty()));
+  }
+  stats_.keptMeshes = 0;
+  for (size_t i = 0; i < moving_.size(); ++i) {
+    Moving& m = moving_[i];
+    m.unmovedUpdates = still[i] ? m.unmovedUpdates + 1 : 0;
+    m.uploaded = m.pose;
+    stats_.keptMeshes += m.kept ? 1 : 0;
+  }
+  stats_.layerBytes = layer_.gpuBytes();
+  return Status::ok();
+}
+
+Status DynamicScene::reVoxelize(const std::vector<size_t>& meshes, bool onKept) {
+  for (size_t i : meshes) {
+    const Moving& m = moving_[i];
+    size_t out = m.firstFloat;
     for (size_t v = 0; v < m.restPositions.size(); v += 3) {
       const auto w = scene::applyPose(
           m.pose, m.centre, {m.restPositions[v], m.restPositions[v + 1], m.restPositions[v + 2]});
       const auto g = grid_.toGrid(w[0], w[1], w[2]);
       for (int a = 0; a < 3; ++a) gridPositions_[out++] = float(g[size_t(a)]);
     }
+    stats_.reVoxelizedTriangles += m.triangles.size() / 3;
   }
-  return layer_.update(gridPositions_, triangles_, materials_);
+  if (meshes.size() == moving_.size())  // all of them: the concatenated arrays as they are
+    return layer_.update(gridPositions_, triangles_, materials_, onKept);
+  std::vector<float> positions;
+  std::vector<uint32_t> triangles, materials;
+  for (size_t i : meshes) {
+    const Moving& m = moving_[i];
+    const uint32_t base = uint32_t(positions.size() / 3);
+    positions.insert(positions.end(), gridPositions_.begin() + ptrdiff_t(m.firstFloat),
+                     gridPositions_.begin() + ptrdiff_t(m.firstFloat + m.restPositions.size()));
+    for (uint32_t t : m.triangles) triangles.push_back(base + t);
+    const size_t firstTriangle = m.firstIndex / 3;
+    materials.insert(materials.end(), materials_.begin() + ptrdiff_t(firstTriangle),
+                     materials_.begin() + ptrdiff_t(firstTriangle + m.triangles.size() / 3));
+  }
+  return layer_.update(positions, triangles, materials, onKept);
 }
 
 scene::SceneDescription DynamicScene::frozenAt(double seconds) const {

@@ -2,11 +2,13 @@
 // A dynamic scene (docs/dynamic-scenes.md): a scene file whose meshes with an `animation` move.
 // The static objects are voxelized once (scene::buildScene, the exact CPU path) into a scene
 // file; every frame, setTime() places the moving meshes at their pose and re-voxelizes only them
-// into the GPU-side dynamic layer (render/gl/gl_dynamic_layer.h); renderer() draws both. The grid
+// into the GPU-side dynamic layer (render/gl/gl_dynamic_layer.h); of those, a mesh that has stood
+// for two updates is kept in the layer and not re-voxelized again; renderer() draws both. The grid
 // is the whole scene's at rest, and every moving object must stay inside it at every key.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,10 @@ struct DynamicSceneStats {
   double staticBuildSeconds = 0;  // the static objects, once
   uint64_t movingTriangles = 0;
   uint64_t layerBytes = 0;  // GPU memory of the dynamic layer
+  // The last update: triangles re-voxelized, and moving meshes restored from the kept layer
+  // (unmoved for two updates in a row) instead.
+  uint64_t reVoxelizedTriangles = 0;
+  uint32_t keptMeshes = 0;
 };
 
 class DynamicScene {
@@ -35,6 +41,13 @@ class DynamicScene {
     std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
     geometry::Bounds3 restBounds;
     scene::Pose pose;  // the current one
+    // In the layer: the pose of the last update, the updates in a row it has not moved for,
+    // whether the layer's kept part holds it; where its vertices and triangles start in
+    // gridPositions_ (floats) and triangles_ (indices).
+    std::optional<scene::Pose> uploaded;
+    uint32_t unmovedUpdates = 0;
+    bool kept = false;
+    size_t firstFloat = 0, firstIndex = 0;
   };
 
  public:
@@ -64,7 +77,8 @@ class DynamicScene {
   static Result<std::unique_ptr<DynamicScene>> load(const scene::SceneDescription& scene,
                                                     const std::string& staticFile);
 
-  // Places the moving meshes at `seconds` and re-voxelizes them on the GPU (queued, no read-back).
+  // Places the moving meshes at `seconds` and re-voxelizes those that moved on the GPU (queued,
+  // no read-back; uploadPoses() says which).
   Status setTime(double seconds);
   // The moving meshes, numbered as setPose() numbers them: the object's index in the description
   // and its world bounds at rest (its transform, no pose).
@@ -74,7 +88,7 @@ class DynamicScene {
   };
   std::vector<MovingObject> movingObjects() const;
   // Places moving mesh `index` at `pose` (instead of its animation's; the others keep their
-  // current pose) and re-voxelizes the moving meshes; the static part is kept. For a user who
+  // current pose) and re-voxelizes those that moved; the static part is kept. For a user who
   // drags an object. Errors: an index out of range, a non-finite pose, a pose that takes the
   // rest bounds' corners outside the grid (callers clamp first: viewer/app/detail/object_drag.h).
   Status setPose(size_t index, const scene::Pose& pose);
@@ -84,8 +98,9 @@ class DynamicScene {
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }
-  // Places every moving mesh at once (`poses` in movingObjects()' order) and re-voxelizes them
-  // once: a frame where some follow their animation and a dragged one does not. Errors as
+  // Places every moving mesh at once (`poses` in movingObjects()' order) and re-voxelizes those
+  // that moved in one update: a frame where some follow their animation and a dragged one does
+  // not. Errors as
   // setPose's; on an error no pose changes.
   Status setPoses(const std::vector<scene::Pose>& poses);
   // Mesh `index`'s world box at `pose`: the box around its rest bounds' corners, posed (in
@@ -99,6 +114,8 @@ class DynamicScene {
  private:
   Status checkPose(size_t index, const scene::Pose& pose) const;
   Status uploadPoses();
+  // Re-voxelizes `meshes` (indices into moving_) into the layer, on its kept part or not.
+  Status reVoxelize(const std::vector<size_t>& meshes, bool onKept);
   DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
                render::gl::GlDynamicLayer layer);
   scene::SceneDescription scene_;

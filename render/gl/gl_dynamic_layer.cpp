@@ -36,10 +36,15 @@ struct GlDynamicLayer::State {
   uint64_t brickCapacity = 0;
   size_t vertexFloats = 0, triangleIndices = 0;
   GLuint raster = 0, vertexArray = 0;
-  ComputeProgram build;
+  ComputeProgram build, keepCopy;
   GlFramebuffer framebuffer;
   GlBuffer dispatchSize, positions, indices, order, contributions, brickMap, pool, counters,
       slotKeys, usedSlots;
+  // What keep() saved: the brick map, hash keys, used-slot list and counters whole, and the
+  // used slots' bricks packed (keptBricks of room for keptRoom).
+  GlBuffer keptBrickMap, keptSlotKeys, keptUsedSlots, keptCounters, keptPool;
+  uint64_t keptBricks = 0, keptRoom = 0;
+  bool kept = false;
   ~State() {
     if (raster) glDeleteProgram(raster);
     if (vertexArray) glDeleteVertexArrays(1, &vertexArray);
@@ -50,6 +55,8 @@ GlDynamicLayer::GlDynamicLayer(std::unique_ptr<State> state) : s_(std::move(stat
 GlDynamicLayer::GlDynamicLayer(GlDynamicLayer&&) noexcept = default;
 GlDynamicLayer& GlDynamicLayer::operator=(GlDynamicLayer&&) noexcept = default;
 GlDynamicLayer::~GlDynamicLayer() = default;
+bool GlDynamicLayer::hasKept() const { return s_->kept; }
+void GlDynamicLayer::forgetKept() { s_->kept = false; }
 GLuint GlDynamicLayer::brickMap() const { return s_->brickMap.id(); }
 GLuint GlDynamicLayer::pool() const { return s_->pool.id(); }
 uint32_t GlDynamicLayer::brickSize() const { return s_->brickSize; }
@@ -57,7 +64,9 @@ uint32_t GlDynamicLayer::brickSize() const { return s_->brickSize; }
 uint64_t GlDynamicLayer::gpuBytes() const {
   const uint64_t bricks = uint64_t(s_->brickGrid[0]) * s_->brickGrid[1] * s_->brickGrid[2];
   const uint64_t n3 = uint64_t(s_->brickSize) * s_->brickSize * s_->brickSize;
-  return bricks * 4 + s_->brickCapacity * (n3 * kPoolVoxelBytes + 8);
+  const uint64_t kept = s_->keptBrickMap ? bricks * 4 + s_->brickCapacity * 8 + 8 : 0;
+  return bricks * 4 + s_->brickCapacity * (n3 * kPoolVoxelBytes + 8) + kept +
+         s_->keptRoom * n3 * kPoolVoxelBytes;
 }
 
 uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSize,
@@ -99,6 +108,9 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   VOXLINK_ASSIGN_OR_RETURN(s->raster, linkProgram({vertex, *fragment}, "gl_voxelize"));
   VOXLINK_ASSIGN_OR_RETURN(s->build, ComputeProgram::build("dynamic_layer_build.comp.glsl",
                                                            {{"VXL_N", std::to_string(brickSize)}}));
+  VOXLINK_ASSIGN_OR_RETURN(s->keepCopy,
+                           ComputeProgram::build("dynamic_layer_keep.comp.glsl",
+                                                 {{"VXL_N", std::to_string(brickSize)}}));
   glCreateVertexArrays(1, &s->vertexArray);
   GLuint fb = 0;
   glCreateFramebuffers(1, &fb);
@@ -125,7 +137,11 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
 
 Status GlDynamicLayer::update(const std::vector<float>& positions,
                               const std::vector<uint32_t>& triangles,
-                              const std::vector<uint32_t>& triangleMaterials) {
+                              const std::vector<uint32_t>& triangleMaterials, bool onKept) {
+  if (onKept && !s_->kept)
+    return makeError(ErrorCode::kInvalidArgument,
+                     "dynamic layer: an update on a kept layer "
+                     "before keep()");
   if (triangleMaterials.size() * 3 != triangles.size())
     return makeError(ErrorCode::kSizeMismatch, "dynamic layer: ", triangleMaterials.size(),
                      " triangle materials for ", triangles.size() / 3, " triangles");
@@ -167,9 +183,18 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
       hi[size_t(a)] = std::max(hi[size_t(a)], positions[3 * v + size_t(a)]);
     }
   for (int a = 0; a < 3; ++a) {
-    // One voxel of margin: the conservative raster marks voxels a triangle only touches.
-    lo_[size_t(a)] = std::clamp(int32_t(std::floor(lo[size_t(a)])) - 1, 0, int32_t(s.dims[a]));
-    hi_[size_t(a)] = std::clamp(int32_t(std::floor(hi[size_t(a)])) + 2, 0, int32_t(s.dims[a]));
+    // One voxel of margin: the conservative raster marks voxels a triangle only touches. No
+    // vertex: an empty box. On a kept layer the box takes in the kept one.
+    lo_[size_t(a)] = vertexCount == 0 ? int32_t(s.dims[a])
+                                      : std::clamp(int32_t(std::floor(lo[size_t(a)])) - 1, 0,
+                                                   int32_t(s.dims[a]));
+    hi_[size_t(a)] = vertexCount == 0 ? 0
+                                      : std::clamp(int32_t(std::floor(hi[size_t(a)])) + 2, 0,
+                                                   int32_t(s.dims[a]));
+    if (onKept) {
+      lo_[size_t(a)] = std::min(lo_[size_t(a)], keptLo_[size_t(a)]);
+      hi_[size_t(a)] = std::max(hi_[size_t(a)], keptHi_[size_t(a)]);
+    }
   }
   std::vector<uint32_t> order;
   std::array<uint32_t, 4> first{};
@@ -190,10 +215,13 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
     s.contributions = storage(triangles.size() / 3 * 16);
     s.triangleIndices = triangles.size();
   }
-  glNamedBufferSubData(s.positions.id(), 0, GLsizeiptr(positions.size() * 4), positions.data());
-  glNamedBufferSubData(s.indices.id(), 0, GLsizeiptr(triangles.size() * 4), triangles.data());
-  glNamedBufferSubData(s.contributions.id(), 0, GLsizeiptr(contributions.size() * 16),
-                       contributions.data());
+  if (!positions.empty())
+    glNamedBufferSubData(s.positions.id(), 0, GLsizeiptr(positions.size() * 4), positions.data());
+  if (!triangles.empty()) {
+    glNamedBufferSubData(s.indices.id(), 0, GLsizeiptr(triangles.size() * 4), triangles.data());
+    glNamedBufferSubData(s.contributions.id(), 0, GLsizeiptr(contributions.size() * 16),
+                         contributions.data());
+  }
   if (!order.empty())
     glNamedBufferSubData(s.order.id(), 0, GLsizeiptr(order.size() * 4), order.data());
 
@@ -218,6 +246,7 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   glClearNamedBufferData(s.brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
   glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  if (onKept) restoreKept();
 
   // Raster: gl_voxelize adds each fragment's triangle to its voxels in the layer (VXL_DYN_N).
   glUseProgram(s.raster);
@@ -249,6 +278,73 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     return makeError(ErrorCode::kUnsupported, "dynamic layer: GL error 0x", std::hex, e);
   return Status::ok();
+}
+
+void GlDynamicLayer::copyKeptBricks(int pass) {
+  State& s = *s_;
+  const uint64_t n3 = uint64_t(s.brickSize) * s.brickSize * s.brickSize;
+  const uint64_t groups = (s.keptBricks * n3 + 63) / 64;
+  if (groups == 0) return;
+  s.keepCopy.use();
+  glUniform1i(s.keepCopy.uniform("uPass"), pass);
+  glUniform1ui(s.keepCopy.uniform("uBricks"), GLuint(s.keptBricks));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, s.usedSlots.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, s.keptPool.id());
+  glDispatchCompute(GLuint(std::min<uint64_t>(groups, 32768)), GLuint((groups + 32767) / 32768), 1);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+Status GlDynamicLayer::keep() {
+  State& s = *s_;
+  VOXLINK_RETURN_IF_ERROR(checkLastUpdate());  // waits; a layer with dropped bricks is no base
+  GLuint counters[2] = {0, 0};
+  glGetNamedBufferSubData(s.counters.id(), 0, 8, counters);
+  const uint64_t bricks = std::min<uint64_t>(counters[0], s.brickCapacity);
+  const uint64_t n3 = uint64_t(s.brickSize) * s.brickSize * s.brickSize;
+  const uint64_t mapBytes = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2] * 4;
+  if (s.keptBrickMap.id() == 0) {
+    s.keptBrickMap = storage(mapBytes, 0);
+    s.keptSlotKeys = storage(s.brickCapacity * 4, 0);
+    s.keptUsedSlots = storage(s.brickCapacity * 4, 0);
+    s.keptCounters = storage(8, 0);
+  }
+  if (bricks > s.keptRoom) {  // grows to what is kept, not to the whole pool
+    s.keptPool = storage(bricks * n3 * kPoolVoxelBytes, 0);
+    s.keptRoom = bricks;
+  }
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  glCopyNamedBufferSubData(s.brickMap.id(), s.keptBrickMap.id(), 0, 0, GLsizeiptr(mapBytes));
+  glCopyNamedBufferSubData(s.slotKeys.id(), s.keptSlotKeys.id(), 0, 0,
+                           GLsizeiptr(s.brickCapacity * 4));
+  glCopyNamedBufferSubData(s.usedSlots.id(), s.keptUsedSlots.id(), 0, 0,
+                           GLsizeiptr(s.brickCapacity * 4));
+  glCopyNamedBufferSubData(s.counters.id(), s.keptCounters.id(), 0, 0, 8);
+  s.keptBricks = bricks;
+  copyKeptBricks(0);
+  keptLo_ = lo_;
+  keptHi_ = hi_;
+  s.kept = true;
+  if (GLenum e = glGetError(); e != GL_NO_ERROR) {
+    s.kept = false;
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: GL error 0x", std::hex, e, " keeping ",
+                     (bricks * n3 * kPoolVoxelBytes) >> 20, " MiB of bricks");
+  }
+  return Status::ok();
+}
+
+// After the reset: the kept layer back (the reset zeroed its slots too; they are overwritten).
+void GlDynamicLayer::restoreKept() {
+  State& s = *s_;
+  const uint64_t mapBytes = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2] * 4;
+  glCopyNamedBufferSubData(s.keptBrickMap.id(), s.brickMap.id(), 0, 0, GLsizeiptr(mapBytes));
+  glCopyNamedBufferSubData(s.keptSlotKeys.id(), s.slotKeys.id(), 0, 0,
+                           GLsizeiptr(s.brickCapacity * 4));
+  glCopyNamedBufferSubData(s.keptUsedSlots.id(), s.usedSlots.id(), 0, 0,
+                           GLsizeiptr(s.brickCapacity * 4));
+  glCopyNamedBufferSubData(s.keptCounters.id(), s.counters.id(), 0, 0, 8);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  copyKeptBricks(1);
 }
 
 Status GlDynamicLayer::checkLastUpdate() const {

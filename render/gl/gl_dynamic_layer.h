@@ -8,6 +8,9 @@
 //     triangles' area x unit normal in fixed point (atomic adds) and material + 1; a brick gets
 //     its slot from a hash table over the slots, and only the slots an update used are zeroed
 //     by the next (shaders/dynamic_layer_build.comp.glsl).
+// A layer can keep its state (keep()): a later update on top of it re-voxelizes only the meshes
+// that moved and restores the others' bricks by a copy (shaders/dynamic_layer_keep.comp.glsl);
+// sums of integers do not depend on order, so the layer equals a full update's.
 // The ray tracer (DynamicSceneRenderer) reads both beside the static file. The rule is the host's
 // mean rule (area-weighted normal) in fixed point, without the host's depth sort (a sum does not
 // need it) and, per voxel, the highest material index of its triangles (the host: the largest
@@ -40,8 +43,14 @@ class GlDynamicLayer {
   // Re-voxelizes the triangles (vertices in grid coordinates: voxel i spans [i, i + 1)) into the
   // layer, each with its material (a voxel keeps the highest of its triangles'). Queues uploads,
   // draws and dispatches; reads nothing back.
+  // With `onKept` the layer starts from what keep() saved instead of empty (the voxel box too).
   Status update(const std::vector<float>& gridPositions, const std::vector<uint32_t>& triangles,
-                const std::vector<uint32_t>& triangleMaterials);
+                const std::vector<uint32_t>& triangleMaterials, bool onKept = false);
+  // Saves the layer as the last update left it, for updates `onKept`. Waits for the GPU and reads
+  // the used-slot count once (not per frame). Errors: the last update dropped bricks.
+  Status keep();
+  void forgetKept();
+  bool hasKept() const;
   // Waits and reads two counters: an error when the last update had more bricks than the pool
   // holds (its layer would miss voxels).
   Status checkLastUpdate() const;
@@ -60,8 +69,10 @@ class GlDynamicLayer {
  private:
   struct State;  // GL objects, owned
   explicit GlDynamicLayer(std::unique_ptr<State> state);
+  void copyKeptBricks(int pass);  // 0: pool -> kept, 1: kept -> pool
+  void restoreKept();
   std::unique_ptr<State> s_;
-  std::array<int32_t, 3> lo_{}, hi_{};
+  std::array<int32_t, 3> lo_{}, hi_{}, keptLo_{}, keptHi_{};
 
  public:
   GlDynamicLayer(GlDynamicLayer&&) noexcept;

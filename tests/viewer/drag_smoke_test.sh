@@ -3,12 +3,16 @@
 # Drags the dragon of samples/scenes/dragon-animated.scene.json with the mouse in `voxlink view`
 # under xvfb-run (xdotool: Ctrl + left drag over it) with a screenshot (P) before and after, and
 # quits (Q): the first must equal bench-render --animate's frame for the same time, the second
-# differ from it. Exit 77 (skipped) without xvfb-run, xdotool, idiff or the mesh.
+# differ from it. Then the same scene with nothing animated (the dragon static): a Ctrl + left
+# drag over the dragon makes it move (the static part rebuilt without it) and drags it; the
+# screenshot after differs from the one before. Exit 77 (skipped) without xvfb-run, xdotool,
+# idiff or the mesh.
 # usage: drag_smoke_test.sh VOXLINK DATA_DIR
 set -euo pipefail
 voxlink=$1
 data=$2
-scene="$(cd "$(dirname "$0")/../.." && pwd)/samples/scenes/dragon-animated.scene.json"
+samples="$(cd "$(dirname "$0")/../.." && pwd)/samples/scenes"
+scene="$samples/dragon-animated.scene.json"
 for tool in xvfb-run xdotool idiff; do
   command -v $tool >/dev/null || { echo "skipped: $tool missing"; exit 77; }
 done
@@ -71,6 +75,49 @@ idiff -fail 0.004 voxlink-screenshot-1.png bench/animate_64_8_800x600.png
 # Dragged: more than 1 % of the pixels differ.
 if idiff -fail 0.004 -failpercent 1 voxlink-screenshot-$after.png bench/animate_64_8_800x600.png >diff.txt; then
   echo "the dragged frame equals the undragged one: the drag did not move the dragon"
+  exit 1
+fi
+grep -E "pixels" diff.txt | head -1
+
+# A static dragon: dragon-animated's objects without the animation.
+mkdir still && cd still
+cat >still.scene.json <<EOF
+{"grid": {"resolution": 64, "brick": 8},
+ "materials": {"jade": {"color": [0.35, 0.65, 0.45], "specular": 0.5, "shininess": 40},
+               "clay": {"color": [0.75, 0.6, 0.5]}},
+ "objects": [
+  {"type": "mesh", "file": "$samples/meshes/quad.obj", "material": "clay",
+   "transform": {"scale": [47.5, 1, 77.55], "rotate": [90, 0, 0], "translate": [-2.5, -671.79, 235.92]}},
+  {"type": "mesh", "file": "$samples/meshes/quad.obj", "material": "clay",
+   "transform": {"scale": [77.55, 1, 72.6], "rotate": [0, 0, 90], "translate": [-50, -671.79, 308.5]}},
+  {"type": "mesh", "file": "$data/mesh/stanford_dragon_decimated.ply", "material": "jade"}],
+ "lights": [{"position": [200, -400, 600]}], "camera": {"azimuth": 60, "elevation": 20}}
+EOF
+"$voxlink" view still.scene.json --window 800x600 >view.log 2>&1 &
+viewer=$!
+xdotool search --sync --onlyvisible --name "VoxLink" >/dev/null
+xdotool mousemove 530 400
+shoot 1
+sleep 2
+before=$(ls voxlink-screenshot-*.png | wc -l)
+# The press makes the dragon move (its static part rebuilt on a thread); the drag starts from
+# the press once the new scene is swapped in, so the steps after it count from there.
+xdotool keydown ctrl mousedown 1
+sleep 1
+for i in $(seq 1 6); do
+  xdotool mousemove $((530 + 10 * i)) 400
+  sleep 0.3
+done
+xdotool mouseup 1 keyup ctrl
+sleep 2
+after=$((before + 1))
+shoot $after
+press q
+wait "$viewer" || { cat view.log; exit 1; }
+viewer=""
+if idiff -fail 0.004 -failpercent 1 voxlink-screenshot-$after.png voxlink-screenshot-1.png >diff.txt; then
+  echo "the static dragon did not move under the drag"
+  cat view.log
   exit 1
 fi
 grep -E "pixels" diff.txt | head -1

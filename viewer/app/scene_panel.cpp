@@ -7,7 +7,7 @@
 
 namespace voxlink::viewer {
 
-bool drawScenePanel(SceneSession& s, std::optional<size_t>& selected) {
+bool drawScenePanel(SceneSession& s, std::optional<size_t>& selected, std::string& message) {
   bool changed = false;
   AnimationClock& clock = s.clock();
   bool playing = clock.playing();
@@ -22,7 +22,8 @@ bool drawScenePanel(SceneSession& s, std::optional<size_t>& selected) {
   ImGui::TextDisabled("Ctrl + left drag: move the object under the cursor, else the selected one");
   for (size_t i = 0; i < s.movingCount(); ++i) {
     ImGui::PushID(int(i));
-    if (ImGui::Selectable(s.movingName(i).c_str(), selected == i, 0, ImVec2(220, 0))) selected = i;
+    if (ImGui::Selectable(s.movingName(i).c_str(), selected == i, 0, ImVec2(220, 0)))
+      selected = selected == i ? std::nullopt : std::optional(i);  // a second click deselects
     ImGui::SameLine();
     if (s.held(i)) {
       ImGui::Text("held where dragged");
@@ -33,6 +34,19 @@ bool drawScenePanel(SceneSession& s, std::optional<size_t>& selected) {
       }
     } else {
       ImGui::TextDisabled("animated");
+    }
+    ImGui::PopID();
+  }
+  if (!s.staticMeshes().empty())
+    ImGui::TextDisabled("Static meshes (Ctrl + left drag on one, or \"move it\", makes it move):");
+  for (const StaticMesh& m : s.staticMeshes()) {
+    ImGui::PushID(int(1000000 + m.object));
+    ImGui::Text("%s", s.objectName(m.object).c_str());
+    ImGui::SameLine();
+    if (const auto p = s.promoting(); p && p->first == m.object) {
+      ImGui::ProgressBar(float(p->second), ImVec2(160, 0), "rebuilding the static part");
+    } else if (ImGui::SmallButton("move it")) {
+      if (Status st = s.promote(m.object); !st) message = st.message();
     }
     ImGui::PopID();
   }

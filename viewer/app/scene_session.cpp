@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 
@@ -31,6 +32,10 @@ SceneSession::SceneSession(std::string volumeFile, double span)
 
 SceneSession::~SceneSession() {
   std::error_code ignored;
+  if (promotion_) {  // a rebuild under way: its scratch file goes too
+    promotion_->take(true);
+    std::filesystem::remove(promotion_->staticFile(), ignored);
+  }
   std::filesystem::remove(volumeFile_, ignored);
 }
 
@@ -42,6 +47,8 @@ Result<std::unique_ptr<SceneSession>> SceneSession::prepare(const std::string& s
   if (options.resolution) description.grid.resolution = options.resolution;
   if (options.brick) description.grid.brickSize = options.brick;
   std::unique_ptr<SceneSession> s(new SceneSession(scratchPath(), description.animationSpan()));
+  s->description_ = description;
+  VOXLINK_ASSIGN_OR_RETURN(s->staticMeshes_, movableStaticMeshes(description));
   bool moves = false;
   for (const scene::SceneObject& o : description.objects) moves |= o.animation.has_value();
   if (moves) {
@@ -77,6 +84,7 @@ scene::Pose SceneSession::currentPose(size_t index) const {
 }
 
 Result<bool> SceneSession::update(double dtSeconds) {
+  VOXLINK_RETURN_IF_ERROR(applyPromotion(false));
   if (!dynamic_) return false;
   bool follows = false;  // some mesh follows its animation
   for (const auto& h : held_) follows |= !h.has_value();
@@ -87,6 +95,82 @@ Result<bool> SceneSession::update(double dtSeconds) {
   posesChanged_ = false;
   VOXLINK_RETURN_IF_ERROR(dynamic_->setPoses(poses));
   return true;
+}
+
+std::vector<render::Box> SceneSession::staticBoxes() const {
+  std::vector<render::Box> boxes;
+  for (const StaticMesh& m : staticMeshes_) boxes.push_back(toBox(m.restBounds));
+  return boxes;
+}
+
+std::string SceneSession::objectName(size_t object) const {
+  return cat("objects[", object, "] ",
+             std::filesystem::path(description_.objects.at(object).path).filename().string());
+}
+
+std::optional<size_t> SceneSession::movingIndexOf(size_t object) const {
+  if (!dynamic_) return std::nullopt;
+  const auto objects = dynamic_->movingObjects();
+  for (size_t i = 0; i < objects.size(); ++i)
+    if (objects[i].object == object) return i;
+  return std::nullopt;
+}
+
+Status SceneSession::promote(size_t object) {
+  if (promotion_)
+    return makeError(ErrorCode::kInvalidArgument, description_.path, ": objects[",
+                     promotion_->object(), "] is being made to move; one at a time");
+  if (prepared_)
+    return makeError(ErrorCode::kInvalidArgument, "promote: the session is not attached yet");
+  VOXLINK_ASSIGN_OR_RETURN(scene::SceneDescription moved, withObjectMoving(description_, object));
+  promotion_ = std::make_unique<BackgroundPrepare>(std::move(moved), scratchPath(), object);
+  return Status::ok();
+}
+
+std::optional<std::pair<size_t, double>> SceneSession::promoting() const {
+  if (!promotion_) return std::nullopt;
+  return std::pair{promotion_->object(), promotion_->progress()};
+}
+
+// Swaps the promoted scene in: its GPU layer made here (the GL context), every moving mesh held
+// where it was (the promoted one at rest), the old scratch file removed.
+Status SceneSession::applyPromotion(bool wait) {
+  if (!promotion_) return Status::ok();
+  auto done = promotion_->take(wait);
+  if (!done) return Status::ok();
+  const std::unique_ptr<BackgroundPrepare> job = std::move(promotion_);
+  std::error_code ignored;
+  if (!*done) {
+    std::filesystem::remove(job->staticFile(), ignored);
+    return done->error();
+  }
+  auto next = DynamicScene::load(std::move(**done));
+  if (!next) {
+    std::filesystem::remove(job->staticFile(), ignored);
+    return next.error();
+  }
+  const auto objects = (*next)->movingObjects();
+  std::vector<std::optional<scene::Pose>> held(objects.size());
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (objects[i].object == job->object()) {
+      held[i] = scene::Pose{};
+    } else if (const auto before = movingIndexOf(objects[i].object)) {
+      held[i] = held_[*before];
+    }
+  }
+  drag_.reset();
+  dynamic_ = std::move(*next);
+  held_ = std::move(held);
+  std::filesystem::remove(volumeFile_, ignored);
+  volumeFile_ = job->staticFile();
+  description_ = dynamic_->description();
+  staticMeshes_.erase(
+      std::remove_if(staticMeshes_.begin(), staticMeshes_.end(),
+                     [&](const StaticMesh& m) { return m.object == job->object(); }),
+      staticMeshes_.end());
+  posesChanged_ = true;
+  rebuilt_ = true;
+  return Status::ok();
 }
 
 size_t SceneSession::movingCount() const { return held_.size(); }

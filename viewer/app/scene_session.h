@@ -5,18 +5,21 @@
 // scratch .vxl, which the viewer opens as it opens any file. attach() then makes the moving
 // meshes' GPU layer and renderer (viewer/dynamic_scene.h) in the window's context. Per frame,
 // update() places every moving mesh at the animation clock's time, or where the user dragged
-// it, and re-voxelizes them when a pose changed.
+// it, and re-voxelizes them when a pose changed. A static mesh can be made to move (promote():
+// the static part rebuilt without it on a thread, then swapped in by update()).
 #pragma once
 
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/error.h"
 #include "render/camera.h"
 #include "scene/scene_assembly.h"
 #include "viewer/app/detail/animation_clock.h"
+#include "viewer/app/detail/mesh_promotion.h"
 #include "viewer/app/detail/object_drag.h"
 #include "viewer/dynamic_scene.h"
 
@@ -75,9 +78,27 @@ class SceneSession {
   }
   const std::array<bool, 3>& lastClamp() const { return lastClamp_; }
 
+  // Static meshes that can be made to move (a scene material), and their boxes at rest.
+  const std::vector<StaticMesh>& staticMeshes() const { return staticMeshes_; }
+  std::vector<render::Box> staticBoxes() const;
+  std::string objectName(size_t object) const;  // "objects[2] dragon.ply"
+  // Starts making objects[object] move: its static part is rebuilt without it on a thread; a
+  // later update() (in the GL context) swaps the new scene in, with the mesh held at rest and
+  // the other meshes' held poses kept. Errors: withObjectMoving's, a promotion under way.
+  Status promote(size_t object);
+  // The object being promoted and the rebuild's progress (0..1), if any.
+  std::optional<std::pair<size_t, double>> promoting() const;
+  // Blocks until a promotion under way is swapped in (tests; update() does not wait).
+  Status finishPromotion() { return applyPromotion(true); }
+  // True once after a promotion was swapped in: the viewer reopens volumeFile() with renderer().
+  bool takeRebuilt() { return std::exchange(rebuilt_, false); }
+  // The moving mesh index of a scene object, if it moves.
+  std::optional<size_t> movingIndexOf(size_t object) const;
+
  private:
   SceneSession(std::string volumeFile, double span);
   scene::Pose currentPose(size_t index) const;
+  Status applyPromotion(bool wait);
   struct Drag {
     size_t index = 0;
     scene::Pose start;
@@ -90,7 +111,11 @@ class SceneSession {
   std::vector<std::optional<scene::Pose>> held_;
   std::optional<Drag> drag_;
   std::array<bool, 3> lastClamp_{};
-  bool posesChanged_ = true;  // the first update() places the meshes
+  bool posesChanged_ = true;             // the first update() places the meshes
+  scene::SceneDescription description_;  // with the overrides and the promotions so far
+  std::vector<StaticMesh> staticMeshes_;
+  std::unique_ptr<BackgroundPrepare> promotion_;
+  bool rebuilt_ = false;
 };
 
 }  // namespace voxlink::viewer

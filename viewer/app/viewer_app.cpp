@@ -169,16 +169,18 @@ Status runViewer(const ViewerOptions& options) {
     InputFrame input = collectInput(window->handle(), keys, !io.WantCaptureMouse, keysFree);
     // Ctrl + left drag moves a scene's moving object; the camera does not see that button then.
     bool objectMoving = false;
-    if (scene && scene->moves() && size[0] > 0 && size[1] > 0) {
+    // A scene with a moving mesh, or a static mesh that can be made to move.
+    const bool sceneMoves = scene && (scene->moves() || !scene->staticMeshes().empty());
+    if (sceneMoves && size[0] > 0 && size[1] > 0) {
       int windowWidth = 0, windowHeight = 0;
       glfwGetWindowSize(window->handle(), &windowWidth, &windowHeight);
       const double toPixels = windowWidth > 0 ? double(size[0]) / windowWidth : 1.0;
       PointerState pointer;
       pointer.modifier = keys.held(GLFW_KEY_LEFT_CONTROL) || keys.held(GLFW_KEY_RIGHT_CONTROL);
       // A drag goes on over the panels; a press there does not start one.
-      pointer.left =
-          drag.active() ? glfwGetMouseButton(window->handle(), GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS
-                        : input.left;
+      pointer.left = drag.holding() ? glfwGetMouseButton(window->handle(),
+                                                         GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS
+                                    : input.left;
       pointer.x = input.mouseX * toPixels;
       pointer.y = input.mouseY * toPixels;
       // The cursor may have moved on since the press within this frame: start where it was.
@@ -188,10 +190,16 @@ Status runViewer(const ViewerOptions& options) {
                                   uint32_t(size[1]), selected);
       if (!dragging) state.message = dragging.message();
       objectMoving = drag.active();
-      if (objectMoving || pointer.modifier) input.left = false;
+      if (drag.holding() || pointer.modifier) input.left = false;
       const double now = nowMs();
       auto updated = scene->update((now - lastFrameMs) / 1000.0);
       lastFrameMs = now;
+      if (scene->takeRebuilt()) {  // a static mesh now moves: the new static part and renderer
+        Status loaded = state.load(scene->volumeFile(), options.tf.has_value(), scene->renderer());
+        if (!loaded) state.message = loaded.message();
+        selected.reset();  // the moving meshes are numbered anew
+        dirty = true;
+      }
       if (!updated) {
         state.message = updated.message();
       } else if (*updated) {
@@ -221,9 +229,8 @@ Status runViewer(const ViewerOptions& options) {
       ImGui::Begin("VoxLink");
       drawStatsPanel(state, glDescription, state.lastFrameReduced ? target.width() : size[0],
                      state.lastFrameReduced ? target.height() : size[1]);
-      if (scene && scene->moves() &&
-          ImGui::CollapsingHeader("Moving objects", ImGuiTreeNodeFlags_DefaultOpen))
-        dirty |= drawScenePanel(*scene, selected);
+      if (sceneMoves && ImGui::CollapsingHeader("Moving objects", ImGuiTreeNodeFlags_DefaultOpen))
+        dirty |= drawScenePanel(*scene, selected, state.message);
       if (ImGui::CollapsingHeader("Rendering")) dirty |= drawSettingsPanel(state);
       if (ImGui::CollapsingHeader("Transfer function", ImGuiTreeNodeFlags_DefaultOpen)) {
         const bool changed = drawTransferFunctionPanel(state);

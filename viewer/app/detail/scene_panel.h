@@ -10,7 +10,8 @@
 
 namespace voxlink::viewer {
 
-// Returns true when the image must be drawn again.
-bool drawScenePanel(SceneSession& session, std::optional<size_t>& selected);
+// Returns true when the image must be drawn again; an error (a mesh that cannot move) goes to
+// `message`.
+bool drawScenePanel(SceneSession& session, std::optional<size_t>& selected, std::string& message);
 
 }  // namespace voxlink::viewer
