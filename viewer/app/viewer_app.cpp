@@ -195,7 +195,8 @@ Status runViewer(const ViewerOptions& options) {
       auto updated = scene->update((now - lastFrameMs) / 1000.0);
       lastFrameMs = now;
       if (scene->takeRebuilt()) {  // a static mesh now moves: the new static part and renderer
-        Status loaded = state.load(scene->volumeFile(), options.tf.has_value(), scene->renderer());
+        // The user's transfer function (edited or given) stays: only one object left the file.
+        Status loaded = state.load(scene->volumeFile(), true, scene->renderer());
         if (!loaded) state.message = loaded.message();
         selected.reset();  // the moving meshes are numbered anew
         dirty = true;
