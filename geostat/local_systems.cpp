@@ -165,19 +165,29 @@ void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kL
       const double* in = &ts.compact[spd::batch::at(i, j, n, 0)];
       for (size_t lane = 0; lane < count; ++lane) factors[lane][j * ld + i] = in[lane];
     }
+  // factor()'s first attempt from here on: the nugget's bound, else the comparison bound,
+  // computed for all lanes at once when any lane needs it.
+  std::array<double, kLanes> bounds;
+  bool needComparison = false;
+  for (size_t lane = 0; lane < count; ++lane) {
+    bounds[lane] =
+        nugget_ > 0 ? 2 * std::sqrt(double(n)) * ts.queuedNorm[lane] / nugget_ : INFINITY;
+    needComparison |= ok[lane] && !(bounds[lane] <= maxCondition_);
+  }
+  if (needComparison) {
+    double comparison[kLanes];
+    ts.work.resize(2 * n * kLanes);
+    spd::batch::inverseNormComparisonBound(ts.compact.data(), n, ts.work.data(), comparison);
+    for (size_t lane = 0; lane < count; ++lane)
+      if (!(bounds[lane] <= maxCondition_))
+        bounds[lane] = 2 * ts.queuedNorm[lane] * comparison[lane];
+  }
   for (size_t lane = 0; lane < count; ++lane) {
     done[lane] = false;
-    if (!ok[lane]) continue;  // factor() takes it further
+    // factor() takes it further.
+    if (!ok[lane] || !(bounds[lane] <= maxCondition_)) continue;
     Factorization& f = *ts.queued[lane];
-    // factor()'s first attempt from here on.
-    double bound =
-        nugget_ > 0 ? 2 * std::sqrt(double(n)) * ts.queuedNorm[lane] / nugget_ : INFINITY;
-    if (!(bound <= maxCondition_)) {
-      ts.work.resize(2 * n);
-      bound = 2 * ts.queuedNorm[lane] *
-              spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
-      if (!(bound <= maxCondition_)) continue;
-    }
+    const double bound = bounds[lane];
     f.bounded = true;
     f.condition = bound;
     f.jitter = 0;

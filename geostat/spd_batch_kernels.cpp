@@ -67,4 +67,42 @@ VOXLINK_BATCH_CLONES void factorLower(double* a, size_t n, uint8_t ok[kLanes]) {
   factorLowerBody<0>(a, n, ok);
 }
 
+VOXLINK_BATCH_CLONES void inverseNormComparisonBound(const double* a, size_t n, double* work,
+                                                     double bound[kLanes]) {
+  double* x = work;  // x[i * W + lane]: M(L)^-1 1 (M(L): |l_ii| on the diagonal, -|l_ij| below)
+  double* y = work + n * W;  // M(L)^-T 1
+  std::fill(x, x + n * W, 1.0);
+  for (size_t j = 0; j < n; ++j) {
+    const double* cj = a + at(0, j, n, 0);
+    double xj[W];
+    for (size_t l = 0; l < W; ++l) xj[l] = x[j * W + l] *= cj[j * W + l];
+    for (size_t i = j + 1; i < n; ++i)
+      for (size_t l = 0; l < W; ++l) x[i * W + l] += std::fabs(cj[i * W + l]) * xj[l];
+  }
+  for (size_t i = n; i-- > 0;) {  // the scalar kernel's four split sums per lane
+    const double* ci = a + at(0, i, n, 0);
+    double s0[W] = {}, s1[W] = {}, s2[W] = {}, s3[W] = {};
+    size_t k = i + 1;
+    for (; k + 4 <= n; k += 4)
+      for (size_t l = 0; l < W; ++l) {
+        s0[l] += std::fabs(ci[k * W + l]) * y[k * W + l];
+        s1[l] += std::fabs(ci[(k + 1) * W + l]) * y[(k + 1) * W + l];
+        s2[l] += std::fabs(ci[(k + 2) * W + l]) * y[(k + 2) * W + l];
+        s3[l] += std::fabs(ci[(k + 3) * W + l]) * y[(k + 3) * W + l];
+      }
+    for (; k < n; ++k)
+      for (size_t l = 0; l < W; ++l) s0[l] += std::fabs(ci[k * W + l]) * y[k * W + l];
+    for (size_t l = 0; l < W; ++l)
+      y[i * W + l] = (1.0 + ((s0[l] + s1[l]) + (s2[l] + s3[l]))) * ci[i * W + l];
+  }
+  double xMax[W], yMax[W];
+  for (size_t l = 0; l < W; ++l) xMax[l] = yMax[l] = n == 0 ? 1.0 : 0.0;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t l = 0; l < W; ++l) {
+      xMax[l] = std::max(xMax[l], x[i * W + l]);
+      yMax[l] = std::max(yMax[l], y[i * W + l]);
+    }
+  for (size_t l = 0; l < W; ++l) bound[l] = xMax[l] * yMax[l];
+}
+
 }  // namespace voxlink::geostat::spd::batch
