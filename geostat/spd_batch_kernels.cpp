@@ -67,6 +67,54 @@ VOXLINK_BATCH_CLONES void factorLower(double* a, size_t n, uint8_t ok[kLanes]) {
   factorLowerBody<0>(a, n, ok);
 }
 
+VOXLINK_BATCH_CLONES void norm1(const double* a, size_t n, double* work, double norm[kLanes]) {
+  std::fill(work, work + n * W, 0.0);  // work[i * W + lane]: column i's sum
+  // Four columns at a time: four independent chains of adds (one was latency-bound), while
+  // each row still receives its terms in column order (the same bits).
+  size_t j = 0;
+  for (; j + 4 <= n; j += 4) {
+    double sum[4][W];
+    for (size_t c = 0; c < 4; ++c) {
+      const double* cc = a + at(0, j + c, n, 0);
+      for (size_t l = 0; l < W; ++l) sum[c][l] = std::fabs(cc[(j + c) * W + l]);
+      for (size_t i = j + c + 1; i < j + 4; ++i)
+        for (size_t l = 0; l < W; ++l) {
+          const double v = std::fabs(cc[i * W + l]);
+          sum[c][l] += v;
+          work[i * W + l] += v;
+        }
+    }
+    const double* c0 = a + at(0, j, n, 0);
+    const double* c1 = c0 + n * W;
+    const double* c2 = c1 + n * W;
+    const double* c3 = c2 + n * W;
+    for (size_t i = j + 4; i < n; ++i)
+      for (size_t l = 0; l < W; ++l) {
+        const double v0 = std::fabs(c0[i * W + l]), v1 = std::fabs(c1[i * W + l]);
+        const double v2 = std::fabs(c2[i * W + l]), v3 = std::fabs(c3[i * W + l]);
+        sum[0][l] += v0, sum[1][l] += v1, sum[2][l] += v2, sum[3][l] += v3;
+        work[i * W + l] = (((work[i * W + l] + v0) + v1) + v2) + v3;
+      }
+    for (size_t c = 0; c < 4; ++c)
+      for (size_t l = 0; l < W; ++l) work[(j + c) * W + l] += sum[c][l];
+  }
+  for (; j < n; ++j) {
+    const double* cj = a + at(0, j, n, 0);
+    double sum[W];
+    for (size_t l = 0; l < W; ++l) sum[l] = std::fabs(cj[j * W + l]);
+    for (size_t i = j + 1; i < n; ++i)
+      for (size_t l = 0; l < W; ++l) {
+        const double v = std::fabs(cj[i * W + l]);
+        sum[l] += v;
+        work[i * W + l] += v;
+      }
+    for (size_t l = 0; l < W; ++l) work[j * W + l] += sum[l];
+  }
+  for (size_t l = 0; l < W; ++l) norm[l] = 0.0;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t l = 0; l < W; ++l) norm[l] = std::max(norm[l], work[i * W + l]);
+}
+
 VOXLINK_BATCH_CLONES void inverseNormComparisonBound(const double* a, size_t n, double* work,
                                                      double bound[kLanes]) {
   double* x = work;  // x[i * W + lane]: M(L)^-1 1 (M(L): |l_ii| on the diagonal, -|l_ij| below)

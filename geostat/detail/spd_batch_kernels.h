@@ -27,6 +27,11 @@ constexpr size_t at(size_t i, size_t j, size_t n, size_t lane) {
 // 0 where a pivot is not positive and finite (that lane's values are then meaningless).
 void factorLower(double* a, size_t n, uint8_t ok[kLanes]);
 
+// The 1-norm of every lane's symmetric matrix from its lower triangle: column sums of |a_ij|,
+// added as local kriging's gather() adds them (the same bits; no multiplications). `work` holds
+// n kLanes doubles.
+void norm1(const double* a, size_t n, double* work, double norm[kLanes]);
+
 // spd::inverseNormComparisonBound on every lane of factors from factorLower: the same sums in
 // the same order per lane, but the scalar kernel's FMA contraction differs (its bound's last
 // bits may differ; it is a bound either way, doubled for rounding where it is used). `work`
