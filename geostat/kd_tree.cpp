@@ -86,9 +86,13 @@ class NearestSet {
 class BallSet {
  public:
   BallSet(double radius2, size_t maxCount, std::vector<uint32_t>& out)
-      : radius2_(radius2), maxCount_(maxCount), out_(out) {}
+      : radius2_(radius2),
+        worst_(std::nextafter(radius2 * kBoundMargin, INFINITY)),
+        maxCount_(maxCount),
+        out_(out) {}
   bool full() const { return true; }
-  double worstDist() const { return std::nextafter(radius2_ * kBoundMargin, INFINITY); }
+  // Asked at every leaf point and branch: kept, as NearestSet keeps its bound.
+  double worstDist() const { return worst_; }
   bool addPoint(double d2, uint32_t index) {
     if (d2 > radius2_) return true;
     if (found_ >= maxCount_) {
@@ -102,7 +106,7 @@ class BallSet {
   bool overflow() const { return overflow_; }
 
  private:
-  double radius2_;
+  double radius2_, worst_;
   size_t maxCount_;
   std::vector<uint32_t>& out_;
   size_t found_ = 0;
