@@ -31,7 +31,11 @@ struct WaitingNode {
 struct ThreadState : PickState {
   explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
   std::vector<Neighbour> nearest;
-  std::vector<uint32_t> candidates;              // sample indices, ascending
+  std::vector<uint32_t> candidates;  // sample indices, ascending
+  std::vector<uint32_t> ball;        // a ball query's samples, and their squared distances
+  std::vector<double> ballSquared, sortedSquared;
+  double pieceKth = -1;  // d_k+1 at the centre of the last piece queried (-1: none yet)
+  Point3 pieceCentre{};
   std::vector<double> pair;                      // the candidates' covariances (m x m)
   std::vector<std::array<uint16_t, 2>> missing;  // (i, j) in picked to evaluate, distances
   std::vector<double> missingDistance, missingCovariance;
