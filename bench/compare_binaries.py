@@ -7,13 +7,15 @@ Usage: compare_binaries.py RUNS BEFORE AFTER -- COMMAND...
 COMMAND is run RUNS times with each binary, alternating which goes first, {V} replaced by the
 binary and {OUT} by an output prefix (/tmp/compare_before or /tmp/compare_after). Prints, per
 run, whether every output file of BEFORE has a byte-identical twin from AFTER (SHA-256); then
-the median wall time and the median of the `time:` line (voxlink krige's solve) per binary,
-and the load average.
+the median wall time, the median CPU time (user + system, which a loaded machine inflates
+far less than the wall time) and the median of the `time:` line (voxlink krige's solve) per
+binary, and the load average.
 """
 import glob
 import hashlib
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -31,7 +33,7 @@ def main():
     runs = int(sys.argv[1])
     exes = {"before": sys.argv[2], "after": sys.argv[3]}
     command = sys.argv[5:]
-    times = {k: {"wall": [], "solve": []} for k in exes}
+    times = {k: {"wall": [], "cpu": [], "solve": []} for k in exes}
     for r in range(runs):
         for k in (["before", "after"] if r % 2 == 0 else ["after", "before"]):
             out = f"/tmp/compare_{k}"
@@ -39,8 +41,11 @@ def main():
                 os.remove(f)
             cmd = [a.replace("{V}", exes[k]).replace("{OUT}", out) for a in command]
             t0 = time.time()
+            u0 = resource.getrusage(resource.RUSAGE_CHILDREN)
             p = subprocess.run(cmd, capture_output=True, text=True)
             wall = time.time() - t0
+            u1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+            times[k]["cpu"].append(u1.ru_utime - u0.ru_utime + u1.ru_stime - u0.ru_stime)
             if p.returncode:
                 sys.exit(f"{k} failed: {p.stderr}")
             times[k]["wall"].append(wall)
@@ -53,8 +58,9 @@ def main():
             and digest(f) == digest(f.replace("compare_before", "compare_after")) for f in befores)
         print(f"run {r}: outputs identical: {same} ({len(befores)} files)", flush=True)
     for k in exes:
-        walls, solves = times[k]["wall"], times[k]["solve"]
+        walls, solves, cpus = times[k]["wall"], times[k]["solve"], times[k]["cpu"]
         line = f"{k}: wall median {statistics.median(walls):.3f} s ({' '.join(f'{w:.3f}' for w in walls)})"
+        line += f", CPU median {statistics.median(cpus):.3f} s ({' '.join(f'{c:.3f}' for c in cpus)})"
         if solves:
             line += f", solve median {statistics.median(solves):.3f} s"
         print(line)

@@ -85,10 +85,16 @@ class NearestSet {
 // Every point within a squared radius, stopping once there are more than maxCount.
 class BallSet {
  public:
-  BallSet(double radius2, size_t maxCount, std::vector<uint32_t>& out)
-      : radius2_(radius2), maxCount_(maxCount), out_(out) {}
+  BallSet(double radius2, size_t maxCount, std::vector<uint32_t>& out,
+          std::vector<double>* squared = nullptr)
+      : radius2_(radius2),
+        worst_(std::nextafter(radius2 * kBoundMargin, INFINITY)),
+        maxCount_(maxCount),
+        out_(out),
+        squared_(squared) {}
   bool full() const { return true; }
-  double worstDist() const { return std::nextafter(radius2_ * kBoundMargin, INFINITY); }
+  // Asked at every leaf point and branch: kept, as NearestSet keeps its bound.
+  double worstDist() const { return worst_; }
   bool addPoint(double d2, uint32_t index) {
     if (d2 > radius2_) return true;
     if (found_ >= maxCount_) {
@@ -97,14 +103,16 @@ class BallSet {
     }
     ++found_;
     out_.push_back(index);
+    if (squared_) squared_->push_back(d2);
     return true;
   }
   bool overflow() const { return overflow_; }
 
  private:
-  double radius2_;
+  double radius2_, worst_;
   size_t maxCount_;
   std::vector<uint32_t>& out_;
+  std::vector<double>* squared_;
   size_t found_ = 0;
   bool overflow_ = false;
 };
@@ -126,6 +134,14 @@ bool KdTree::within(const Point3& q, double radius, size_t maxCount,
                     std::vector<uint32_t>& out) const {
   if (index_->cloud.points.empty()) return true;
   BallSet ball(radius * radius, maxCount, out);
+  index_->tree.findNeighbors(ball, q.data(), nanoflann::SearchParams());
+  return !ball.overflow();
+}
+
+bool KdTree::within(const Point3& q, double radius, size_t maxCount, std::vector<uint32_t>& out,
+                    std::vector<double>& squared) const {
+  if (index_->cloud.points.empty()) return true;
+  BallSet ball(radius * radius, maxCount, out, &squared);
   index_->tree.findNeighbors(ball, q.data(), nanoflann::SearchParams());
   return !ball.overflow();
 }

@@ -35,8 +35,8 @@ void LocalSystems::loadCandidates(ThreadState& ts) const {
 }
 
 // The covariances among the samples of f.key (lower triangle, column-major, leading dimension
-// ld) plus jitter on the diagonal, computed as pairCovariance() computes them (the same bits);
-// returns the 1-norm of that matrix.
+// ld) plus jitter on the diagonal, computed as queue() computes them (the same
+// bits); returns the 1-norm of that matrix.
 double LocalSystems::gather(ThreadState& ts, const std::vector<uint32_t>& key, double jitter,
                             double* a, size_t ld) const {
   const size_t n = key.size();
@@ -122,33 +122,47 @@ void LocalSystems::finish(ThreadState& ts, Factorization& f) const {
   f.pending = false;
 }
 
+// Queues the system of ts.picked in lane ts.queuedCount. One pass copies its pair covariances
+// from the brick's cache and lists those not evaluated yet (branch-free: about a third of them
+// are new, at random); those are then evaluated together, the exponential model's exp() four at
+// a time, with gather()'s operations (the same bits), and stored in both places.
 void LocalSystems::queue(ThreadState& ts, Factorization& f) const {
   f.pending = true;
-  const size_t lane = ts.queuedCount++, n = ts.picked.size();
+  const size_t lane = ts.queuedCount++, n = ts.picked.size(), m = ts.candidates.size();
   ts.queued[lane] = &f;
   ts.compact.resize(n * n * kLanes);
-  // gather()'s sums in gather()'s order (the same norm bits), from the brick's pair cache.
-  ts.work.assign(n, 0.0);  // column sums of |A|
-  // Pointers held in registers: through the vectors every store reloaded them (the stores
-  // may alias a vector's pointer), and that was most of the gather's time.
-  const size_t m = ts.candidates.size();
+  ts.missing.resize(n * (n - 1) / 2);
+  size_t count = 0;
+  // Pointers held in registers: through the vectors every store reloaded them (the stores may
+  // alias a vector's pointer).
   const uint32_t* picked = ts.picked.data();
-  double* __restrict sums = ts.work.data();
+  auto* __restrict missing = ts.missing.data();
   for (size_t j = 0; j < n; ++j) {
     double* __restrict column = &ts.compact[spd::batch::at(0, j, n, lane)];
-    const double* row = ts.pair.data() + size_t{picked[j]} * m;
+    const double* pairs = &ts.pair[size_t{picked[j]} * m];
     column[j * kLanes] = sill_;
-    double sum = sill_;
     for (size_t i = j + 1; i < n; ++i) {
-      double c = row[picked[i]];
-      if (std::isnan(c)) c = pairCovariance(ts, picked[j], picked[i]);  // first use in the brick
+      const double c = pairs[picked[i]];
       column[i * kLanes] = c;
-      sum += std::fabs(c);
-      sums[i] += std::fabs(c);
+      missing[count] = {uint16_t(i), uint16_t(j)};
+      count += std::isnan(c);
     }
-    sums[j] += sum;
   }
-  ts.queuedNorm[lane] = *std::max_element(ts.work.begin(), ts.work.end());
+  ts.missingDistance.resize(count);
+  for (size_t k = 0; k < count; ++k) {
+    const uint32_t b = ts.picked[ts.missing[k][1]], a = ts.picked[ts.missing[k][0]];
+    const double dx = ts.cx[b] - ts.cx[a], dy = ts.cy[b] - ts.cy[a], dz = ts.cz[b] - ts.cz[a];
+    ts.missingDistance[k] = std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300);
+  }
+  ts.missingCovariance.resize(count);
+  kriger_.variogram().covariances(ts.missingDistance.data(), ts.missingCovariance.data(), count);
+  for (size_t k = 0; k < count; ++k) {
+    const auto [i, j] = ts.missing[k];
+    const double c = ts.missingCovariance[k];
+    const uint32_t a = ts.picked[i], b = ts.picked[j];
+    ts.compact[spd::batch::at(i, j, n, lane)] = ts.pair[size_t{b} * m + a] =
+        ts.pair[size_t{a} * m + b] = c;
+  }
 }
 
 // The first attempt of factor() on `count` (> 0) queued systems at once; done[lane] where it
@@ -158,6 +172,10 @@ void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kL
   for (size_t lane = count; lane < kLanes; ++lane)  // an idle lane factors the identity
     for (size_t j = 0; j < n; ++j)
       for (size_t i = j; i < n; ++i) ts.compact[spd::batch::at(i, j, n, lane)] = i == j;
+  // gather()'s norm bits, four lanes at a time (one chain of dependent adds per column each).
+  ts.work.resize(2 * n * kLanes);
+  double norms[kLanes];
+  spd::batch::norm1(ts.compact.data(), n, ts.work.data(), norms);
   uint8_t ok[kLanes];
   spd::batch::factorLower(ts.compact.data(), n, ok);
   // The factors out of the batch, a cache line of the batch (all lanes of one element) at a time.
@@ -172,19 +190,26 @@ void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kL
       const double* in = &ts.compact[spd::batch::at(i, j, n, 0)];
       for (size_t lane = 0; lane < count; ++lane) factors[lane][j * ld + i] = in[lane];
     }
+  // factor()'s first attempt from here on: the nugget's bound, else the comparison bound,
+  // computed for all lanes at once when any lane needs it.
+  std::array<double, kLanes> bounds;
+  bool needComparison = false;
+  for (size_t lane = 0; lane < count; ++lane) {
+    bounds[lane] = nugget_ > 0 ? 2 * std::sqrt(double(n)) * norms[lane] / nugget_ : INFINITY;
+    needComparison |= ok[lane] && !(bounds[lane] <= maxCondition_);
+  }
+  if (needComparison) {
+    double comparison[kLanes];
+    spd::batch::inverseNormComparisonBound(ts.compact.data(), n, ts.work.data(), comparison);
+    for (size_t lane = 0; lane < count; ++lane)
+      if (!(bounds[lane] <= maxCondition_)) bounds[lane] = 2 * norms[lane] * comparison[lane];
+  }
   for (size_t lane = 0; lane < count; ++lane) {
     done[lane] = false;
-    if (!ok[lane]) continue;  // factor() takes it further
+    // factor() takes it further.
+    if (!ok[lane] || !(bounds[lane] <= maxCondition_)) continue;
     Factorization& f = *ts.queued[lane];
-    // factor()'s first attempt from here on.
-    double bound =
-        nugget_ > 0 ? 2 * std::sqrt(double(n)) * ts.queuedNorm[lane] / nugget_ : INFINITY;
-    if (!(bound <= maxCondition_)) {
-      ts.work.resize(2 * n);
-      bound = 2 * ts.queuedNorm[lane] *
-              spd::inverseNormComparisonBound(f.l.data(), n, ld, ts.work.data());
-      if (!(bound <= maxCondition_)) continue;
-    }
+    const double bound = bounds[lane];
     f.bounded = true;
     f.condition = bound;
     f.jitter = 0;

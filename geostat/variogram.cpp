@@ -6,6 +6,8 @@
 #include <optional>
 #include <sstream>
 
+#include "geostat/detail/exp_batch.h"
+
 namespace voxlink::geostat {
 namespace {
 
@@ -93,10 +95,9 @@ void Variogram::covariancesOfSquared(const double* squared, double* out, size_t 
   const double a = params_.range, psill = params_.psill, total = sill();
   switch (params_.type) {
     case VariogramType::kExponential:
-      for (size_t i = 0; i < n; ++i) {
-        const double h = std::sqrt(squared[i]);
-        out[i] = h == 0.0 ? total : psill * std::exp(-3.0 * h / a);
-      }
+      for (size_t i = 0; i < n; ++i) out[i] = -3.0 * std::sqrt(squared[i]) / a;
+      expBatch(out, out, n);
+      for (size_t i = 0; i < n; ++i) out[i] = squared[i] == 0.0 ? total : psill * out[i];
       return;
     case VariogramType::kSpherical:
       for (size_t i = 0; i < n; ++i) {  // the same operations as correlation(), so the same bits
@@ -110,6 +111,17 @@ void Variogram::covariancesOfSquared(const double* squared, double* out, size_t 
       break;
   }
   for (size_t i = 0; i < n; ++i) out[i] = covariance(std::sqrt(squared[i]));
+}
+
+void Variogram::covariances(const double* h, double* out, size_t n) const {
+  if (params_.type != VariogramType::kExponential) {
+    for (size_t i = 0; i < n; ++i) out[i] = covariance(h[i]);
+    return;
+  }
+  const double a = params_.range, psill = params_.psill, total = sill();
+  for (size_t i = 0; i < n; ++i) out[i] = -3.0 * h[i] / a;  // correlation()'s operations
+  expBatch(out, out, n);
+  for (size_t i = 0; i < n; ++i) out[i] = h[i] == 0.0 ? total : psill * out[i];
 }
 
 std::string Variogram::describe() const {

@@ -30,6 +30,10 @@ class KdTree {
   // Appends the indices of the points within `radius` of q (any order) to `out`; stops and
   // returns false once more than maxCount were found, so a crowded ball costs little.
   bool within(const Point3& q, double radius, size_t maxCount, std::vector<uint32_t>& out) const;
+  // The same, also appending each point's squared distance to q as nearest() computes it (the
+  // same bits) to `squared`.
+  bool within(const Point3& q, double radius, size_t maxCount, std::vector<uint32_t>& out,
+              std::vector<double>& squared) const;
 
  private:
   struct Index;

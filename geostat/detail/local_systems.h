@@ -32,13 +32,18 @@ struct ThreadState : PickState {
   explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
   std::vector<Neighbour> nearest;
   std::vector<uint32_t> candidates;  // sample indices, ascending
-  std::vector<double> pair;          // the candidates' covariances (m x m)
+  std::vector<uint32_t> ball;        // a ball query's samples, and their squared distances
+  std::vector<double> ballSquared, sortedSquared;
+  double pieceKth = -1;  // d_k+1 at the centre of the last piece queried (-1: none yet)
+  Point3 pieceCentre{};
+  std::vector<double> pair;                      // the candidates' covariances (m x m)
+  std::vector<std::array<uint16_t, 2>> missing;  // (i, j) in picked to evaluate, distances
+  std::vector<double> missingDistance, missingCovariance;
   std::vector<double> rhs, work, drift;
   std::vector<uint32_t> lastPicked, key;
   FactorizationCache cache;
   const Factorization* last = nullptr;  // the previous node's, valid while lastPicked is
   std::array<Factorization*, spd::batch::kLanes> queued{};  // slots; f->key is the set
-  std::array<double, spd::batch::kLanes> queuedNorm{};      // their 1-norms
   size_t queuedCount = 0;
   std::vector<double> compact;  // the queued systems, gathered, spd::batch layout
   std::vector<WaitingNode> waiting;
@@ -65,18 +70,6 @@ class LocalSystems {
   Status flush(ThreadState& ts) const;
 
  private:
-  double pairCovariance(ThreadState& ts, uint32_t i, uint32_t j) const {
-    const size_t m = ts.candidates.size();
-    double& c = ts.pair[i * m + j];
-    if (std::isnan(c)) {
-      const double dx = ts.cx[i] - ts.cx[j], dy = ts.cy[i] - ts.cy[j], dz = ts.cz[i] - ts.cz[j];
-      c = i == j ? sill_
-                 : kriger_.variogram().covariance(
-                       std::max(std::sqrt(dx * dx + dy * dy + dz * dz), 1e-300));
-      ts.pair[j * m + i] = c;
-    }
-    return c;
-  }
   double gather(ThreadState& ts, const std::vector<uint32_t>& key, double jitter, double* a,
                 size_t ld) const;
   Status factor(ThreadState& ts, Factorization& f) const;

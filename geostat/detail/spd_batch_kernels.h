@@ -4,8 +4,8 @@
 // a full-width vector operation with no horizontal step and no short tails. Each lane performs
 // the scalar kernel's operations in the scalar kernel's order, so its results are the same bits
 // (spd_batch_kernels_test.cpp checks this: FMA contraction must come out alike, which is why
-// the condition bounds, whose reductions GCC contracts differently per loop shape, stay
-// scalar); local kriging factors the nodes of a brick that need
+// the comparison bound, whose reductions GCC contracts differently per loop shape, equals the
+// scalar one only to rounding); local kriging factors the nodes of a brick that need
 // fresh systems kLanes at a time (local_kriging.cpp).
 #pragma once
 
@@ -26,5 +26,16 @@ constexpr size_t at(size_t i, size_t j, size_t n, size_t lane) {
 // spd::factorLower on every lane (lower triangle only; 1 / l_jj on the diagonal). ok[lane] is
 // 0 where a pivot is not positive and finite (that lane's values are then meaningless).
 void factorLower(double* a, size_t n, uint8_t ok[kLanes]);
+
+// The 1-norm of every lane's symmetric matrix from its lower triangle: column sums of |a_ij|,
+// added as local kriging's gather() adds them (the same bits; no multiplications). `work` holds
+// n kLanes doubles.
+void norm1(const double* a, size_t n, double* work, double norm[kLanes]);
+
+// spd::inverseNormComparisonBound on every lane of factors from factorLower: the same sums in
+// the same order per lane, but the scalar kernel's FMA contraction differs (its bound's last
+// bits may differ; it is a bound either way, doubled for rounding where it is used). `work`
+// holds 2 n kLanes doubles.
+void inverseNormComparisonBound(const double* a, size_t n, double* work, double bound[kLanes]);
 
 }  // namespace voxlink::geostat::spd::batch

@@ -46,6 +46,9 @@ class Variogram {
   // out[i] = covariance(sqrt(squared[i])) for n distances, bit for bit: one switch and a loop
   // the compiler vectorizes (spherical), not a call per distance (local kriging's right-hand side).
   void covariancesOfSquared(const double* squared, double* out, size_t n) const;
+  // out[i] = covariance(h[i]) for n distances, bit for bit (the exponential model's exp() four
+  // at a time: local kriging's pair covariances).
+  void covariances(const double* h, double* out, size_t n) const;
   double gamma(double h) const {
     return h == 0.0 ? 0.0 : params_.nugget + params_.psill * (1.0 - correlation(h));
   }
