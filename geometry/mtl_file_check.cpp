@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string_view>
@@ -65,6 +66,9 @@ size_t lineNumberAt(std::string_view text, size_t at) {
 }  // namespace
 
 Status checkMtlFile(const std::string& path, const std::string& objPath) {
+  // A device or FIFO (`mtllib /dev/zero`) would never end; assimp sees it as empty.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return Status::ok();
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status::ok();  // assimp reports what it cannot open
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
