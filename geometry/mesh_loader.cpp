@@ -61,11 +61,12 @@ class MeshFileIo : public Assimp::DefaultIOSystem {
   bool isMissingMtl(const char* file) const {
     return lower(fs::path(file).extension().string()) == ".mtl" && !DefaultIOSystem::Exists(file);
   }
-  // An OBJ's `mtllib` may name any file; every file but the OBJ itself is one then.
+  // An OBJ's `mtllib` may name any file: every file but the OBJ itself is one then. The file
+  // loadMesh was given is never one, whatever its name.
   bool isMaterialLibrary(const std::string& path) const {
-    if (lower(fs::path(path).extension().string()) == ".mtl") return true;
     std::error_code ec;
-    return mainIsObj_ && !fs::equivalent(path, mainPath_, ec);
+    if (fs::equivalent(path, mainPath_, ec)) return false;
+    return mainIsObj_ || lower(fs::path(path).extension().string()) == ".mtl";
   }
   std::string mainPath_;
   bool mainIsObj_;
