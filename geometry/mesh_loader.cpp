@@ -34,24 +34,44 @@ std::string lower(std::string s) {
   return s;
 }
 
-// Falls back to OBJ-stem.mtl when the OBJ names an MTL file that does not exist.
-class MtlFallbackIo : public Assimp::DefaultIOSystem {
+// The files assimp opens for one load. Falls back to OBJ-stem.mtl when the OBJ names an MTL file
+// that does not exist, and checks each material library before assimp reads it: on a refused one
+// it records the error and throws, which Importer::ReadFile turns into "no scene".
+class MeshFileIo : public Assimp::DefaultIOSystem {
  public:
-  explicit MtlFallbackIo(std::string fallback) : fallback_(std::move(fallback)) {}
+  MeshFileIo(std::string mainPath, bool mainIsObj, std::string fallback)
+      : mainPath_(std::move(mainPath)), mainIsObj_(mainIsObj), fallback_(std::move(fallback)) {}
   bool Exists(const char* file) const override {
     return DefaultIOSystem::Exists(file) || (isMissingMtl(file) && !fallback_.empty());
   }
   Assimp::IOStream* Open(const char* file, const char* mode) override {
-    if (isMissingMtl(file) && !fallback_.empty())
-      return DefaultIOSystem::Open(fallback_.c_str(), mode);
-    return DefaultIOSystem::Open(file, mode);
+    const std::string path = isMissingMtl(file) && !fallback_.empty() ? fallback_ : file;
+    if (isMaterialLibrary(path)) {
+      Status checked = checkMtlFile(path, mainPath_);
+      if (!checked) {
+        refused_ = checked;
+        throw std::runtime_error(checked.message());
+      }
+    }
+    return DefaultIOSystem::Open(path.c_str(), mode);
   }
+  const Status& refused() const { return refused_; }
 
  private:
   bool isMissingMtl(const char* file) const {
     return lower(fs::path(file).extension().string()) == ".mtl" && !DefaultIOSystem::Exists(file);
   }
+  // An OBJ's `mtllib` may name any file: every file but the OBJ itself is one then. The file
+  // loadMesh was given is never one, whatever its name.
+  bool isMaterialLibrary(const std::string& path) const {
+    std::error_code ec;
+    if (fs::equivalent(path, mainPath_, ec)) return false;
+    return mainIsObj_ || lower(fs::path(path).extension().string()) == ".mtl";
+  }
+  std::string mainPath_;
+  bool mainIsObj_;
   std::string fallback_;
+  Status refused_;
 };
 
 // assimp's messages may span lines and quote whole lines of a damaged file (kilobytes).
@@ -213,7 +233,8 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
     mtl.replace_extension(".mtl");
     if (fs::is_regular_file(mtl, ec)) fallbackMtl = mtl.string();
   }
-  importer.SetIOHandler(new MtlFallbackIo(fallbackMtl));  // the importer owns it
+  auto* io = new MeshFileIo(path, isObj, fallbackMtl);
+  importer.SetIOHandler(io);  // the importer owns it
   // Keep degenerate triangles and lines out of the triangulation's way: no FindDegenerates.
   uint64_t declaredFaces = 0;  // what the header says, to catch a load that lost faces
   if (extension == ".ply" || looksLikePly(path)) {
@@ -228,6 +249,7 @@ Result<TriangleMesh> loadMesh(const std::string& path, const MeshLoadOptions& op
   assimpAssertion.clear();
   const aiScene* scene =
       importer.ReadFile(path, aiProcess_ValidateDataStructure | aiProcess_Triangulate);
+  if (!io->refused()) return io->refused().error();
   if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) ||
       scene->mRootNode == nullptr) {
     return makeError(

@@ -10,7 +10,8 @@
 // Vertices that share a position are not merged: OBJ gives one vertex per face corner.
 // Errors (one line naming the file): missing or unreadable file, a file assimp cannot parse, no
 // triangles, a non-finite vertex (for OBJ with its line number), more than maxTriangles
-// triangles, more than 65536 materials.
+// triangles, more than 65536 materials, an MTL texture map or anisotropy statement before the
+// first `newmtl` (assimp 5.2.5 crashes on those; the error names the MTL file and line).
 //
 // An OBJ whose `mtllib` file is missing gets the MTL named like the OBJ itself
 // (scene.obj -> scene.mtl) when that exists: data sets renamed on download keep their materials.

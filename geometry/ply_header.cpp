@@ -39,7 +39,7 @@ Result<PlyHeader> readPlyHeader(const std::string& path) {
   if (header.dataStart < head.size() && head[header.dataStart] == '\n') ++header.dataStart;
   std::istringstream lines(head.substr(0, end));
   std::string line;
-  while (std::getline(lines, line)) {
+  for (size_t number = 1; std::getline(lines, line); ++number) {
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
@@ -61,6 +61,11 @@ Result<PlyHeader> readPlyHeader(const std::string& path) {
         return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, ": count '", count,
                          "' is not a whole number");
       e.count = std::stoull(count);
+      // assimp 5.2 sizes its vertex array by the first `vertex` element, and the vertices of a
+      // second one were written past its end (heap corruption, found by the mesh fuzz target).
+      if (header.find(e.name) != nullptr)
+        return makeError(ErrorCode::kCorrupt, path, ": line ", number, ": element ", e.name,
+                         " is declared a second time");
       header.elements.push_back(e);
     } else if (keyword == "property" && !header.elements.empty()) {
       PlyProperty p;

@@ -234,6 +234,20 @@ TEST_F(CliBadInput, RenderedImageIsWholeOrAbsent) {
   EXPECT_NE(images[0].find("out.png"), std::string::npos);
 }
 
+// An MTL statement that assimp 5.2.5 writes through a null material (a SEGV before the check in
+// geometry/mtl_file_check.cpp): the scene build names the MTL file and line, and writes nothing.
+TEST_F(CliBadInput, SceneBuildRefusesATextureMapBeforeNewmtl) {
+  const std::string obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string mtl = "# materials\nmap_Kd wood.png\nnewmtl wood\nKd 1 1 1\n";
+  const std::string scene =
+      R"({"grid": {"resolution": 16}, "objects": [{"type": "mesh", "file": "m.obj"}]})";
+  writeBytes(dir_.file("m.obj"), std::vector<uint8_t>(obj.begin(), obj.end()));
+  writeBytes(dir_.file("m.mtl"), std::vector<uint8_t>(mtl.begin(), mtl.end()));
+  writeBytes(dir_.file("s.scene.json"), std::vector<uint8_t>(scene.begin(), scene.end()));
+  auto r = runVoxlink({"scene", "build", dir_.file("s.scene.json"), "-o", dir_.file("o.vxl")});
+  expectCleanFailure(r, "m.mtl: line 2: 'map_Kd' (texture map) before the first newmtl");
+}
+
 // A damaged header whose quoted value holds a newline and a stray byte still gives one line.
 TEST_F(CliBadInput, DamagedHeaderTextIsEscapedIntoOneLine) {
   const std::string header = "{'descr': '<u2', 'fortran_order': Fal\ne\xF6, 'shape': (2, 2, 2), }";

@@ -282,6 +282,24 @@ TEST(MeshLoaderErrors, CountsBeyondTheFileNameTheElement) {
 
 // The count check's lower bound holds for the tightest valid files: one-character ASCII values
 // with no line end after the last one (17 bytes for three vertices of three values).
+TEST(MeshLoaderErrors, SecondElementOfANameIsRefused) {
+  // assimp 5.2 wrote the second element's 3000 vertices past an array sized for the first's one.
+  TempDir dir;
+  std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nelement vertex 3000\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n";
+  for (int i = 0; i < 3000; ++i) ply += std::to_string(i) + " 1 0\n";
+  writeText(dir.file("twice.ply"), ply + "3 0 1 2\n");
+  auto mesh = loadMesh(dir.file("twice.ply"));
+  ASSERT_FALSE(mesh);
+  EXPECT_EQ(mesh.code(), ErrorCode::kCorrupt);
+  EXPECT_NE(mesh.message().find("twice.ply: line 7: element vertex is declared a second time"),
+            std::string::npos)
+      << mesh.message();
+}
+
 TEST(MeshLoader, TightestAsciiPlyPassesTheCountCheck) {
   TempDir dir;
   writeText(dir.file("tight.ply"),
