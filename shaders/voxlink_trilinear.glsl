@@ -51,8 +51,37 @@ int dualBrickIndex(ivec3 dual, int m, out uint base) {
   return k;
 }
 
+#if VXL_DUAL_INDICES
+// Occupied index (or -1) of brick m (numbered as cornerOffset) among the 16-bit indices `e` of
+// a dual brick's bricks, which are numbered by x, y, z bits instead (brick_lookup.h); m is a
+// constant, so the shifts fold.
+int dualIndexOf(uvec4 e, int m) {
+  ivec3 o = cornerOffset(m);
+  int j = o.x + 2 * o.y + 4 * o.z;
+  uint k = (e[j >> 1] >> (16u * uint(j & 1))) & 0xFFFFu;
+  return k == 0xFFFFu ? -1 : int(k);
+}
+#endif
+
 // Keeps the occupied indices and first voxels of the 8 bricks dual brick `dual` reads.
 void loadDualBrick(ivec3 dual) {
+#if VXL_DUAL_INDICES && VXL_N <= 16 && VXL_ROW_GLOBAL
+  // One texel of the table derived at load time instead of 8 index lookups: a pass in which
+  // any lane enters a dual brick runs this for all 8 lanes on llvmpipe. (dualBrickHit found
+  // the dual cell dual + 1 inside the table.)
+  ivec3 r = dual + 1 - kVxlDualLo;
+  uvec4 e = dualIndexWords((uint(r.z) * uint(kVxlDualSize.y) + uint(r.y)) * uint(kVxlDualSize.x) +
+                           uint(r.x));
+  gK0 = dualIndexOf(e, 0);
+  gK1 = dualIndexOf(e, 1);
+  gK2 = dualIndexOf(e, 2);
+  gK3 = dualIndexOf(e, 3);
+  gK4 = dualIndexOf(e, 4);
+  gK5 = dualIndexOf(e, 5);
+  gK6 = dualIndexOf(e, 6);
+  gK7 = dualIndexOf(e, 7);
+  gB0 = gB1 = gB2 = gB3 = gB4 = gB5 = gB6 = gB7 = 0u;
+#else
   gK0 = dualBrickIndex(dual, 0, gB0);
   gK1 = dualBrickIndex(dual, 1, gB1);
   gK2 = dualBrickIndex(dual, 2, gB2);
@@ -61,6 +90,7 @@ void loadDualBrick(ivec3 dual) {
   gK5 = dualBrickIndex(dual, 5, gB5);
   gK6 = dualBrickIndex(dual, 6, gB6);
   gK7 = dualBrickIndex(dual, 7, gB7);
+#endif
   gDualBase = dual * VXL_N;
 }
 
