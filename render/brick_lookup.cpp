@@ -104,4 +104,31 @@ std::vector<uint32_t> dualBrickBoxes(const format::VoxLinkFile& file, const Bric
   return out;
 }
 
+std::vector<uint32_t> dualBrickIndices(const BrickRange& occupied,
+                                       std::span<const uint32_t> brickIndex) {
+  const BrickRange dual = dualBrickRange(occupied);
+  std::vector<uint32_t> out(4 * dual.count(), 0xFFFFFFFFu);  // every brick empty
+  for (uint32_t z = 0; z < dual.size[2]; ++z)
+    for (uint32_t y = 0; y < dual.size[1]; ++y)
+      for (uint32_t x = 0; x < dual.size[0]; ++x) {
+        uint32_t* words = &out[4 * dual.local(dual.lo[0] + x, dual.lo[1] + y, dual.lo[2] + z)];
+        for (uint32_t m = 0; m < 8; ++m) {
+          // Dual cell c holds dual brick c - 1; its brick m is c - 1 + offset(m), which lies in
+          // `occupied` (local coordinates from 0) when x - 1 + (m & 1) is in [0, size) per axis.
+          const int64_t b[3] = {int64_t(x) - 1 + (m & 1), int64_t(y) - 1 + ((m >> 1) & 1),
+                                int64_t(z) - 1 + (m >> 2)};
+          bool inside = true;
+          for (int a = 0; a < 3; ++a) inside = inside && b[a] >= 0 && b[a] < occupied.size[a];
+          if (!inside) continue;
+          const uint32_t k = brickIndex[occupied.local(occupied.lo[0] + b[0], occupied.lo[1] + b[1],
+                                                       occupied.lo[2] + b[2])];
+          if (k == kEmptyBrick) continue;
+          VOXLINK_DCHECK(k < kEmptyBrick16);
+          const uint32_t shift = 16 * (m & 1);
+          words[m >> 1] = (words[m >> 1] & ~(0xFFFFu << shift)) | (k << shift);
+        }
+      }
+  return out;
+}
+
 }  // namespace voxlink::render

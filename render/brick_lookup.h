@@ -65,4 +65,19 @@ inline constexpr uint32_t kEmptyDualBrick = 0xFFFFFFFFu;
 std::vector<uint32_t> dualBrickBoxes(const format::VoxLinkFile& file, const BrickRange& occupied,
                                      std::span<const uint32_t> brickBoxes);
 
+// Whether dualBrickIndices() can hold the file's occupied indices (16 bits each, one value
+// marking an empty brick).
+inline bool dualBrickIndicesFit(uint64_t occupiedBricks) { return occupiedBricks < 0xFFFFu; }
+
+// Marks an empty brick in dualBrickIndices().
+inline constexpr uint32_t kEmptyBrick16 = 0xFFFFu;
+
+// Per dual cell of dualBrickRange(occupied) (x fastest), four words: the occupied indices of
+// the 8 bricks its dual brick D reads, 16 bits each, brick D + (m & 1, m >> 1 & 1, m >> 2) in x,
+// y, z at bits 16 m (kEmptyBrick16 for an empty brick). Entering a dual brick then reads one
+// texel instead of 8 lookups (shaders/voxlink_trilinear.glsl). `brickIndex` is
+// occupiedIndexByBrick(file, occupied); needs dualBrickIndicesFit().
+std::vector<uint32_t> dualBrickIndices(const BrickRange& occupied,
+                                       std::span<const uint32_t> brickIndex);
+
 }  // namespace voxlink::render

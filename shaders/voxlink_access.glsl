@@ -38,7 +38,10 @@ struct Row {
 // 32^3 bricks from MASK and ROWS.
 uvec2 rowInfo(uint k, uint row) {
   const uint n = uint(VXL_N);
-#if VXL_N <= 16
+#if VXL_N <= 16 && VXL_ROW_APRON
+  uint word = rowWord(k * n * n + row);
+  return uvec2(word & ((1u << n) - 1u), word >> (n + 1u));
+#elif VXL_N <= 16
   uint word = rowWord(k * n * n + row);
   return uvec2(word & ((1u << n) - 1u), word >> n);
 #else
@@ -46,6 +49,16 @@ uvec2 rowInfo(uint k, uint row) {
   return uvec2(maskWord(k * (n * n * n / 32u) + row), u16At(rowsWord(r >> 1u), r));
 #endif
 }
+
+#if VXL_ROW_APRON
+// rowInfo with the apron bit as mask bit n: whether the brick next along w holds the voxel at
+// depth 0 of this row, which then follows the row's voxels (row_words.h).
+uvec2 rowInfoWithApron(uint k, uint row) {
+  const uint n = uint(VXL_N);
+  uint word = rowWord(k * n * n + row);
+  return uvec2(word & ((2u << n) - 1u), word >> (n + 1u));
+}
+#endif
 
 // The file-wide index of a row's first voxel from rowInfo's start: row words of bricks up to 8^3
 // already hold it (VXL_ROW_GLOBAL, render/gl/detail/row_words.h), otherwise the brick's first

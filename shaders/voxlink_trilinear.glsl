@@ -51,8 +51,37 @@ int dualBrickIndex(ivec3 dual, int m, out uint base) {
   return k;
 }
 
+#if VXL_DUAL_INDICES
+// Occupied index (or -1) of brick m (numbered as cornerOffset) among the 16-bit indices `e` of
+// a dual brick's bricks, which are numbered by x, y, z bits instead (brick_lookup.h); m is a
+// constant, so the shifts fold.
+int dualIndexOf(uvec4 e, int m) {
+  ivec3 o = cornerOffset(m);
+  int j = o.x + 2 * o.y + 4 * o.z;
+  uint k = (e[j >> 1] >> (16u * uint(j & 1))) & 0xFFFFu;
+  return k == 0xFFFFu ? -1 : int(k);
+}
+#endif
+
 // Keeps the occupied indices and first voxels of the 8 bricks dual brick `dual` reads.
 void loadDualBrick(ivec3 dual) {
+#if VXL_DUAL_INDICES && VXL_N <= 16 && VXL_ROW_GLOBAL
+  // One texel of the table derived at load time instead of 8 index lookups: a pass in which
+  // any lane enters a dual brick runs this for all 8 lanes on llvmpipe. (dualBrickHit found
+  // the dual cell dual + 1 inside the table.)
+  ivec3 r = dual + 1 - kVxlDualLo;
+  uvec4 e = dualIndexWords((uint(r.z) * uint(kVxlDualSize.y) + uint(r.y)) * uint(kVxlDualSize.x) +
+                           uint(r.x));
+  gK0 = dualIndexOf(e, 0);
+  gK1 = dualIndexOf(e, 1);
+  gK2 = dualIndexOf(e, 2);
+  gK3 = dualIndexOf(e, 3);
+  gK4 = dualIndexOf(e, 4);
+  gK5 = dualIndexOf(e, 5);
+  gK6 = dualIndexOf(e, 6);
+  gK7 = dualIndexOf(e, 7);
+  gB0 = gB1 = gB2 = gB3 = gB4 = gB5 = gB6 = gB7 = 0u;
+#else
   gK0 = dualBrickIndex(dual, 0, gB0);
   gK1 = dualBrickIndex(dual, 1, gB1);
   gK2 = dualBrickIndex(dual, 2, gB2);
@@ -61,6 +90,7 @@ void loadDualBrick(ivec3 dual) {
   gK5 = dualBrickIndex(dual, 5, gB5);
   gK6 = dualBrickIndex(dual, 6, gB6);
   gK7 = dualBrickIndex(dual, 7, gB7);
+#endif
   gDualBase = dual * VXL_N;
 }
 
@@ -103,6 +133,27 @@ void rowPair(uint baseA, uvec2 a, uint baseB, uvec2 b, uint depth, uint next, ou
                                       : -1;
 }
 
+#if VXL_ROW_APRON
+// rowInfoWithApron of row `row` of brick kA, which holds the first corner of a pair at depth w
+// (0 when kA is -1). Where the pair crosses the w face (crossW) and kA is empty, brick kB next
+// along w has no apron in kA to show its depth-0 voxel: its own row is read instead, that bit
+// moved to w + 1. One fetch per pair either way.
+uvec2 rowApronOrNone(int kA, int kB, bool crossW, uint row, uint w) {
+  bool useNext = crossW && kA < 0;
+  int k = useNext ? kB : kA;
+  uvec2 a = rowInfoWithApron(uint(max(k, 0)), row) & uvec2(k < 0 ? 0u : 0xFFFFFFFFu);
+  return useNext ? uvec2((a.x & 1u) << (w + 1u), a.y) : a;
+}
+
+// Voxel indices (or -1) of the pair of corners at depths w and w + 1 of a row with apron `a`.
+void apronPair(uvec2 a, uint w, out int first, out int second) {
+  uint index = a.y + uint(bitCount(a.x & ((1u << w) - 1u)));
+  uint here = (a.x >> w) & 1u;
+  first = here != 0u ? int(index) : -1;
+  second = ((a.x >> (w + 1u)) & 1u) != 0u ? int(index + here) : -1;
+}
+#endif
+
 // Corners are only read when gCellVisible ends up true, so an empty cell returns early without
 // touching them. llvmpipe runs both sides of a branch whenever its lanes disagree, so there is
 // one path for every cell: a separate one for cells whose corners cross a brick face (1 - (1 -
@@ -130,6 +181,22 @@ void loadCorners(ivec3 cell) {
   dualBrick(5u & crossing, k5, s5);
   dualBrick(6u & crossing, k6, s6);
   dualBrick(7u & crossing, k7, s7);
+#if VXL_ROW_APRON
+  // Each pair along w in one row word: its second corner is bit w + 1, the apron bit (the next
+  // brick's depth 0) where the pair crosses the w face, and it follows the first in the voxel
+  // words (row_words.h): 4 fetches per cell, not 8.
+  bool crossW = (crossing & 1u) != 0u;
+  uvec2 i0 = rowApronOrNone(k0, k1, crossW, r0, w), i2 = rowApronOrNone(k2, k3, crossW, r1, w);
+  uvec2 i4 = rowApronOrNone(k4, k5, crossW, r2, w), i6 = rowApronOrNone(k6, k7, crossW, r3, w);
+  if ((((i0.x | i2.x | i4.x | i6.x) >> w) & 3u) == 0u) {
+    emptyRun((i0.x | i2.x | i4.x | i6.x) & ((1u << uint(VXL_N)) - 1u), w);
+    return;
+  }
+  apronPair(i0, w, v0, v1);
+  apronPair(i2, w, v2, v3);
+  apronPair(i4, w, v4, v5);
+  apronPair(i6, w, v6, v7);
+#else
   uvec2 i0 = rowInfoOrNone(k0, r0), i2 = rowInfoOrNone(k2, r1);
   uvec2 i4 = rowInfoOrNone(k4, r2), i6 = rowInfoOrNone(k6, r3);
   uvec2 i1 = i0, i3 = i2, i5 = i4, i7 = i6;
@@ -148,6 +215,7 @@ void loadCorners(ivec3 cell) {
   rowPair(s2, i2, s3, i3, w, wNext, v2, v3);
   rowPair(s4, i4, s5, i5, w, wNext, v4, v5);
   rowPair(s6, i6, s7, i7, w, wNext, v6, v7);
+#endif
   storedCorner(v0, gA0, gL0);
   storedCorner(v1, gA1, gL1);
   storedCorner(v2, gA2, gL2);

@@ -20,7 +20,7 @@ struct GpuArray {
   std::string name;          // for errors
   const char* accessor;      // GLSL function returning element i
   const char* block;         // prefix of the block and array names
-  uint32_t wordsPerElement;  // 1: uint, 2: uvec2
+  uint32_t wordsPerElement;  // 1: uint, 2: uvec2, 4: uvec4
   std::span<const uint8_t> bytes;
 };
 
@@ -45,6 +45,21 @@ std::vector<uint32_t> brickEntries(const format::VoxLinkFile& file,
   return entries;
 }
 
+// Per occupied brick: the occupied index of the brick next to it along `axis`, or kEmptyBrick.
+std::vector<uint32_t> nextAlongAxis(const BrickRange& range, const std::vector<uint32_t>& index,
+                                    uint64_t bricks, uint32_t axis) {
+  std::vector<uint32_t> out(bricks, kEmptyBrick);
+  for (uint32_t z = 0; z < range.size[2]; ++z)
+    for (uint32_t y = 0; y < range.size[1]; ++y)
+      for (uint32_t x = 0; x < range.size[0]; ++x) {
+        const uint32_t k = index[(uint64_t{z} * range.size[1] + y) * range.size[0] + x];
+        uint32_t c[3] = {x, y, z};
+        if (k == kEmptyBrick || ++c[axis] >= range.size[axis]) continue;
+        out[k] = index[(uint64_t{c[2]} * range.size[1] + c[1]) * range.size[0] + c[0]];
+      }
+  return out;
+}
+
 std::string ivec3Of(const std::array<uint32_t, 3>& v) {
   return cat("ivec3(", v[0], ", ", v[1], ", ", v[2], ")");
 }
@@ -56,15 +71,16 @@ std::string ivec3Of(const std::array<uint32_t, 3>& v) {
 Status checkUploadFits(const format::VoxLinkFile& file, const BrickRange& occupied) {
   const uint64_t occupiedBricks = file.occupiedBrickCount();
   const uint64_t tables =
-      4 * occupied.count() + 4 * dualBrickRange(occupied).count() + 8 * occupiedBricks;
+      4 * occupied.count() + 20 * dualBrickRange(occupied).count() + 8 * occupiedBricks;
   uint64_t sections = 0;
   for (const format::SectionEntry& e : file.sectionTable())
     if (e.id != uint32_t(format::SectionId::kMeta)) sections += e.bytes;
   // The GRAD section goes up as voxel words: 4 bytes per voxel for its 2 (voxel_words.h); rows
   // as row words, 4 bytes per row (row_words.h).
   const uint64_t n = file.header().brickSize;
+  // Row words' aprons copy up to one voxel word per row.
   const uint64_t needed = 2 * tables + 4 * occupiedBricks + 2 * sections + 4 * file.voxelCount() +
-                          8 * occupiedBricks * n * n;
+                          16 * occupiedBricks * n * n;
   const uint64_t available = base::memoryForThisProcess();
   if (needed > available)
     return makeError(ErrorCode::kTooLarge, file.path(), ": rendering needs ", needed,
@@ -95,26 +111,43 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   const std::vector<uint32_t> boxes = brickBounds(file);
   const std::vector<uint32_t> dualBoxes = dualBrickBoxes(file, occupied, boxes);
   const std::vector<uint32_t> entries = brickEntries(file, boxes);
+  // The 8 bricks' indices per dual brick, where 16 bits hold every occupied index.
+  const bool dualIndices = dualBrickIndicesFit(file.occupiedBrickCount());
+  const std::vector<uint32_t> dualBricks =
+      dualIndices ? dualBrickIndices(occupied, brickIndex) : std::vector<uint32_t>();
   // 8-bit values ride in the voxel words; wider ones stay in VALU (VXL_VALUE_BYTES).
   const bool valuesInWords = storedSize(static_cast<StoredType>(file.header().valueType)) == 1;
   const auto values = file.sectionBytes(format::SectionId::kValues);
-  const std::vector<uint32_t> voxelWords =
+  std::vector<uint32_t> voxelWords =
       packVoxelWords(file.sectionBytes(format::SectionId::kGradients),
                      valuesInWords ? values : std::span<const uint8_t>());
-  // Bricks up to 16^3: mask and start of a row in one word, in place of MASK and ROWS.
+  // Bricks up to 16^3: mask and start of a row in one word, in place of MASK and ROWS; with an
+  // apron along w where the voxel indices may change (8-bit values, no scene sections).
   const uint32_t n = file.header().brickSize;
-  const bool rowsGlobal = rowWordsGlobal(n, file.voxelCount());
-  const std::vector<uint32_t> rowWords =
-      rowWordsFit(n)
-          ? packRowWords(n, file.occupiedBrickCount(), file.rowMaskWords(), file.rowStarts(),
-                         rowsGlobal ? file.brickVoxelBase() : std::span<const uint32_t>())
-          : std::vector<uint32_t>();
+  const uint64_t bricks = file.occupiedBrickCount();
+  const bool apron =
+      valuesInWords && !file.isScene() && rowWordsApronFit(n, file.voxelCount(), bricks * n * n);
+  const bool rowsGlobal = apron || rowWordsGlobal(n, file.voxelCount());
+  std::vector<uint32_t> rowWords;
+  if (apron) {
+    ApronRows rows = packApronRows(
+        n, bricks, file.rowMaskWords(), file.rowStarts(), file.brickVoxelBase(), voxelWords,
+        nextAlongAxis(occupied, brickIndex, bricks, file.header().predominantAxis));
+    rowWords = std::move(rows.rowWords);
+    voxelWords = std::move(rows.voxelWords);
+  } else if (rowWordsFit(n)) {
+    rowWords = packRowWords(n, bricks, file.rowMaskWords(), file.rowStarts(),
+                            rowsGlobal ? file.brickVoxelBase() : std::span<const uint32_t>());
+  }
   std::vector<GpuArray> arrays = {
       {"voxel words", "voxelWord", "VxlVoxelWord", 1, bytesOf(voxelWords)},
       {"brick index table", "brickIndexWord", "VxlBrickIndex", 1, bytesOf(brickIndex)},
       {"dual brick boxes", "dualBoxWord", "VxlDualBox", 1, bytesOf(dualBoxes)},
       {"brick entries", "brickEntry", "VxlBrickEntry", 2, bytesOf(entries)},
   };
+  if (dualIndices)
+    arrays.push_back(
+        {"dual brick indices", "dualIndexWords", "VxlDualIndex", 4, bytesOf(dualBricks)});
   if (!valuesInWords)
     arrays.push_back(section(file, format::SectionId::kValues, "valuWord", "VxlValu"));
   if (rowWordsFit(n)) {
@@ -156,18 +189,25 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   }
 
   SectionBuffers out;
-  out.glsl_ = cat("// Generated by SectionBuffers::upload for ", file.path(), ".\n",
-                  "// The boxes the brick index and dual box tables cover (brick_lookup.h).\n",
-                  "const ivec3 kVxlIndexLo = ", ivec3Of(occupied.lo), ";\n",
-                  "const ivec3 kVxlIndexSize = ", ivec3Of(occupied.size), ";\n",
-                  "const ivec3 kVxlDualLo = ", ivec3Of(dual.lo), ";\n",
-                  "const ivec3 kVxlDualSize = ", ivec3Of(dual.size), ";\n",
-                  "// Row words hold file-wide voxel indices (row_words.h).\n",
-                  "#define VXL_ROW_GLOBAL ", rowsGlobal ? 1 : 0, "\n");
+  out.glsl_ =
+      cat("// Generated by SectionBuffers::upload for ", file.path(), ".\n",
+          "// The boxes the brick index and dual box tables cover (brick_lookup.h).\n",
+          "const ivec3 kVxlIndexLo = ", ivec3Of(occupied.lo), ";\n",
+          "const ivec3 kVxlIndexSize = ", ivec3Of(occupied.size), ";\n",
+          "const ivec3 kVxlDualLo = ", ivec3Of(dual.lo), ";\n",
+          "const ivec3 kVxlDualSize = ", ivec3Of(dual.size), ";\n",
+          "// Row words hold file-wide voxel indices (row_words.h).\n", "#define VXL_ROW_GLOBAL ",
+          rowsGlobal ? 1 : 0, "\n", "#define VXL_ROW_APRON ", apron ? 1 : 0, "\n",
+          "// dualIndexWords() gives a dual brick's 8 occupied indices (brick_lookup.h).\n",
+          "#define VXL_DUAL_INDICES ", dualIndices ? 1 : 0, "\n");
   GLuint unit = options.firstUnit;
   for (const GpuArray& s : arrays) {
     const uint64_t elementBytes = 4 * s.wordsPerElement;
-    const bool pair = s.wordsPerElement == 2;
+    const char* type = s.wordsPerElement == 4 ? "uvec4" : s.wordsPerElement == 2 ? "uvec2" : "uint";
+    const GLenum format = s.wordsPerElement == 4   ? GL_RGBA32UI
+                          : s.wordsPerElement == 2 ? GL_RG32UI
+                                                   : GL_R32UI;
+    const char* channels = s.wordsPerElement == 4 ? "" : s.wordsPerElement == 2 ? ".rg" : ".r";
     const uint64_t chunkElements = chunkWords / s.wordsPerElement;
     const int shift = std::countr_zero(chunkElements);
     const auto bytes = s.bytes;
@@ -175,7 +215,7 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
     const uint64_t elements =
         std::max<uint64_t>((bytes.size() + elementBytes - 1) / elementBytes, 1);
     const uint64_t chunks = (elements + chunkElements - 1) / chunkElements;
-    std::string accessor = cat(pair ? "uvec2 " : "uint ", s.accessor, "(uint i) {\n");
+    std::string accessor = cat(type, " ", s.accessor, "(uint i) {\n");
     if (chunks > 1)
       accessor += cat("  uint c = i >> ", shift, "u;\n  uint j = i & ", chunkElements - 1, "u;\n");
     for (uint64_t c = 0; c < chunks; ++c) {
@@ -197,7 +237,7 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       }
       Chunk chunk{createBuffer(), createTexture(GL_TEXTURE_BUFFER), unit};
       glNamedBufferStorage(chunk.buffer.id(), GLsizeiptr(count), data, 0);
-      glTextureBuffer(chunk.texture.id(), pair ? GL_RG32UI : GL_R32UI, chunk.buffer.id());
+      glTextureBuffer(chunk.texture.id(), format, chunk.buffer.id());
       if (glGetError() != GL_NO_ERROR)
         return makeError(ErrorCode::kTooLarge, file.path(), ": ", s.name,
                          ": the GL refused a buffer of ", count, " bytes");
@@ -205,13 +245,13 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       const std::string name = cat(s.block, c);
       out.glsl_ += cat("layout(binding = ", unit, ") uniform usamplerBuffer ", name, ";\n");
       const std::string fetch =
-          cat("texelFetch(", name, ", int(", chunks > 1 ? "j" : "i", "))", pair ? ".rg" : ".r");
+          cat("texelFetch(", name, ", int(", chunks > 1 ? "j" : "i", "))", channels);
       accessor += chunks > 1 ? cat("  if (c == ", c, "u) return ", fetch, ";\n")
                              : cat("  return ", fetch, ";\n");
       out.chunks_.push_back(std::move(chunk));
       ++unit;
     }
-    if (chunks > 1) accessor += cat("  return ", pair ? "uvec2" : "uint", "(0u);\n");
+    if (chunks > 1) accessor += cat("  return ", type, "(0u);\n");
     out.glsl_ += accessor + "}\n";
   }
   return out;

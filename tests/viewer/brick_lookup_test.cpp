@@ -159,6 +159,34 @@ TEST(BrickLookup, TablesMatchBruteForce) {
           }
       EXPECT_GT(nonEmpty, 0u);
 
+      // The 8 bricks' occupied indices per dual brick, 16 bits each, brick D + (m & 1, m >> 1
+      // & 1, m >> 2) at bits 16 m, against the occupied bricks counted in file order.
+      ASSERT_TRUE(dualBrickIndicesFit(file->occupiedBrickCount()));
+      const std::vector<uint32_t> indices = dualBrickIndices(range, index);
+      ASSERT_EQ(indices.size(), 4 * dualRange.count());
+      std::vector<uint32_t> kOf(occupied.size(), kEmptyBrick16);
+      for (uint32_t b = 0, next = 0; b < occupied.size(); ++b)
+        if (occupied[b]) kOf[b] = next++;
+      for (uint64_t z = 0; z < dualRange.size[2]; ++z)
+        for (uint64_t y = 0; y < dualRange.size[1]; ++y)
+          for (uint64_t x = 0; x < dualRange.size[0]; ++x) {
+            const int64_t c[3] = {int64_t(dualRange.lo[0] + x), int64_t(dualRange.lo[1] + y),
+                                  int64_t(dualRange.lo[2] + z)};
+            const uint32_t* words =
+                &indices[4 * dualRange.local(uint64_t(c[0]), uint64_t(c[1]), uint64_t(c[2]))];
+            for (int m = 0; m < 8; ++m) {
+              const int64_t b[3] = {c[0] - 1 + (m & 1), c[1] - 1 + ((m >> 1) & 1),
+                                    c[2] - 1 + (m >> 2)};
+              const bool inGrid =
+                  b[0] >= 0 && b[1] >= 0 && b[2] >= 0 && b[0] < g[0] && b[1] < g[1] && b[2] < g[2];
+              const uint32_t want =
+                  inGrid ? kOf[(uint64_t(b[2]) * g[1] + uint64_t(b[1])) * g[0] + uint64_t(b[0])]
+                         : kEmptyBrick16;
+              EXPECT_EQ((words[m >> 1] >> (16 * (m & 1))) & 0xFFFFu, want)
+                  << "dual cell " << c[0] << "," << c[1] << "," << c[2] << " brick " << m;
+            }
+          }
+
       // What the renderer relies on: every cell with a stored corner lies in its dual brick's box.
       for (int64_t z = -1; z < int64_t(h.dims[2]); ++z)
         for (int64_t y = -1; y < int64_t(h.dims[1]); ++y)

@@ -12,6 +12,7 @@
 #include "format/gradient_codec.h"
 #include "format/half.h"
 #include "format/voxel_locator.h"
+#include "render/brick_lookup.h"
 #include "render/gl/detail/row_words.h"
 #include "render/gl/detail/section_buffers.h"
 #include "render/gl/detail/volume_renderer.h"
@@ -130,9 +131,9 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   split.maxChunkBytes = std::max<uint64_t>(largest / 2, 64);
   auto sections = SectionBuffers::upload(*file, split);
   ASSERT_TRUE(sections) << sections.message();
-  // 5 arrays, one more with VALU (values wider than 8 bits, voxel_words.h), one more with MASK
-  // and ROWS in place of row words (32^3 bricks, row_words.h).
-  const uint32_t unsplit = 5u + (storedSize(c.type) == 1 ? 0u : 1u) + (c.brick > 16 ? 1u : 0u);
+  // 6 arrays (with the dual brick indices), one more with VALU (values wider than 8 bits,
+  // voxel_words.h), one more with MASK and ROWS in place of row words (32^3 bricks, row_words.h).
+  const uint32_t unsplit = 6u + (storedSize(c.type) == 1 ? 0u : 1u) + (c.brick > 16 ? 1u : 0u);
   EXPECT_GT(sections->bindingCount(), unsplit) << "no section was split";
 
   auto defines = voxlinkDefines(file->header());
@@ -155,6 +156,8 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   std::vector<int32_t> results(size_t(total) * 4);
   glGetNamedBufferSubData(out.id(), 0, GLsizeiptr(results.size() * 4), results.data());
 
+  const bool apron = sections->glsl().find("#define VXL_ROW_APRON 1") != std::string::npos;
+  EXPECT_EQ(apron, c.brick <= 8 && storedSize(c.type) == 1);
   const format::VoxelLocator locator(*file);
   const size_t valueSize = storedSize(c.type);
   const uint8_t* values = file->valueBytes();
@@ -181,10 +184,14 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
             EXPECT_EQ(next, expected + 1) << "the next list element is not index + 1";
           }
         }
-        const bool ok = r[0] == expected && uint32_t(r[1]) == bits &&
+        // With row aprons (row_words.h) the shader's indices count the copied voxel words too:
+        // the same voxel (value and direction), and the next one in the row right after it.
+        const bool sameVoxel = apron ? (r[0] >= 0) == (expected >= 0) : r[0] == expected;
+        const bool sameNext = apron ? (next < 0 ? r[3] == -1 : r[3] == r[0] + 1) : r[3] == next;
+        const bool ok = sameVoxel && uint32_t(r[1]) == bits &&
                         (expected < 0 ||
                          uint32_t(r[2]) == render::gl::packGradientDirection(codes[expected])) &&
-                        r[3] == next;
+                        sameNext;
         if (!ok && ++errors <= 5)
           ADD_FAILURE() << "cell (" << x << ", " << y << ", " << z << "): GLSL voxel " << r[0]
                         << " bits " << r[1] << " code " << r[2] << " next " << r[3]
@@ -251,6 +258,29 @@ TEST(RowWords, FileWideStartsAddTheBricksFirstVoxel) {
   EXPECT_TRUE(rowWordsGlobal(8, (1u << 24) - 1));
   EXPECT_FALSE(rowWordsGlobal(8, 1u << 24));
   EXPECT_FALSE(rowWordsGlobal(16, 100));
+}
+
+// Row aprons: a row's word shows (bit n) whether the brick next along w holds its depth-0
+// voxel, whose word is copied after the row's own; starts index the words with the copies.
+TEST(RowWords, ApronCopiesTheNextBricksFirstVoxel) {
+  // Two 4^3 bricks, brick 1 next to brick 0 along w. Brick 0: row 0 holds depths 0, 1, 3; row 1
+  // depth 3. Brick 1: row 0 holds depth 0, row 1 depth 2 (no apron for brick 0's row 1).
+  const uint32_t masks[] = {0x0000008Bu, 0, 0x00000041u, 0};
+  std::vector<uint16_t> starts(32, 0);
+  starts[1] = 3;
+  starts[17] = 1;
+  const uint32_t first[] = {0, 4};
+  const uint32_t words[] = {10, 11, 13, 23, 40, 42};  // file order: brick 0's 4, brick 1's 2
+  const uint32_t next[] = {1, kEmptyBrick};
+  const ApronRows rows = packApronRows(4, 2, masks, starts, first, words, next);
+  EXPECT_EQ(rows.rowWords[0], 0xBu | 1u << 4);   // apron: brick 1 row 0 depth 0
+  EXPECT_EQ(rows.rowWords[1], 0x8u | 4u << 5);   // after 3 voxels and the copy
+  EXPECT_EQ(rows.rowWords[16], 0x1u | 5u << 5);  // brick 1 has no brick next along w
+  EXPECT_EQ(rows.rowWords[17], 0x4u | 6u << 5);
+  EXPECT_EQ(rows.voxelWords, (std::vector<uint32_t>{10, 11, 13, 40, 23, 40, 42}));
+  EXPECT_TRUE(rowWordsApronFit(8, (1u << 23) - 1001, 1000));
+  EXPECT_FALSE(rowWordsApronFit(8, 1u << 23, 0));
+  EXPECT_FALSE(rowWordsApronFit(16, 100, 100));
 }
 
 std::vector<LookupCase> lookupCases() {

@@ -29,4 +29,27 @@ std::vector<uint32_t> packRowWords(uint32_t n, uint64_t bricks, std::span<const 
                                    std::span<const uint16_t> rowStarts,
                                    std::span<const uint32_t> firstVoxels = {});
 
+// Row words with an apron (VXL_ROW_APRON), for bricks up to 8^3 of 8-bit files that are not
+// scenes: bit n says that the brick next along w holds a voxel at depth 0 of the same row, whose
+// word then follows the row's own voxels as a copy, and the start (above bit n) indexes these
+// extended voxel words. A trilinear cell's pairs of corners along w then sit in one row word
+// even where the pair crosses a brick face: 4 row fetches per cell instead of 8
+// (docs/rendering-trilinear-profile.md, fifth session). The copies cost 4 bytes each, at most
+// one per row. Other readers see the row's n mask bits and the same voxels as without it.
+inline bool rowWordsApronFit(uint32_t brickSize, uint64_t voxelCount, uint64_t rows) {
+  return brickSize <= 8 && voxelCount + rows < (uint64_t(1) << (31 - brickSize));
+}
+
+struct ApronRows {
+  std::vector<uint32_t> rowWords;
+  std::vector<uint32_t> voxelWords;
+};
+
+// The row words and extended voxel words of `bricks` occupied bricks of size n from MASK, ROWS,
+// BVOX (firstVoxels), the voxel words in file order, and per occupied brick the occupied index
+// of the brick next to it along w (kEmptyBrick, brick_lookup.h, where there is none).
+ApronRows packApronRows(uint32_t n, uint64_t bricks, std::span<const uint32_t> maskWords,
+                        std::span<const uint16_t> rowStarts, std::span<const uint32_t> firstVoxels,
+                        std::span<const uint32_t> voxelWords, std::span<const uint32_t> nextAlongW);
+
 }  // namespace voxlink::render::gl
