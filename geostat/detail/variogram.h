@@ -44,10 +44,11 @@ class Variogram {
   // Covariance of two samples at distance h; h == 0 includes the nugget.
   double covariance(double h) const { return h == 0.0 ? sill() : params_.psill * correlation(h); }
   // out[i] = covariance(sqrt(squared[i])) for n distances, bit for bit: one switch and a loop
-  // the compiler vectorizes (spherical), not a call per distance (local kriging's right-hand side).
+  // vectorized four wide where AVX2 runs (spherical) or exp() four at a time (exponential), not
+  // a call per distance (local kriging's right-hand side).
   void covariancesOfSquared(const double* squared, double* out, size_t n) const;
   // out[i] = covariance(h[i]) for n distances, bit for bit (the exponential model's exp() four
-  // at a time: local kriging's pair covariances).
+  // at a time, the spherical model's loop four wide: local kriging's pair covariances).
   void covariances(const double* h, double* out, size_t n) const;
   double gamma(double h) const {
     return h == 0.0 ? 0.0 : params_.nugget + params_.psill * (1.0 - correlation(h));

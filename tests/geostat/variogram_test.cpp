@@ -48,8 +48,9 @@ TEST(Variogram, NuggetOnlyAppliesAwayFromZero) {
   EXPECT_NEAR(v.gamma(5), 0.25 + 0.75 * (1.5 * 0.5 - 0.5 * 0.125), 1e-15);
 }
 
-// Local kriging's right-hand sides come from the batched form: it must give the same bits as
-// covariance(sqrt(d2)) one by one, at 0, inside, at and beyond the range.
+// Local kriging's right-hand sides and pair covariances come from the batched forms: they must
+// give the same bits as covariance(sqrt(d2)) and covariance(h) one by one, at 0, inside, at and
+// beyond the range (whichever clone, AVX2 or not, this machine runs).
 TEST(Variogram, BatchedCovariancesEqualOneByOne) {
   std::vector<double> squared{0.0, 1e-300, 1e-18, 0.25, 1.0, 2.0, 17.3, 99.99, 100.0, 100.01, 1e6};
   for (int i = 1; i < 200; ++i) squared.push_back(0.731 * i);  // past the 4-wide vector tail
@@ -62,6 +63,15 @@ TEST(Variogram, BatchedCovariancesEqualOneByOne) {
       const double expected = v.covariance(std::sqrt(squared[i]));
       EXPECT_EQ(std::memcmp(&out[i], &expected, sizeof(double)), 0)
           << variogramTypeName(t) << " d2 " << squared[i] << ": " << out[i] << " vs " << expected;
+    }
+    std::vector<double> distance(squared.size()), direct(squared.size(), NAN);
+    for (size_t i = 0; i < squared.size(); ++i) distance[i] = std::sqrt(squared[i]);
+    v.covariances(distance.data(), direct.data(), distance.size());
+    for (size_t i = 0; i < distance.size(); ++i) {
+      const double expected = v.covariance(distance[i]);
+      EXPECT_EQ(std::memcmp(&direct[i], &expected, sizeof(double)), 0)
+          << variogramTypeName(t) << " h " << distance[i] << ": " << direct[i] << " vs "
+          << expected;
     }
   }
 }
