@@ -103,7 +103,7 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   vec4 c = classify(storedBitsOf(uint(voxel), word));
   if (!(c.a > 0.0)) return;
   colorAlpha = vec4(c.rgb * c.a, c.a);
-  gradient = c.a * directionOfWord(word);
+  gradient = scaledDirectionOfWord(word, c.a);
   gCellVisible = true;
 }
 
