@@ -53,22 +53,25 @@ float specularPower(float x) {
 // shadow * lit. `gradient` is the opacity-weighted sum of unit gradient directions; the normal
 // is -gradient, and shading is weighted by m = |gradient| / alpha, so a sample whose blended
 // normals cancel fades to unlit colour. Mirrors shadeSample() in render/render_model.h.
+// The normal and the reflected ray are never formed: n.l and r.e = 2 (n.l)(n.e) - l.e from dot
+// products of the gradient (every trilinear pass runs this on llvmpipe; an inverse square root
+// instead of the divisions cost more, docs/rendering-trilinear-profile.md, sixth session).
 void shadeSampleToward(vec3 c, float alpha, vec3 gradient, vec3 toEye, vec3 toLight,
                        out vec3 ambient, out vec3 lit) {
-  float len = length(gradient);
-  if (!uShadingEnabled || !(len > 0.0) || !(alpha > 0.0)) {
+  float len2 = dot(gradient, gradient);
+  if (!uShadingEnabled || !(len2 > 0.0) || !(alpha > 0.0)) {
     ambient = c;
     lit = vec3(0.0);
     return;
   }
+  float len = sqrt(len2);
   float m = min(len / alpha, 1.0);
-  vec3 n = -gradient / len;
-  float ndl = dot(n, toLight);
+  float ndl = -dot(gradient, toLight) / len;
   float diffuse = 0.0, specular = 0.0;
   if (ndl > 0.0) {
     diffuse = ndl;
-    vec3 r = 2.0 * ndl * n - toLight;
-    specular = specularPower(max(dot(r, toEye), 0.0));
+    float nde = -dot(gradient, toEye) / len;
+    specular = specularPower(max(2.0 * ndl * nde - dot(toLight, toEye), 0.0));
   }
   ambient = c * (1.0 - m + m * uPhong.x);
   lit = m * (c * (uPhong.y * diffuse) + vec3(alpha * uPhong.z * specular));

@@ -129,3 +129,11 @@ vec3 directionOfWord(uint word) {
   return vec3(bitfieldExtract(w, 0, 8), bitfieldExtract(w, 8, 8), bitfieldExtract(w, 16, 8)) *
          (1.0 / 127.0);
 }
+
+// directionOfWord(word) * scale, with the 1/127 folded into the scale: 2 multiplies fewer per
+// trilinear corner (docs/rendering-trilinear-profile.md, sixth session).
+vec3 scaledDirectionOfWord(uint word, float scale) {
+  int w = int(word);
+  return vec3(bitfieldExtract(w, 0, 8), bitfieldExtract(w, 8, 8), bitfieldExtract(w, 16, 8)) *
+         (scale * (1.0 / 127.0));
+}

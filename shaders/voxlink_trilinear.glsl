@@ -100,10 +100,10 @@ void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
   gradient = vec3(0.0);
   if (voxel < 0) return;
   uint word = voxelWord(uint(voxel));  // value (8-bit files) and direction in one fetch
-  vec4 c = classify(storedBitsOf(uint(voxel), word));
+  vec4 c = classifyPremultiplied(storedBitsOf(uint(voxel), word));
   if (!(c.a > 0.0)) return;
-  colorAlpha = vec4(c.rgb * c.a, c.a);
-  gradient = c.a * directionOfWord(word);
+  colorAlpha = c;
+  gradient = scaledDirectionOfWord(word, c.a);
   gCellVisible = true;
 }
 

@@ -80,6 +80,20 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   // A texture buffer may not be empty.
   std::vector<float> texels = table_.texels;
   if (texels.empty()) texels.assign(4, 0.0f);
+  if (premultipliedTf()) {
+    // 8-bit files: (colour * opacity, opacity) of value i at texel 256 + i as well, so a
+    // trilinear corner skips 3 multiplies (transfer_function.glsl). Float products, as the
+    // shader formed them: images stay bit-identical.
+    texels.resize(2 * kU8TfEntries * 4, 0.0f);
+    for (size_t i = 0; i < kU8TfEntries; ++i) {
+      const float* c = &texels[4 * i];
+      float* p = &texels[4 * (kU8TfEntries + i)];
+      p[0] = c[0] * c[3];
+      p[1] = c[1] * c[3];
+      p[2] = c[2] * c[3];
+      p[3] = c[3];
+    }
+  }
   tfBuffer_ = createStorageBuffer(texels.data(), texels.size() * sizeof(float));
   tfBytes_ = texels.size() * sizeof(float);
   // The same buffer as RGBA texels: on llvmpipe a texel fetch (a gather) costs about 35
@@ -87,6 +101,10 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   // trilinear sample reads the TF for 8 corners (docs/rendering-benchmark.md).
   tfTexels_ = createTexture(GL_TEXTURE_BUFFER);
   glTextureBuffer(tfTexels_.id(), GL_RGBA32F, tfBuffer_.buffer.id());
+}
+
+bool VolumeRenderer::premultipliedTf() const {
+  return geometry_.valueType == StoredType::kU8 && table_.kind == tf::TfTable::Kind::kIndexed;
 }
 
 Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
@@ -122,6 +140,7 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
+  defines.push_back({"VXL_TF_PREMULTIPLIED", premultipliedTf() ? "1" : "0"});
   defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
   defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
   VOXLINK_ASSIGN_OR_RETURN(

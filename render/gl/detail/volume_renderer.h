@@ -47,6 +47,8 @@ inline constexpr GLuint kGradientTableBinding = 63;
 // Texture unit of the TF table read as a buffer texture (indexed tables): the last one a compute
 // shader has (SectionBuffers leaves it free).
 GLuint tfTextureUnit();
+// Stored values of an 8-bit file: its TF table's premultiplied copy starts at this texel.
+inline constexpr size_t kU8TfEntries = 256;
 
 class VolumeRenderer {
  public:
@@ -94,6 +96,8 @@ class VolumeRenderer {
   void setEffectsUniforms(const ComputeProgram& p, const Camera& camera,
                           const RenderSettings& s) const;
   void bindTables(const ComputeProgram& p) const;
+  // Whether the TF texels hold a premultiplied copy (8-bit files; VXL_TF_PREMULTIPLIED).
+  bool premultipliedTf() const;
   void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
                         uint32_t width, uint32_t height) const;
 
