@@ -314,12 +314,7 @@ Status GlDynamicLayer::keep() {
     s.keptRoom = bricks;
   }
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
-  glCopyNamedBufferSubData(s.brickMap.id(), s.keptBrickMap.id(), 0, 0, GLsizeiptr(mapBytes));
-  glCopyNamedBufferSubData(s.slotKeys.id(), s.keptSlotKeys.id(), 0, 0,
-                           GLsizeiptr(s.brickCapacity * 4));
-  glCopyNamedBufferSubData(s.usedSlots.id(), s.keptUsedSlots.id(), 0, 0,
-                           GLsizeiptr(s.brickCapacity * 4));
-  glCopyNamedBufferSubData(s.counters.id(), s.keptCounters.id(), 0, 0, 8);
+  copyKeptTables(true);
   s.keptBricks = bricks;
   copyKeptBricks(0);
   keptLo_ = lo_;
@@ -333,16 +328,23 @@ Status GlDynamicLayer::keep() {
   return Status::ok();
 }
 
-// After the reset: the kept layer back (the reset zeroed its slots too; they are overwritten).
-void GlDynamicLayer::restoreKept() {
+// The layer's tables (brick map, slot keys, used slots, counters) into the kept copies, or back.
+void GlDynamicLayer::copyKeptTables(bool toKept) {
   State& s = *s_;
   const uint64_t mapBytes = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2] * 4;
-  glCopyNamedBufferSubData(s.keptBrickMap.id(), s.brickMap.id(), 0, 0, GLsizeiptr(mapBytes));
-  glCopyNamedBufferSubData(s.keptSlotKeys.id(), s.slotKeys.id(), 0, 0,
-                           GLsizeiptr(s.brickCapacity * 4));
-  glCopyNamedBufferSubData(s.keptUsedSlots.id(), s.usedSlots.id(), 0, 0,
-                           GLsizeiptr(s.brickCapacity * 4));
-  glCopyNamedBufferSubData(s.keptCounters.id(), s.counters.id(), 0, 0, 8);
+  const auto copy = [toKept](const GlBuffer& live, const GlBuffer& kept, uint64_t bytes) {
+    glCopyNamedBufferSubData(toKept ? live.id() : kept.id(), toKept ? kept.id() : live.id(), 0, 0,
+                             GLsizeiptr(bytes));
+  };
+  copy(s.brickMap, s.keptBrickMap, mapBytes);
+  copy(s.slotKeys, s.keptSlotKeys, s.brickCapacity * 4);
+  copy(s.usedSlots, s.keptUsedSlots, s.brickCapacity * 4);
+  copy(s.counters, s.keptCounters, 8);
+}
+
+// After the reset: the kept layer back (the reset zeroed its slots too; they are overwritten).
+void GlDynamicLayer::restoreKept() {
+  copyKeptTables(false);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
   copyKeptBricks(1);
 }

@@ -70,6 +70,7 @@ class GlDynamicLayer {
   struct State;  // GL objects, owned
   explicit GlDynamicLayer(std::unique_ptr<State> state);
   void copyKeptBricks(int pass);  // 0: pool -> kept, 1: kept -> pool
+  void copyKeptTables(bool toKept);
   void restoreKept();
   std::unique_ptr<State> s_;
   std::array<int32_t, 3> lo_{}, hi_{}, keptLo_{}, keptHi_{};
