@@ -21,8 +21,8 @@ namespace {
 
 constexpr size_t kBlockNodes = 256;  // nodes per dtrsm: large enough for level-3 speed
 // A node's sparse forms cost about this many times nnz^2 flops of OpenBLAS's dtrmm (one core,
-// measured: 0.45-0.54 ns per nnz^2 against 0.034 ns per n^2 flop; docs/kriging.md, "Global
-// kriging with compact support").
+// measured: 0.45-0.54 ns per nnz^2 against 0.034 ns per n^2 flop; docs/kriging-speed-log.md,
+// "Global kriging with compact support").
 constexpr double kSparsePairFlops = 14;
 // Below this many samples the factorization (n^3 / 3 flops: 0.13 s at 2048 on one core) runs
 // on one OpenBLAS thread: the outputs are then the same bytes for any --threads.
@@ -140,7 +140,7 @@ Result<Factor> factorSamples(const Kriger& kriger, Blocks blocks) {
   f.ur.resize(p);
   for (size_t j = 0; j < p; ++j) f.ur[j] = spd::dot(&f.u[j * n], f.r.data(), n);
   // OpenBLAS multiplies by a triangle (dtrmm) nearly three times as fast as it solves with one
-  // (dtrsm; docs/kriging.md has the measurement), so the blocks use L^-1 itself.
+  // (dtrsm; docs/kriging-speed-log.md has the measurement), so the blocks use L^-1 itself.
   f.blocks = blocks;
   if (blocks == Blocks::kInverse) VOXLINK_RETURN_IF_ERROR(invertCovariance(f, n, maxCondition));
   if (blocks == Blocks::kTriangularInverse &&

@@ -21,7 +21,7 @@ constexpr uint32_t kSlabDepth = 8;      // slices kriged (and bricks deep) at a 
 constexpr size_t kCandidateFactor = 4;  // a brick with more than 4 (k + 1) candidates is split
 constexpr size_t kBallFactor = 16;      // candidatesFromOneQuery's ball: up to 16 (k + 1)
 // Factorizations kept per thread: 1 MiB (~120 systems of 32) stays in cache, where 8 MiB sent
-// each new system's writes to memory (docs/kriging.md, "Where a 3-D node's time goes").
+// each new system's writes to memory (docs/kriging-speed-log.md, "Where a 3-D node's time goes").
 constexpr size_t kCacheBytes = size_t{1} << 20;
 
 struct Box {
