@@ -205,7 +205,8 @@ class BrickSolver {
     }
     const size_t n = ts.picked.size();
     const Factorization* f = nullptr;
-    if (ts.last && ts.picked == ts.lastPicked) {
+    // A set kept by the pick is the previous node's of this brick, whose system is ts.last.
+    if (ts.last && (ts.unchanged || ts.picked == ts.lastPicked)) {
       f = ts.last;
     } else {
       ts.key.resize(n);
@@ -227,16 +228,14 @@ class BrickSolver {
       ts.lastPicked = ts.picked;
     }
     ++ts.summary.systemsReused;
-    ts.work.resize(n);
-    for (size_t i = 0; i < n; ++i) ts.work[i] = ts.d2[ts.picked[i]];
     if (!f->pending) {
       ts.rhs.resize(n);
-      kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
+      kriger_.variogram().covariancesOfSquared(ts.pickedD2.data(), ts.rhs.data(), n);
       return finishNode(x, y, z, *f, ts.rhs.data(), ts);
     }
     const size_t offset = ts.waitingRhs.size();
     ts.waitingRhs.resize(offset + n);
-    kriger_.variogram().covariancesOfSquared(ts.work.data(), &ts.waitingRhs[offset], n);
+    kriger_.variogram().covariancesOfSquared(ts.pickedD2.data(), &ts.waitingRhs[offset], n);
     ts.waiting.push_back({{x, y, z}, f, offset});
     return Status::ok();
   }

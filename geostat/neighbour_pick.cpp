@@ -15,8 +15,9 @@ namespace {
 // node's k-th distance: |d_k(q) - d_k(p)| <= |q - p|. Candidates below that band are in,
 // those above it out, and only the few inside it are ranked. The bounds only save work: the
 // pick is exact whatever they are, as long as fewer than k lie below and k in all up to the
-// band's top (else the band is widened to everything).
-void pickNearest(const Point3& q, size_t k, PickState& s) {
+// band's top (else the band is widened to everything). `ceiling` is a known upper bound on the
+// k-th distance (the previous set's largest here), which narrows the band further.
+void pickNearest(const Point3& q, size_t k, double ceiling, PickState& s) {
   const size_t m = s.d2.size(), words = (m + 63) / 64;
   double below = 0, above = INFINITY;
   if (s.lastKth >= 0) {
@@ -25,7 +26,7 @@ void pickNearest(const Point3& q, size_t k, PickState& s) {
                                   (q[1] - s.lastNode[1]) * (q[1] - s.lastNode[1]) +
                                   (q[2] - s.lastNode[2]) * (q[2] - s.lastNode[2]));
     below = dk > step ? (dk - step) * (dk - step) * (1 - 1e-9) : 0.0;
-    above = (dk + step) * (dk + step) * (1 + 1e-9);
+    above = std::min((dk + step) * (dk + step) * (1 + 1e-9), ceiling);
   }
   // Which side of the band each candidate falls, as bit masks (64 candidates a word): the
   // distances come in sample order, so a branch per candidate is a coin toss the predictor
@@ -68,15 +69,53 @@ void pickNearest(const Point3& q, size_t k, PickState& s) {
       s.band.emplace_back(s.d2[j], j);
     }
   const auto nth = s.band.begin() + static_cast<long>(k - inside - 1);
-  std::nth_element(s.band.begin(), nth, s.band.end());
+  if (s.band.size() <= 8) {  // the usual few: an insertion sort, without nth_element's call
+    for (size_t i = 1; i < s.band.size(); ++i)
+      for (size_t j = i; j > 0 && s.band[j] < s.band[j - 1]; --j)
+        std::swap(s.band[j], s.band[j - 1]);
+  } else {
+    std::nth_element(s.band.begin(), nth, s.band.end());
+  }
   for (auto it = s.band.begin(); it <= nth; ++it)
     s.inside[it->second / 64] |= uint64_t{1} << (it->second % 64);
-  s.picked.clear();
+  s.picked.resize(k);  // exactly k bits are set now
+  s.pickedD2.resize(k);
+  uint32_t* picked = s.picked.data();
+  double* pickedD2 = s.pickedD2.data();
   for (size_t w = 0; w < words; ++w)
-    for (uint64_t in = s.inside[w]; in != 0; in &= in - 1)
-      s.picked.push_back(static_cast<uint32_t>(64 * w + static_cast<size_t>(__builtin_ctzll(in))));
+    for (uint64_t in = s.inside[w]; in != 0; in &= in - 1) {
+      const uint32_t j = static_cast<uint32_t>(64 * w + static_cast<size_t>(__builtin_ctzll(in)));
+      *picked++ = j;
+      *pickedD2++ = s.d2[j];
+    }
   s.lastKth = nth->first;
   s.lastNode = q;
+}
+
+// The squared distances from q to the candidates of s.picked into s.pickedD2, computed as the
+// distance loop computes them (the same bits), and the largest of them. Four running maxima:
+// one chain of dependent maxsd took a third of the time the kept sets save.
+double distancesToPicked(const Point3& q, PickState& s) {
+  const size_t n = s.picked.size();
+  s.pickedD2.resize(n);
+  const uint32_t* picked = s.picked.data();
+  const double *cx = s.cx.data(), *cy = s.cy.data(), *cz = s.cz.data();
+  double* __restrict d2 = s.pickedD2.data();
+  double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
+  size_t i = 0;
+  const auto at = [&](size_t t) {
+    const uint32_t j = picked[t];
+    const double dx = cx[j] - q[0], dy = cy[j] - q[1], dz = cz[j] - q[2];
+    return d2[t] = dx * dx + dy * dy + dz * dz;
+  };
+  for (; i + 4 <= n; i += 4) {
+    m0 = std::max(m0, at(i));
+    m1 = std::max(m1, at(i + 1));
+    m2 = std::max(m2, at(i + 2));
+    m3 = std::max(m3, at(i + 3));
+  }
+  for (; i < n; ++i) m0 = std::max(m0, at(i));
+  return std::max(std::max(m0, m1), std::max(m2, m3));
 }
 
 }  // namespace
@@ -87,23 +126,43 @@ bool pickNeighbours(const Point3& q, size_t k, double maxDistance, PickState& s)
   const size_t m = s.cx.size();
   s.d2.resize(m);
   const double reach2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : INFINITY;
+  // The previous node's k neighbours (s.picked) are this node's too iff exactly k candidates
+  // lie at or below T, the largest of the set's distances here: the set's k are among them, so
+  // no other candidate is. A tie at T counts more than k and is left to the full pick, which
+  // breaks it by index. Adjacent nodes of a 2-D grid mostly share their set (57 % on Walker
+  // Lake), and this count costs a fraction of the ranking.
+  const bool mayKeep = s.lastKth >= 0 && s.picked.size() == k;  // a set of this brick
+  const double kth = mayKeep ? distancesToPicked(q, s) : -1;
+  size_t atOrBelow = 0;
   const double *cx = s.cx.data(), *cy = s.cy.data(), *cz = s.cz.data();
   double* __restrict d2 = s.d2.data();  // so the loop keeps its pointers in registers
   for (size_t j = 0; j < m; ++j) {      // as KdTree computes them, so ties break alike
     const double dx = cx[j] - q[0], dy = cy[j] - q[1], dz = cz[j] - q[2];
     d2[j] = dx * dx + dy * dy + dz * dz;
+    atOrBelow += d2[j] <= kth;
   }
   size_t inReach = m;  // without --max-distance every candidate is in reach
   if (std::isfinite(maxDistance))
     inReach =
         static_cast<size_t>(std::count_if(d2, d2 + m, [reach2](double d) { return d <= reach2; }));
-  s.picked.clear();
+  s.unchanged = false;
   if (inReach <= k) {
+    s.picked.clear();
+    s.pickedD2.clear();
     for (size_t j = 0; j < m; ++j)
-      if (s.d2[j] <= reach2) s.picked.push_back(static_cast<uint32_t>(j));
+      if (s.d2[j] <= reach2) {
+        s.picked.push_back(static_cast<uint32_t>(j));
+        s.pickedD2.push_back(s.d2[j]);
+      }
     return !s.picked.empty();
   }
-  pickNearest(q, k, s);
+  s.unchanged = mayKeep && atOrBelow == k;
+  if (s.unchanged) {
+    s.lastKth = kth;  // what pickNearest leaves: the k-th distance
+    s.lastNode = q;
+  } else {
+    pickNearest(q, k, mayKeep ? kth : INFINITY, s);
+  }
   return true;
 }
 
