@@ -36,8 +36,8 @@ struct ThreadState : PickState {
   std::vector<double> ballSquared, sortedSquared;
   double pieceKth = -1;  // d_k+1 at the centre of the last piece queried (-1: none yet)
   Point3 pieceCentre{};
-  std::vector<double> pair;                      // the candidates' covariances (m x m)
-  std::vector<std::array<uint16_t, 2>> missing;  // (i, j) in picked to evaluate, distances
+  std::vector<double> pair;       // the candidates' covariances (m x m)
+  std::vector<uint32_t> missing;  // i + (j << 16) in picked: the pairs to evaluate, distances
   std::vector<double> missingDistance, missingCovariance;
   std::vector<double> rhs, work, drift;
   std::vector<uint32_t> lastPicked, key;
