@@ -92,29 +92,24 @@ void pickNearest(const Point3& q, size_t k, double ceiling, PickState& s) {
   s.lastNode = q;
 }
 
-// The squared distances from q to the candidates of s.picked into s.pickedD2, computed as the
-// distance loop computes them (the same bits), and the largest of them. Four running maxima:
-// one chain of dependent maxsd took a third of the time the kept sets save.
-double distancesToPicked(const Point3& q, PickState& s) {
+// The squared distances of s.picked's candidates (from s.d2) into s.pickedD2, and the largest
+// of them. Four running maxima: one chain of dependent maxsd took a third of the time the kept
+// sets save.
+double gatherPicked(PickState& s) {
   const size_t n = s.picked.size();
   s.pickedD2.resize(n);
   const uint32_t* picked = s.picked.data();
-  const double *cx = s.cx.data(), *cy = s.cy.data(), *cz = s.cz.data();
-  double* __restrict d2 = s.pickedD2.data();
+  const double* d2 = s.d2.data();
+  double* __restrict out = s.pickedD2.data();
   double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
   size_t i = 0;
-  const auto at = [&](size_t t) {
-    const uint32_t j = picked[t];
-    const double dx = cx[j] - q[0], dy = cy[j] - q[1], dz = cz[j] - q[2];
-    return d2[t] = dx * dx + dy * dy + dz * dz;
-  };
   for (; i + 4 <= n; i += 4) {
-    m0 = std::max(m0, at(i));
-    m1 = std::max(m1, at(i + 1));
-    m2 = std::max(m2, at(i + 2));
-    m3 = std::max(m3, at(i + 3));
+    m0 = std::max(m0, out[i] = d2[picked[i]]);
+    m1 = std::max(m1, out[i + 1] = d2[picked[i + 1]]);
+    m2 = std::max(m2, out[i + 2] = d2[picked[i + 2]]);
+    m3 = std::max(m3, out[i + 3] = d2[picked[i + 3]]);
   }
-  for (; i < n; ++i) m0 = std::max(m0, at(i));
+  for (; i < n; ++i) m0 = std::max(m0, out[i] = d2[picked[i]]);
   return std::max(std::max(m0, m1), std::max(m2, m3));
 }
 
@@ -131,16 +126,17 @@ bool pickNeighbours(const Point3& q, size_t k, double maxDistance, PickState& s)
   // no other candidate is. A tie at T counts more than k and is left to the full pick, which
   // breaks it by index. Adjacent nodes of a 2-D grid mostly share their set (57 % on Walker
   // Lake), and this count costs a fraction of the ranking.
-  const bool mayKeep = s.lastKth >= 0 && s.picked.size() == k;  // a set of this brick
-  const double kth = mayKeep ? distancesToPicked(q, s) : -1;
-  size_t atOrBelow = 0;
   const double *cx = s.cx.data(), *cy = s.cy.data(), *cz = s.cz.data();
   double* __restrict d2 = s.d2.data();  // so the loop keeps its pointers in registers
   for (size_t j = 0; j < m; ++j) {      // as KdTree computes them, so ties break alike
     const double dx = cx[j] - q[0], dy = cy[j] - q[1], dz = cz[j] - q[2];
     d2[j] = dx * dx + dy * dy + dz * dz;
-    atOrBelow += d2[j] <= kth;
   }
+  const bool mayKeep = s.lastKth >= 0 && s.picked.size() == k;  // a set of this brick
+  const double kth = mayKeep ? gatherPicked(s) : -1;
+  size_t atOrBelow = 0;
+  if (mayKeep)
+    for (size_t j = 0; j < m; ++j) atOrBelow += d2[j] <= kth;
   size_t inReach = m;  // without --max-distance every candidate is in reach
   if (std::isfinite(maxDistance))
     inReach =
