@@ -144,7 +144,7 @@ void LocalSystems::queue(ThreadState& ts, Factorization& f) const {
     for (size_t i = j + 1; i < n; ++i) {
       const double c = pairs[picked[i]];
       column[i * kLanes] = c;
-      missing[count] = uint32_t(i | j << 16);  // one store (two 16-bit ones took a quarter)
+      missing[count] = uint32_t(i | j << 16);  // one store per pair
       count += std::isnan(c);
     }
   }

@@ -121,17 +121,17 @@ bool pickNeighbours(const Point3& q, size_t k, double maxDistance, PickState& s)
   const size_t m = s.cx.size();
   s.d2.resize(m);
   const double reach2 = std::isfinite(maxDistance) ? maxDistance * maxDistance : INFINITY;
-  // The previous node's k neighbours (s.picked) are this node's too iff exactly k candidates
-  // lie at or below T, the largest of the set's distances here: the set's k are among them, so
-  // no other candidate is. A tie at T counts more than k and is left to the full pick, which
-  // breaks it by index. Adjacent nodes of a 2-D grid mostly share their set (57 % on Walker
-  // Lake), and this count costs a fraction of the ranking.
   const double *cx = s.cx.data(), *cy = s.cy.data(), *cz = s.cz.data();
   double* __restrict d2 = s.d2.data();  // so the loop keeps its pointers in registers
   for (size_t j = 0; j < m; ++j) {      // as KdTree computes them, so ties break alike
     const double dx = cx[j] - q[0], dy = cy[j] - q[1], dz = cz[j] - q[2];
     d2[j] = dx * dx + dy * dy + dz * dz;
   }
+  // The previous node's k neighbours (s.picked) are this node's too iff exactly k candidates
+  // lie at or below T, the largest of the set's distances here: the set's k are among them, so
+  // no other candidate is. A tie at T counts more than k and is left to the full pick, which
+  // breaks it by index. Adjacent nodes of a 2-D grid mostly share their set (about 60 % on
+  // Walker Lake), and this count costs a fraction of the ranking.
   const bool mayKeep = s.lastKth >= 0 && s.picked.size() == k;  // a set of this brick
   const double kth = mayKeep ? gatherPicked(s) : -1;
   size_t atOrBelow = 0;

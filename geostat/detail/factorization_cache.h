@@ -62,8 +62,8 @@ class FactorizationCache {
 };
 
 // The hash of a neighbour set (sample indices, ascending): FNV-1a over four interleaved lanes,
-// then the lanes: one chain of 32 dependent multiplies took a quarter of the lookup of a
-// changed set (docs/kriging-speed-log.md, branch krige-32c). Collisions cost only a compare.
+// then the lanes: one chain of 32 dependent multiplies took about a quarter of a node's lookup
+// time (docs/kriging-speed-log.md, branch krige-32c). Collisions cost only a compare.
 inline uint64_t hashKey(const std::vector<uint32_t>& key) {
   constexpr uint64_t kPrime = 1099511628211ULL;
   uint64_t h0 = 1469598103934665603ULL, h1 = h0 + 1, h2 = h0 + 2, h3 = h0 + 3;
