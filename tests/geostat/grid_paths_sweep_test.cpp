@@ -169,5 +169,18 @@ TEST(GridPathsSweep, SphericalThirtyTwoNeighboursDenseAndSparse3DGrids) {
   expectGridEqualsPredict(kr, {{23, 19, 17}, {-10, -5, 0}, {6, 6.5, 7}}, 10, "sparse");
 }
 
+TEST(GridPathsSweep, SearchRadiusWithFewerSamplesInReachThanNeighbours3D) {
+  // A radius that leaves some nodes fewer than k samples and some none: the brick pieces'
+  // shared ball query must still give each node exactly its own neighbours. (Simple kriging's
+  // nodes without data: tests/geostat/simple_kriging_without_data_test.cpp, not built yet.)
+  const PointSet s = randomPoints(1500, 75, 100, 3);
+  for (VariogramType type : kModels)
+    for (size_t k : {size_t{1}, size_t{16}, size_t{32}, size_t{64}}) {
+      const Kriger kr = kriger(s, model(type, 0.3, 6, 25), {.maxNeighbours = k, .maxDistance = 9});
+      expectGridEqualsPredict(kr, {{23, 17, 13}, {-20, -10, 0}, {6.5, 8, 9.5}}, 10,
+                              "radius k " + std::to_string(k));
+    }
+}
+
 }  // namespace
 }  // namespace voxlink::geostat
