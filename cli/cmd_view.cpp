@@ -47,7 +47,8 @@ CommandRunner addViewCommand(CLI::App& app) {
       ->check(CLI::IsMember({4u, 8u, 16u, 32u}));
   cmd->add_option("--time", args->time,
                   "scene files with an animation: start at this time (seconds), paused")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(finiteNumber())
+      ->check(CLI::Range(0.0, 1e9));  // after finiteNumber: no comparison refuses NaN
   cmd->add_option("--window", args->window, "Window size WxH")->capture_default_str();
   cmd->add_option("--frames", args->frames, "Quit after this many frames (smoke tests)");
   cmd->add_option("--screenshot-on-exit", args->screenshot,

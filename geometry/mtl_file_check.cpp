@@ -5,7 +5,8 @@
 // statements (Kd, Ns, d, illum, ...) it skips there. The check walks the statements as assimp
 // does: a statement starts the file or follows a line end ('\n', '\r', '\f' or NUL) and the
 // spaces and tabs after it, and assimp picks its handler by the first byte alone (case
-// sensitive), then compares the texture keywords ignoring case.
+// sensitive), then compares the texture keywords ignoring case. A UTF-8 byte order mark assimp
+// drops before reading (BaseImporter::TextFileToBuffer), so the statement after it opens the file.
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -72,7 +73,8 @@ Status checkMtlFile(const std::string& path, const std::string& objPath) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Status::ok();  // assimp reports what it cannot open
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string_view all(text);
+  std::string_view all(text);
+  if (all.starts_with("\xEF\xBB\xBF")) all.remove_prefix(3);
   size_t at = 0;
   while (at < all.size()) {
     // assimp skips the blanks after a line end, not those that open the file.

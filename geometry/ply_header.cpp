@@ -51,15 +51,16 @@ Result<PlyHeader> readPlyHeader(const std::string& path) {
       else if (kind == "binary_big_endian")
         header.encoding = PlyEncoding::kBig;
       else if (kind != "ascii")
-        return makeError(ErrorCode::kCorrupt, path, ": format '", kind, "' is not a PLY format");
+        return makeError(ErrorCode::kCorrupt, path, ": line ", number, ": format '", kind,
+                         "' is not a PLY format");
     } else if (keyword == "element") {
       PlyElement e;
       std::string count;
       words >> e.name >> count;
       if (count.empty() || count.find_first_not_of("0123456789") != std::string::npos ||
           count.size() > 19)
-        return makeError(ErrorCode::kCorrupt, path, ": element ", e.name, ": count '", count,
-                         "' is not a whole number");
+        return makeError(ErrorCode::kCorrupt, path, ": line ", number, ": element ", e.name,
+                         ": count '", count, "' is not a whole number");
       e.count = std::stoull(count);
       // assimp 5.2 sizes its vertex array by the first `vertex` element, and the vertices of a
       // second one were written past its end (heap corruption, found by the mesh fuzz target).

@@ -65,6 +65,10 @@ Result<Kriger> Kriger::make(const PointSet& points, const Variogram& variogram,
   if (options.externalDrift && points.drift.size() != points.size())
     return makeError(ErrorCode::kInvalidArgument,
                      "kriging: external drift asked for but the samples have no drift column");
+  // A condition number is at least 1; below it (or NaN) every system would fail the jitter ladder.
+  if (!(options.maxCondition >= 1))
+    return makeError(ErrorCode::kInvalidArgument, "kriging: --max-condition must be >= 1, got ",
+                     options.maxCondition);
   if (!(options.maxDistance > 0))
     return makeError(ErrorCode::kInvalidArgument, "kriging: --max-distance must be > 0, got ",
                      options.maxDistance);

@@ -37,6 +37,7 @@ Pose samplePose(const Animation& animation, double seconds) {
     t = std::fmod(t, animation.period);
     if (t < 0) t += animation.period;
   }
+  if (std::isnan(t)) return poseOf(keys.front());  // no comparison below would hold
   if (t <= keys.front().time) {
     // Before the first key of a loop: on the way back from the last key (its time less one
     // period) to the first.

@@ -309,5 +309,16 @@ TEST_F(CliBadInput, RandomDamageNeverCrashesInfoOrValidate) {
   EXPECT_GT(failures, 60);  // most damage is detected
 }
 
+TEST_F(CliBadInput, ViewTimeThatIsNotANumberIsRefused) {
+  // CLI11's range check lets "nan" through (no comparison holds); the animation was then
+  // sampled at NaN, past its last key (before: the viewer opened and drew that pose).
+  const std::string scene = dir_.file("a.scene.json");
+  writeBytes(scene, std::vector<uint8_t>{'{', '}'});
+  for (const char* time : {"nan", "-nan", "inf"}) {
+    SCOPED_TRACE(time);
+    expectCleanFailure(runVoxlink({"view", scene, "--time", time}), "--time");
+  }
+}
+
 }  // namespace
 }  // namespace voxlink::testing

@@ -197,7 +197,8 @@ TEST(MeshLoaderErrors, PlyFormatThatIsNoPlyFormatNamesTheField) {
             "property float y\nproperty float z\nend_header\n");
   auto mesh = loadMesh(dir.file("middle.ply"));
   ASSERT_FALSE(mesh);
-  EXPECT_NE(mesh.message().find("middle.ply: format 'binary_middle_endian'"), std::string::npos)
+  EXPECT_NE(mesh.message().find("middle.ply: line 2: format 'binary_middle_endian'"),
+            std::string::npos)
       << mesh.message();
 }
 
@@ -298,6 +299,20 @@ TEST(MeshLoaderErrors, SecondElementOfANameIsRefused) {
   EXPECT_NE(mesh.message().find("twice.ply: line 7: element vertex is declared a second time"),
             std::string::npos)
       << mesh.message();
+}
+
+// A bad element count names its line, as the other header refusals do (before: the file and the
+// field but no line).
+TEST(MeshLoaderErrors, PlyElementCountThatIsNoNumberNamesTheLine) {
+  TempDir dir;
+  writeText(dir.file("count.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 1e3\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n");
+  auto count = loadMesh(dir.file("count.ply"));
+  ASSERT_FALSE(count);
+  EXPECT_NE(count.message().find("count.ply: line 3: element vertex: count '1e3' is not a whole"),
+            std::string::npos)
+      << count.message();
 }
 
 TEST(MeshLoader, TightestAsciiPlyPassesTheCountCheck) {

@@ -113,5 +113,26 @@ TEST(MtlCheck, LibraryWithoutMtlExtensionIsChecked) {
       << mesh.message();
 }
 
+// assimp drops a UTF-8 byte order mark before it reads a library (BaseImporter::TextFileToBuffer),
+// so the statement after the mark opens the file. Before the check skipped it too, a marked
+// library was refused for map_Kd after its first-line newmtl, and a marked map_Kd on the first
+// line passed the check and crashed assimp (SIGSEGV).
+const std::string kByteOrderMark = "\xEF\xBB\xBF";
+
+TEST(MtlCheck, ByteOrderMarkedLibraryWithNewmtlFirstLoads) {
+  TempDir dir;
+  auto mesh = loadWithMtl(dir, kByteOrderMark + "newmtl red\nKd 1 0 0\nmap_Kd red.png\n");
+  ASSERT_TRUE(mesh) << mesh.message();
+  ASSERT_EQ(mesh->triangleMaterials.size(), 1u);
+  EXPECT_EQ(mesh->materials.at(mesh->triangleMaterials[0]).name, "red");
+  EXPECT_FLOAT_EQ(mesh->materials.at(mesh->triangleMaterials[0]).color[0], 1.0f);
+}
+
+TEST(MtlCheck, ByteOrderMarkedTextureMapOnTheFirstLineIsRefused) {
+  expectRefused(kByteOrderMark + "map_Kd red.png\nnewmtl red\n",
+                "line 1: 'map_Kd' (texture map) before the first newmtl");
+  expectRefused(kByteOrderMark + "a 1\nnewmtl red\n", "line 1: 'a' (anisotropy)");
+}
+
 }  // namespace
 }  // namespace voxlink::geometry

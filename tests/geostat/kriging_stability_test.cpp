@@ -211,5 +211,20 @@ TEST(KrigingStability, PointByPointGlobalKrigingIsRefusedBeyondItsLimit) {
   EXPECT_NE(huge.message().find("--neighbours"), std::string::npos) << huge.message();
 }
 
+TEST(KrigingStability, RefusesAMaxConditionBelowOne) {
+  // No matrix has a condition number below 1, and NaN passes no comparison: every system would
+  // need the whole jitter ladder and fail it (before: accepted, and the local grid solver then
+  // crashed on the failure, tests/geostat/local_singular_system_test.cpp).
+  const PointSet s = randomPoints(50, 90);
+  const Variogram v = model(VariogramType::kSpherical, 0.1, 1, 30);
+  for (double bad : {0.5, 0.0, -5.0, std::nan("")}) {
+    auto k = Kriger::make(s, v, {.maxNeighbours = 8, .maxCondition = bad});
+    ASSERT_FALSE(k) << bad;
+    EXPECT_NE(k.message().find("--max-condition must be >= 1"), std::string::npos) << k.message();
+  }
+  EXPECT_TRUE(Kriger::make(s, v, {.maxNeighbours = 8, .maxCondition = 1}));
+  EXPECT_TRUE(Kriger::make(s, v, {.maxNeighbours = 8, .maxCondition = INFINITY}));
+}
+
 }  // namespace
 }  // namespace voxlink::geostat

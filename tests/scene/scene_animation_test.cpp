@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "scene/scene_description.h"
@@ -51,6 +52,18 @@ TEST(SceneAnimation, InterpolatesLinearlyAndLoops) {
   EXPECT_DOUBLE_EQ(samplePose(a, 0).translate[0], 2);   // 0 is 4 - period
   EXPECT_DOUBLE_EQ(samplePose(a, 6).translate[0], 2);   // 6 mod 4 = 2
   EXPECT_DOUBLE_EQ(samplePose(a, -2).translate[0], 2);  // negative times wrap too
+}
+
+TEST(SceneAnimation, ATimeThatIsNotANumberGivesTheFirstKey) {
+  // Before: no comparison held for NaN, and the key after it was read past the last one.
+  Animation a;
+  a.keys = {{1, {7, 0, 0}, {0, 0, 0}}, {3, {4, -2, 0}, {0, 0, 40}}};
+  for (double period : {0.0, 4.0}) {
+    a.period = period;
+    const Pose p = samplePose(a, std::nan(""));
+    EXPECT_EQ(p.translate, (std::array<double, 3>{7, 0, 0})) << period;
+    EXPECT_EQ(p.rotateDegrees, (std::array<double, 3>{0, 0, 0})) << period;
+  }
 }
 
 TEST(SceneAnimation, RotatesAboutTheCentreThenTranslates) {
