@@ -207,7 +207,10 @@ class BrickSolver {
     ++ts.summary.nodes;
     if (!pickNeighbours(q, k_, maxDistance_, ts)) {
       const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
-      values_[at] = variances_[at] = noData_;
+      // Simple kriging has an answer without data, the known mean and the sill (as predict()).
+      const bool simple = kriger_.options().kind == KrigingKind::kSimple;
+      values_[at] = simple ? kriger_.options().simpleMean : noData_;
+      variances_[at] = simple ? kriger_.variogram().sill() : noData_;
       ++ts.summary.nodesWithoutData;
       return Status::ok();
     }
@@ -353,8 +356,10 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
           stop = true;
         }
       }
-      // The nodes still waiting belong to this slab.
-      if (Status s = solver.flush(ts); !stop && !s) {
+      // The nodes still waiting belong to this slab. After a failure they are dropped: a failed
+      // flush has emptied the queue, and flushing again would solve them on unfactored systems.
+      if (stop) return;
+      if (Status s = solver.flush(ts); !s) {
         std::lock_guard lock(failureLock);
         if (!failure) failure = s.error();
         stop = true;

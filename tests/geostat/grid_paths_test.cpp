@@ -38,9 +38,11 @@ Worst compareWithPredict(const Kriger& k, const GridSpec& grid, double scale, un
           ++w.noData;
           continue;
         }
-        w.value = std::max(w.value, std::fabs(got.values[at] - p->value) / scale);
-        w.variance =
-            std::max(w.variance, std::fabs(got.variances[at] - p->variance) / k.variogram().sill());
+        // A NaN difference is a failure (std::max would drop it).
+        const double dv = std::fabs(got.values[at] - p->value) / scale;
+        const double dvar = std::fabs(got.variances[at] - p->variance) / k.variogram().sill();
+        w.value = std::isnan(dv) ? INFINITY : std::max(w.value, dv);
+        w.variance = std::isnan(dvar) ? INFINITY : std::max(w.variance, dvar);
       }
   return w;
 }

@@ -1,27 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// NOT IN THE BUILD (review7): the fix belongs to geostat/local_kriging.cpp, which branches
-// krige-32c / krige-32d are changing; add this file to tests/geostat/CMakeLists.txt with it.
-//
-// docs/kriging.md: "Nodes with no sample within --max-distance are written as --nodata ...;
-// simple kriging gives the known mean and the sill there instead", as Kriger::predict does.
-// The grid solvers write --nodata for simple kriging too (BrickSolver::solveNode writes noData_
-// whenever pickNeighbours finds nobody; a global run with a radius takes the same path). With
-// the default NaN, `voxlink krige walker.csv --value V --variogram sph:... --kind sk --mean 300
-// -k 16 --max-distance 4 --dims 26,30 --spacing 10,10 -o sk.nhdr` fails with "value nan at node
-// (1, 0, 0) is not finite as f64"; with --nodata -1 the 455 nodes out of reach hold -1, not 300.
-// GridPaths.SearchRadiusSimpleKrigingAndNodesWithoutData missed it: its std::max drops NaN.
-// Fix, in BrickSolver::solveNode:
-//     if (!pickNeighbours(q, k_, maxDistance_, ts)) {
-//       const uint64_t at = ...;
-//       // Simple kriging has an answer without data: the known mean and the sill (predict).
-//       const bool simple = kriger_.options().kind == KrigingKind::kSimple;
-//       values_[at] = simple ? kriger_.options().simpleMean : noData_;
-//       variances_[at] = simple ? kriger_.variogram().sill() : noData_;
-//       ++ts.summary.nodesWithoutData;
-//       return Status::ok();
-//     }
-// and in grid_paths_test.cpp's compareWithPredict take a NaN difference as a failure
-// (e.g. `if (!(d <= w.value)) w.value = std::isnan(d) ? INFINITY : d;`).
+// docs/kriging.md: nodes with no sample within --max-distance are written as --nodata, but
+// simple kriging gives the known mean and the sill there, as Kriger::predict does (before the
+// fix the grid solvers wrote --nodata for simple kriging too).
 #include <gtest/gtest.h>
 
 #include <cmath>
