@@ -22,6 +22,9 @@ Result<RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) 
   s.width = wh[0];
   s.height = wh[1];
   s.sampling = *parseSampling(sampling);
+  if (file.isScene() && s.sampling != Sampling::kVoxel)
+    return makeError(ErrorCode::kUnsupported, file.path(), ": --sampling ", sampling,
+                     ": scenes (files with geometry) render with voxel sampling only");
   s.stepVoxels = step;
   s.terminationAlpha = terminationAlpha;
   s.shading.shadows = shadows;

@@ -28,8 +28,8 @@ VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers
 
 Status VoxLinkRenderer::checkSupported(const RenderSettings& settings) const {
   if (header_.versionMajor == format::kVersionMajorScene && settings.sampling != Sampling::kVoxel)
-    return makeError(ErrorCode::kUnsupported, name(),
-                     ": scenes (files with geometry) render with voxel sampling; ",
+    return makeError(ErrorCode::kUnsupported,
+                     "scenes (files with geometry) render with voxel sampling; ",
                      samplingName(settings.sampling), " sampling is for volume files");
   return Status::ok();
 }

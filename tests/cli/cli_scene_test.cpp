@@ -251,6 +251,24 @@ TEST(CliScene, BadInputIsOneLine) {
   EXPECT_NE(r.err.find("no geometry and no volume"), std::string::npos) << r.err;
 }
 
+// Trilinear sampling is for volume files: a scene asked for it is refused in one line naming the
+// file and the option, and no image is written (before: "voxlink: voxlink: scenes ...", no file).
+TEST(CliScene, TrilinearSamplingOfASceneNamesTheFileAndOption) {
+  TempDir dir;
+  writeText(dir.file("ball.scene.json"),
+            R"({"grid": {"resolution": 16},
+                "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})");
+  auto r = runVoxlink({"scene", "build", dir.file("ball.scene.json"), "-o", dir.file("ball.vxl")});
+  ASSERT_EQ(r.status, 0) << r.err;
+  r = runVoxlink({"render", dir.file("ball.vxl"), "--sampling", "trilinear", "--size", "16x16",
+                  "-o", dir.file("ball.png")});
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.err.find("ball.vxl: --sampling trilinear: scenes"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("voxlink: voxlink:"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("ball.png")));
+}
+
 // A resolution the machine cannot hold is refused before voxelizing, naming the field to change,
 // instead of working for minutes and dying of std::bad_alloc or the OOM killer.
 TEST(CliScene, ResolutionBeyondMemoryIsRefusedAtOnce) {
