@@ -117,7 +117,7 @@ int runAnimateBenchmark(const AnimateBenchOptions& o, const render::RenderOption
           draw.push_back(msSince(renderStart));
           frame.push_back(msSince(start));
           // A guard outside the timing: a layer that ran out of room is an error, not a frame.
-          if (Status st = ds.layer().checkLastUpdate(); !st) return reportError(st);
+          if (Status st = ds.checkLastUpdate(); !st) return reportError(st);
         }
         const double median = quantile(frame, 0.5);
         out.print("| %u | %u | %ux%u | %llu | %.1f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f |\n",
