@@ -48,7 +48,7 @@ Result<std::unique_ptr<SceneSession>> SceneSession::prepare(const std::string& s
   if (options.brick) description.grid.brickSize = options.brick;
   std::unique_ptr<SceneSession> s(new SceneSession(scratchPath(), description.animationSpan()));
   s->description_ = description;
-  VOXLINK_ASSIGN_OR_RETURN(s->staticMeshes_, movableStaticMeshes(description));
+  VOXLINK_ASSIGN_OR_RETURN(s->staticObjects_, movableStaticObjects(description));
   bool moves = false;
   for (const scene::SceneObject& o : description.objects) moves |= o.animation.has_value();
   if (moves) {
@@ -99,7 +99,7 @@ Result<bool> SceneSession::update(double dtSeconds) {
 
 std::vector<render::Box> SceneSession::staticBoxes() const {
   std::vector<render::Box> boxes;
-  for (const StaticMesh& m : staticMeshes_) boxes.push_back(toBox(m.restBounds));
+  for (const StaticObject& m : staticObjects_) boxes.push_back(toBox(m.restBounds));
   return boxes;
 }
 
@@ -164,10 +164,10 @@ Status SceneSession::applyPromotion(bool wait) {
   std::filesystem::remove(volumeFile_, ignored);
   volumeFile_ = job->staticFile();
   description_ = dynamic_->description();
-  staticMeshes_.erase(
-      std::remove_if(staticMeshes_.begin(), staticMeshes_.end(),
-                     [&](const StaticMesh& m) { return m.object == job->object(); }),
-      staticMeshes_.end());
+  staticObjects_.erase(
+      std::remove_if(staticObjects_.begin(), staticObjects_.end(),
+                     [&](const StaticObject& m) { return m.object == job->object(); }),
+      staticObjects_.end());
   posesChanged_ = true;
   rebuilt_ = true;
   return Status::ok();
