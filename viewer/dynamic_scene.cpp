@@ -13,6 +13,12 @@
 namespace voxlink::viewer {
 
 using render::gl::dynamicBrickBound;
+
+// The moving spheres' lists are per cell of 8^3 voxels whatever the file's bricks: for the
+// moving 2XHE protein at 512x512 (docs/dynamic-scenes.md, "Moving sphere sets") cells of 8 drew
+// the frame fastest at grid 512 (median 132 ms against 175 with 4 and 298 with 2) and within
+// the drift of 4 at 256 (128 against 119); per-voxel lists (1) were 2x slower at 256.
+constexpr uint32_t kSphereListCell = 8;
 using render::gl::DynamicSceneRenderer;
 using render::gl::GlDynamicLayer;
 namespace {
@@ -105,7 +111,7 @@ Result<DynamicScene::Prepared> DynamicScene::prepare(const scene::SceneDescripti
       // Per sphere the bricks its ball (a rigid pose keeps the radius) can touch anywhere.
       for (const geometry::Sphere& sp : placed.spheres) {
         const double e = 2 * sp.radius / grid.spacing + 0.02;  // gl_dynamic_spheres.cpp's margin
-        sphereReferences += dynamicBrickBound({e, e, e}, brick, grid.dims);
+        sphereReferences += dynamicBrickBound({e, e, e}, kSphereListCell, grid.dims);
       }
       spheres += placed.spheres.size();
     }
@@ -158,8 +164,8 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(Prepared p) {
   if (p.spheres > 0) {
     VOXLINK_ASSIGN_OR_RETURN(
         render::gl::GlDynamicSpheres spheres,
-        render::gl::GlDynamicSpheres::create(p.grid.dims, p.grid.origin, p.grid.spacing, p.brick,
-                                             p.sphereReferences));
+        render::gl::GlDynamicSpheres::create(p.grid.dims, p.grid.origin, p.grid.spacing,
+                                             kSphereListCell, p.sphereReferences));
     d->spheres_ = std::make_unique<render::gl::GlDynamicSpheres>(std::move(spheres));
   }
   for (Moving& m : d->moving_) {

@@ -108,7 +108,8 @@ class DynamicScene {
   render::gl::DynamicSceneRenderer& renderer() { return *renderer_; }
   // The moving meshes' layer; its bricks are the file's, or 8^3 voxels where those are bigger.
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
-  // The moving spheres' lists (bricks as the layer's), or null where no sphere set moves.
+  // The moving spheres' lists (per 8^3 voxels, dynamic_scene.cpp says why), or null where no
+  // sphere set moves.
   const render::gl::GlDynamicSpheres* spheres() const { return spheres_.get(); }
   // Waits and checks the last update of both: an error where bricks or references were dropped.
   Status checkLastUpdate() const;

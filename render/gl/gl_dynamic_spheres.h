@@ -2,13 +2,13 @@
 // The moving sphere sets and particles of a dynamic scene (docs/dynamic-scenes.md), re-marked on
 // the GPU each update their poses change, nothing read back: a compute pass over the spheres
 // (shaders/dynamic_spheres_mark.comp.glsl) appends each sphere to a list per brick of the grid
-// that its ball (plus a hundredth of a voxel) touches: a head per brick and a node (sphere, next)
-// per reference. The ray tracer (shaders/voxlink_dynamic.glsl) walks those bricks and intersects
-// their spheres exactly, as the static path intersects a voxel's sphere references
-// (shaders/voxlink_scene.glsl), so a sphere at a pose is drawn as the static scene with the
-// sphere there draws it. Lists per brick, not per voxel: a sphere is listed once per brick
-// instead of once per voxel of its shell, and the image does not depend on the granularity
-// (a ray takes the nearest hit inside the brick's chord, which is the nearest of all).
+// (8^3 voxels, viewer/dynamic_scene.cpp says why) that its ball, plus a hundredth of a voxel,
+// touches: a head per brick and a node (sphere, next) per reference. The ray tracer
+// (shaders/voxlink_dynamic.glsl) walks those bricks and intersects their spheres exactly, as the
+// static path intersects a voxel's sphere references (shaders/voxlink_scene.glsl), so a sphere
+// at a pose is drawn as the static scene with the sphere there draws it. Lists per brick, not
+// per voxel (measured faster): the image does not depend on the granularity, since a ray takes
+// the nearest hit inside each brick's chord, brick by brick.
 #pragma once
 
 #include <epoxy/gl.h>
