@@ -30,7 +30,12 @@ using namespace render::gl;  // the renderers
 
 // A floor and a static sphere (which makes the grid tall enough for the motion), 40 moving
 // particles in a 0.3-wide cluster (radii 0.01-0.05) and a moving sphere.
-std::string writeScene(const ::voxlink::testing::TempDir& dir, int brick) {
+const char* kMaterials =
+    R"({"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]},
+                  "gold": {"color": [0.9, 0.7, 0.2]}})";
+
+std::string writeScene(const ::voxlink::testing::TempDir& dir, int brick,
+                       const std::string& materials = kMaterials) {
   std::ofstream(dir.file("floor.obj")) << "v -0.5 0 -0.5\nv -0.5 0 0.5\nv 0.5 0 0.5\nv 0.5 0 -0.5\n"
                                           "f 1 2 3\nf 1 3 4\n";
   std::ofstream particles(dir.file("cluster.txt"));
@@ -39,9 +44,8 @@ std::string writeScene(const ::voxlink::testing::TempDir& dir, int brick) {
               << 0.12 * std::sin(2.4 * i) << " " << 0.01 + 0.001 * i << "\n";
   particles.close();
   const std::string path = dir.file("spheres.scene.json");
-  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": )" + std::to_string(brick) + R"(},
-    "materials": {"jade": {"color": [0.35, 0.65, 0.45]}, "clay": {"color": [0.8, 0.6, 0.5]},
-                  "gold": {"color": [0.9, 0.7, 0.2]}},
+  std::ofstream(path) << R"({"grid": {"resolution": 96, "brick": )" + std::to_string(brick) +
+                             R"(}, "materials": )" + materials + R"(,
     "objects": [
       {"type": "mesh", "file": "floor.obj", "material": "clay"},
       {"type": "sphere", "center": [-0.4, 0.55, -0.4], "radius": 0.05, "material": "clay"},
@@ -138,6 +142,58 @@ TEST(DynamicSpheres, FrameIsTheStaticScenesWithTheSpheresAtThatPose) {
   VOXLINK_REQUIRE_GL();
   expectStaticScenesFrames(8);
   expectStaticScenesFrames(4);
+}
+
+// The ray-traced mode's rays see the moving spheres: a mirror floor shows them, and they reflect
+// the floor; the frame is the static scene's.
+TEST(DynamicSpheres, TheRayTracedModeSeesTheMovingSpheres) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(
+      writeScene(dir, 8,
+                 R"({"jade": {"color": [0.35, 0.65, 0.45], "reflectivity": 0.3},
+          "clay": {"color": [0.8, 0.6, 0.5], "reflectivity": 0.5},
+          "gold": {"color": [0.9, 0.7, 0.2], "reflectivity": 0.6}})"));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  DynamicScene& d = **dynamic;
+  CameraSpec spec;
+  spec.azimuthDeg = 30;
+  spec.elevationDeg = 35;
+  spec.up = UpAxis::kY;
+  const Camera camera = Camera::framing(d.renderer().geometry().worldBox(), spec);
+  RenderSettings s;
+  s.width = s.height = 128;
+  s.shading.shadows = true;
+  s.shading.lightDirection = {0.6, 1.0, 0.3};
+  s.effects.reflect = s.effects.refract = s.effects.shadows = true;
+  for (double t : {1.0}) {  // one pose: ray-traced frames are slow on llvmpipe (about 30 s here)
+    ASSERT_TRUE(d.setTime(t).isOk());
+    ASSERT_TRUE(d.checkLastUpdate().isOk());
+    RenderTarget target;
+    ASSERT_TRUE(d.renderer().render(camera, s, target).isOk());
+    const Image frame = target.read();
+    auto built = scene::buildScene(d.frozenAt(t));
+    ASSERT_TRUE(built) << built.message();
+    ASSERT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
+    auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
+    ASSERT_TRUE(file) << file.message();
+    auto host = VoxLinkRenderer::create(*file);
+    ASSERT_TRUE(host) << host.message();
+    RenderTarget hostTarget;
+    ASSERT_TRUE((*host)->render(camera, s, hostTarget).isOk());
+    auto e = compareImages(frame, hostTarget.read());
+    ASSERT_TRUE(e);
+    auto plain = compareImages(frame, render(d.renderer(), camera, true));
+    ASSERT_TRUE(plain);
+    std::printf(
+        "t %.1f: ray-traced, moving spheres vs static scene: %llu pixels over 1/255, "
+        "max error %.4f; vs the plain frame %.2f dB\n",
+        t, static_cast<unsigned long long>(e->pixelsOver), e->maxError, plain->psnr);
+    EXPECT_EQ(e->pixelsOver, 0u) << "t " << t;
+    EXPECT_LT(plain->psnr, 35.0) << "t " << t;  // the reflections show
+  }
 }
 
 TEST(DynamicSpheres, MovingSpheresAndAMovingMeshTakeTheNearestOfBoth) {
