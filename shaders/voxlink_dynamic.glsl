@@ -64,7 +64,9 @@ bool dynamicMeshHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3
 #ifdef VXL_DYN_SPHERES
 layout(std430, binding = 53) readonly buffer DynSphereHeads { uint dynSphereHeads[]; };
 layout(std430, binding = 54) readonly buffer DynSphereNodes { uvec2 dynSphereNodes[]; };
-layout(std430, binding = 55) readonly buffer DynSpheres { float dynSpheres[]; };  // 8 words each
+// 8 words each: centre and radius (float bits, world units), material; words, so that the
+// material's bits are never read as a float (a denormal a driver could flush)
+layout(std430, binding = 55) readonly buffer DynSpheres { uint dynSpheres[]; };
 uniform ivec3 uDynSphereLo, uDynSphereHi;  // voxel box of this frame's moving spheres
 uniform ivec3 uDynSphereBrickGrid;
 
@@ -93,12 +95,14 @@ bool dynamicSphereHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out ve
     vec3 centre;
     for (; node != 0xffffffffu; node = dynSphereNodes[node].y) {
       uint s = dynSphereNodes[node].x * 8u;
-      vec3 cs = worldToIndex(vec3(dynSpheres[s], dynSpheres[s + 1u], dynSpheres[s + 2u]));
-      float th = sphereHitAt(cs, dynSpheres[s + 3u] / uVolumeSpacing.x, o, d, max(t, 0.0));
+      uvec3 centreBits = uvec3(dynSpheres[s], dynSpheres[s + 1u], dynSpheres[s + 2u]);
+      vec3 cs = worldToIndex(uintBitsToFloat(centreBits));
+      float th = sphereHitAt(cs, uintBitsToFloat(dynSpheres[s + 3u]) / uVolumeSpacing.x, o, d,
+                             max(t, 0.0));
       if (th >= t && th < tOut && th < tHit) {
         tHit = th;
         centre = cs;
-        material = floatBitsToUint(dynSpheres[s + 4u]);
+        material = dynSpheres[s + 4u];
       }
     }
     if (tHit < kBig) {

@@ -13,15 +13,15 @@
 namespace voxlink::viewer {
 
 using render::gl::dynamicBrickBound;
-
-// The moving spheres' lists are per cell of 8^3 voxels whatever the file's bricks: for the
-// moving 2XHE protein at 512x512 (docs/dynamic-scenes.md, "Moving sphere sets") cells of 8 drew
-// the frame fastest at grid 512 (median 132 ms against 175 with 4 and 298 with 2) and within
-// the drift of 4 at 256 (128 against 119); per-voxel lists (1) were 2x slower at 256.
-constexpr uint32_t kSphereListCell = 8;
 using render::gl::DynamicSceneRenderer;
 using render::gl::GlDynamicLayer;
 namespace {
+
+// The moving spheres' lists are per cell of 8^3 voxels whatever the file's bricks: for the
+// moving 2XHE protein at 512x512 (docs/dynamic-scenes.md, "Moving sphere sets and particles")
+// cells of 8 drew the frame fastest at grid 512 (median 132 ms against 175 with 4 and 298 with
+// 2) and within the drift of 4 at 256 (128 against 119); per-voxel lists were 2x slower at 256.
+constexpr uint32_t kSphereListCell = 8;
 
 // The affine map p -> applyPose(pose, centre, M p) as a Transform.
 scene::Transform posed(const scene::Pose& pose, const std::array<double, 3>& centre,
