@@ -70,6 +70,8 @@ TEST(SpherePromotion, ACtrlPressOnStaticParticlesMakesThemMoveAndDragsThem) {
   ASSERT_TRUE(s.attach().isOk());
   EXPECT_FALSE(s.moves());
   ASSERT_EQ(s.staticObjects().size(), 3u);  // floor, particles, sphere
+  EXPECT_EQ(s.objectName(1), "objects[1] cluster.txt");
+  EXPECT_EQ(s.objectName(2), "objects[2] sphere");  // no file: its kind
 
   auto file = format::VoxLinkFile::open(s.volumeFile());
   ASSERT_TRUE(file);
@@ -113,6 +115,7 @@ TEST(SpherePromotion, ACtrlPressOnStaticParticlesMakesThemMoveAndDragsThem) {
   ASSERT_TRUE(s.moves());
   const auto index = s.movingIndexOf(1);
   ASSERT_TRUE(index.has_value());
+  EXPECT_EQ(s.movingName(*index), "objects[1] cluster.txt");
   auto updated = s.update(0);
   ASSERT_TRUE(updated && *updated);
   EXPECT_EQ(s.dynamic()->stats().reVoxelizedSpheres, 30u);

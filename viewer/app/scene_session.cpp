@@ -25,6 +25,12 @@ render::Box toBox(const geometry::Bounds3& b) {
   return {glm::dvec3(b.min[0], b.min[1], b.min[2]), glm::dvec3(b.max[0], b.max[1], b.max[2])};
 }
 
+// An object's file name, or "sphere" for a sphere given in the scene file (it has no file).
+std::string objectLabel(const scene::SceneObject& o) {
+  if (o.kind == scene::ObjectKind::kSphere) return "sphere";
+  return std::filesystem::path(o.path).filename().string();
+}
+
 }  // namespace
 
 SceneSession::SceneSession(std::string volumeFile, double span)
@@ -104,8 +110,7 @@ std::vector<render::Box> SceneSession::staticBoxes() const {
 }
 
 std::string SceneSession::objectName(size_t object) const {
-  return cat("objects[", object, "] ",
-             std::filesystem::path(description_.objects.at(object).path).filename().string());
+  return cat("objects[", object, "] ", objectLabel(description_.objects.at(object)));
 }
 
 std::optional<size_t> SceneSession::movingIndexOf(size_t object) const {
@@ -180,8 +185,7 @@ std::string SceneSession::movingName(size_t index) const {
   const auto& objects = dynamic_ ? dynamic_->description().objects : prepared_->scene.objects;
   const size_t object =
       dynamic_ ? dynamic_->movingObjects().at(index).object : prepared_->moving.at(index).object;
-  return cat("objects[", object, "] ",
-             std::filesystem::path(objects[object].path).filename().string());
+  return cat("objects[", object, "] ", objectLabel(objects[object]));
 }
 
 void SceneSession::release(size_t index) {
