@@ -10,10 +10,13 @@
 #include <filesystem>
 
 #include "cli/command.h"
+#include "format/bricked_volume.h"
 #include "render/camera.h"
 #include "render/gl/gl_context.h"
 #include "render/gl/render_target.h"
+#include "render/gl/voxlink_renderer.h"
 #include "render/image.h"
+#include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 #include "viewer/dynamic_scene.h"
 
@@ -60,15 +63,21 @@ int runAnimateBenchmark(const AnimateBenchOptions& o, const render::RenderOption
             o.frames, span, (*context)->description().c_str(), threads ? ", LP_NUM_THREADS=" : "",
             threads ? threads : "");
   out.print(
-      "per frame: the moving meshes re-voxelized on the GPU (no read-back) + a plain frame; "
-      "times in ms, wall clock with glFinish after each part\n\n");
+      "per frame: the moving meshes re-voxelized and the moving spheres re-marked on the GPU (no "
+      "read-back) + a plain frame; times in ms, wall clock with glFinish after each part; "
+      "static scene frame: the scene frozen at time 0, built whole (scene build) and drawn as a "
+      "static file with the same camera\n\n");
   out.print(
       "| resolution | brick | size | moving triangles | layer MB | static build s | voxelize "
-      "median | render median | frame median | frame p95 | FPS (1 / median) |\n"
-      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "median | render median | frame median | frame p95 | FPS (1 / median) | moving spheres | "
+      "static scene frame median |\n"
+      "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   ScratchFile scratch{(std::filesystem::temp_directory_path() /
                        ("voxlink-animate-" + std::to_string(getpid()) + ".vxl"))
                           .string()};
+  ScratchFile frozenScratch{(std::filesystem::temp_directory_path() /
+                             ("voxlink-animate-frozen-" + std::to_string(getpid()) + ".vxl"))
+                                .string()};
   for (uint32_t resolution : resolutions)
     for (uint32_t brick : bricks) {
       scene::SceneDescription d = *description;
@@ -88,6 +97,16 @@ int runAnimateBenchmark(const AnimateBenchOptions& o, const render::RenderOption
       ds.renderer().setTransferFunction(*tf);
       const render::Camera camera =
           render::Camera::framing(ds.renderer().geometry().worldBox(), *spec);
+      // The same scene static: every object at its pose at time 0, built as `scene build` does.
+      auto frozen = scene::buildScene(ds.frozenAt(0));
+      if (!frozen) return reportError(frozen.error());
+      if (Status st = format::writeBrickedVolume(frozenScratch.path, frozen->volume); !st)
+        return reportError(st);
+      auto frozenFile = format::VoxLinkFile::open(frozenScratch.path);
+      if (!frozenFile) return reportError(frozenFile.error());
+      auto frozenRenderer = render::gl::VoxLinkRenderer::create(*frozenFile);
+      if (!frozenRenderer) return reportError(frozenRenderer.error());
+      (*frozenRenderer)->setTransferFunction(*tf);
       for (const auto& [width, height] : o.sizes) {
         render::RenderSettings s = *settings;
         s.width = width;
@@ -117,15 +136,28 @@ int runAnimateBenchmark(const AnimateBenchOptions& o, const render::RenderOption
           draw.push_back(msSince(renderStart));
           frame.push_back(msSince(start));
           // A guard outside the timing: a layer that ran out of room is an error, not a frame.
-          if (Status st = ds.layer().checkLastUpdate(); !st) return reportError(st);
+          if (Status st = ds.checkLastUpdate(); !st) return reportError(st);
+        }
+        // The static scene's frame, one untimed first, then as many as the animated ones.
+        if (Status st = (*frozenRenderer)->render(camera, s, target); !st) return reportError(st);
+        glFinish();
+        std::vector<double> staticFrame;
+        for (uint32_t i = 0; i < o.frames; ++i) {
+          const auto start = Clock::now();
+          if (Status st = (*frozenRenderer)->render(camera, s, target); !st) return reportError(st);
+          glFinish();
+          staticFrame.push_back(msSince(start));
         }
         const double median = quantile(frame, 0.5);
-        out.print("| %u | %u | %ux%u | %llu | %.1f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f |\n",
-                  resolution, brick, width, height,
-                  static_cast<unsigned long long>(ds.stats().movingTriangles),
-                  double(ds.stats().layerBytes) / (1 << 20), ds.stats().staticBuildSeconds,
-                  quantile(voxelize, 0.5), quantile(draw, 0.5), median, quantile(frame, 0.95),
-                  1000.0 / median);
+        out.print(
+            "| %u | %u | %ux%u | %llu | %.1f | %.2f | %.1f | %.1f | %.1f | %.1f | %.1f | %llu "
+            "| %.1f |\n",
+            resolution, brick, width, height,
+            static_cast<unsigned long long>(ds.stats().movingTriangles),
+            double(ds.stats().layerBytes) / (1 << 20), ds.stats().staticBuildSeconds,
+            quantile(voxelize, 0.5), quantile(draw, 0.5), median, quantile(frame, 0.95),
+            1000.0 / median, static_cast<unsigned long long>(ds.stats().movingSpheres),
+            quantile(staticFrame, 0.5));
       }
     }
   return 0;

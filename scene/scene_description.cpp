@@ -240,19 +240,20 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
     return o;
   }
   const std::string type = f.string(j["type"], where + ".type");
-  if (f.ok() && j.contains("animation") && type != "mesh")
-    f.fail(where + ".animation", "only meshes move (the GL voxelizer re-voxelizes triangles)");
+  if (f.ok() && j.contains("animation") && type == "volume")
+    f.fail(where + ".animation",
+           "only meshes, sphere sets and particles move (a volume is not re-voxelized)");
   if (type == "mesh" || type == "particles") {
     o.kind = type == "mesh" ? ObjectKind::kMesh : ObjectKind::kParticles;
     if (type == "mesh")
       f.onlyKeys(j, where, {"type", "file", "transform", "material", "animation"});
     else
-      f.onlyKeys(j, where, {"type", "file", "transform", "material", "radius_scale"});
+      f.onlyKeys(j, where, {"type", "file", "transform", "material", "radius_scale", "animation"});
     if (j.contains("radius_scale"))
       o.radiusScale = f.number(j["radius_scale"], where + ".radius_scale", 1e-6, 1e6);
   } else if (type == "sphere") {
     o.kind = ObjectKind::kSphere;
-    f.onlyKeys(j, where, {"type", "center", "radius", "transform", "material"});
+    f.onlyKeys(j, where, {"type", "center", "radius", "transform", "material", "animation"});
     if (!j.contains("center") || !j.contains("radius"))
       f.fail(where, "a sphere needs \"center\" and \"radius\"");
     if (!f.ok()) return o;
@@ -288,7 +289,9 @@ SceneObject readObject(const json& j, const std::string& where, const std::files
   }
   if (f.ok() && j.contains("animation")) {
     if (!o.material)
-      f.fail(where + ".animation", "a moving mesh needs a \"material\" from \"materials\"");
+      f.fail(where + ".animation", o.kind == ObjectKind::kMesh
+                                       ? "a moving mesh needs a \"material\" from \"materials\""
+                                       : "moving spheres need a \"material\" from \"materials\"");
     else
       o.animation = readAnimation(j["animation"], where + ".animation", f);
   }

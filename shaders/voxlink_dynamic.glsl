@@ -4,7 +4,9 @@
 // of area x unit normal in fixed point and material + 1). The ray tracer finds the first
 // occupied voxel of the layer along the ray (a hit at the voxel's entry, as the static mean-mode
 // fragments) and traces the static file only up to it (render_main.glsl). Defined when
-// VXL_DYNAMIC_LAYER is; VXL_DYN_N is the layer's brick edge.
+// VXL_DYNAMIC_LAYER is; VXL_DYN_N is the layer's brick edge. With VXL_DYN_SPHERES the moving
+// spheres too (render/gl/gl_dynamic_spheres.h): per brick of VXL_DYN_SPHERE_N voxels a list of
+// spheres, intersected exactly; dynamicHit() takes the nearest of the two.
 #ifdef VXL_DYNAMIC_LAYER
 
 layout(std430, binding = 59) readonly buffer DynBrickMap { uint dynBrickMap[]; };
@@ -14,7 +16,7 @@ uniform ivec3 uDynBrickGrid;   // bricks per axis of the layer's map
 
 // First voxel of the layer on o + t d (index space) in [t0, t1): its entry tHit, world normal n
 // (unit; towards the ray where the sides cancel) and material.
-bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
+bool dynamicMeshHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
                 out uint material) {
   tHit = kBig;
   vec3 lo = vec3(uDynLo), hi = vec3(uDynHi);
@@ -57,6 +59,80 @@ bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
     ddaAdvance(bricks, axis);
   }
   return false;
+}
+
+#ifdef VXL_DYN_SPHERES
+layout(std430, binding = 53) readonly buffer DynSphereHeads { uint dynSphereHeads[]; };
+layout(std430, binding = 54) readonly buffer DynSphereNodes { uvec2 dynSphereNodes[]; };
+// 8 words each: centre and radius (float bits, world units), material; words, so that the
+// material's bits are never read as a float (a denormal a driver could flush)
+layout(std430, binding = 55) readonly buffer DynSpheres { uint dynSpheres[]; };
+uniform ivec3 uDynSphereLo, uDynSphereHi;  // voxel box of this frame's moving spheres
+uniform ivec3 uDynSphereBrickGrid;
+
+// The nearest moving sphere hit on o + t d in [t0, t1): the bricks of the spheres' box in ray
+// order; in each, the nearest hit of its spheres inside the brick's chord (a hit in a later brick
+// is that brick's, where the sphere is listed too). Normal and material as the static path's
+// spheres (voxlink_scene_shading.glsl: normalize(p - centre)).
+bool dynamicSphereHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
+                      out uint material) {
+  tHit = kBig;
+  if (any(greaterThanEqual(uDynSphereLo, uDynSphereHi))) return false;
+  vec3 lo = vec3(uDynSphereLo), hi = vec3(uDynSphereHi);
+  vec2 range = intersectBox(o - lo, d, hi - lo);
+  float ta = max(range.x, t0), tb = min(range.y, t1);
+  if (!(ta < tb)) return false;
+  const int bn = VXL_DYN_SPHERE_N;
+  ivec3 bLo = uDynSphereLo / bn, bHi = (uDynSphereHi - 1) / bn;
+  Dda bricks = ddaInit(o / float(bn), d / float(bn), ta, bLo, bHi);
+  float t = ta;
+  int limit = (bHi.x - bLo.x) + (bHi.y - bLo.y) + (bHi.z - bLo.z) + 3;
+  for (int i = 0; i < limit && t < tb; ++i) {
+    int axis = minAxis(bricks.tMax);
+    float tOut = min(max(bricks.tMax[axis], t), tb);
+    ivec3 c = bricks.cell;
+    uint node = dynSphereHeads[(c.z * uDynSphereBrickGrid.y + c.y) * uDynSphereBrickGrid.x + c.x];
+    vec3 centre;
+    for (; node != 0xffffffffu; node = dynSphereNodes[node].y) {
+      uint s = dynSphereNodes[node].x * 8u;
+      uvec3 centreBits = uvec3(dynSpheres[s], dynSpheres[s + 1u], dynSpheres[s + 2u]);
+      vec3 cs = worldToIndex(uintBitsToFloat(centreBits));
+      float th = sphereHitAt(cs, uintBitsToFloat(dynSpheres[s + 3u]) / uVolumeSpacing.x, o, d,
+                             max(t, 0.0));
+      if (th >= t && th < tOut && th < tHit) {
+        tHit = th;
+        centre = cs;
+        material = dynSpheres[s + 4u];
+      }
+    }
+    if (tHit < kBig) {
+      n = normalize(o + tHit * d - centre);
+      return true;
+    }
+    t = tOut;
+    ddaAdvance(bricks, axis);
+  }
+  return false;
+}
+#endif
+
+// The nearest of the moving meshes' first voxel and the moving spheres' first hit; a mesh voxel
+// wins a tie, as a static voxel's surface does against its spheres.
+bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
+                out uint material) {
+  bool mesh = dynamicMeshHit(o, d, t0, t1, tHit, n, material);
+#ifdef VXL_DYN_SPHERES
+  float tSphere;
+  vec3 nSphere;
+  uint mSphere;
+  if (dynamicSphereHit(o, d, t0, mesh ? tHit : t1, tSphere, nSphere, mSphere)) {
+    tHit = tSphere;
+    n = nSphere;
+    material = mSphere;
+    return true;
+  }
+#endif
+  return mesh;
 }
 
 #endif

@@ -59,15 +59,9 @@ uint surfaceOf(uint voxel) {
   return surfWord(maskSlot(word, smskRank(voxel >> 5u), voxel));
 }
 
-#if VXL_SPHERES
-float sphrFloat(uint word) { return uintBitsToFloat(sphrWord(word)); }
-
-// Nearest t >= tMin at which o + t d (index space) meets sphere s, or kBig. The sphere's centre
-// and radius are stored in world units; voxels of a scene with spheres are cubic.
-float sphereHit(uint s, vec3 o, vec3 d, float tMin, out vec3 centre) {
-  uint b = s * 8u;
-  centre = worldToIndex(vec3(sphrFloat(b), sphrFloat(b + 1u), sphrFloat(b + 2u)));
-  float radius = sphrFloat(b + 3u) / uVolumeSpacing.x;
+// Nearest t >= tMin at which o + t d meets the sphere of `centre` and `radius` (index space),
+// or kBig. Also the moving spheres' (voxlink_dynamic.glsl), so both are intersected alike.
+float sphereHitAt(vec3 centre, float radius, vec3 o, vec3 d, float tMin) {
   // The discriminant from the ray's closest approach to the centre, r^2 - |perp|^2, instead of
   // b^2 - a c: that difference of two large numbers loses the silhouette in float for rays that
   // start far from the sphere (a tangent ray's hit flipped between float and double).
@@ -79,6 +73,17 @@ float sphereHit(uint s, vec3 o, vec3 d, float tMin, out vec3 centre) {
   float root = sqrt(disc / a);
   float tNear = -along - root, tFar = -along + root;
   return tNear >= tMin ? tNear : (tFar >= tMin ? tFar : kBig);
+}
+
+#if VXL_SPHERES
+float sphrFloat(uint word) { return uintBitsToFloat(sphrWord(word)); }
+
+// Nearest t >= tMin at which o + t d (index space) meets sphere s, or kBig. The sphere's centre
+// and radius are stored in world units; voxels of a scene with spheres are cubic.
+float sphereHit(uint s, vec3 o, vec3 d, float tMin, out vec3 centre) {
+  uint b = s * 8u;
+  centre = worldToIndex(vec3(sphrFloat(b), sphrFloat(b + 1u), sphrFloat(b + 2u)));
+  return sphereHitAt(centre, sphrFloat(b + 3u) / uVolumeSpacing.x, o, d, tMin);
 }
 
 uint sphereMaterial(uint s) { return sphrWord(s * 8u + 4u); }

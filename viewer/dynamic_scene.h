@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// A dynamic scene (docs/dynamic-scenes.md): a scene file whose meshes with an `animation` move.
-// The static objects are voxelized once (scene::buildScene, the exact CPU path) into a scene
-// file; every frame, setTime() places the moving meshes at their pose and re-voxelizes only them
-// into the GPU-side dynamic layer (render/gl/gl_dynamic_layer.h); of those, a mesh that has stood
-// for two updates is kept in the layer and not re-voxelized again; renderer() draws both. The grid
-// is the whole scene's at rest, and every moving object must stay inside it at every key.
+// A dynamic scene (docs/dynamic-scenes.md): a scene file whose meshes, sphere sets and particles
+// with an `animation` move. The static objects are voxelized once (scene::buildScene, the exact
+// CPU path) into a scene file; every frame, setTime() places the moving objects at their pose and
+// re-voxelizes only them on the GPU: meshes into the dynamic layer (render/gl/gl_dynamic_layer.h),
+// of which a mesh that has stood for two updates is kept and not re-voxelized again; spheres into
+// the sphere lists (render/gl/gl_dynamic_spheres.h), re-marked only when a sphere set moved.
+// renderer() draws all. The grid is the whole scene's at rest, and every moving object must stay
+// inside it at every key.
 #pragma once
 
 #include <memory>
@@ -14,10 +16,12 @@
 
 #include "base/error.h"
 #include "format/voxlink_file.h"
+#include "geometry/particle_loader.h"
 #include "geometry/voxel_grid.h"
 #include "render/camera.h"
 #include "render/gl/dynamic_scene_renderer.h"
 #include "render/gl/gl_dynamic_layer.h"
+#include "render/gl/gl_dynamic_spheres.h"
 #include "scene/scene_assembly.h"
 #include "scene/scene_description.h"
 
@@ -31,6 +35,8 @@ struct DynamicSceneStats {
   // (unmoved for two updates in a row) instead.
   uint64_t reVoxelizedTriangles = 0;
   uint32_t keptMeshes = 0;
+  uint64_t movingSpheres = 0;       // of all moving sphere sets and particles
+  uint64_t reVoxelizedSpheres = 0;  // the last update's: all of them, or none when none moved
 };
 
 class DynamicScene {
@@ -38,6 +44,11 @@ class DynamicScene {
     size_t object = 0;                  // index in the description
     std::vector<double> restPositions;  // world, 3 per vertex
     std::vector<uint32_t> triangles;
+    // A sphere set or particles instead of a mesh: its spheres as the file gives them (no
+    // transform, the radius unscaled; the material the scene's), placed per pose as
+    // scene::placeSceneGeometry places them, so that a pose's spheres are a frozen scene's.
+    bool isSpheres = false;
+    std::vector<geometry::Sphere> fileSpheres;
     std::array<double, 3> centre{};  // of the rest bounds: the rotation's pivot
     geometry::Bounds3 restBounds;
     scene::Pose pose;  // the current one
@@ -61,6 +72,7 @@ class DynamicScene {
     std::vector<Moving> moving;
     uint32_t brick = 0;  // the layer's brick edge (dynamic_scene.cpp says why it may differ)
     uint64_t bricks = 0, triangles = 0;
+    uint64_t spheres = 0, sphereReferences = 0;  // the bound on (sphere, brick) references
     geometry::Bounds3 restBounds;
     double seconds = 0;
   };
@@ -80,8 +92,8 @@ class DynamicScene {
   // Places the moving meshes at `seconds` and re-voxelizes those that moved on the GPU (queued,
   // no read-back; uploadPoses() says which).
   Status setTime(double seconds);
-  // The moving meshes, numbered as setPose() numbers them: the object's index in the description
-  // and its world bounds at rest (its transform, no pose).
+  // The moving objects (meshes, sphere sets, particles), numbered as setPose() numbers them: the
+  // object's index in the description and its world bounds at rest (its transform, no pose).
   struct MovingObject {
     size_t object = 0;
     geometry::Bounds3 restBounds;
@@ -96,6 +108,11 @@ class DynamicScene {
   render::gl::DynamicSceneRenderer& renderer() { return *renderer_; }
   // The moving meshes' layer; its bricks are the file's, or 8^3 voxels where those are bigger.
   const render::gl::GlDynamicLayer& layer() const { return layer_; }
+  // The moving spheres' lists (per 8^3 voxels, dynamic_scene.cpp says why), or null where no
+  // sphere set moves.
+  const render::gl::GlDynamicSpheres* spheres() const { return spheres_.get(); }
+  // Waits and checks the last update of both: an error where bricks or references were dropped.
+  Status checkLastUpdate() const;
   const geometry::VoxelGrid& grid() const { return grid_; }
   const DynamicSceneStats& stats() const { return stats_; }
   // Places every moving mesh at once (`poses` in movingObjects()' order) and re-voxelizes those
@@ -116,11 +133,14 @@ class DynamicScene {
   Status uploadPoses();
   // Re-voxelizes `meshes` (indices into moving_) into the layer, on its kept part or not.
   Status reVoxelize(const std::vector<size_t>& meshes, bool onKept);
+  // Places every moving sphere set at its pose and re-marks the sphere lists.
+  Status reMarkSpheres();
   DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
                render::gl::GlDynamicLayer layer);
   scene::SceneDescription scene_;
   format::VoxLinkFile file_;
   render::gl::GlDynamicLayer layer_;
+  std::unique_ptr<render::gl::GlDynamicSpheres> spheres_;
   std::unique_ptr<render::gl::DynamicSceneRenderer> renderer_;
   geometry::VoxelGrid grid_;
   std::vector<Moving> moving_;

@@ -50,6 +50,30 @@ TEST(CliAnimate, PrintsOneRowPerResolutionBrickAndSize) {
   EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
 }
 
+TEST(CliAnimate, AMovingSphereIsCountedAndTheStaticFrameIsTimed) {
+  TempDir dir;
+  std::ofstream(dir.file("floor.obj"))
+      << "v -8 0 -8\nv -8 0 8\nv 8 0 8\nv 8 0 -8\nf 1 2 3\nf 1 3 4\n";
+  const std::string scene = dir.file("s.scene.json");
+  std::ofstream(scene) << R"({"grid": {"resolution": 32},
+    "materials": {"jade": {"color": [0.3, 0.6, 0.4]}},
+    "objects": [{"type": "mesh", "file": "floor.obj", "material": "jade"},
+                {"type": "sphere", "center": [0, 2, 0], "radius": 1.5, "material": "jade",
+                 "animation": {"keys": [{"time": 0}, {"time": 1, "translate": [3, 0, 0]}]}}],
+    "camera": {"up": "y"}})";
+  auto r = runVoxlink({"bench-render", "--animate", scene, "--sizes", "32x32", "--frames", "3"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // | 32 | brick | 32x32 | 0 triangles | MB | s | vox | render | median | p95 | FPS | 1 | static |
+  const size_t row = r.out.find("| 32 | 8 | 32x32 | 0 |");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
+  int bars = 0;
+  for (char c : line) bars += c == '|' ? 1 : 0;
+  EXPECT_EQ(bars, 14) << line;
+  EXPECT_NE(line.find(" | 1 | "), std::string::npos) << line;
+  EXPECT_EQ(line.find("nan"), std::string::npos) << line;
+}
+
 TEST(CliAnimate, BadScenesAreOneLineErrors) {
   VOXLINK_REQUIRE_DATA("mesh/bunny_npm.obj");
   TempDir dir;

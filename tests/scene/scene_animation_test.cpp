@@ -103,15 +103,29 @@ TEST(SceneAnimation, BadKeysAreOneLineErrors) {
             "a.scene.json: objects[0].animation.keys[0].time: -1 is not in [0, 1e+09]");
 }
 
-TEST(SceneAnimation, OnlyMeshesWithASceneMaterialMove) {
-  EXPECT_EQ(problem(R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+TEST(SceneAnimation, MeshesAndSpheresWithASceneMaterialMoveVolumesDoNot) {
+  EXPECT_EQ(problem(R"({"objects": [{"type": "volume", "file": "v.vti",
                          "animation": {"keys": [{"time": 0}]}}]})"),
-            "a.scene.json: objects[0].animation: only meshes move (the GL voxelizer re-voxelizes "
-            "triangles)");
+            "a.scene.json: objects[0].animation: only meshes, sphere sets and particles move (a "
+            "volume is not re-voxelized)");
   EXPECT_EQ(problem(R"({"objects": [{"type": "mesh", "file": "d.ply",
                          "animation": {"keys": [{"time": 0}]}}]})"),
             "a.scene.json: objects[0].animation: a moving mesh needs a \"material\" from "
             "\"materials\"");
+  EXPECT_EQ(problem(R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+                         "animation": {"keys": [{"time": 0}]}}]})"),
+            "a.scene.json: objects[0].animation: moving spheres need a \"material\" from "
+            "\"materials\"");
+  EXPECT_EQ(problem(R"({"objects": [{"type": "particles", "file": "p.pdb",
+                         "animation": {"keys": [{"time": 0}]}}]})"),
+            "a.scene.json: objects[0].animation: moving spheres need a \"material\" from "
+            "\"materials\"");
+  // The same key validation as a mesh's: a key out of range is refused in one line.
+  EXPECT_EQ(problem(R"({"materials": {"m": {}}, "objects": [{"type": "sphere", "center": [0, 0, 0],
+                         "radius": 1, "material": "m",
+                         "animation": {"keys": [{"time": 0, "translate": [0, 1e300, 0]}]}}]})"),
+            "a.scene.json: objects[0].animation.keys[0].translate[1]: 1e+300 is not in [-1e+12, "
+            "1e+12]");
 }
 
 TEST(SceneAnimation, AnObjectMovedOutsideTheGridIsAnError) {

@@ -51,17 +51,19 @@ std::string writeScene(const ::voxlink::testing::TempDir& dir, const std::string
 
 const char* kStands = R"(, "animation": {"keys": [{"time": 0}]})";
 
-TEST(MeshPromotion, OnlyStaticMeshesWithASceneMaterialMoveAndNotTheLastStaticObject) {
+TEST(MeshPromotion, StaticMeshesAndSpheresWithASceneMaterialMoveAndNotTheLastStaticObject) {
   VOXLINK_REQUIRE_DATA("mesh/vtk_bunny.ply");
   ::voxlink::testing::TempDir dir;
   auto scene = scene::readSceneDescription(writeScene(dir, kStands));
   ASSERT_TRUE(scene) << scene.message();
-  auto movable = movableStaticMeshes(*scene);
+  auto movable = movableStaticObjects(*scene);
   ASSERT_TRUE(movable) << movable.message();
-  ASSERT_EQ(movable->size(), 2u);  // the floor and the red box
+  ASSERT_EQ(movable->size(), 3u);  // the floor, the red box and the sphere
   EXPECT_EQ((*movable)[0].object, 0u);
   EXPECT_EQ((*movable)[1].object, 1u);
+  EXPECT_EQ((*movable)[2].object, 2u);
   EXPECT_NEAR((*movable)[1].restBounds.max[0], 0.2, 1e-6);
+  EXPECT_NEAR((*movable)[2].restBounds.max[0], -0.16, 1e-6);
 
   auto moved = withObjectMoving(*scene, 1);
   ASSERT_TRUE(moved) << moved.message();
@@ -74,7 +76,23 @@ TEST(MeshPromotion, OnlyStaticMeshesWithASceneMaterialMoveAndNotTheLastStaticObj
     EXPECT_FALSE(r);
     return r ? std::string() : r.message();
   };
-  EXPECT_NE(refusal(2).find("promote.scene.json: objects[2]: only meshes move"), std::string::npos);
+  auto sphere = withObjectMoving(*scene, 2);
+  ASSERT_TRUE(sphere) << sphere.message();
+  EXPECT_TRUE(sphere->objects[2].animation.has_value());
+  scene::SceneDescription volume = *scene;  // a volume stays static
+  volume.objects[2].kind = scene::ObjectKind::kVolume;
+  auto refusedVolume = withObjectMoving(volume, 2);
+  ASSERT_FALSE(refusedVolume);
+  EXPECT_EQ(refusedVolume.message(),
+            cat(scene->path,
+                ": objects[2]: only meshes, sphere sets and particles move (a volume stays in "
+                "the static part)"));
+  scene::SceneDescription bare = *scene;  // a sphere without a scene material
+  bare.objects[2].material.reset();
+  auto refusedBare = withObjectMoving(bare, 2);
+  ASSERT_FALSE(refusedBare);
+  EXPECT_NE(refusedBare.message().find("objects[2]: moving spheres need a \"material\""),
+            std::string::npos);
   EXPECT_NE(refusal(3).find("objects[3]: a moving mesh needs a \"material\""), std::string::npos);
   EXPECT_NE(refusal(4).find("objects[4]: moves already"), std::string::npos);
   EXPECT_NE(refusal(9).find("objects[9] does not exist"), std::string::npos);
@@ -84,7 +102,7 @@ TEST(MeshPromotion, OnlyStaticMeshesWithASceneMaterialMoveAndNotTheLastStaticObj
   ASSERT_FALSE(last);
   EXPECT_NE(last.message().find("objects[0]: the last static object cannot move"),
             std::string::npos);
-  auto none = movableStaticMeshes(two);
+  auto none = movableStaticObjects(two);
   ASSERT_TRUE(none);
   EXPECT_TRUE(none->empty());
 }
@@ -112,7 +130,7 @@ TEST(MeshPromotion, AStaticMeshMadeToMoveGivesTheFrameOfTheSceneWhereItMoves) {
   ASSERT_TRUE(s.attach().isOk());
   ASSERT_TRUE(s.update(0).isOk());
   ASSERT_EQ(s.movingCount(), 1u);
-  ASSERT_EQ(s.staticMeshes().size(), 2u);
+  ASSERT_EQ(s.staticObjects().size(), 3u);  // the floor, the red box and the sphere
   const std::string before = s.volumeFile();
 
   ASSERT_TRUE(s.promote(1).isOk());
@@ -127,7 +145,7 @@ TEST(MeshPromotion, AStaticMeshMadeToMoveGivesTheFrameOfTheSceneWhereItMoves) {
   EXPECT_EQ(s.movingIndexOf(1), std::optional<size_t>(0));
   EXPECT_EQ(s.movingIndexOf(4), std::optional<size_t>(1));
   EXPECT_TRUE(s.held(0));
-  ASSERT_EQ(s.staticMeshes().size(), 1u);  // the floor
+  ASSERT_EQ(s.staticObjects().size(), 2u);  // the floor and the sphere
   auto updated = s.update(0);
   ASSERT_TRUE(updated && *updated);
   ViewerState state;
@@ -154,12 +172,13 @@ TEST(MeshPromotion, AStaticMeshMadeToMoveGivesTheFrameOfTheSceneWhereItMoves) {
     red += promoted.rgba[i] > 2 * promoted.rgba[i + 1] && promoted.rgba[i + 3] > 0.5f;
   EXPECT_GT(red, 20u);
 
-  // The floor can move too (the sphere and the box without a material stay static); then no
-  // static mesh is left that can.
+  // The floor can move too (the box without a material stays static, so the sphere is the last
+  // object that can).
   ASSERT_TRUE(s.promote(0).isOk());
   ASSERT_TRUE(s.finishPromotion().isOk());
   EXPECT_EQ(s.movingCount(), 3u);
-  EXPECT_TRUE(s.staticMeshes().empty());
+  ASSERT_EQ(s.staticObjects().size(), 1u);
+  EXPECT_EQ(s.staticObjects()[0].object, 2u);
 }
 
 TEST(MeshPromotion, ACtrlPressOnAStaticMeshMakesItMoveAndDragsIt) {
@@ -171,7 +190,7 @@ TEST(MeshPromotion, ACtrlPressOnAStaticMeshMakesItMoveAndDragsIt) {
   SceneSession& s = **session;
   ASSERT_TRUE(s.attach().isOk());
   EXPECT_FALSE(s.moves());
-  ASSERT_EQ(s.staticMeshes().size(), 3u);  // floor, red box, bunny
+  ASSERT_EQ(s.staticObjects().size(), 4u);  // floor, red box, sphere, bunny
   render::CameraSpec spec;
   spec.azimuthDeg = 30;
   spec.elevationDeg = 35;
@@ -194,7 +213,7 @@ TEST(MeshPromotion, ACtrlPressOnAStaticMeshMakesItMoveAndDragsIt) {
   for (uint32_t y = 0; y < h && !over; y += 2)
     for (uint32_t x = 0; x < w && !over; x += 2) {
       const auto hit = pickBox(camera, x, y, w, h, boxes);
-      if (hit && s.staticMeshes()[*hit].object == 1) over = {{double(x), double(y)}};
+      if (hit && s.staticObjects()[*hit].object == 1) over = {{double(x), double(y)}};
     }
   ASSERT_TRUE(over);
 
@@ -244,9 +263,6 @@ TEST(MeshPromotion, ACtrlPressOnAStaticMeshMakesItMoveAndDragsIt) {
   EXPECT_FALSE(s.promoting().has_value());
   r = second.update(s, camera, {true, false, (*overStatic)[0], (*overStatic)[1], {}}, w, h, index);
   ASSERT_TRUE(r && !*r);
-
-  // A sphere under the press is no mesh: nothing to promote (not listed, so not picked).
-  for (const StaticMesh& m : s.staticMeshes()) EXPECT_NE(m.object, 2u);
 }
 
 }  // namespace

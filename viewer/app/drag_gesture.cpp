@@ -19,7 +19,7 @@ Result<bool> DragGesture::update(SceneSession& session, const render::Camera& ca
     return false;
   }
   if (!active_ && !pending_ && pressed && pointer.modifier &&
-      (session.dynamic() || !session.staticMeshes().empty())) {
+      (session.dynamic() || !session.staticObjects().empty())) {
     const std::array<double, 2> at = pointer.pressedAt.value_or(std::array{pointer.x, pointer.y});
     startX_ = at[0];
     startY_ = at[1];
@@ -34,7 +34,7 @@ Result<bool> DragGesture::update(SceneSession& session, const render::Camera& ca
       active_ = true;
     } else if (const auto hit =
                    pickBox(camera, at[0], at[1], width, height, session.staticBoxes())) {
-      const size_t object = session.staticMeshes().at(*hit).object;
+      const size_t object = session.staticObjects().at(*hit).object;
       VOXLINK_RETURN_IF_ERROR(session.promote(object));
       pending_ = object;
     }

@@ -15,20 +15,20 @@ std::string objectWhere(const scene::SceneDescription& scene, size_t object) {
 
 }  // namespace
 
-Result<std::vector<StaticMesh>> movableStaticMeshes(const scene::SceneDescription& scene) {
-  std::vector<StaticMesh> meshes;
+Result<std::vector<StaticObject>> movableStaticObjects(const scene::SceneDescription& scene) {
+  std::vector<StaticObject> objects;
   size_t still = 0;
   for (const scene::SceneObject& o : scene.objects) still += o.animation ? 0 : 1;
-  if (still <= 1) return meshes;  // the last static object stays
+  if (still <= 1) return objects;  // the last static object stays
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const scene::SceneObject& o = scene.objects[i];
-    if (o.kind != scene::ObjectKind::kMesh || o.animation || !o.material) continue;
+    if (o.kind == scene::ObjectKind::kVolume || o.animation || !o.material) continue;
     scene::SceneDescription one = scene;
     one.objects = {o};
     VOXLINK_ASSIGN_OR_RETURN(scene::PlacedScene placed, scene::placeSceneGeometry(one));
-    meshes.push_back({i, placed.bounds});
+    objects.push_back({i, placed.bounds});
   }
-  return meshes;
+  return objects;
 }
 
 Result<scene::SceneDescription> withObjectMoving(const scene::SceneDescription& scene,
@@ -38,15 +38,18 @@ Result<scene::SceneDescription> withObjectMoving(const scene::SceneDescription& 
                      "] does not exist (", scene.objects.size(), " objects)");
   const scene::SceneObject& o = scene.objects[object];
   const std::string where = objectWhere(scene, object);
-  if (o.kind != scene::ObjectKind::kMesh)
+  if (o.kind == scene::ObjectKind::kVolume)
     return makeError(ErrorCode::kUnsupported, where,
-                     ": only meshes move (the GL voxelizer re-voxelizes triangles; a sphere set, "
-                     "particles or a volume stays in the static part)");
+                     ": only meshes, sphere sets and particles move (a volume stays in the static "
+                     "part)");
   if (o.animation) return makeError(ErrorCode::kInvalidArgument, where, ": moves already");
   if (!o.material)
     return makeError(ErrorCode::kUnsupported, where,
-                     ": a moving mesh needs a \"material\" from \"materials\" (its file's own "
-                     "materials are not kept per triangle in the GPU layer)");
+                     o.kind == scene::ObjectKind::kMesh
+                         ? ": a moving mesh needs a \"material\" from \"materials\" (its file's "
+                           "own materials are not kept per triangle in the GPU layer)"
+                         : ": moving spheres need a \"material\" from \"materials\" (the static "
+                           "part's material table holds the scene's)");
   size_t still = 0;
   for (const scene::SceneObject& other : scene.objects) still += other.animation ? 0 : 1;
   if (still <= 1)

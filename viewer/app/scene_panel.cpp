@@ -37,9 +37,9 @@ bool drawScenePanel(SceneSession& s, std::optional<size_t>& selected, std::strin
     }
     ImGui::PopID();
   }
-  if (!s.staticMeshes().empty())
-    ImGui::TextDisabled("Static meshes (Ctrl + left drag on one, or \"move it\", makes it move):");
-  for (const StaticMesh& m : s.staticMeshes()) {
+  if (!s.staticObjects().empty())
+    ImGui::TextDisabled("Static objects (Ctrl + left drag on one, or \"move it\", makes it move):");
+  for (const StaticObject& m : s.staticObjects()) {
     ImGui::PushID(int(1000000 + m.object));
     ImGui::Text("%s", s.objectName(m.object).c_str());
     ImGui::SameLine();

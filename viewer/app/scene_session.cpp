@@ -25,6 +25,12 @@ render::Box toBox(const geometry::Bounds3& b) {
   return {glm::dvec3(b.min[0], b.min[1], b.min[2]), glm::dvec3(b.max[0], b.max[1], b.max[2])};
 }
 
+// An object's file name, or "sphere" for a sphere given in the scene file (it has no file).
+std::string objectLabel(const scene::SceneObject& o) {
+  if (o.kind == scene::ObjectKind::kSphere) return "sphere";
+  return std::filesystem::path(o.path).filename().string();
+}
+
 }  // namespace
 
 SceneSession::SceneSession(std::string volumeFile, double span)
@@ -48,7 +54,7 @@ Result<std::unique_ptr<SceneSession>> SceneSession::prepare(const std::string& s
   if (options.brick) description.grid.brickSize = options.brick;
   std::unique_ptr<SceneSession> s(new SceneSession(scratchPath(), description.animationSpan()));
   s->description_ = description;
-  VOXLINK_ASSIGN_OR_RETURN(s->staticMeshes_, movableStaticMeshes(description));
+  VOXLINK_ASSIGN_OR_RETURN(s->staticObjects_, movableStaticObjects(description));
   bool moves = false;
   for (const scene::SceneObject& o : description.objects) moves |= o.animation.has_value();
   if (moves) {
@@ -99,13 +105,12 @@ Result<bool> SceneSession::update(double dtSeconds) {
 
 std::vector<render::Box> SceneSession::staticBoxes() const {
   std::vector<render::Box> boxes;
-  for (const StaticMesh& m : staticMeshes_) boxes.push_back(toBox(m.restBounds));
+  for (const StaticObject& m : staticObjects_) boxes.push_back(toBox(m.restBounds));
   return boxes;
 }
 
 std::string SceneSession::objectName(size_t object) const {
-  return cat("objects[", object, "] ",
-             std::filesystem::path(description_.objects.at(object).path).filename().string());
+  return cat("objects[", object, "] ", objectLabel(description_.objects.at(object)));
 }
 
 std::optional<size_t> SceneSession::movingIndexOf(size_t object) const {
@@ -164,10 +169,10 @@ Status SceneSession::applyPromotion(bool wait) {
   std::filesystem::remove(volumeFile_, ignored);
   volumeFile_ = job->staticFile();
   description_ = dynamic_->description();
-  staticMeshes_.erase(
-      std::remove_if(staticMeshes_.begin(), staticMeshes_.end(),
-                     [&](const StaticMesh& m) { return m.object == job->object(); }),
-      staticMeshes_.end());
+  staticObjects_.erase(
+      std::remove_if(staticObjects_.begin(), staticObjects_.end(),
+                     [&](const StaticObject& m) { return m.object == job->object(); }),
+      staticObjects_.end());
   posesChanged_ = true;
   rebuilt_ = true;
   return Status::ok();
@@ -180,8 +185,7 @@ std::string SceneSession::movingName(size_t index) const {
   const auto& objects = dynamic_ ? dynamic_->description().objects : prepared_->scene.objects;
   const size_t object =
       dynamic_ ? dynamic_->movingObjects().at(index).object : prepared_->moving.at(index).object;
-  return cat("objects[", object, "] ",
-             std::filesystem::path(objects[object].path).filename().string());
+  return cat("objects[", object, "] ", objectLabel(objects[object]));
 }
 
 void SceneSession::release(size_t index) {

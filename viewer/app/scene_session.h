@@ -79,7 +79,7 @@ class SceneSession {
   const std::array<bool, 3>& lastClamp() const { return lastClamp_; }
 
   // Static meshes that can be made to move (a scene material), and their boxes at rest.
-  const std::vector<StaticMesh>& staticMeshes() const { return staticMeshes_; }
+  const std::vector<StaticObject>& staticObjects() const { return staticObjects_; }
   std::vector<render::Box> staticBoxes() const;
   std::string objectName(size_t object) const;  // "objects[2] dragon.ply"
   // Starts making objects[object] move: its static part is rebuilt without it on a thread; a
@@ -113,7 +113,7 @@ class SceneSession {
   std::array<bool, 3> lastClamp_{};
   bool posesChanged_ = true;             // the first update() places the meshes
   scene::SceneDescription description_;  // with the overrides and the promotions so far
-  std::vector<StaticMesh> staticMeshes_;
+  std::vector<StaticObject> staticObjects_;
   std::unique_ptr<BackgroundPrepare> promotion_;
   bool rebuilt_ = false;
 };

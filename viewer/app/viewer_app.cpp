@@ -170,7 +170,7 @@ Status runViewer(const ViewerOptions& options) {
     // Ctrl + left drag moves a scene's moving object; the camera does not see that button then.
     bool objectMoving = false;
     // A scene with a moving mesh, or a static mesh that can be made to move.
-    const bool sceneMoves = scene && (scene->moves() || !scene->staticMeshes().empty());
+    const bool sceneMoves = scene && (scene->moves() || !scene->staticObjects().empty());
     if (sceneMoves && size[0] > 0 && size[1] > 0) {
       int windowWidth = 0, windowHeight = 0;
       glfwGetWindowSize(window->handle(), &windowWidth, &windowHeight);

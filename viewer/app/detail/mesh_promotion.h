@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Making a static mesh of a scene move (docs/dynamic-scenes.md, "Dragging a static mesh"): the
-// scene with that mesh given an animation of one key at rest, so DynamicScene::prepare builds
-// the static part without it and voxelizes it in the GPU layer; the rebuild runs on a thread
-// (it needs no GL) while the viewer goes on drawing. Free of GL and GLFW.
+// Making a static mesh, sphere set or particles of a scene move (docs/dynamic-scenes.md,
+// "Dragging a static mesh"): the scene with that object given an animation of one key at rest,
+// so DynamicScene::prepare builds the static part without it and voxelizes it on the GPU; the
+// rebuild runs on a thread (it needs no GL) while the viewer goes on drawing. Free of GL and GLFW.
 #pragma once
 
 #include <atomic>
@@ -19,20 +19,21 @@
 
 namespace voxlink::viewer {
 
-// A static mesh that can move: its index in the description and its world bounds at rest.
-struct StaticMesh {
+// A static mesh, sphere set or particles that can move: its index in the description and its
+// world bounds at rest.
+struct StaticObject {
   size_t object = 0;
   geometry::Bounds3 restBounds;
 };
 
-// The static meshes with a scene material (what a moving mesh needs), placed to get their bounds;
-// none where one static object is left (the static part must not become empty).
-Result<std::vector<StaticMesh>> movableStaticMeshes(const scene::SceneDescription& scene);
+// The static meshes, sphere sets and particles with a scene material (what a moving object
+// needs), placed to get their bounds; none where one static object is left (the static part must
+// not become empty).
+Result<std::vector<StaticObject>> movableStaticObjects(const scene::SceneDescription& scene);
 
 // `scene` with objects[object] moving (an animation of one key, at rest). Errors, one line naming
-// the object: an index out of range, a sphere set, particles or a volume (only meshes move), a
-// mesh without a scene material, a mesh that moves already, the last static object (the static
-// part would be empty).
+// the object: an index out of range, a volume (it does not move), an object without a scene
+// material, one that moves already, the last static object (the static part would be empty).
 Result<scene::SceneDescription> withObjectMoving(const scene::SceneDescription& scene,
                                                  size_t object);
 

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The moving sphere sets and particles of a dynamic scene (docs/dynamic-scenes.md), re-marked on
+// the GPU each update their poses change, nothing read back: a compute pass over the spheres
+// (shaders/dynamic_spheres_mark.comp.glsl) appends each sphere to a list per brick of the grid
+// (8^3 voxels, viewer/dynamic_scene.cpp says why) that its ball, plus a hundredth of a voxel,
+// touches: a head per brick and a node (sphere, next) per reference. The ray tracer
+// (shaders/voxlink_dynamic.glsl) walks those bricks and intersects their spheres exactly, as the
+// static path intersects a voxel's sphere references (shaders/voxlink_scene.glsl), so a sphere
+// at a pose is drawn as the static scene with the sphere there draws it. Lists per brick, not
+// per voxel (measured faster): the image does not depend on the granularity, since a ray takes
+// the nearest hit inside each brick's chord, brick by brick.
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "base/error.h"
+
+namespace voxlink::render::gl {
+
+// One sphere as the layer and the static file's SphereRecord store it: world centre and radius.
+struct DynamicSphere {
+  std::array<float, 3> centre{};
+  float radius = 0;
+  uint32_t material = 0;  // index into the scene file's materials
+};
+
+class GlDynamicSpheres {
+ public:
+  // Needs a current GL 4.5 context. `dims`: the grid; `origin`/`spacing`: world of voxel 0's
+  // centre and the (cubic) voxel edge; bricks of `brickSize` voxels; room for `referenceCapacity`
+  // (sphere, brick) references, or what one storage buffer holds.
+  static Result<GlDynamicSpheres> create(const std::array<uint32_t, 3>& dims,
+                                         const std::array<double, 3>& origin, double spacing,
+                                         uint32_t brickSize, uint64_t referenceCapacity);
+  // Re-marks the layer with `spheres` (world units). Queues an upload, a clear and a dispatch;
+  // reads nothing back.
+  Status update(const std::vector<DynamicSphere>& spheres);
+  // Waits and reads two counters: an error when the last update had more references than room.
+  Status checkLastUpdate() const;
+  // Reads the lists back (tests): per brick index, its spheres sorted.
+  std::vector<std::vector<uint32_t>> readLists() const;
+
+  GLuint heads() const;
+  GLuint nodes() const;
+  GLuint spheres() const;
+  uint32_t brickSize() const;
+  // Voxel box [lo, hi) of the last update's spheres (rays are clipped to it).
+  const std::array<int32_t, 3>& lo() const { return lo_; }
+  const std::array<int32_t, 3>& hi() const { return hi_; }
+  uint64_t gpuBytes() const;
+
+ private:
+  struct State;  // GL objects, owned
+  explicit GlDynamicSpheres(std::unique_ptr<State> state);
+  std::unique_ptr<State> s_;
+  std::array<int32_t, 3> lo_{}, hi_{};
+
+ public:
+  GlDynamicSpheres(GlDynamicSpheres&&) noexcept;
+  GlDynamicSpheres& operator=(GlDynamicSpheres&&) noexcept;
+  ~GlDynamicSpheres();
+};
+
+}  // namespace voxlink::render::gl
