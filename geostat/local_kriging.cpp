@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <mutex>
+#include <new>
 #include <optional>
 
 #include "base/parallel_for.h"
@@ -311,13 +313,13 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
   const uint64_t firstRow = part.firstUnit(slabs * bricksY), endRow = part.endUnit(slabs * bricksY);
   const uint64_t slabNodes = uint64_t{depth} * grid.dims[0] *
                              std::min<uint64_t>(grid.dims[1], (endRow - firstRow) * kBrickEdge);
-  std::vector<double> values, variances;
-  try {
-    values.resize(slabNodes), variances.resize(slabNodes);
-  } catch (const std::bad_alloc&) {
+  // Not zeroed: every node of a slab is written before the sink reads it, and zeroing cost a
+  // serial pass over fresh pages (0.7 ms of a 40 ms 2-D solve) that the threads now touch first.
+  std::unique_ptr<double[]> values(new (std::nothrow) double[slabNodes]);
+  std::unique_ptr<double[]> variances(new (std::nothrow) double[slabNodes]);
+  if (!values || !variances)
     return makeError(ErrorCode::kTooLarge, "kriging grid: a slab of ", slabNodes,
                      " nodes does not fit in memory");
-  }
   std::mutex failureLock;
   std::optional<Error> failure;
   for (uint64_t slab = firstRow / bricksY; firstRow < endRow && slab * bricksY < endRow; ++slab) {
@@ -328,7 +330,7 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
     const uint32_t y0 = static_cast<uint32_t>(rowBegin * kBrickEdge);
     const uint32_t y1 =
         static_cast<uint32_t>(std::min<uint64_t>(rowEnd * kBrickEdge, grid.dims[1]));
-    const BrickSolver solver(kriger, grid, z0, y0, y1 - y0, values.data(), variances.data(),
+    const BrickSolver solver(kriger, grid, z0, y0, y1 - y0, values.get(), variances.get(),
                              options.noData, options.externalDrift);
     std::atomic<uint64_t> next{rowBegin * bricksX};
     std::atomic<bool> stop{false};
@@ -356,7 +358,7 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
     if (failure) return *failure;
     VOXLINK_RETURN_IF_ERROR(forEachRowRun(
         grid.dims, z0, count, y0, y1, [&](uint64_t first, uint64_t nodes, uint64_t offset) {
-          return sink(first, nodes, values.data() + offset, variances.data() + offset);
+          return sink(first, nodes, values.get() + offset, variances.get() + offset);
         }));
   }
   KrigingSummary summary;

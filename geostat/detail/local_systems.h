@@ -28,7 +28,9 @@ struct WaitingNode {
   size_t rhs;  // offset of its covariances in ThreadState::waitingRhs
 };
 
-struct ThreadState : PickState {
+// Aligned to a cache line: the states of two threads sit side by side in one vector, and the
+// first one's per-node counters shared a line with the second one's candidate pointers.
+struct alignas(64) ThreadState : PickState {
   explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
   std::vector<Neighbour> nearest;
   std::vector<uint32_t> candidates;  // sample indices, ascending
