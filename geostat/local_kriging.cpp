@@ -97,15 +97,31 @@ class BrickSolver {
     return Status::ok();
   }
 
-  // Factors the queued systems, then solves the nodes that waited for them, in order.
+  // Factors the queued systems, then solves the nodes that waited for them, in order (two at a
+  // time where both have 32 neighbours).
   Status flush(ThreadState& ts) const {
     VOXLINK_RETURN_IF_ERROR(systems_.flush(ts));
-    for (const WaitingNode& w : ts.waiting)
-      VOXLINK_RETURN_IF_ERROR(
-          finishNode(w.node[0], w.node[1], w.node[2], *w.f, &ts.waitingRhs[w.rhs], ts));
+    for (size_t k = 0; k < ts.waiting.size(); ++k) {
+      const WaitingNode& w = ts.waiting[k];
+      if (k + 1 < ts.waiting.size() && w.f->key.size() == 32 &&
+          ts.waiting[k + 1].f->key.size() == 32) {
+        const WaitingNode& next = ts.waiting[++k];
+        VOXLINK_RETURN_IF_ERROR(finishPair({w.node, w.f, &ts.waitingRhs[w.rhs]},
+                                           {next.node, next.f, &ts.waitingRhs[next.rhs]}, ts));
+      } else {
+        VOXLINK_RETURN_IF_ERROR(finishNode(w.node, *w.f, &ts.waitingRhs[w.rhs], ts));
+      }
+    }
     ts.waiting.clear();
     ts.waitingRhs.clear();
     return Status::ok();
+  }
+
+  // Everything of this thread's slab still pending: queued systems and their nodes, and a node
+  // waiting for a partner (finishPair).
+  Status finishSlab(ThreadState& ts) const {
+    VOXLINK_RETURN_IF_ERROR(flush(ts));
+    return finishReady(ts);
   }
 
  private:
@@ -218,6 +234,7 @@ class BrickSolver {
         // A queued system's slot is not reused before the nodes waiting for it are solved.
         if (ts.cache.victim(hash).pending || !systems_.queueTakes(ts, n))
           VOXLINK_RETURN_IF_ERROR(flush(ts));
+        if (ts.ready == &ts.cache.victim(hash)) VOXLINK_RETURN_IF_ERROR(finishReady(ts));
         Factorization& fresh = ts.cache.insert(hash);
         fresh.key = ts.key;
         systems_.queue(ts, fresh);
@@ -232,9 +249,21 @@ class BrickSolver {
     ts.work.resize(n);
     for (size_t i = 0; i < n; ++i) ts.work[i] = ts.d2[ts.picked[i]];
     if (!f->pending) {
+      if (n == 32 && !ts.ready) {  // solved with the next such node (finishPair)
+        ts.readyRhs.resize(n);
+        kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.readyRhs.data(), n);
+        ts.ready = f;
+        ts.readyNode = {x, y, z};
+        return Status::ok();
+      }
       ts.rhs.resize(n);
       kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
-      return finishNode(x, y, z, *f, ts.rhs.data(), ts);
+      if (n == 32) {
+        const SolvedNode first{ts.readyNode, ts.ready, ts.readyRhs.data()};
+        ts.ready = nullptr;
+        return finishPair(first, {{x, y, z}, f, ts.rhs.data()}, ts);
+      }
+      return finishNode({x, y, z}, *f, ts.rhs.data(), ts);
     }
     const size_t offset = ts.waitingRhs.size();
     ts.waitingRhs.resize(offset + n);
@@ -243,26 +272,70 @@ class BrickSolver {
     return Status::ok();
   }
 
+  // A node with its factored system and its covariances (solved in place).
+  struct SolvedNode {
+    std::array<uint32_t, 3> node;
+    const Factorization* f;
+    double* rhs;
+  };
+
+  Status finishReady(ThreadState& ts) const {
+    if (!ts.ready) return Status::ok();
+    const Factorization& f = *ts.ready;
+    ts.ready = nullptr;
+    return finishNode(ts.readyNode, f, ts.readyRhs.data(), ts);
+  }
+
+  // Two nodes of 32 neighbours, their solves interleaved (spd::solveNodes32).
+  Status finishPair(const SolvedNode& a, const SolvedNode& b, ThreadState& ts) const {
+    spd::NodeSolve32 solves[2];
+    for (int k = 0; k < 2; ++k) {
+      const SolvedNode& s = k == 0 ? a : b;
+      solves[k] = {
+          s.f->l.data(), s.rhs, s.f->r.data(), terms_ > 0 ? s.f->u.data() : nullptr, 0, 0, 0};
+    }
+    spd::solveNodes32(solves, 2);
+    VOXLINK_RETURN_IF_ERROR(complete(a.node, *a.f, a.rhs, solves[0], ts));
+    return complete(b.node, *b.f, b.rhs, solves[1], ts);
+  }
+
   // The node's estimate and variance from its factored system and covariances `rhs` (n).
-  Status finishNode(uint32_t x, uint32_t y, uint32_t z, const Factorization& f, double* rhs,
+  Status finishNode(const std::array<uint32_t, 3>& node, const Factorization& f, double* rhs,
                     ThreadState& ts) const {
-    const uint64_t at = (uint64_t{z - z0_} * rows_ + y - y0_) * grid_.dims[0] + x;
     const size_t n = f.key.size();
-    spd::solveLower(f.l.data(), n, spd::paddedSize(n), rhs);
-    const double yy = spd::dot(rhs, rhs, n);
-    const double ry = spd::dot(f.r.data(), rhs, n);
-    double value = kriger_.dataMean() + ry, variance = sill_ - yy;
+    spd::NodeSolve32 solve{f.l.data(), rhs, f.r.data(), terms_ > 0 ? f.u.data() : nullptr, 0, 0, 0};
+    if (n == 32) {
+      spd::solveNodes32(&solve, 1);
+    } else {
+      spd::solveLower(f.l.data(), n, spd::paddedSize(n), rhs);
+      solve.yy = spd::dot(rhs, rhs, n);
+      solve.ry = spd::dot(f.r.data(), rhs, n);
+      if (solve.u) solve.uy = spd::dot(solve.u, rhs, n);
+    }
+    return complete(node, f, rhs, solve, ts);
+  }
+
+  // The rest of a node once y = L^-1 c (in `y`) and its products are known.
+  Status complete(const std::array<uint32_t, 3>& node, const Factorization& f, const double* y,
+                  const spd::NodeSolve32& solve, ThreadState& ts) const {
+    const auto [x, yIndex, z] = node;
+    const uint64_t at = (uint64_t{z - z0_} * rows_ + yIndex - y0_) * grid_.dims[0] + x;
+    const size_t n = f.key.size();
+    double value = kriger_.dataMean() + solve.ry, variance = sill_ - solve.yy;
     if (terms_ > 0) {  // the drift's Lagrange multipliers (drift.h)
-      const uint64_t node = (uint64_t{z} * grid_.dims[1] + y) * grid_.dims[0] + x;
-      ts.drift.resize(3 * terms_);
-      kriger_.driftBasis().at(centred(x, y, z), externalDrift_ ? externalDrift_[node] : NAN,
+      const uint64_t index = (uint64_t{z} * grid_.dims[1] + yIndex) * grid_.dims[0] + x;
+      ts.drift.resize(4 * terms_);  // f0, the correction's scratch, the products u_j.y
+      kriger_.driftBasis().at(centred(x, yIndex, z), externalDrift_ ? externalDrift_[index] : NAN,
                               ts.drift.data());
-      f.drift.correct(f.u.data(), n, rhs, ts.drift.data(), f.ur.data(), ts.drift.data() + terms_,
-                      value, variance);
+      double* uy = ts.drift.data() + 3 * terms_;
+      uy[0] = solve.uy;
+      for (size_t j = 1; j < terms_; ++j) uy[j] = spd::dot(&f.u[j * n], y, n);
+      f.drift.correctWithProducts(uy, ts.drift.data(), f.ur.data(), ts.drift.data() + terms_, value,
+                                  variance);
       if (f.drift.dropped() > 0) ++ts.summary.driftReducedNodes;
     }
     if (!std::isfinite(value) || !std::isfinite(variance)) {
-      const Point3 p = grid_.node(x, y, z);
+      const Point3 p = grid_.node(x, yIndex, z);
       return makeError(ErrorCode::kNonFinite, "kriging: non-finite prediction at (", p[0], ", ",
                        p[1], ", ", p[2], ") from ", n, " samples");
     }
@@ -349,7 +422,7 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
         }
       }
       // The nodes still waiting belong to this slab.
-      if (Status s = solver.flush(ts); !stop && !s) {
+      if (Status s = solver.finishSlab(ts); !stop && !s) {
         std::lock_guard lock(failureLock);
         if (!failure) failure = s.error();
         stop = true;

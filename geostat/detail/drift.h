@@ -52,6 +52,9 @@ class DriftSystem {
   // mu = G^-1 a; value -= mu.ur (ur = U^T r), variance += mu.a. `scratch` holds 2 p doubles.
   void correct(const double* u, size_t n, const double* y, const double* f0, const double* ur,
                double* scratch, double& value, double& variance) const;
+  // The same with the products u_j.y already formed (uy: p of them; it may be scratch).
+  void correctWithProducts(const double* uy, const double* f0, const double* ur, double* scratch,
+                           double& value, double& variance) const;
   size_t dropped() const { return dropped_; }
   size_t size() const { return p_; }
 

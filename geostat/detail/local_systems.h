@@ -50,6 +50,11 @@ struct alignas(64) ThreadState : PickState {
   std::vector<double> compact;  // the queued systems, gathered, spd::batch layout
   std::vector<WaitingNode> waiting;
   std::vector<double> waitingRhs;
+  // A node of 32 neighbours whose system is factored, waiting for a second one to be solved
+  // with (local_kriging.cpp); null when none.
+  const Factorization* ready = nullptr;
+  std::array<uint32_t, 3> readyNode{};
+  std::vector<double> readyRhs;
   KrigingSummary summary;
   double neighbourSum = 0;
 };
