@@ -405,11 +405,22 @@ Result<KrigingSummary> krigeGridLocal(const Kriger& kriger, const GridSpec& grid
         static_cast<uint32_t>(std::min<uint64_t>(rowEnd * kBrickEdge, grid.dims[1]));
     const BrickSolver solver(kriger, grid, z0, y0, y1 - y0, values.get(), variances.get(),
                              options.noData, options.externalDrift);
-    std::atomic<uint64_t> next{rowBegin * bricksX};
+    // Thread 1 takes bricks from the end backwards, the others from the start: a thread's
+    // consecutive bricks are then neighbours whose nodes share neighbour sets, so its cached
+    // factorizations carry over (taken alternately, 1-2 % more systems were factored on two
+    // threads than on one). A lock per brick of hundreds of nodes costs nothing measurable.
+    std::mutex takeLock;
+    uint64_t front = rowBegin * bricksX, back = rowEnd * bricksX;
+    const auto take = [&](unsigned t, uint64_t& b) {
+      std::lock_guard lock(takeLock);
+      if (front >= back) return false;
+      b = t == 1 ? --back : front++;
+      return true;
+    };
     std::atomic<bool> stop{false};
     base::runOnThreads(threads, [&](unsigned t) {
       ThreadState& ts = states[t];
-      for (uint64_t b; !stop && (b = next.fetch_add(1)) < rowEnd * bricksX;) {
+      for (uint64_t b; !stop && take(t, b);) {
         const uint32_t bx = static_cast<uint32_t>(b % bricksX) * kBrickEdge;
         const uint32_t by = static_cast<uint32_t>(b / bricksX) * kBrickEdge;
         const Box box{{bx, by, z0},
