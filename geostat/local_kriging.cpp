@@ -22,9 +22,10 @@ constexpr uint32_t kBrickEdge = 16;     // nodes along x and y of a brick before
 constexpr uint32_t kSlabDepth = 8;      // slices kriged (and bricks deep) at a time in 3-D
 constexpr size_t kCandidateFactor = 4;  // a brick with more than 4 (k + 1) candidates is split
 constexpr size_t kBallFactor = 16;      // candidatesFromOneQuery's ball: up to 16 (k + 1)
-// Factorizations kept per thread: 1 MiB (~120 systems of 32) stays in cache, where 8 MiB sent
-// each new system's writes to memory (docs/kriging-speed-log.md, "Where a 3-D node's time goes").
-constexpr size_t kCacheBytes = size_t{1} << 20;
+// Factorizations kept per thread: 512 KiB (~58 systems of 32) stays in cache, where 8 MiB sent
+// each new system's writes to memory (docs/kriging-speed-log.md, "Where a 3-D node's time goes");
+// against 1 MiB, 2-D Walker Lake took 2 % less CPU (2.6 % more systems) and 3-D the same.
+constexpr size_t kCacheBytes = size_t{1} << 19;
 
 struct Box {
   std::array<uint32_t, 3> lo, hi;  // node index ranges [lo, hi)
