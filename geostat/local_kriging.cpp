@@ -326,8 +326,9 @@ class BrickSolver {
     if (terms_ > 0) {  // the drift's Lagrange multipliers (drift.h)
       const uint64_t index = (uint64_t{z} * grid_.dims[1] + yIndex) * grid_.dims[0] + x;
       ts.drift.resize(4 * terms_);  // f0, the correction's scratch, the products u_j.y
-      kriger_.driftBasis().at(centred(x, yIndex, z), externalDrift_ ? externalDrift_[index] : NAN,
-                              ts.drift.data());
+      const DriftBasis& basis = kriger_.driftBasis();
+      basis.at(basis.usesPoint() ? centred(x, yIndex, z) : Point3{},
+               externalDrift_ ? externalDrift_[index] : NAN, ts.drift.data());
       double* uy = ts.drift.data() + 3 * terms_;
       uy[0] = solve.uy;
       for (size_t j = 1; j < terms_; ++j) uy[j] = spd::dot(&f.u[j * n], y, n);

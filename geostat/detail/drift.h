@@ -37,6 +37,8 @@ struct DriftBasis {
   double externalMean = 0, externalScale = 1;
 
   size_t terms() const;
+  // Whether at() reads its point (ordinary kriging's single term, 1, does not).
+  bool usesPoint() const { return constant && (kind != DriftKind::kNone || external); }
   // The terms at model-space point q with external drift value `external`, into f[0..terms()).
   void at(const Point3& q, double external, double* f) const;
 };
