@@ -93,8 +93,8 @@ void DriftSystem::correct(const double* u, size_t n, const double* y, const doub
   correctWithProducts(scratch, f0, ur, scratch, value, variance);
 }
 
-void DriftSystem::correctWithProducts(const double* uy, const double* f0, const double* ur,
-                                      double* scratch, double& value, double& variance) const {
+void DriftSystem::correctAny(const double* uy, const double* f0, const double* ur, double* scratch,
+                             double& value, double& variance) const {
   double* a = scratch;
   double* mu = scratch + p_;
   for (size_t j = 0; j < p_; ++j) mu[j] = a[j] = uy[j] - f0[j];

@@ -56,11 +56,23 @@ class DriftSystem {
                double* scratch, double& value, double& variance) const;
   // The same with the products u_j.y already formed (uy: p of them; it may be scratch).
   void correctWithProducts(const double* uy, const double* f0, const double* ur, double* scratch,
-                           double& value, double& variance) const;
+                           double& value, double& variance) const {
+    if (p_ == 1 && dropped_ == 0) {  // ordinary kriging, inline: solve()'s two divisions
+      const double a = uy[0] - f0[0];
+      const double mu = a / g_[0] / g_[0];
+      value -= mu * ur[0];
+      variance += mu * a;
+      return;
+    }
+    correctAny(uy, f0, ur, scratch, value, variance);
+  }
   size_t dropped() const { return dropped_; }
   size_t size() const { return p_; }
 
  private:
+  void correctAny(const double* uy, const double* f0, const double* ur, double* scratch,
+                  double& value, double& variance) const;
+
   size_t p_ = 0, dropped_ = 0;
   std::vector<double> g_;  // row-major p x p; lower factor over the kept terms
   std::vector<char> kept_;
