@@ -44,6 +44,16 @@ using LaneBits =
   for (size_t i = j + 1; i < n; ++i) VOXLINK_LANES(cj + i * W) *= inverse;
 }
 
+// finishColumn's pivot alone: checks the diagonal element d and stores 1 / sqrt(d) there (a
+// pointer, not a returned vector, which would change the baseline clone's ABI).
+[[gnu::always_inline]] inline void pivot(double* diagonal, LaneBits& good) {
+  const Lanes d = VOXLINK_LANES(diagonal);
+  good &= (d > 0.0) & (d < INFINITY);
+  Lanes root;
+  for (size_t l = 0; l < W; ++l) root[l] = std::sqrt(d[l]);
+  VOXLINK_LANES(diagonal) = 1.0 / root;
+}
+
 // Rows [i, i + kRows) of columns p and p + 1 receive the updates of every pair of columns
 // (j, j + 1) before p, held in registers: the right-looking kernel loaded and stored each
 // element once per pair; here each pair costs two loads per row and four multipliers.
@@ -88,17 +98,27 @@ template <size_t kN>
   LaneBits good = Lanes{} == Lanes{};  // all lanes true
   size_t p = 0;
   for (; p + 1 < n; p += 2) {
-    size_t i = p;
+    // The pair's two pivot rows first: their square roots and divisions, the kernel's longest
+    // chain, then overlap the updates of the rows below (finishColumn's operations, split).
+    double* c0 = a + at(0, p, n, 0);
+    double* c1 = a + at(0, p + 1, n, 0);
+    updatePairRows<2>(a, n, p, p);
+    pivot(c0 + p * W, good);
+    const Lanes inverse0 = VOXLINK_CONST_LANES(c0 + p * W);
+    VOXLINK_LANES(c0 + (p + 1) * W) *= inverse0;
+    const Lanes l10 = VOXLINK_CONST_LANES(c0 + (p + 1) * W);
+    VOXLINK_LANES(c1 + (p + 1) * W) -= VOXLINK_CONST_LANES(c0 + (p + 1) * W) * l10;
+    pivot(c1 + (p + 1) * W, good);
+    const Lanes inverse1 = VOXLINK_CONST_LANES(c1 + (p + 1) * W);
+    size_t i = p + 2;
     for (; i + 4 <= n; i += 4) updatePairRows<4>(a, n, p, i);
     for (; i + 2 <= n; i += 2) updatePairRows<2>(a, n, p, i);
     if (i < n) updatePairRows<1>(a, n, p, i);
-    double* c0 = a + at(0, p, n, 0);
-    double* c1 = a + at(0, p + 1, n, 0);
-    finishColumn(a, p, n, good);
-    const Lanes l10 = VOXLINK_CONST_LANES(c0 + (p + 1) * W);
-    for (size_t k = p + 1; k < n; ++k)
+    for (size_t k = p + 2; k < n; ++k) {
+      VOXLINK_LANES(c0 + k * W) *= inverse0;
       VOXLINK_LANES(c1 + k * W) -= VOXLINK_CONST_LANES(c0 + k * W) * l10;
-    finishColumn(a, p + 1, n, good);
+      VOXLINK_LANES(c1 + k * W) *= inverse1;
+    }
   }
   if (p < n) {  // the last column of an odd size: every pair's update, then its pivot
     double* c0 = a + at(0, p, n, 0);
