@@ -8,6 +8,7 @@
 #include <mutex>
 #include <new>
 #include <optional>
+#include <utility>
 
 #include "base/parallel_for.h"
 #include "geostat/detail/drift.h"
@@ -250,15 +251,14 @@ class BrickSolver {
     ts.work.resize(n);
     for (size_t i = 0; i < n; ++i) ts.work[i] = ts.d2[ts.picked[i]];
     if (!f->pending) {
+      ts.rhs.resize(n);
+      kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
       if (n == 32 && !ts.ready) {  // solved with the next such node (finishPair)
-        ts.readyRhs.resize(n);
-        kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.readyRhs.data(), n);
+        std::swap(ts.rhs, ts.readyRhs);
         ts.ready = f;
         ts.readyNode = {x, y, z};
         return Status::ok();
       }
-      ts.rhs.resize(n);
-      kriger_.variogram().covariancesOfSquared(ts.work.data(), ts.rhs.data(), n);
       if (n == 32) {
         const SolvedNode first{ts.readyNode, ts.ready, ts.readyRhs.data()};
         ts.ready = nullptr;
