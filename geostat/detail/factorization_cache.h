@@ -61,22 +61,10 @@ class FactorizationCache {
   std::vector<uint8_t> next_;  // the way each set replaces next
 };
 
-// The hash of a neighbour set (sample indices, ascending): four FNV-1a streams over every
-// fourth index, then mixed. One stream was a chain of n dependent multiplies, about a third of
-// a 2-D node's bookkeeping (docs/kriging-speed-log.md); the four run side by side.
+// The hash of a neighbour set (sample indices, ascending).
 inline uint64_t hashKey(const std::vector<uint32_t>& key) {
-  constexpr uint64_t kPrime = 1099511628211ULL;
-  uint64_t h0 = 1469598103934665603ULL, h1 = h0 ^ 1, h2 = h0 ^ 2, h3 = h0 ^ 3;
-  const size_t n = key.size();
-  size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    h0 = (h0 ^ key[i]) * kPrime;
-    h1 = (h1 ^ key[i + 1]) * kPrime;
-    h2 = (h2 ^ key[i + 2]) * kPrime;
-    h3 = (h3 ^ key[i + 3]) * kPrime;
-  }
-  for (; i < n; ++i) h0 = (h0 ^ key[i]) * kPrime;
-  uint64_t h = ((h0 * kPrime ^ h1) * kPrime ^ h2) * kPrime ^ h3;
+  uint64_t h = 1469598103934665603ULL;
+  for (uint32_t v : key) h = (h ^ v) * 1099511628211ULL;
   return h ^ (h >> 29);
 }
 
