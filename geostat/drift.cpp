@@ -89,9 +89,15 @@ void DriftSystem::solve(double* a) const {
 void DriftSystem::correct(const double* u, size_t n, const double* y, const double* f0,
                           const double* ur, double* scratch, double& value,
                           double& variance) const {
+  for (size_t j = 0; j < p_; ++j) scratch[j] = spd::dot(u + j * n, y, n);
+  correctWithProducts(scratch, f0, ur, scratch, value, variance);
+}
+
+void DriftSystem::correctAny(const double* uy, const double* f0, const double* ur, double* scratch,
+                             double& value, double& variance) const {
   double* a = scratch;
   double* mu = scratch + p_;
-  for (size_t j = 0; j < p_; ++j) mu[j] = a[j] = spd::dot(u + j * n, y, n) - f0[j];
+  for (size_t j = 0; j < p_; ++j) mu[j] = a[j] = uy[j] - f0[j];
   solve(mu);
   for (size_t j = 0; j < p_; ++j) {
     value -= mu[j] * ur[j];

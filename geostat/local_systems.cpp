@@ -178,18 +178,14 @@ void LocalSystems::flushLanes(ThreadState& ts, size_t count, std::array<bool, kL
   spd::batch::norm1(ts.compact.data(), n, ts.work.data(), norms);
   uint8_t ok[kLanes];
   spd::batch::factorLower(ts.compact.data(), n, ok);
-  // The factors out of the batch, a cache line of the batch (all lanes of one element) at a time.
+  // The factors out of the batch, four rows of all lanes at a time.
   const size_t ld = spd::paddedSize(n);
   double* factors[kLanes];
   for (size_t lane = 0; lane < count; ++lane) {
     ts.queued[lane]->l.resize(ld * n);
     factors[lane] = ts.queued[lane]->l.data();
   }
-  for (size_t j = 0; j < n; ++j)
-    for (size_t i = j; i < n; ++i) {
-      const double* in = &ts.compact[spd::batch::at(i, j, n, 0)];
-      for (size_t lane = 0; lane < count; ++lane) factors[lane][j * ld + i] = in[lane];
-    }
+  spd::batch::unpackLower(ts.compact.data(), n, count, factors, ld);
   // factor()'s first attempt from here on: the nugget's bound, else the comparison bound,
   // computed for all lanes at once when any lane needs it.
   std::array<double, kLanes> bounds;

@@ -18,55 +18,6 @@ namespace {
 
 constexpr size_t W = kLanes;
 
-// finishColumn of spd_kernels.cpp on every lane: column j of L from the updated column j.
-// The pivots' check is a loop of its own so that the square roots and divisions vectorize.
-[[gnu::always_inline]] inline void finishColumn(double* a, size_t j, size_t n, uint8_t* ok) {
-  double* cj = a + at(0, j, n, 0);
-  for (size_t l = 0; l < W; ++l) ok[l] &= cj[j * W + l] > 0.0 && cj[j * W + l] < INFINITY;
-  double inverse[W];
-  for (size_t l = 0; l < W; ++l) {
-    inverse[l] = 1.0 / std::sqrt(cj[j * W + l]);
-    cj[j * W + l] = inverse[l];
-  }
-  for (size_t i = j + 1; i < n; ++i)
-    for (size_t l = 0; l < W; ++l) cj[i * W + l] *= inverse[l];
-}
-
-// The scalar kernel's two-columns-at-a-time right-looking order; kN > 0 fixes the size. Inlined
-// into each clone (a separate function would be built for the baseline only, without FMA).
-template <size_t kN>
-[[gnu::always_inline]] inline void factorLowerBody(double* a, size_t n, uint8_t* ok) {
-  if constexpr (kN > 0) n = kN;
-  size_t j = 0;
-  for (; j + 1 < n; j += 2) {
-    double* c0 = a + at(0, j, n, 0);
-    double* c1 = a + at(0, j + 1, n, 0);
-    finishColumn(a, j, n, ok);
-    double l10[W];
-    for (size_t l = 0; l < W; ++l) l10[l] = c0[(j + 1) * W + l];
-    for (size_t i = j + 1; i < n; ++i)
-      for (size_t l = 0; l < W; ++l) c1[i * W + l] -= c0[i * W + l] * l10[l];
-    finishColumn(a, j + 1, n, ok);
-    for (size_t k = j + 2; k < n; ++k) {
-      double lk0[W], lk1[W];
-      for (size_t l = 0; l < W; ++l) lk0[l] = c0[k * W + l], lk1[l] = c1[k * W + l];
-      double* ck = a + at(0, k, n, 0);
-      for (size_t i = k; i < n; ++i)
-        for (size_t l = 0; l < W; ++l)
-          ck[i * W + l] -= c0[i * W + l] * lk0[l] + c1[i * W + l] * lk1[l];
-    }
-  }
-  if (j < n) finishColumn(a, j, n, ok);
-}
-
-}  // namespace
-
-VOXLINK_BATCH_CLONES void factorLower(double* a, size_t n, uint8_t ok[kLanes]) {
-  std::fill(ok, ok + W, uint8_t{1});
-  if (n == 32) return factorLowerBody<32>(a, n, ok);
-  factorLowerBody<0>(a, n, ok);
-}
-
 // All lanes of one element as one vector (GCC's vector extension: lane-wise operations, so each
 // lane does exactly the scalar arithmetic); unaligned loads and stores.
 using Lanes = double __attribute__((vector_size(W * sizeof(double)), aligned(sizeof(double))));
@@ -78,6 +29,143 @@ using LaneBits =
 #define VOXLINK_LANES(p) (*reinterpret_cast<Lanes*>(p))
 #define VOXLINK_CONST_LANES(p) (*reinterpret_cast<const Lanes*>(p))
 #define VOXLINK_ABS(v) reinterpret_cast<Lanes>(reinterpret_cast<LaneBits>(v) & 0x7fffffffffffffffLL)
+
+// finishColumn of spd_kernels.cpp on every lane: column j of L from the updated column j.
+// `good` keeps, per lane, whether every pivot so far was positive and finite. The pivots' square
+// roots and divisions are one vector operation each (they were four scalar ones).
+[[gnu::always_inline]] inline void finishColumn(double* a, size_t j, size_t n, LaneBits& good) {
+  double* cj = a + at(0, j, n, 0);
+  const Lanes d = VOXLINK_LANES(cj + j * W);
+  good &= (d > 0.0) & (d < INFINITY);
+  Lanes root;
+  for (size_t l = 0; l < W; ++l) root[l] = std::sqrt(d[l]);
+  const Lanes inverse = 1.0 / root;
+  VOXLINK_LANES(cj + j * W) = inverse;
+  for (size_t i = j + 1; i < n; ++i) VOXLINK_LANES(cj + i * W) *= inverse;
+}
+
+// finishColumn's pivot alone: checks the diagonal element d and stores 1 / sqrt(d) there (a
+// pointer, not a returned vector, which would change the baseline clone's ABI).
+[[gnu::always_inline]] inline void pivot(double* diagonal, LaneBits& good) {
+  const Lanes d = VOXLINK_LANES(diagonal);
+  good &= (d > 0.0) & (d < INFINITY);
+  Lanes root;
+  for (size_t l = 0; l < W; ++l) root[l] = std::sqrt(d[l]);
+  VOXLINK_LANES(diagonal) = 1.0 / root;
+}
+
+// Rows [i, i + kRows) of columns p and p + 1 receive the updates of every pair of columns
+// (j, j + 1) before p, held in registers: the right-looking kernel loaded and stored each
+// element once per pair; here each pair costs two loads per row and four multipliers.
+template <size_t kRows>
+[[gnu::always_inline]] inline void updatePairRows(double* a, size_t n, size_t p, size_t i) {
+  double* c0 = a + at(0, p, n, 0);
+  double* c1 = c0 + n * W;
+  Lanes x0[kRows], x1[kRows];
+#pragma GCC unroll 8
+  for (size_t r = 0; r < kRows; ++r)
+    x0[r] = VOXLINK_LANES(c0 + (i + r) * W), x1[r] = VOXLINK_LANES(c1 + (i + r) * W);
+  for (size_t j = 0; j < p; j += 2) {
+    const double* d0 = a + at(0, j, n, 0);
+    const double* d1 = d0 + n * W;
+    const Lanes m00 = VOXLINK_CONST_LANES(d0 + p * W), m01 = VOXLINK_CONST_LANES(d1 + p * W);
+    const Lanes m10 = VOXLINK_CONST_LANES(d0 + (p + 1) * W),
+                m11 = VOXLINK_CONST_LANES(d1 + (p + 1) * W);
+#pragma GCC unroll 8
+    for (size_t r = 0; r < kRows; ++r) {
+      const Lanes u = VOXLINK_CONST_LANES(d0 + (i + r) * W),
+                  v = VOXLINK_CONST_LANES(d1 + (i + r) * W);
+      // The right-looking kernel's expression, contracted alike in every clone.
+      x0[r] -= u * m00 + v * m01;
+      x1[r] -= u * m10 + v * m11;
+    }
+  }
+  // Row p of column p + 1 lies above the diagonal: never written.
+#pragma GCC unroll 8
+  for (size_t r = 0; r < kRows; ++r) {
+    VOXLINK_LANES(c0 + (i + r) * W) = x0[r];
+    if (i + r > p) VOXLINK_LANES(c1 + (i + r) * W) = x1[r];
+  }
+}
+
+// The scalar kernel's two-columns-at-a-time right-looking order, computed left-looking: each
+// element receives the same updates in the same order (pair by pair, then its own pair's),
+// so the same bits. kN > 0 fixes the size. Inlined into each clone (a separate function would
+// be built for the baseline only, without FMA).
+template <size_t kN>
+[[gnu::always_inline]] inline void factorLowerBody(double* a, size_t n, uint8_t* ok) {
+  if constexpr (kN > 0) n = kN;
+  LaneBits good = Lanes{} == Lanes{};  // all lanes true
+  size_t p = 0;
+  for (; p + 1 < n; p += 2) {
+    // The pair's two pivot rows first: their square roots and divisions, the kernel's longest
+    // chain, then overlap the updates of the rows below (finishColumn's operations, split).
+    double* c0 = a + at(0, p, n, 0);
+    double* c1 = a + at(0, p + 1, n, 0);
+    updatePairRows<2>(a, n, p, p);
+    pivot(c0 + p * W, good);
+    const Lanes inverse0 = VOXLINK_CONST_LANES(c0 + p * W);
+    VOXLINK_LANES(c0 + (p + 1) * W) *= inverse0;
+    const Lanes l10 = VOXLINK_CONST_LANES(c0 + (p + 1) * W);
+    VOXLINK_LANES(c1 + (p + 1) * W) -= VOXLINK_CONST_LANES(c0 + (p + 1) * W) * l10;
+    pivot(c1 + (p + 1) * W, good);
+    const Lanes inverse1 = VOXLINK_CONST_LANES(c1 + (p + 1) * W);
+    size_t i = p + 2;
+    for (; i + 4 <= n; i += 4) updatePairRows<4>(a, n, p, i);
+    for (; i + 2 <= n; i += 2) updatePairRows<2>(a, n, p, i);
+    if (i < n) updatePairRows<1>(a, n, p, i);
+    for (size_t k = p + 2; k < n; ++k) {
+      VOXLINK_LANES(c0 + k * W) *= inverse0;
+      VOXLINK_LANES(c1 + k * W) -= VOXLINK_CONST_LANES(c0 + k * W) * l10;
+      VOXLINK_LANES(c1 + k * W) *= inverse1;
+    }
+  }
+  if (p < n) {  // the last column of an odd size: every pair's update, then its pivot
+    double* c0 = a + at(0, p, n, 0);
+    for (size_t j = 0; j < p; j += 2) {
+      const double* d0 = a + at(0, j, n, 0);
+      const double* d1 = d0 + n * W;
+      const Lanes m0 = VOXLINK_CONST_LANES(d0 + p * W), m1 = VOXLINK_CONST_LANES(d1 + p * W);
+      VOXLINK_LANES(c0 + p * W) -= m0 * m0 + m1 * m1;
+    }
+    finishColumn(a, p, n, good);
+  }
+  for (size_t l = 0; l < W; ++l) ok[l] = good[l] != 0;
+}
+
+}  // namespace
+
+VOXLINK_BATCH_CLONES void factorLower(double* a, size_t n, uint8_t ok[kLanes]) {
+  if (n == 32) return factorLowerBody<32>(a, n, ok);
+  factorLowerBody<0>(a, n, ok);
+}
+
+VOXLINK_BATCH_CLONES void unpackLower(const double* a, size_t n, size_t count,
+                                      double* const* factors, size_t ld) {
+  static_assert(W == 4, "the transpose below is written for four lanes");
+  for (size_t j = 0; j < n; ++j) {
+    size_t i = j & ~size_t{3};
+    for (; i + 4 <= n; i += 4) {  // rows i..i+3 of all lanes: a 4 x 4 transpose
+      const double* in = a + at(i, j, n, 0);
+      const Lanes r0 = VOXLINK_CONST_LANES(in), r1 = VOXLINK_CONST_LANES(in + W);
+      const Lanes r2 = VOXLINK_CONST_LANES(in + 2 * W), r3 = VOXLINK_CONST_LANES(in + 3 * W);
+      const Lanes t0 = __builtin_shufflevector(r0, r1, 0, 4, 2, 6);
+      const Lanes t1 = __builtin_shufflevector(r0, r1, 1, 5, 3, 7);
+      const Lanes t2 = __builtin_shufflevector(r2, r3, 0, 4, 2, 6);
+      const Lanes t3 = __builtin_shufflevector(r2, r3, 1, 5, 3, 7);
+      double* out = factors[0] + j * ld + i;
+      VOXLINK_LANES(out) = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
+      if (count > 1)
+        VOXLINK_LANES(factors[1] + j * ld + i) = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+      if (count > 2)
+        VOXLINK_LANES(factors[2] + j * ld + i) = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
+      if (count > 3)
+        VOXLINK_LANES(factors[3] + j * ld + i) = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+    }
+    for (i = std::max(i, j); i < n; ++i)
+      for (size_t lane = 0; lane < count; ++lane) factors[lane][j * ld + i] = a[at(i, j, n, lane)];
+  }
+}
 
 VOXLINK_BATCH_CLONES void norm1(const double* a, size_t n, double* work, double norm[kLanes]) {
   std::fill(work, work + n * W, 0.0);  // work[i * W + lane]: column i's sum

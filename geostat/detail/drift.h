@@ -37,6 +37,8 @@ struct DriftBasis {
   double externalMean = 0, externalScale = 1;
 
   size_t terms() const;
+  // Whether at() reads its point (ordinary kriging's single term, 1, does not).
+  bool usesPoint() const { return constant && (kind != DriftKind::kNone || external); }
   // The terms at model-space point q with external drift value `external`, into f[0..terms()).
   void at(const Point3& q, double external, double* f) const;
 };
@@ -52,10 +54,25 @@ class DriftSystem {
   // mu = G^-1 a; value -= mu.ur (ur = U^T r), variance += mu.a. `scratch` holds 2 p doubles.
   void correct(const double* u, size_t n, const double* y, const double* f0, const double* ur,
                double* scratch, double& value, double& variance) const;
+  // The same with the products u_j.y already formed (uy: p of them; it may be scratch).
+  void correctWithProducts(const double* uy, const double* f0, const double* ur, double* scratch,
+                           double& value, double& variance) const {
+    if (p_ == 1 && dropped_ == 0) {  // ordinary kriging, inline: solve()'s two divisions
+      const double a = uy[0] - f0[0];
+      const double mu = a / g_[0] / g_[0];
+      value -= mu * ur[0];
+      variance += mu * a;
+      return;
+    }
+    correctAny(uy, f0, ur, scratch, value, variance);
+  }
   size_t dropped() const { return dropped_; }
   size_t size() const { return p_; }
 
  private:
+  void correctAny(const double* uy, const double* f0, const double* ur, double* scratch,
+                  double& value, double& variance) const;
+
   size_t p_ = 0, dropped_ = 0;
   std::vector<double> g_;  // row-major p x p; lower factor over the kept terms
   std::vector<char> kept_;

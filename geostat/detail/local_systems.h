@@ -28,7 +28,9 @@ struct WaitingNode {
   size_t rhs;  // offset of its covariances in ThreadState::waitingRhs
 };
 
-struct ThreadState : PickState {
+// Aligned to a cache line: the states of two threads sit side by side in one vector, and the
+// first one's per-node counters shared a line with the second one's candidate pointers.
+struct alignas(64) ThreadState : PickState {
   explicit ThreadState(size_t cacheEntries) : cache(cacheEntries) {}
   std::vector<Neighbour> nearest;
   std::vector<uint32_t> candidates;  // sample indices, ascending
@@ -48,6 +50,11 @@ struct ThreadState : PickState {
   std::vector<double> compact;  // the queued systems, gathered, spd::batch layout
   std::vector<WaitingNode> waiting;
   std::vector<double> waitingRhs;
+  // A node of 32 neighbours whose system is factored, waiting for a second one to be solved
+  // with (local_kriging.cpp); null when none.
+  const Factorization* ready = nullptr;
+  std::array<uint32_t, 3> readyNode{};
+  std::vector<double> readyRhs;
   KrigingSummary summary;
   double neighbourSum = 0;
 };

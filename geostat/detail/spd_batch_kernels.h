@@ -27,6 +27,11 @@ constexpr size_t at(size_t i, size_t j, size_t n, size_t lane) {
 // 0 where a pivot is not positive and finite (that lane's values are then meaningless).
 void factorLower(double* a, size_t n, uint8_t ok[kLanes]);
 
+// Lane l's lower triangle (element (i, j), i >= j) to factors[l][j * ld + i] for l < count,
+// ld >= n. Four rows of four lanes are transposed in registers at a time, so the first block of
+// a column may also write up to three rows above its diagonal (values never read).
+void unpackLower(const double* a, size_t n, size_t count, double* const* factors, size_t ld);
+
 // The 1-norm of every lane's symmetric matrix from its lower triangle: column sums of |a_ij|,
 // added as local kriging's gather() adds them (the same bits; no multiplications). `work` holds
 // n kLanes doubles.

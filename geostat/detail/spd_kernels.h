@@ -22,6 +22,19 @@ void solveLower(const double* l, size_t n, size_t ld, double* b, double* c);
 // b <- L^-T b.
 void solveLowerTransposed(const double* l, size_t n, size_t ld, double* b);
 double dot(const double* a, const double* b, size_t n);
+
+// A kriging node's solve for n = ld = 32 (local kriging's usual size): b <- L^-1 b, then
+// yy = b.b, ry = r.b and, where u is not null, uy = u.b, each with the bits of solveLower and
+// dot. Two nodes at once: each solve alone is one chain of dependent operations, so two
+// interleaved take little longer than one.
+struct NodeSolve32 {
+  const double* l;
+  double* b;
+  const double* r;
+  const double* u;
+  double yy, ry, uy;
+};
+void solveNodes32(NodeSolve32* nodes, size_t count);  // count: 1 or 2
 // b <- A^-1 b = L^-T L^-1 b (the two solves above in one call).
 void applyInverse(const double* l, size_t n, size_t ld, double* b);
 // Hager/Higham estimate of ||A^-1||_1 from the factor (a lower bound almost always within a

@@ -58,6 +58,31 @@ TEST(SpdBatchKernels, EveryLaneEqualsTheScalarKernelsBitForBit) {
   }
 }
 
+// unpackLower gives each of the first `count` lanes its lower triangle, column-major with the
+// leading dimension asked for, and writes nothing for the other lanes.
+TEST(SpdBatchKernels, UnpackLowerCopiesEachLanesLowerTriangle) {
+  for (size_t n : {1, 2, 3, 4, 5, 7, 16, 31, 32, 33}) {
+    const size_t ld = spd::paddedSize(n) + 4;
+    std::vector<double> compact(n * n * kLanes);
+    for (size_t k = 0; k < compact.size(); ++k) compact[k] = double(k) + 0.5;
+    for (size_t count = 1; count <= kLanes; ++count) {
+      std::vector<std::vector<double>> out(kLanes, std::vector<double>(ld * n, -1.0));
+      double* factors[kLanes];
+      for (size_t lane = 0; lane < kLanes; ++lane) factors[lane] = out[lane].data();
+      spd::batch::unpackLower(compact.data(), n, count, factors, ld);
+      for (size_t lane = 0; lane < kLanes; ++lane)
+        for (size_t j = 0; j < n; ++j)
+          for (size_t i = j; i < ld; ++i) {
+            const double expected =
+                lane < count && i < n ? compact[spd::batch::at(i, j, n, lane)] : -1.0;
+            ASSERT_EQ(out[lane][j * ld + i], expected)
+                << "n " << n << " count " << count << " lane " << lane << " (" << i << ", " << j
+                << ")";
+          }
+    }
+  }
+}
+
 // norm1 per lane is the column sums in local kriging's gather() order, bit for bit.
 TEST(SpdBatchKernels, Norm1EqualsTheGatherOrderBitForBit) {
   std::mt19937 rng(13);

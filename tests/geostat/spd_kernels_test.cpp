@@ -106,5 +106,42 @@ TEST(SpdKernels, SolveLowerOfThirtyTwoIsTheGeneralLoopBitForBit) {
   }
 }
 
+// solveNodes32, one node or two interleaved (different factors), gives solveLower's and dot()'s
+// bits, and reads no upper triangle (NaN here).
+TEST(SpdKernels, SolveNodesOfThirtyTwoAreSolveLowerAndDotBitForBit) {
+  constexpr size_t n = 32;
+  std::vector<double> l[2] = {covariances(n, 1.0, 11), covariances(n, 0.3, 12)};
+  std::vector<double> b[2], r[2], u[2];
+  for (int k = 0; k < 2; ++k) {
+    const double norm = norm1(l[k], n);
+    ASSERT_TRUE(spd::factorLower(l[k].data(), n, n));
+    for (size_t j = 0; j < n; ++j)
+      for (size_t i = 0; i < j; ++i) l[k][j * n + i] = NAN;
+    for (size_t i = 0; i < n; ++i) {
+      b[k].push_back(std::sin(1.0 + double(i) + k) * norm);
+      r[k].push_back(std::cos(3.0 + double(i) * (k + 1)));
+      u[k].push_back(std::sin(0.5 * double(i) - k));
+    }
+  }
+  for (size_t count : {1, 2}) {
+    std::vector<double> solved[2] = {b[0], b[1]};
+    spd::NodeSolve32 nodes[2];
+    for (size_t k = 0; k < 2; ++k)
+      nodes[k] = {
+          l[k].data(), solved[k].data(), r[k].data(), k == 0 ? u[k].data() : nullptr, 0, 0, 0};
+    spd::solveNodes32(nodes, count);
+    for (size_t k = 0; k < count; ++k) {
+      std::vector<double> y = b[k];
+      spd::solveLower(l[k].data(), n, n, y.data());
+      for (size_t i = 0; i < n; ++i) ASSERT_EQ(solved[k][i], y[i]) << count << " " << k << " " << i;
+      EXPECT_EQ(nodes[k].yy, spd::dot(y.data(), y.data(), n));
+      EXPECT_EQ(nodes[k].ry, spd::dot(r[k].data(), y.data(), n));
+      if (k == 0) {
+        EXPECT_EQ(nodes[k].uy, spd::dot(u[k].data(), y.data(), n));
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace voxlink::geostat
