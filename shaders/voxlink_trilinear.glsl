@@ -334,6 +334,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
   int k =
       brickActive ? max(0, firstSampleNear(tIn, t0)) : 0;  // next sample t_k = t0 + (k + 1/2) step
   ivec3 cached = ivec3(-2147483647);
+  bool leave = false;  // the cell at sample k is to be left: invisible under the TF
   int limit = dualGrid.x + dualGrid.y + dualGrid.z + int(min((t1 - t0) / uStep, 1e7)) + 8;
   for (int i = 0; i < limit; ++i) {
     float ts = t0 + (float(k) + 0.5) * uStep;
@@ -373,15 +374,18 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       ++k;
       continue;
     }
-    if (cell != cached) {
+    if (cell != cached || leave) {
       // Runs of empty cells are crossed here, on row words alone (4 fetches per run), until a
       // cell with a stored corner: on llvmpipe a pass of this loop runs its whole body, 24
       // fetches, for all 8 lanes, and a pass per empty run was a third of the tooth's passes.
       // The samples taken are the ones a pass per run would take.
       bool stored = false;
       for (;;) {
-        stored = cellRows(cell);
-        if (stored) break;
+        if (!leave) {
+          stored = cellRows(cell);
+          if (stored) break;
+        }
+        leave = false;
         k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
         ts = t0 + (float(k) + 0.5) * uStep;
         if (ts >= tOut) break;  // the next pass moves on to the next dual brick
@@ -395,7 +399,9 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       loadCorners(cell);
     }
     if (!gCellVisible) {
-      k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
+      // Stored corners that the TF leaves invisible: the next pass's loop above leaves the cell,
+      // so that the body holds one firstSampleAfterRun, not two (the pass count is the same).
+      leave = true;
       continue;
     }
     // Every sample of a visible cell in this pass: its corners are loaded, and a pass of this
