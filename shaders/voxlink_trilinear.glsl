@@ -368,33 +368,33 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       ts = t0 + (float(k) + 0.5) * uStep;
       if (ts >= tOut) continue;
     }
-    // Runs of empty cells are crossed in this loop, on row words alone (4 fetches per run), until
-    // a cell with a stored corner: on llvmpipe a pass of the outer loop runs its whole body, 24
-    // fetches, for all 8 lanes, and a pass per empty run was a third of the tooth's passes.
-    // The samples taken are the ones a pass per run would take.
     vec3 qIn;
     ivec3 cell;
-    bool stored = false;  // the cell at sample k has stored corners
-    for (;;) {
-      if (!placeSample(o, d, ts, qIn, cell)) {
-        ++k;
-        break;
-      }
-      if (cell == cached && !leave) {  // its corners are loaded
-        stored = true;
-        break;
-      }
-      if (!leave) {
-        stored = cellRows(cell);
-        if (stored) break;
-      }
-      leave = false;
-      k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
-      ts = t0 + (float(k) + 0.5) * uStep;
-      if (ts >= tOut) break;  // the next pass moves on to the next dual brick
+    if (!placeSample(o, d, ts, qIn, cell)) {
+      ++k;
+      continue;
     }
-    if (!stored) continue;
-    if (cell != cached) {
+    if (cell != cached || leave) {
+      // Runs of empty cells are crossed here, on row words alone (4 fetches per run), until a
+      // cell with a stored corner: on llvmpipe a pass of this loop runs its whole body, 24
+      // fetches, for all 8 lanes, and a pass per empty run was a third of the tooth's passes.
+      // The samples taken are the ones a pass per run would take.
+      bool stored = false;
+      for (;;) {
+        if (!leave) {
+          stored = cellRows(cell);
+          if (stored) break;
+        }
+        leave = false;
+        k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
+        ts = t0 + (float(k) + 0.5) * uStep;
+        if (ts >= tOut) break;  // the next pass moves on to the next dual brick
+        if (!placeSample(o, d, ts, qIn, cell)) {
+          ++k;
+          break;
+        }
+      }
+      if (!stored) continue;
       cached = cell;
       loadCorners(cell);
     }
