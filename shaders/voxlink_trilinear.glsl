@@ -316,9 +316,10 @@ int firstSampleAfterRun(vec3 o, vec3 d, ivec3 cell, float t0) {
   return int(ceil((tExit - t0) / uStep - 0.5));
 }
 
-// One flat loop: each pass either moves to the next dual brick or takes one sample. Nested
-// loops (bricks, then samples) ran far slower on llvmpipe, whose SIMD lanes wait for the lane
-// with the longest inner loop at every outer step.
+// One flat loop: each pass moves to the next dual brick where needed, crosses runs of empty
+// cells on row words and takes the samples of one cell. Nested loops (bricks, then samples) ran
+// far slower on llvmpipe, whose SIMD lanes wait for the lane with the longest inner loop at
+// every outer step; the empty-cell loop is cheap per step (row words only).
 void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
                     inout float transmittance) {
   ivec3 dualGrid =
