@@ -94,17 +94,17 @@ void loadDualBrick(ivec3 dual) {
   gDualBase = dual * VXL_N;
 }
 
-// The corner terms of a stored voxel (nothing for -1).
+// The corner terms of a stored voxel (nothing for -1). By selects, not early returns: each
+// return became masking of every later write on llvmpipe (0.7 % of the tooth's instructions,
+// docs/rendering-trilinear-profile.md, seventh session). -1 reads voxel 0, which is discarded.
 void storedCorner(int voxel, out vec4 colorAlpha, out vec3 gradient) {
-  colorAlpha = vec4(0.0);
-  gradient = vec3(0.0);
-  if (voxel < 0) return;
-  uint word = voxelWord(uint(voxel));  // value (8-bit files) and direction in one fetch
-  vec4 c = classifyPremultiplied(storedBitsOf(uint(voxel), word));
-  if (!(c.a > 0.0)) return;
-  colorAlpha = c;
-  gradient = scaledDirectionOfWord(word, c.a);
-  gCellVisible = true;
+  uint index = uint(max(voxel, 0));
+  uint word = voxelWord(index);  // value (8-bit files) and direction in one fetch
+  vec4 c = classifyPremultiplied(storedBitsOf(index, word));
+  bool visible = voxel >= 0 && c.a > 0.0;
+  colorAlpha = visible ? c : vec4(0.0);
+  gradient = visible ? scaledDirectionOfWord(word, c.a) : vec3(0.0);
+  gCellVisible = gCellVisible || visible;
 }
 
 // Occupied index and first voxel of the dual brick's brick `m` (bits as in gK0..gK7), by
@@ -154,26 +154,17 @@ void apronPair(uvec2 a, uint w, out int first, out int second) {
 }
 #endif
 
-// Corners are only read when gCellVisible ends up true, so an empty cell returns early without
-// touching them. llvmpipe runs both sides of a branch whenever its lanes disagree, so there is
-// one path for every cell: a separate one for cells whose corners cross a brick face (1 - (1 -
-// 1/n)^3 of them) ran in most SIMD vectors and took a third of the frame's instructions.
-void loadCorners(ivec3 cell) {
-  gCellVisible = false;
-  int v0, v1, v2, v3, v4, v5, v6, v7;
-  // The cell lies in the current dual brick (traceTrilinear sees to it), so its corners sit in
-  // the 8 bricks looked up on entry; local coordinates wrap into the next brick.
-  ivec3 local = cell - gDualBase;
-  const uint last = uint(VXL_N - 1);
-  uint w = uint(local[VXL_W]), u = uint(local[VXL_U]), v = uint(local[VXL_V]);
-  gRunLo = w;  // a cell that the TF leaves invisible is its own run
-  gRunHi = w + 1u;
-  uint crossing = (w == last ? 1u : 0u) | (u == last ? 2u : 0u) | (v == last ? 4u : 0u);
-  uint wNext = (w + 1u) & last, uNext = (u + 1u) & last, vNext = (v + 1u) & last;
-  uint r0 = v * uint(VXL_N) + u, r1 = v * uint(VXL_N) + uNext;
-  uint r2 = vNext * uint(VXL_N) + u, r3 = vNext * uint(VXL_N) + uNext;
-  int k0 = gK0, k1, k2, k3, k4, k5, k6, k7;
-  uint s0 = gB0, s1, s2, s3, s4, s5, s6, s7;  // their first voxels
+// The row words of the current cell's corners (cellRows), kept for loadCorners: the pairs along
+// w of rows (v, u), (v, u + 1), (v + 1, u), (v + 1, u + 1); the second of each pair only without
+// row aprons, where the pair crosses the w face.
+uvec2 gI0, gI1, gI2, gI3, gI4, gI5, gI6, gI7;
+
+// The occupied indices and first voxels of cell-local corners 1..7 (corner 0's are gK0, gB0):
+// where the cell's corners cross a brick face (`crossing`: bit 0 w, 1 u, 2 v), the dual brick's
+// other bricks; by selects, not branches.
+void cornerBricks(uint crossing, out int k1, out int k2, out int k3, out int k4, out int k5,
+                  out int k6, out int k7, out uint s1, out uint s2, out uint s3, out uint s4,
+                  out uint s5, out uint s6, out uint s7) {
   dualBrick(1u & crossing, k1, s1);
   dualBrick(2u & crossing, k2, s2);
   dualBrick(3u & crossing, k3, s3);
@@ -181,40 +172,97 @@ void loadCorners(ivec3 cell) {
   dualBrick(5u & crossing, k5, s5);
   dualBrick(6u & crossing, k6, s6);
   dualBrick(7u & crossing, k7, s7);
+}
+
+// The cell's position in the current dual brick: its depth w, row bits `crossing` (bit 0: the
+// corners cross the w face, 1: the u face, 2: the v face) and its 4 rows r0..r3 as in cellRows.
+// The cell lies in the current dual brick (traceTrilinear sees to it), so its corners sit in
+// the 8 bricks looked up on entry; local coordinates wrap into the next brick.
+void cellPlace(ivec3 cell, out uint w, out uint crossing, out uint r0, out uint r1, out uint r2,
+               out uint r3) {
+  ivec3 local = cell - gDualBase;
+  const uint last = uint(VXL_N - 1);
+  w = uint(local[VXL_W]);
+  uint u = uint(local[VXL_U]), v = uint(local[VXL_V]);
+  crossing = (w == last ? 1u : 0u) | (u == last ? 2u : 0u) | (v == last ? 4u : 0u);
+  uint uNext = (u + 1u) & last, vNext = (v + 1u) & last;
+  r0 = v * uint(VXL_N) + u;
+  r1 = v * uint(VXL_N) + uNext;
+  r2 = vNext * uint(VXL_N) + u;
+  r3 = vNext * uint(VXL_N) + uNext;
+}
+
+// Reads the row words of the cell's corners (gI0..gI7): true when some corner is a stored voxel.
+// Otherwise [gRunLo, gRunHi) is the run of empty cells along w around it that the rows' masks
+// show. Row words alone: traceTrilinear crosses empty cells with this, and only a cell with a
+// stored corner goes on to loadCorners' voxel-word and TF fetches.
+bool cellRows(ivec3 cell) {
+  uint w, crossing, r0, r1, r2, r3;
+  cellPlace(cell, w, crossing, r0, r1, r2, r3);
+  gRunLo = w;  // a cell with stored corners is its own run
+  gRunHi = w + 1u;
+  int k1, k2, k3, k4, k5, k6, k7;
+  uint s1, s2, s3, s4, s5, s6, s7;
+  cornerBricks(crossing, k1, k2, k3, k4, k5, k6, k7, s1, s2, s3, s4, s5, s6, s7);
 #if VXL_ROW_APRON
   // Each pair along w in one row word: its second corner is bit w + 1, the apron bit (the next
   // brick's depth 0) where the pair crosses the w face, and it follows the first in the voxel
   // words (row_words.h): 4 fetches per cell, not 8.
   bool crossW = (crossing & 1u) != 0u;
-  uvec2 i0 = rowApronOrNone(k0, k1, crossW, r0, w), i2 = rowApronOrNone(k2, k3, crossW, r1, w);
-  uvec2 i4 = rowApronOrNone(k4, k5, crossW, r2, w), i6 = rowApronOrNone(k6, k7, crossW, r3, w);
-  if ((((i0.x | i2.x | i4.x | i6.x) >> w) & 3u) == 0u) {
-    emptyRun((i0.x | i2.x | i4.x | i6.x) & ((1u << uint(VXL_N)) - 1u), w);
-    return;
-  }
-  apronPair(i0, w, v0, v1);
-  apronPair(i2, w, v2, v3);
-  apronPair(i4, w, v4, v5);
-  apronPair(i6, w, v6, v7);
+  gI0 = rowApronOrNone(gK0, k1, crossW, r0, w);
+  gI2 = rowApronOrNone(k2, k3, crossW, r1, w);
+  gI4 = rowApronOrNone(k4, k5, crossW, r2, w);
+  gI6 = rowApronOrNone(k6, k7, crossW, r3, w);
+  uint rows = gI0.x | gI2.x | gI4.x | gI6.x;
+  if (((rows >> w) & 3u) != 0u) return true;
+  emptyRun(rows & ((1u << uint(VXL_N)) - 1u), w);
 #else
-  uvec2 i0 = rowInfoOrNone(k0, r0), i2 = rowInfoOrNone(k2, r1);
-  uvec2 i4 = rowInfoOrNone(k4, r2), i6 = rowInfoOrNone(k6, r3);
-  uvec2 i1 = i0, i3 = i2, i5 = i4, i7 = i6;
+  uint wNext = (w + 1u) & uint(VXL_N - 1);
+  gI0 = rowInfoOrNone(gK0, r0);
+  gI2 = rowInfoOrNone(k2, r1);
+  gI4 = rowInfoOrNone(k4, r2);
+  gI6 = rowInfoOrNone(k6, r3);
+  gI1 = gI0;
+  gI3 = gI2;
+  gI5 = gI4;
+  gI7 = gI6;
   if ((crossing & 1u) != 0u) {  // the pairs' second corners lie in the next brick along w
-    i1 = rowInfoOrNone(k1, r0);
-    i3 = rowInfoOrNone(k3, r1);
-    i5 = rowInfoOrNone(k5, r2);
-    i7 = rowInfoOrNone(k7, r3);
+    gI1 = rowInfoOrNone(k1, r0);
+    gI3 = rowInfoOrNone(k3, r1);
+    gI5 = rowInfoOrNone(k5, r2);
+    gI7 = rowInfoOrNone(k7, r3);
   }
-  uint hits = ((i0.x | i2.x | i4.x | i6.x) >> w) | ((i1.x | i3.x | i5.x | i7.x) >> wNext);
-  if ((hits & 1u) == 0u) {
-    emptyRun(i0.x | i2.x | i4.x | i6.x, w);
-    return;
-  }
-  rowPair(s0, i0, s1, i1, w, wNext, v0, v1);
-  rowPair(s2, i2, s3, i3, w, wNext, v2, v3);
-  rowPair(s4, i4, s5, i5, w, wNext, v4, v5);
-  rowPair(s6, i6, s7, i7, w, wNext, v6, v7);
+  uint hits = ((gI0.x | gI2.x | gI4.x | gI6.x) >> w) | ((gI1.x | gI3.x | gI5.x | gI7.x) >> wNext);
+  if ((hits & 1u) != 0u) return true;
+  emptyRun(gI0.x | gI2.x | gI4.x | gI6.x, w);
+#endif
+  return false;
+}
+
+// Loads the corners of a cell that cellRows found to have a stored corner, from its row words;
+// gCellVisible tells whether the TF leaves some corner visible. llvmpipe runs both sides of a
+// branch whenever its lanes disagree, so there is one path for every cell: a separate one for
+// cells whose corners cross a brick face (1 - (1 - 1/n)^3 of them) ran in most SIMD vectors and
+// took a third of the frame's instructions.
+void loadCorners(ivec3 cell) {
+  gCellVisible = false;
+  int v0, v1, v2, v3, v4, v5, v6, v7;
+  uint w, crossing, r0, r1, r2, r3;
+  cellPlace(cell, w, crossing, r0, r1, r2, r3);
+#if VXL_ROW_APRON
+  apronPair(gI0, w, v0, v1);
+  apronPair(gI2, w, v2, v3);
+  apronPair(gI4, w, v4, v5);
+  apronPair(gI6, w, v6, v7);
+#else
+  int k1, k2, k3, k4, k5, k6, k7;
+  uint s1, s2, s3, s4, s5, s6, s7;
+  cornerBricks(crossing, k1, k2, k3, k4, k5, k6, k7, s1, s2, s3, s4, s5, s6, s7);
+  uint wNext = (w + 1u) & uint(VXL_N - 1);
+  rowPair(gB0, gI0, s1, gI1, w, wNext, v0, v1);
+  rowPair(s2, gI2, s3, gI3, w, wNext, v2, v3);
+  rowPair(s4, gI4, s5, gI5, w, wNext, v4, v5);
+  rowPair(s6, gI6, s7, gI7, w, wNext, v6, v7);
 #endif
   storedCorner(v0, gA0, gL0);
   storedCorner(v1, gA1, gL1);
@@ -268,9 +316,10 @@ int firstSampleAfterRun(vec3 o, vec3 d, ivec3 cell, float t0) {
   return int(ceil((tExit - t0) / uStep - 0.5));
 }
 
-// One flat loop: each pass either moves to the next dual brick or takes one sample. Nested
-// loops (bricks, then samples) ran far slower on llvmpipe, whose SIMD lanes wait for the lane
-// with the longest inner loop at every outer step.
+// One flat loop: each pass moves to the next dual brick where needed, crosses runs of empty
+// cells on row words and takes the samples of one cell. Nested loops (bricks, then samples) ran
+// far slower on llvmpipe, whose SIMD lanes wait for the lane with the longest inner loop at
+// every outer step; the empty-cell loop is cheap per step (row words only).
 void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
                     inout float transmittance) {
   ivec3 dualGrid =
@@ -286,6 +335,7 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
   int k =
       brickActive ? max(0, firstSampleNear(tIn, t0)) : 0;  // next sample t_k = t0 + (k + 1/2) step
   ivec3 cached = ivec3(-2147483647);
+  bool leave = false;  // the cell at sample k is to be left: invisible under the TF
   int limit = dualGrid.x + dualGrid.y + dualGrid.z + int(min((t1 - t0) / uStep, 1e7)) + 8;
   for (int i = 0; i < limit; ++i) {
     float ts = t0 + (float(k) + 0.5) * uStep;
@@ -325,12 +375,34 @@ void traceTrilinear(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 c
       ++k;
       continue;
     }
-    if (cell != cached) {
+    if (cell != cached || leave) {
+      // Runs of empty cells are crossed here, on row words alone (4 fetches per run), until a
+      // cell with a stored corner: on llvmpipe a pass of this loop runs its whole body, 24
+      // fetches, for all 8 lanes, and a pass per empty run was a third of the tooth's passes.
+      // The samples taken are the ones a pass per run would take.
+      bool stored = false;
+      for (;;) {
+        if (!leave) {
+          stored = cellRows(cell);
+          if (stored) break;
+        }
+        leave = false;
+        k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
+        ts = t0 + (float(k) + 0.5) * uStep;
+        if (ts >= tOut) break;  // the next pass moves on to the next dual brick
+        if (!placeSample(o, d, ts, qIn, cell)) {
+          ++k;
+          break;
+        }
+      }
+      if (!stored) continue;
       cached = cell;
       loadCorners(cell);
     }
     if (!gCellVisible) {
-      k = max(k + 1, firstSampleAfterRun(o, d, cell, t0));
+      // Stored corners that the TF leaves invisible: the next pass's loop above leaves the cell,
+      // so that the body holds one firstSampleAfterRun, not two (the pass count is the same).
+      leave = true;
       continue;
     }
     // Every sample of a visible cell in this pass: its corners are loaded, and a pass of this
