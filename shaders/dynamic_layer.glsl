@@ -4,7 +4,8 @@
 // is its brick + 1), so every fragment of a brick finds the same slot at once, without a pass
 // that allocates first; the fragment that inserts a brick also writes the brick map (what the ray
 // tracer reads) and lists the slot, which the next update zeroes (dynamic_layer_build.comp.glsl).
-// VXL_DYN_N: the brick edge.
+// VXL_DYN_N: the brick edge. VXL_DYN_POOLS: the pool's storage buffers (1-4; one binding holds
+// at most GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes): slot s lives in buffer s / VXL_DYN_POOL_SLOTS.
 const uint kDynEmpty = 0xffffffffu;    // brick map: no slot yet
 const uint kDynDropped = 0xfffffffeu;  // brick map: no slot left (counted; the frame is an error)
 
@@ -13,6 +14,15 @@ uniform uint uBrickCapacity;  // pool slots, the hash table's size
 
 layout(std430, binding = 5) buffer BrickMap { uint brickMap[]; };
 layout(std430, binding = 6) buffer Pool { ivec4 pool[]; };  // normal sum xyz, material + 1
+#if VXL_DYN_POOLS > 1
+layout(std430, binding = 14) buffer Pool1 { ivec4 pool1[]; };
+#endif
+#if VXL_DYN_POOLS > 2
+layout(std430, binding = 15) buffer Pool2 { ivec4 pool2[]; };
+#endif
+#if VXL_DYN_POOLS > 3
+layout(std430, binding = 16) buffer Pool3 { ivec4 pool3[]; };
+#endif
 layout(std430, binding = 7) buffer Counters {
   uint usedSlotCount;
   uint bricksDropped;
@@ -44,6 +54,16 @@ uint dynamicSlot(uint b) {
   return kDynDropped;
 }
 
+// Adds contribution c to element e of pool buffer P. The highest material index of the voxel; a
+// stale read only costs the atomic.
+#define VXL_DYN_ADD(P)                      \
+  {                                         \
+    atomicAdd(P[e].x, c.x);                 \
+    atomicAdd(P[e].y, c.y);                 \
+    atomicAdd(P[e].z, c.z);                 \
+    if (P[e].w < c.w) atomicMax(P[e].w, c.w); \
+  }
+
 // Adds a triangle's contribution (area x unit normal in fixed point, material + 1) to a voxel.
 void addToLayer(uvec3 voxel, ivec4 c) {
   const uint n = uint(VXL_DYN_N);
@@ -51,10 +71,19 @@ void addToLayer(uvec3 voxel, ivec4 c) {
   uint slot = dynamicSlot((b.z * uBrickGrid.y + b.y) * uBrickGrid.x + b.x);
   if (slot >= uBrickCapacity) return;
   uvec3 l = voxel % n;
+#if VXL_DYN_POOLS > 1
+  uint part = slot / uint(VXL_DYN_POOL_SLOTS);
+  slot -= part * uint(VXL_DYN_POOL_SLOTS);
+#endif
   uint e = slot * n * n * n + (l.z * n + l.y) * n + l.x;
-  atomicAdd(pool[e].x, c.x);
-  atomicAdd(pool[e].y, c.y);
-  atomicAdd(pool[e].z, c.z);
-  // The highest material index of the voxel; a stale read only costs the atomic.
-  if (pool[e].w < c.w) atomicMax(pool[e].w, c.w);
+#if VXL_DYN_POOLS > 3
+  if (part == 3u) VXL_DYN_ADD(pool3) else
+#endif
+#if VXL_DYN_POOLS > 2
+  if (part == 2u) VXL_DYN_ADD(pool2) else
+#endif
+#if VXL_DYN_POOLS > 1
+  if (part == 1u) VXL_DYN_ADD(pool1) else
+#endif
+  VXL_DYN_ADD(pool)
 }

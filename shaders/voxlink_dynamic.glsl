@@ -6,13 +6,42 @@
 // fragments) and traces the static file only up to it (render_main.glsl). Defined when
 // VXL_DYNAMIC_LAYER is; VXL_DYN_N is the layer's brick edge. With VXL_DYN_SPHERES the moving
 // spheres too (render/gl/gl_dynamic_spheres.h): per brick of VXL_DYN_SPHERE_N voxels a list of
-// spheres, intersected exactly; dynamicHit() takes the nearest of the two.
+// spheres, intersected exactly; dynamicHit() takes the nearest of the two. VXL_DYN_POOLS: the
+// pool's storage buffers, slot s in buffer s / VXL_DYN_POOL_SLOTS (shaders/dynamic_layer.glsl).
 #ifdef VXL_DYNAMIC_LAYER
 
 layout(std430, binding = 59) readonly buffer DynBrickMap { uint dynBrickMap[]; };
 layout(std430, binding = 60) readonly buffer DynPool { ivec4 dynPool[]; };
+#if VXL_DYN_POOLS > 1
+layout(std430, binding = 50) readonly buffer DynPool1 { ivec4 dynPool1[]; };
+#endif
+#if VXL_DYN_POOLS > 2
+layout(std430, binding = 51) readonly buffer DynPool2 { ivec4 dynPool2[]; };
+#endif
+#if VXL_DYN_POOLS > 3
+layout(std430, binding = 52) readonly buffer DynPool3 { ivec4 dynPool3[]; };
+#endif
 uniform ivec3 uDynLo, uDynHi;  // voxel box [lo, hi) of this frame's moving triangles
 uniform ivec3 uDynBrickGrid;   // bricks per axis of the layer's map
+
+// Voxel v of the brick in pool slot `slot`.
+ivec4 dynPoolVoxel(uint slot, uint v) {
+  const uint n3 = uint(VXL_DYN_N * VXL_DYN_N * VXL_DYN_N);
+#if VXL_DYN_POOLS > 1
+  uint part = slot / uint(VXL_DYN_POOL_SLOTS);
+  uint e = (slot - part * uint(VXL_DYN_POOL_SLOTS)) * n3 + v;
+#if VXL_DYN_POOLS > 3
+  if (part == 3u) return dynPool3[e];
+#endif
+#if VXL_DYN_POOLS > 2
+  if (part == 2u) return dynPool2[e];
+#endif
+  if (part == 1u) return dynPool1[e];
+  return dynPool[e];
+#else
+  return dynPool[slot * n3 + v];
+#endif
+}
 
 // First voxel of the layer on o + t d (index space) in [t0, t1): its entry tHit, world normal n
 // (unit; towards the ray where the sides cancel) and material.
@@ -43,7 +72,7 @@ bool dynamicMeshHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3
         // The voxel walk's exit times round differently from the brick walk's: a step past the
         // brick's face before tOut would read another voxel of the pool (another brick's).
         if (any(lessThan(l, ivec3(0))) || any(greaterThanEqual(l, ivec3(bn)))) break;
-        ivec4 e = dynPool[slot * uint(bn * bn * bn) + uint((l.z * bn + l.y) * bn + l.x)];
+        ivec4 e = dynPoolVoxel(slot, uint((l.z * bn + l.y) * bn + l.x));
         if (e.w != 0) {
           tHit = tv;
           vec3 sum = vec3(e.xyz);

@@ -155,8 +155,9 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(const scene::SceneDescr
 Result<std::unique_ptr<DynamicScene>> DynamicScene::load(Prepared p) {
   const auto start = std::chrono::steady_clock::now();
   VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile file, format::VoxLinkFile::open(p.staticFile));
-  VOXLINK_ASSIGN_OR_RETURN(GlDynamicLayer layer,
-                           GlDynamicLayer::create(p.grid.dims, p.brick, p.bricks));
+  VOXLINK_ASSIGN_OR_RETURN(
+      GlDynamicLayer layer,
+      GlDynamicLayer::create(p.grid.dims, p.brick, p.bricks, p.poolBufferBytes));
   const scene::SceneDescription& scene = p.scene;
   std::unique_ptr<DynamicScene> d(new DynamicScene(scene, std::move(file), std::move(layer)));
   d->grid_ = p.grid;

@@ -73,6 +73,9 @@ class DynamicScene {
     uint32_t brick = 0;  // the layer's brick edge (dynamic_scene.cpp says why it may differ)
     uint64_t bricks = 0, triangles = 0;
     uint64_t spheres = 0, sphereReferences = 0;  // the bound on (sphere, brick) references
+    // At most this many bytes per storage buffer of the layer's pool (tests split a small pool
+    // this way; 0: GL_MAX_SHADER_STORAGE_BLOCK_SIZE).
+    uint64_t poolBufferBytes = 0;
     geometry::Bounds3 restBounds;
     double seconds = 0;
   };

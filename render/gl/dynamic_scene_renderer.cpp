@@ -2,6 +2,10 @@
 #include "render/gl/dynamic_scene_renderer.h"
 
 namespace voxlink::render::gl {
+namespace {
+// Where the ray tracer reads the layer's pool buffer i (shaders/voxlink_dynamic.glsl).
+constexpr GLuint kPoolBindings[GlDynamicLayer::kMaxPoolBuffers] = {60, 50, 51, 52};
+}  // namespace
 
 Result<std::unique_ptr<DynamicSceneRenderer>> DynamicSceneRenderer::create(
     const format::VoxLinkFile& file, const GlDynamicLayer& layer, const GlDynamicSpheres* spheres) {
@@ -28,6 +32,7 @@ std::vector<ShaderDefine> DynamicSceneRenderer::dataDefines() const {
   std::vector<ShaderDefine> defines = VoxLinkRenderer::dataDefines();
   defines.push_back({"VXL_DYNAMIC_LAYER", "1"});
   defines.push_back({"VXL_DYN_N", std::to_string(layer_.brickSize())});
+  for (ShaderDefine& d : layer_.poolDefines()) defines.push_back(std::move(d));
   if (spheres_) {
     defines.push_back({"VXL_DYN_SPHERES", "1"});
     defines.push_back({"VXL_DYN_SPHERE_N", std::to_string(spheres_->brickSize())});
@@ -38,7 +43,8 @@ std::vector<ShaderDefine> DynamicSceneRenderer::dataDefines() const {
 void DynamicSceneRenderer::bindData(const ComputeProgram& program) const {
   VoxLinkRenderer::bindData(program);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 59, layer_.brickMap());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 60, layer_.pool());
+  for (uint32_t i = 0; i < layer_.poolBuffers(); ++i)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPoolBindings[i], layer_.poolBuffer(i));
   const uint32_t n = layer_.brickSize();
   glUniform3i(program.uniform("uDynBrickGrid"), GLint((dims_[0] + n - 1) / n),
               GLint((dims_[1] + n - 1) / n), GLint((dims_[2] + n - 1) / n));

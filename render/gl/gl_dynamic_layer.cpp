@@ -15,6 +15,10 @@ namespace {
 constexpr GLuint kEmpty = 0xffffffffu;
 constexpr uint64_t kPoolVoxelBytes = 16;  // ivec4, shaders/dynamic_layer_build.comp.glsl
 constexpr double kFixedPoint = 4096;      // units per voxel^2 of area x unit normal
+// Where the raster and compute stages read pool buffer i, and kept buffer i
+// (shaders/dynamic_layer*.glsl).
+constexpr GLuint kPoolBindings[GlDynamicLayer::kMaxPoolBuffers] = {6, 14, 15, 16};
+constexpr GLuint kKeptBindings[GlDynamicLayer::kMaxPoolBuffers] = {13, 17, 18, 19};
 
 GLint getInteger(GLenum name) {
   GLint value = 0;
@@ -33,16 +37,18 @@ GlBuffer storage(uint64_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
 struct GlDynamicLayer::State {
   std::array<uint32_t, 3> dims{}, brickGrid{};
   uint32_t brickSize = 8, edge = 0;
-  uint64_t brickCapacity = 0;
+  uint64_t brickCapacity = 0, slotsPerBuffer = 0;
   size_t vertexFloats = 0, triangleIndices = 0;
   GLuint raster = 0, vertexArray = 0;
   ComputeProgram build, keepCopy;
   GlFramebuffer framebuffer;
-  GlBuffer dispatchSize, positions, indices, order, contributions, brickMap, pool, counters,
-      slotKeys, usedSlots;
+  GlBuffer dispatchSize, positions, indices, order, contributions, brickMap, counters, slotKeys,
+      usedSlots;
+  std::vector<GlBuffer> pool;  // slot s in pool[s / slotsPerBuffer]
   // What keep() saved: the brick map, hash keys, used-slot list and counters whole, and the
   // used slots' bricks packed (keptBricks of room for keptRoom).
-  GlBuffer keptBrickMap, keptSlotKeys, keptUsedSlots, keptCounters, keptPool;
+  GlBuffer keptBrickMap, keptSlotKeys, keptUsedSlots, keptCounters;
+  std::vector<GlBuffer> keptPool;  // kept brick k in keptPool[k / slotsPerBuffer]
   uint64_t keptBricks = 0, keptRoom = 0;
   bool kept = false;
   ~State() {
@@ -58,7 +64,25 @@ GlDynamicLayer::~GlDynamicLayer() = default;
 bool GlDynamicLayer::hasKept() const { return s_->kept; }
 void GlDynamicLayer::forgetKept() { s_->kept = false; }
 GLuint GlDynamicLayer::brickMap() const { return s_->brickMap.id(); }
-GLuint GlDynamicLayer::pool() const { return s_->pool.id(); }
+uint32_t GlDynamicLayer::poolBuffers() const { return uint32_t(s_->pool.size()); }
+GLuint GlDynamicLayer::poolBuffer(uint32_t i) const { return s_->pool.at(i).id(); }
+uint64_t GlDynamicLayer::slotsPerPoolBuffer() const { return s_->slotsPerBuffer; }
+
+std::vector<ShaderDefine> GlDynamicLayer::poolDefines() const {
+  return {{"VXL_DYN_POOLS", std::to_string(s_->pool.size())},
+          {"VXL_DYN_POOL_SLOTS", std::to_string(s_->slotsPerBuffer) + "u"}};
+}
+
+// Binds the pool's buffers, and with `kept` the kept ones, where the compute and raster stages
+// read them; a kept buffer that does not exist (fewer bricks kept) is bound to the first.
+static void bindPool(const std::vector<GlBuffer>& pool, const std::vector<GlBuffer>* kept) {
+  for (size_t i = 0; i < pool.size(); ++i) {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPoolBindings[i], pool[i].id());
+    if (kept)
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kKeptBindings[i],
+                       (*kept)[i < kept->size() ? i : 0].id());
+  }
+}
 uint32_t GlDynamicLayer::brickSize() const { return s_->brickSize; }
 
 uint64_t GlDynamicLayer::gpuBytes() const {
@@ -80,7 +104,8 @@ uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSi
 }
 
 Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dims,
-                                              uint32_t brickSize, uint64_t brickCapacity) {
+                                              uint32_t brickSize, uint64_t brickCapacity,
+                                              uint64_t bytesPerBuffer) {
   auto s = std::make_unique<State>();
   s->dims = dims;
   s->brickSize = brickSize;
@@ -88,16 +113,38 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   for (int a = 0; a < 3; ++a) s->brickGrid[a] = (dims[a] + brickSize - 1) / brickSize;
   const uint64_t maxBlock = uint64_t(std::max(getInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE), 0));
   const uint64_t n3 = uint64_t(brickSize) * brickSize * brickSize;
-  // The bound from the moving objects' boxes can exceed one storage buffer (128 MiB on
-  // llvmpipe) where the surface itself would fit: the pool takes what fits, and an update that
-  // needs more is an error (checkLastUpdate), never a frame with missing bricks.
-  brickCapacity = std::max<uint64_t>(1, std::min(brickCapacity, maxBlock / (n3 * kPoolVoxelBytes)));
+  // One binding holds at most GL_MAX_SHADER_STORAGE_BLOCK_SIZE bytes (128 MiB on llvmpipe), not
+  // what memory allows: the pool is split over up to kMaxPoolBuffers buffers. The bound from the
+  // moving objects' boxes can exceed even those where the surface itself would fit: the pool
+  // takes what fits, and an update that needs more is an error (checkLastUpdate), never a frame
+  // with missing bricks.
+  const uint64_t bufferBytes = bytesPerBuffer ? std::min(bytesPerBuffer, maxBlock) : maxBlock;
+  const uint64_t brickBytes = n3 * kPoolVoxelBytes;
+  s->slotsPerBuffer = bufferBytes / brickBytes;
+  if (s->slotsPerBuffer == 0)
+    return makeError(ErrorCode::kTooLarge, "dynamic layer: a brick of ", brickBytes,
+                     " bytes exceeds a storage buffer's ", bufferBytes,
+                     " (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)");
+  brickCapacity =
+      std::max<uint64_t>(1, std::min(brickCapacity, uint64_t(kMaxPoolBuffers) * s->slotsPerBuffer));
   s->brickCapacity = brickCapacity;
   if (int64_t(s->edge) > getInteger(GL_MAX_FRAMEBUFFER_WIDTH))
     return makeError(ErrorCode::kTooLarge, "dynamic layer: grid edge ", s->edge,
                      " exceeds the largest framebuffer");
   // VXL_DYN_N: the voxelizer's stages write the layer; a constant brick edge spares divisions.
-  const std::vector<ShaderDefine> layerDefines = {{"VXL_DYN_N", std::to_string(brickSize)}};
+  const uint64_t buffers = (brickCapacity + s->slotsPerBuffer - 1) / s->slotsPerBuffer;
+  // One buffer: the slots of a buffer are the capacity (the shaders' split is compiled out).
+  if (buffers == 1) s->slotsPerBuffer = brickCapacity;
+  for (uint64_t b = 0; b < buffers; ++b)
+    s->pool.push_back(storage(
+        std::min(s->slotsPerBuffer, brickCapacity - b * s->slotsPerBuffer) * brickBytes, 0));
+  const std::vector<ShaderDefine> poolDefines = {
+      {"VXL_DYN_POOLS", std::to_string(buffers)},
+      {"VXL_DYN_POOL_SLOTS", std::to_string(s->slotsPerBuffer) + "u"}};
+  std::vector<ShaderDefine> layerDefines = {{"VXL_DYN_N", std::to_string(brickSize)}};
+  layerDefines.insert(layerDefines.end(), poolDefines.begin(), poolDefines.end());
+  std::vector<ShaderDefine> computeDefines = {{"VXL_N", std::to_string(brickSize)}};
+  computeDefines.insert(computeDefines.end(), poolDefines.begin(), poolDefines.end());
   VOXLINK_ASSIGN_OR_RETURN(
       GLuint vertex, compileShaderStage(GL_VERTEX_SHADER, "gl_voxelize.vert.glsl", layerDefines));
   auto fragment = compileShaderStage(GL_FRAGMENT_SHADER, "gl_voxelize.frag.glsl", layerDefines);
@@ -106,11 +153,10 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
     return fragment.error();
   }
   VOXLINK_ASSIGN_OR_RETURN(s->raster, linkProgram({vertex, *fragment}, "gl_voxelize"));
-  VOXLINK_ASSIGN_OR_RETURN(s->build, ComputeProgram::build("dynamic_layer_build.comp.glsl",
-                                                           {{"VXL_N", std::to_string(brickSize)}}));
+  VOXLINK_ASSIGN_OR_RETURN(s->build,
+                           ComputeProgram::build("dynamic_layer_build.comp.glsl", computeDefines));
   VOXLINK_ASSIGN_OR_RETURN(s->keepCopy,
-                           ComputeProgram::build("dynamic_layer_keep.comp.glsl",
-                                                 {{"VXL_N", std::to_string(brickSize)}}));
+                           ComputeProgram::build("dynamic_layer_keep.comp.glsl", computeDefines));
   glCreateVertexArrays(1, &s->vertexArray);
   GLuint fb = 0;
   glCreateFramebuffers(1, &fb);
@@ -119,19 +165,20 @@ Result<GlDynamicLayer> GlDynamicLayer::create(const std::array<uint32_t, 3>& dim
   glNamedFramebufferParameteri(fb, GL_FRAMEBUFFER_DEFAULT_HEIGHT, GLint(s->edge));
   s->dispatchSize = storage(12);
   s->brickMap = storage(uint64_t(s->brickGrid[0]) * s->brickGrid[1] * s->brickGrid[2] * 4);
-  s->pool = storage(brickCapacity * n3 * kPoolVoxelBytes, 0);
   s->counters = storage(8);
   s->slotKeys = storage(brickCapacity * 4);
   s->usedSlots = storage(brickCapacity * 4);
   // An empty layer until the first update; from then on each update zeroes what the last used.
   const GLuint empty = kEmpty, zero = 0;
   glClearNamedBufferData(s->brickMap.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &empty);
-  for (const GlBuffer* b : {&s->pool, &s->counters, &s->slotKeys, &s->dispatchSize})
+  for (const GlBuffer* b : {&s->counters, &s->slotKeys, &s->dispatchSize})
     glClearNamedBufferData(b->id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  for (const GlBuffer& b : s->pool)
+    glClearNamedBufferData(b.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   if (GLenum e = glGetError(); e != GL_NO_ERROR)
     return makeError(ErrorCode::kTooLarge, "dynamic layer: GL error 0x", std::hex, e,
-                     " allocating ", (brickCapacity * n3 * kPoolVoxelBytes) >> 20,
-                     " MiB of brick pool");
+                     " allocating ", (brickCapacity * brickBytes) >> 20, " MiB of brick pool in ",
+                     buffers, " buffers");
   return GlDynamicLayer(std::move(s));
 }
 
@@ -229,7 +276,7 @@ Status GlDynamicLayer::update(const std::vector<float>& positions,
   // used, sized on the GPU from its count (no read-back); then an empty brick map.
   s.build.use();
   glUniform1ui(s.build.uniform("uBrickCapacity"), GLuint(s.brickCapacity));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
+  bindPool(s.pool, nullptr);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, s.counters.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, s.dispatchSize.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, s.slotKeys.id());
@@ -288,9 +335,8 @@ void GlDynamicLayer::copyKeptBricks(int pass) {
   s.keepCopy.use();
   glUniform1i(s.keepCopy.uniform("uPass"), pass);
   glUniform1ui(s.keepCopy.uniform("uBricks"), GLuint(s.keptBricks));
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s.pool.id());
+  bindPool(s.pool, &s.keptPool);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, s.usedSlots.id());
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, s.keptPool.id());
   glDispatchCompute(GLuint(std::min<uint64_t>(groups, 32768)), GLuint((groups + 32767) / 32768), 1);
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
@@ -309,8 +355,11 @@ Status GlDynamicLayer::keep() {
     s.keptUsedSlots = storage(s.brickCapacity * 4, 0);
     s.keptCounters = storage(8, 0);
   }
-  if (bricks > s.keptRoom) {  // grows to what is kept, not to the whole pool
-    s.keptPool = storage(bricks * n3 * kPoolVoxelBytes, 0);
+  if (bricks > s.keptRoom) {  // grows to what is kept, not to the whole pool; split as the pool
+    s.keptPool.clear();
+    for (uint64_t k = 0; k < bricks; k += s.slotsPerBuffer)
+      s.keptPool.push_back(
+          storage(std::min(s.slotsPerBuffer, bricks - k) * n3 * kPoolVoxelBytes, 0));
     s.keptRoom = bricks;
   }
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -355,7 +404,10 @@ Status GlDynamicLayer::checkLastUpdate() const {
   glGetNamedBufferSubData(s_->counters.id(), 0, 8, counters);
   if (counters[1] > 0)
     return makeError(ErrorCode::kTooLarge, "dynamic layer: ", uint64_t(counters[0]) + counters[1],
-                     " bricks exceed its ", s_->brickCapacity);
+                     " bricks exceed its ", s_->brickCapacity, " (", s_->pool.size(),
+                     " of at most ", kMaxPoolBuffers, " storage buffers of ", s_->slotsPerBuffer,
+                     " bricks; one holds at most GL_MAX_SHADER_STORAGE_BLOCK_SIZE = ",
+                     getInteger(GL_MAX_SHADER_STORAGE_BLOCK_SIZE) >> 20, " MiB)");
   return Status::ok();
 }
 
@@ -372,7 +424,8 @@ std::vector<std::pair<uint64_t, std::array<int32_t, 4>>> GlDynamicLayer::readVox
       for (uint32_t bx = 0; bx < s.brickGrid[0]; ++bx) {
         const GLuint slot = map[(uint64_t(bz) * s.brickGrid[1] + by) * s.brickGrid[0] + bx];
         if (slot == kEmpty || slot >= s.brickCapacity) continue;
-        glGetNamedBufferSubData(s.pool.id(), GLintptr(uint64_t(slot) * n3 * kPoolVoxelBytes),
+        glGetNamedBufferSubData(s.pool[slot / s.slotsPerBuffer].id(),
+                                GLintptr(uint64_t(slot % s.slotsPerBuffer) * n3 * kPoolVoxelBytes),
                                 GLsizeiptr(n3 * kPoolVoxelBytes), brick.data());
         for (uint32_t k = 0; k < n3; ++k)
           if (brick[k][3] != 0)

@@ -4,7 +4,9 @@
 // coverage), whose fragments add their triangle straight into a GPU-side structure
 // (shaders/dynamic_layer.glsl), with nothing stored per fragment and nothing read back:
 //   - a brick map over the whole grid: per brick a pool slot, or empty;
-//   - a pool of bricks (sized from the moving objects' bounds): per voxel the sum of its
+//   - a pool of bricks (sized from the moving objects' bounds, split over up to kMaxPoolBuffers
+//     storage buffers where one binding's GL_MAX_SHADER_STORAGE_BLOCK_SIZE does not hold it,
+//     slot s in buffer s / slotsPerPoolBuffer()): per voxel the sum of its
 //     triangles' area x unit normal in fixed point (atomic adds) and material + 1; a brick gets
 //     its slot from a hash table over the slots, and only the slots an update used are zeroed
 //     by the next (shaders/dynamic_layer_build.comp.glsl).
@@ -26,6 +28,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "render/gl/shader_program.h"
 
 namespace voxlink::render::gl {
 
@@ -35,10 +38,13 @@ uint64_t dynamicBrickBound(const std::array<double, 3>& extent, uint32_t brickSi
 
 class GlDynamicLayer {
  public:
-  // Needs a current GL 4.5 context. The pool holds `brickCapacity` bricks, or as many as the
-  // largest storage buffer does. Errors: a grid wider than the largest framebuffer.
+  static constexpr uint32_t kMaxPoolBuffers = 4;
+  // Needs a current GL 4.5 context. The pool holds `brickCapacity` bricks, or as many as
+  // kMaxPoolBuffers storage buffers of GL_MAX_SHADER_STORAGE_BLOCK_SIZE (or of `bytesPerBuffer`
+  // where that is smaller and not 0: tests split a small pool) do. Errors: a grid wider than the
+  // largest framebuffer, a brick larger than one buffer.
   static Result<GlDynamicLayer> create(const std::array<uint32_t, 3>& dims, uint32_t brickSize,
-                                       uint64_t brickCapacity);
+                                       uint64_t brickCapacity, uint64_t bytesPerBuffer = 0);
 
   // Re-voxelizes the triangles (vertices in grid coordinates: voxel i spans [i, i + 1)) into the
   // layer, each with its material (a voxel keeps the highest of its triangles'). Queues uploads,
@@ -59,7 +65,12 @@ class GlDynamicLayer {
   std::vector<std::pair<uint64_t, std::array<int32_t, 4>>> readVoxels() const;
 
   GLuint brickMap() const;
-  GLuint pool() const;
+  // The pool's storage buffers (slot s in buffer s / slotsPerPoolBuffer()) and the defines the
+  // shaders read them with (VXL_DYN_POOLS, VXL_DYN_POOL_SLOTS).
+  uint32_t poolBuffers() const;
+  GLuint poolBuffer(uint32_t i) const;
+  uint64_t slotsPerPoolBuffer() const;
+  std::vector<ShaderDefine> poolDefines() const;
   uint32_t brickSize() const;
   // Voxel box [lo, hi) holding the last update's triangles (rays are clipped to it).
   const std::array<int32_t, 3>& lo() const { return lo_; }

@@ -361,5 +361,41 @@ TEST(DynamicScene, ASetPoseGivesTheMovedVoxelsAndStaysInTheGrid) {
   EXPECT_FALSE(d.setPose(0, notFinite).isOk());
 }
 
+// A pool split over three storage buffers (a test cap on bytes per buffer, as a pool over
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE is split) draws the frame one buffer draws, bit for bit.
+TEST(DynamicScene, APoolSplitOverBuffersDrawsTheSameFrame) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  auto description = scene::readSceneDescription(writeScene(dir, kKeys));
+  ASSERT_TRUE(description) << description.message();
+  auto prepared = DynamicScene::prepare(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(prepared) << prepared.message();
+  DynamicScene::Prepared split = *prepared;
+  split.poolBufferBytes = (prepared->bricks + 2) / 3 * prepared->brick * prepared->brick *
+                          prepared->brick * 16;  // 16 bytes per voxel
+  auto one = DynamicScene::load(std::move(*prepared));
+  ASSERT_TRUE(one) << one.message();
+  auto three = DynamicScene::load(std::move(split));
+  ASSERT_TRUE(three) << three.message();
+  EXPECT_EQ((*one)->layer().poolBuffers(), 1u);
+  EXPECT_EQ((*three)->layer().poolBuffers(), 3u);
+  const Camera camera = cameraFor(**one);
+  for (double t : {0.0, 0.5, 1.3}) {
+    ASSERT_TRUE((*one)->setTime(t).isOk());
+    ASSERT_TRUE((*three)->setTime(t).isOk());
+    ASSERT_TRUE((*one)->checkLastUpdate().isOk());
+    ASSERT_TRUE((*three)->checkLastUpdate().isOk());
+    EXPECT_EQ((*one)->layer().readVoxels(), (*three)->layer().readVoxels()) << "t " << t;
+    const Image a = renderLitFromAbove((*one)->renderer(), camera, true);
+    const Image b = renderLitFromAbove((*three)->renderer(), camera, true);
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    size_t differing = 0, covered = 0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) differing += a.rgba[i] != b.rgba[i];
+    for (size_t i = 3; i < a.rgba.size(); i += 4) covered += a.rgba[i] > 0;
+    EXPECT_EQ(differing, 0u) << "t " << t;
+    EXPECT_GT(covered, a.rgba.size() / 40) << "t " << t;  // not an empty frame
+  }
+}
+
 }  // namespace
 }  // namespace voxlink::viewer

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "geometry/mesh_loader.h"
 #include "geometry/voxel_grid.h"
@@ -148,5 +149,53 @@ TEST(GlDynamicLayer, AnUpdateAfterAnotherGivesTheSameLayerAsAFreshOne) {
   for (size_t i = 0; i < fresh.size(); ++i) diff += fresh[i] != again[i];
   EXPECT_EQ(diff, 0u);
 }
+// A pool split over four storage buffers (a test cap on bytes per buffer) gives the layer one
+// buffer gives, for a fresh update and for one on a kept layer; a split pool still too small is
+// the error, naming the per-buffer limit.
+TEST(GlDynamicLayer, APoolSplitOverBuffersGivesTheSameLayer) {
+  VOXLINK_REQUIRE_GL();
+  Fixture f = bunnyAt(96);
+  std::vector<float> moved = f.gridPositions;
+  for (size_t v = 0; v < moved.size(); v += 3) moved[v] += 17.5f;
+  std::array<double, 3> extent{};
+  for (int a = 0; a < 3; ++a) extent[a] = f.grid.dims[a];
+  const uint64_t bound = dynamicBrickBound(extent, 8, f.grid.dims), brickBytes = 8 * 8 * 8 * 16;
+  auto one = GlDynamicLayer::create(f.grid.dims, 8, bound);
+  ASSERT_TRUE(one) << one.message();
+  ASSERT_EQ(one->poolBuffers(), 1u);
+  ASSERT_TRUE(one->update(f.gridPositions, f.mesh.triangles, materials(f, 2)).isOk());
+  ASSERT_TRUE(one->keep().isOk());
+  const auto voxels = one->readVoxels();
+  std::set<std::array<uint32_t, 3>> bricks;
+  for (const auto& v : voxels) {
+    const auto c = geometry::voxelFromKey(v.first);
+    bricks.insert({c[0] / 8, c[1] / 8, c[2] / 8});
+  }
+  ASSERT_GT(bricks.size(), 8u);
+  // Buffers of 3/4 of the bricks used: the kept bricks too take two buffers.
+  auto four = GlDynamicLayer::create(f.grid.dims, 8, bound, bricks.size() * 3 / 4 * brickBytes);
+  ASSERT_TRUE(four) << four.message();
+  ASSERT_EQ(four->poolBuffers(), 4u);
+  ASSERT_TRUE(four->update(f.gridPositions, f.mesh.triangles, materials(f, 2)).isOk());
+  ASSERT_TRUE(four->keep().isOk());
+  EXPECT_EQ(voxels, four->readVoxels());
+  for (GlDynamicLayer* layer : {&*one, &*four}) {
+    ASSERT_TRUE(layer->update(moved, f.mesh.triangles, materials(f, 5), true).isOk());
+    ASSERT_TRUE(layer->checkLastUpdate().isOk());
+  }
+  const auto both = one->readVoxels();
+  EXPECT_GT(both.size(), voxels.size());
+  EXPECT_EQ(both, four->readVoxels());
+  auto small = GlDynamicLayer::create(f.grid.dims, 8, bound, 8 * brickBytes);  // 4 x 8 bricks
+  ASSERT_TRUE(small) << small.message();
+  ASSERT_TRUE(small->update(f.gridPositions, f.mesh.triangles, materials(f, 2)).isOk());
+  const Status s = small->checkLastUpdate();
+  ASSERT_FALSE(s.isOk());
+  EXPECT_NE(s.message().find("bricks exceed its 32 (4 of at most 4 storage buffers of 8 bricks"),
+            std::string::npos)
+      << s.message();
+  EXPECT_NE(s.message().find("GL_MAX_SHADER_STORAGE_BLOCK_SIZE"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace voxlink::render::gl
