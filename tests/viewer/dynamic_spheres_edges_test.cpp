@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Moving sphere sets at their edges (docs/dynamic-scenes.md): one sphere, a sphere nearly as
+// large as the grid, a sphere touching the grid's side, a dozen sphere sets moving over a
+// standing floor; 4^3 and 16^3 bricks at 64 and 128. Each frame must be the static scene's with
+// the spheres at that pose (the scene frozen at that time), as DynamicSpheres.* check.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "format/bricked_volume.h"
+#include "gl_test_context.h"
+#include "render/camera.h"
+#include "render/gl/render_target.h"
+#include "render/gl/voxlink_renderer.h"
+#include "render/image.h"
+#include "scene/scene_assembly.h"
+#include "tests/support/test_util.h"
+#include "viewer/dynamic_scene.h"
+
+namespace voxlink::viewer {
+namespace {
+
+using namespace render;
+using namespace render::gl;
+
+Image draw(VolumeRenderer& renderer, const Camera& camera) {
+  RenderSettings s;
+  s.width = 96;
+  s.height = 96;
+  s.shading.lightDirection = {0.6, 1.0, 0.3};
+  RenderTarget target;
+  const Status st = renderer.render(camera, s, target);
+  EXPECT_TRUE(st.isOk()) << (st ? "" : st.message());
+  return target.read();
+}
+
+// A floor of half-width `extent` and two small static spheres at opposite corners (the grid
+// holds the motion), then `moving`.
+std::string writeScene(const ::voxlink::testing::TempDir& dir, int resolution, int brick,
+                       double extent, const std::string& moving) {
+  std::ofstream(dir.file("floor.obj")) << "v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\nf 1 2 3 4\n";
+  std::ofstream(dir.file("one.txt")) << "0 0.1 0 0.05\n";
+  const std::string e = std::to_string(extent);
+  const std::string path = dir.file("edges.scene.json");
+  std::ofstream(path) << "{\"grid\": {\"resolution\": " << resolution << ", \"brick\": " << brick
+                      << R"(}, "materials": {"jade": {"color": [0.35, 0.65, 0.45]},
+      "clay": {"color": [0.8, 0.6, 0.5]}},
+    "objects": [
+      {"type": "mesh", "file": "floor.obj", "material": "clay",
+       "transform": {"scale": [)" << e << ", 1, " << e << R"(]}},
+      {"type": "sphere", "center": [-)" << e << ", " << e << ", -" << e
+                      << R"(], "radius": 0.05, "material": "clay"},
+      {"type": "sphere", "center": [)" << e << ", -" << e << ", " << e
+                      << R"(], "radius": 0.05, "material": "clay"},
+      )" << moving << "]}";
+  return path;
+}
+
+const char* kMove =
+    R"("animation": {"period": 2, "keys": [{"time": 0, "translate": [-0.05, 0, 0]},
+       {"time": 1, "translate": [0.05, 0.02, 0.03]}]})";
+
+void expectStaticFrames(const std::string& what, double extent, const std::string& moving) {
+  for (int resolution : {64, 128})
+    for (int brick : {4, 16}) {
+      SCOPED_TRACE(what + " resolution " + std::to_string(resolution) + " brick " +
+                   std::to_string(brick));
+      ::voxlink::testing::TempDir dir;
+      auto description =
+          scene::readSceneDescription(writeScene(dir, resolution, brick, extent, moving));
+      ASSERT_TRUE(description) << description.message();
+      auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+      ASSERT_TRUE(dynamic) << dynamic.message();
+      DynamicScene& d = **dynamic;
+      CameraSpec spec;
+      spec.azimuthDeg = 30;
+      spec.elevationDeg = 35;
+      spec.up = UpAxis::kY;
+      const Camera camera = Camera::framing(d.renderer().geometry().worldBox(), spec);
+      for (double t : {0.0, 0.3, 1.0, 1.5, 0.0}) {
+        ASSERT_TRUE(d.setTime(t).isOk());
+        ASSERT_TRUE(d.checkLastUpdate().isOk());
+        const Image frame = draw(d.renderer(), camera);
+        auto built = scene::buildScene(d.frozenAt(t));
+        ASSERT_TRUE(built) << built.message();
+        ASSERT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
+        auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
+        ASSERT_TRUE(file) << file.message();
+        auto host = VoxLinkRenderer::create(*file);
+        ASSERT_TRUE(host) << host.message();
+        auto e = compareImages(frame, draw(**host, camera));
+        ASSERT_TRUE(e);
+        EXPECT_EQ(e->pixelsOver, 0u) << "t " << t << ": max error " << e->maxError;
+      }
+    }
+}
+
+TEST(DynamicSpheresEdges, OneSphereAndOneParticle) {
+  VOXLINK_REQUIRE_GL();
+  expectStaticFrames("one sphere", 0.6,
+                     std::string(R"({"type": "sphere", "center": [0, 0.2, 0], "radius": 0.1,
+                                     "material": "jade", )") +
+                         kMove + "}");
+  expectStaticFrames("one particle", 0.6,
+                     std::string(R"({"type": "particles", "file": "one.txt", "material": "jade",
+                                     )") +
+                         kMove + "}");
+}
+
+TEST(DynamicSpheresEdges, ASphereNearlyAsLargeAsTheGridAndOneAtItsSide) {
+  VOXLINK_REQUIRE_GL();
+  expectStaticFrames("huge", 6,
+                     std::string(R"({"type": "sphere", "center": [0, 0, 0], "radius": 5.9,
+                                     "material": "jade", )") +
+                         kMove + "}");
+  expectStaticFrames("at the side", 0.9,
+                     std::string(R"({"type": "sphere", "center": [0.45, 0.2, 0], "radius": 0.4,
+                                     "material": "jade", )") +
+                         kMove + "}");
+}
+
+TEST(DynamicSpheresEdges, ADozenSphereSetsOverAStandingFloor) {
+  VOXLINK_REQUIRE_GL();
+  std::string sets;
+  for (int i = 0; i < 12; ++i)
+    sets += std::string(i ? ", " : "") + R"({"type": "sphere", "center": [)" +
+            std::to_string(-0.5 + 0.09 * i) + ", " + std::to_string(0.05 + 0.04 * i) +
+            ", 0], \"radius\": " + std::to_string(0.02 + 0.01 * (i % 4)) +
+            R"(, "material": "jade", )" + kMove + "}";
+  expectStaticFrames("dozen", 0.8, sets);
+}
+
+}  // namespace
+}  // namespace voxlink::viewer
