@@ -56,8 +56,8 @@ void expectGridEqualsPredict(const Kriger& k, const GridSpec& grid, const std::s
                         std::fabs(s - p->variance) <= 1e-8 * k.variogram().sill();
         if (!ok && reported++ < 5)
           ADD_FAILURE() << "node " << x << "," << y << "," << z << ": grid " << v << " / " << s
-                        << ", predict " << p->value << " / " << p->variance << " ("
-                        << p->neighbours << " neighbours)";
+                        << ", predict " << p->value << " / " << p->variance << " (" << p->neighbours
+                        << " neighbours)";
       }
 }
 
