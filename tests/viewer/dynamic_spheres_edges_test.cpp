@@ -49,11 +49,12 @@ std::string writeScene(const ::voxlink::testing::TempDir& dir, int resolution, i
       "clay": {"color": [0.8, 0.6, 0.5]}},
     "objects": [
       {"type": "mesh", "file": "floor.obj", "material": "clay",
-       "transform": {"scale": [)" << e << ", 1, " << e << R"(]}},
-      {"type": "sphere", "center": [-)" << e << ", " << e << ", -" << e
-                      << R"(], "radius": 0.05, "material": "clay"},
-      {"type": "sphere", "center": [)" << e << ", -" << e << ", " << e
-                      << R"(], "radius": 0.05, "material": "clay"},
+       "transform": {"scale": [)"
+                      << e << ", 1, " << e << R"(]}},
+      {"type": "sphere", "center": [-)"
+                      << e << ", " << e << ", -" << e << R"(], "radius": 0.05, "material": "clay"},
+      {"type": "sphere", "center": [)"
+                      << e << ", -" << e << ", " << e << R"(], "radius": 0.05, "material": "clay"},
       )" << moving << "]}";
   return path;
 }
