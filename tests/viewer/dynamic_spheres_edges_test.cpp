@@ -133,5 +133,60 @@ TEST(DynamicSpheresEdges, ADozenSphereSetsOverAStandingFloor) {
   expectStaticFrames("dozen", 0.8, sets);
 }
 
+// A moving mesh and moving spheres with the mesh layer's pool split over four storage buffers
+// (the test cap on bytes per buffer): the plain frame with shadows and the ray-traced frame
+// (reflections, shadows) equal one buffer's bit for bit; the tracer then declares every pool
+// buffer beside the sphere lists.
+TEST(DynamicSpheresEdges, FourPoolBuffersBesideMovingSpheresDrawOneBuffersFrames) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  const std::string moving =
+      std::string(R"({"type": "sphere", "center": [0.1, 0.3, 0], "radius": 0.15,
+                      "material": "jade", )") +
+      kMove + R"(}, {"type": "mesh", "file": "floor.obj", "material": "jade",
+      "transform": {"scale": [0.3, 1, 0.3], "rotate": [0, 0, 60], "translate": [-0.2, 0.2, 0]},
+      )" +
+      kMove + "}";
+  auto description = scene::readSceneDescription(writeScene(dir, 96, 8, 0.6, moving));
+  ASSERT_TRUE(description) << description.message();
+  auto prepared = DynamicScene::prepare(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(prepared) << prepared.message();
+  DynamicScene::Prepared split = *prepared;
+  split.poolBufferBytes = (prepared->bricks + 3) / 4 * 8 * 8 * 8 * 16;  // 16 bytes per voxel
+  auto one = DynamicScene::load(std::move(*prepared));
+  ASSERT_TRUE(one) << one.message();
+  auto four = DynamicScene::load(std::move(split));
+  ASSERT_TRUE(four) << four.message();
+  EXPECT_EQ((*one)->layer().poolBuffers(), 1u);
+  EXPECT_EQ((*four)->layer().poolBuffers(), 4u);
+  CameraSpec spec;
+  spec.azimuthDeg = 30;
+  spec.elevationDeg = 35;
+  spec.up = UpAxis::kY;
+  const Camera camera = Camera::framing((*one)->renderer().geometry().worldBox(), spec);
+  RenderSettings s;
+  s.width = s.height = 64;
+  s.shading.shadows = true;
+  s.shading.lightDirection = {0.6, 1.0, 0.3};
+  for (bool effects : {false, true}) {
+    s.effects.reflect = s.effects.shadows = effects;
+    for (double t : {0.3, 1.0}) {
+      ASSERT_TRUE((*one)->setTime(t).isOk());
+      ASSERT_TRUE((*four)->setTime(t).isOk());
+      ASSERT_TRUE((*one)->checkLastUpdate().isOk());
+      ASSERT_TRUE((*four)->checkLastUpdate().isOk());
+      RenderTarget a, b;
+      const Status ra = (*one)->renderer().render(camera, s, a);
+      const Status rb = (*four)->renderer().render(camera, s, b);
+      ASSERT_TRUE(ra.isOk()) << ra.message();
+      ASSERT_TRUE(rb.isOk()) << rb.message();
+      auto e = compareImages(a.read(), b.read());
+      ASSERT_TRUE(e);
+      EXPECT_EQ(e->pixelsOver, 0u) << "effects " << effects << " t " << t;
+      EXPECT_EQ(e->maxError, 0.0) << "effects " << effects << " t " << t;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace voxlink::viewer
