@@ -10,6 +10,7 @@
 #include <fstream>
 #include <set>
 
+#include "frozen_scene_frame.h"
 #include "gl_test_context.h"
 #include "render/camera.h"
 #include "render/gl/gl_voxelizer.h"
@@ -80,16 +81,8 @@ Image renderLitFromAbove(VolumeRenderer& renderer, const Camera& camera, bool sh
 // drawn by VoxLinkRenderer with the same settings.
 Image hostFrame(const DynamicScene& dynamic, double t, const ::voxlink::testing::TempDir& dir,
                 const Camera& camera, const RenderSettings& s) {
-  auto built = scene::buildScene(dynamic.frozenAt(t));
-  EXPECT_TRUE(built) << built.message();
-  if (!built) return {};
-  EXPECT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
-  auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
-  EXPECT_TRUE(file) << file.message();
-  if (!file) return {};
-  auto host = VoxLinkRenderer::create(*file);
-  EXPECT_TRUE(host) << host.message();
-  return host ? renderWith(**host, camera, s) : Image{};
+  return testing::frozenSceneFrame(
+      dynamic, t, dir, [&](VolumeRenderer& host) { return renderWith(host, camera, s); });
 }
 
 Camera cameraFor(DynamicScene& dynamic) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "format/bricked_volume.h"
+#include "frozen_scene_frame.h"
 #include "gl_test_context.h"
 #include "render/camera.h"
 #include "render/gl/render_target.h"
@@ -84,14 +85,9 @@ void expectStaticFrames(const std::string& what, double extent, const std::strin
         ASSERT_TRUE(d.setTime(t).isOk());
         ASSERT_TRUE(d.checkLastUpdate().isOk());
         const Image frame = draw(d.renderer(), camera);
-        auto built = scene::buildScene(d.frozenAt(t));
-        ASSERT_TRUE(built) << built.message();
-        ASSERT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
-        auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
-        ASSERT_TRUE(file) << file.message();
-        auto host = VoxLinkRenderer::create(*file);
-        ASSERT_TRUE(host) << host.message();
-        auto e = compareImages(frame, draw(**host, camera));
+        auto e = compareImages(
+            frame, testing::frozenSceneFrame(
+                       d, t, dir, [&](VolumeRenderer& host) { return draw(host, camera); }));
         ASSERT_TRUE(e);
         EXPECT_EQ(e->pixelsOver, 0u) << "t " << t << ": max error " << e->maxError;
       }

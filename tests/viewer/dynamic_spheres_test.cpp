@@ -13,6 +13,7 @@
 #include <string>
 
 #include "format/bricked_volume.h"
+#include "frozen_scene_frame.h"
 #include "gl_test_context.h"
 #include "render/camera.h"
 #include "render/gl/render_target.h"
@@ -72,16 +73,8 @@ Image render(VolumeRenderer& renderer, const Camera& camera, bool shadows) {
 // The static scene with the spheres at their pose at `t`: built, written, drawn.
 Image staticFrame(const DynamicScene& dynamic, double t, const ::voxlink::testing::TempDir& dir,
                   const Camera& camera, bool shadows) {
-  auto built = scene::buildScene(dynamic.frozenAt(t));
-  EXPECT_TRUE(built) << built.message();
-  if (!built) return {};
-  EXPECT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
-  auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
-  EXPECT_TRUE(file) << file.message();
-  if (!file) return {};
-  auto host = VoxLinkRenderer::create(*file);
-  EXPECT_TRUE(host) << host.message();
-  return host ? render(**host, camera, shadows) : Image{};
+  return testing::frozenSceneFrame(
+      dynamic, t, dir, [&](VolumeRenderer& host) { return render(host, camera, shadows); });
 }
 
 void expectStaticScenesFrames(int brick) {
@@ -174,16 +167,12 @@ TEST(DynamicSpheres, TheRayTracedModeSeesTheMovingSpheres) {
     RenderTarget target;
     ASSERT_TRUE(d.renderer().render(camera, s, target).isOk());
     const Image frame = target.read();
-    auto built = scene::buildScene(d.frozenAt(t));
-    ASSERT_TRUE(built) << built.message();
-    ASSERT_TRUE(format::writeBrickedVolume(dir.file("frozen.vxl"), built->volume).isOk());
-    auto file = format::VoxLinkFile::open(dir.file("frozen.vxl"));
-    ASSERT_TRUE(file) << file.message();
-    auto host = VoxLinkRenderer::create(*file);
-    ASSERT_TRUE(host) << host.message();
-    RenderTarget hostTarget;
-    ASSERT_TRUE((*host)->render(camera, s, hostTarget).isOk());
-    auto e = compareImages(frame, hostTarget.read());
+    const Image hostFrame = testing::frozenSceneFrame(d, t, dir, [&](VolumeRenderer& host) {
+      RenderTarget hostTarget;
+      EXPECT_TRUE(host.render(camera, s, hostTarget).isOk());
+      return hostTarget.read();
+    });
+    auto e = compareImages(frame, hostFrame);
     ASSERT_TRUE(e);
     auto plain = compareImages(frame, render(d.renderer(), camera, true));
     ASSERT_TRUE(plain);
