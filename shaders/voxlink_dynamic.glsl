@@ -43,21 +43,33 @@ ivec4 dynPoolVoxel(uint slot, uint v) {
 #endif
 }
 
+// The bricks of n voxels that the voxel box [lo, hi) spans, walked along o + t d from where the
+// ray enters the box in [t0, t1) to tb; false when it misses the box there. `limit` bounds the
+// walk's steps (the bricks' span along each axis, plus 3).
+bool dynamicBrickWalk(vec3 o, vec3 d, float t0, float t1, ivec3 lo, ivec3 hi, int n,
+                      out float ta, out float tb, out Dda bricks, out int limit) {
+  if (any(greaterThanEqual(lo, hi))) return false;
+  vec2 range = intersectBox(o - vec3(lo), d, vec3(hi - lo));
+  ta = max(range.x, t0);
+  tb = min(range.y, t1);
+  if (!(ta < tb)) return false;
+  ivec3 bLo = lo / n, bHi = (hi - 1) / n;
+  bricks = ddaInit(o / float(n), d / float(n), ta, bLo, bHi);
+  limit = (bHi.x - bLo.x) + (bHi.y - bLo.y) + (bHi.z - bLo.z) + 3;
+  return true;
+}
+
 // First voxel of the layer on o + t d (index space) in [t0, t1): its entry tHit, world normal n
 // (unit; towards the ray where the sides cancel) and material.
 bool dynamicMeshHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
                 out uint material) {
   tHit = kBig;
-  vec3 lo = vec3(uDynLo), hi = vec3(uDynHi);
-  if (any(greaterThanEqual(uDynLo, uDynHi))) return false;
-  vec2 range = intersectBox(o - lo, d, hi - lo);
-  float ta = max(range.x, t0), tb = min(range.y, t1);
-  if (!(ta < tb)) return false;
   const int bn = VXL_DYN_N;
-  ivec3 bLo = uDynLo / bn, bHi = (uDynHi - 1) / bn;
-  Dda bricks = ddaInit(o / float(bn), d / float(bn), ta, bLo, bHi);
+  float ta, tb;
+  Dda bricks;
+  int limit;
+  if (!dynamicBrickWalk(o, d, t0, t1, uDynLo, uDynHi, bn, ta, tb, bricks, limit)) return false;
   float t = ta;
-  int limit = (bHi.x - bLo.x) + (bHi.y - bLo.y) + (bHi.z - bLo.z) + 3;
   for (int i = 0; i < limit && t < tb; ++i) {
     int axis = minAxis(bricks.tMax);
     float tOut = min(max(bricks.tMax[axis], t), tb);
@@ -106,16 +118,13 @@ uniform ivec3 uDynSphereBrickGrid;
 bool dynamicSphereHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
                       out uint material) {
   tHit = kBig;
-  if (any(greaterThanEqual(uDynSphereLo, uDynSphereHi))) return false;
-  vec3 lo = vec3(uDynSphereLo), hi = vec3(uDynSphereHi);
-  vec2 range = intersectBox(o - lo, d, hi - lo);
-  float ta = max(range.x, t0), tb = min(range.y, t1);
-  if (!(ta < tb)) return false;
   const int bn = VXL_DYN_SPHERE_N;
-  ivec3 bLo = uDynSphereLo / bn, bHi = (uDynSphereHi - 1) / bn;
-  Dda bricks = ddaInit(o / float(bn), d / float(bn), ta, bLo, bHi);
+  float ta, tb;
+  Dda bricks;
+  int limit;
+  if (!dynamicBrickWalk(o, d, t0, t1, uDynSphereLo, uDynSphereHi, bn, ta, tb, bricks, limit))
+    return false;
   float t = ta;
-  int limit = (bHi.x - bLo.x) + (bHi.y - bLo.y) + (bHi.z - bLo.z) + 3;
   for (int i = 0; i < limit && t < tb; ++i) {
     int axis = minAxis(bricks.tMax);
     float tOut = min(max(bricks.tMax[axis], t), tb);
