@@ -9,11 +9,13 @@
 namespace voxlink::geometry {
 namespace {
 
-// The offset just past the line `end_header` (before its line end), or npos.
+// The offset just past the line `end_header` and any spaces or tabs after it (before its line
+// end), or npos. Trailing blanks occur in files written by hand and assimp reads them.
 size_t endOfHeaderLine(const std::string& head) {
   for (size_t at = head.find("\nend_header"); at != std::string::npos;
        at = head.find("\nend_header", at + 1)) {
-    const size_t after = at + 11;
+    size_t after = at + 11;
+    while (after < head.size() && (head[after] == ' ' || head[after] == '\t')) ++after;
     if (after == head.size() || head[after] == '\n' || head[after] == '\r') return after;
   }
   return std::string::npos;

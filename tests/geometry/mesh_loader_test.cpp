@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -156,6 +157,30 @@ TEST(MeshLoader, BinaryPlyBothByteOrders) {
     EXPECT_FLOAT_EQ(b.max[1], 3.0f);
     EXPECT_FLOAT_EQ(b.max[2], 4.0f);
   }
+}
+
+// Blanks after `end_header` (files written by hand; assimp reads them): the header check
+// accepts them and the binary data still starts after the line end.
+TEST(MeshLoader, BlanksAfterEndHeader) {
+  TempDir dir;
+  std::vector<uint8_t> binary = binaryPly(false);
+  const std::string mark = "end_header";
+  auto at = std::search(binary.begin(), binary.end(), mark.begin(), mark.end());
+  ASSERT_NE(at, binary.end());
+  binary.insert(at + mark.size(), {' ', '\t', ' '});
+  testing::writeBytes(dir.file("blanks.ply"), binary);
+  auto mesh = loadMesh(dir.file("blanks.ply"));
+  ASSERT_TRUE(mesh) << mesh.message();
+  EXPECT_EQ(mesh->triangleCount(), 2u);
+  EXPECT_FLOAT_EQ(meshBounds(*mesh).max[2], 4.0f);
+  writeText(dir.file("blanks-ascii.ply"),
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+            "property float y\nproperty float z\nelement face 1\n"
+            "property list uchar int vertex_indices\nend_header  \r\n"
+            "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  auto ascii = loadMesh(dir.file("blanks-ascii.ply"));
+  ASSERT_TRUE(ascii) << ascii.message();
+  EXPECT_EQ(ascii->triangleCount(), 1u);
 }
 
 TEST(MeshLoader, AsciiStl) {
