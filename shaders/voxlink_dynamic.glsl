@@ -192,7 +192,7 @@ bool dynamicSurfaceNext(vec3 o, vec3 d, inout DynamicSurfaces s, out float tHit,
     if (!dynamicSphereHit(o, d, s.sphereFrom, limit, s.sphereT, s.sphereN, s.sphereMaterial)) {
       // None before the mesh voxel: searched from there once that voxel is taken.
       s.sphereT = limit < s.t1 ? -1.0 : kBig;
-      s.sphereFrom = limit;
+      s.sphereFrom = max(s.sphereFrom, limit);
     }
   }
   isMesh = !(s.sphereT >= 0.0 && s.sphereT < s.meshT);

@@ -23,21 +23,24 @@ void traceVoxelsAndLayer(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout v
   uint material;
   bool isMesh;
   vec2 chord;
-  for (int k = 0; k < kMaxDynamicSurfaces &&
-                  dynamicSurfaceNext(o, d, surfaces, tHit, n, material, isMesh, chord);
-       ++k) {
+  // One call of traceVoxels and of compositeSurface per pass of the loop, whether a surface
+  // was found or not: rays of one SIMD vector that hit a moving object and rays that miss it
+  // walk the static file together (with a call site for each, the opaque animated dragon's
+  // render took 1.18x main's on llvmpipe in one A/B run; with one, 0.97-1.03x).
+  for (int k = 0; k <= kMaxDynamicSurfaces; ++k) {
+    bool found = k < kMaxDynamicSurfaces &&
+                 dynamicSurfaceNext(o, d, surfaces, tHit, n, material, isMesh, chord);
     // A mesh voxel's surface lies at its entry, before the static voxel there (a tie: the moving
     // one first), so the stretch ends a thousandth of a voxel before it and the next one starts
     // inside that voxel. A sphere hit lies inside its voxel: the static voxel's part in front of
     // it (its surface, at the entry, included) goes first, and the next stretch starts after it.
-    float stretchEnd = isMesh ? chord.x - inside : tHit;
+    float stretchEnd = !found ? t1 : (isMesh ? chord.x - inside : tHit);
     if (stretchEnd > tStatic) traceVoxels(o, d, tStatic, stretchEnd, toEye, color, transmittance);
-    if (transmittance <= uStopTransmittance) return;
+    if (!found || transmittance <= uStopTransmittance) return;
     compositeSurface(fetchMaterial(material), n, o + tHit * d, toEye, color, transmittance);
     if (transmittance <= uStopTransmittance) return;
     tStatic = max(tStatic, (isMesh ? chord.x : chord.y) + inside);
   }
-  if (t1 > tStatic) traceVoxels(o, d, tStatic, t1, toEye, color, transmittance);
 }
 
 #endif
