@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "frozen_scene_frame.h"
@@ -105,6 +106,56 @@ TEST(DynamicTransparency, GlassMovingMeshAndSphereShowWhatLiesBehindAsTheStaticS
       EXPECT_EQ(e->nonFinite, 0u);
     }
   }
+}
+
+// The ray-traced mode takes the same surfaces: a glass cube and sphere that also reflect and
+// refract, with shadow rays, at one time (ray-traced frames are slow on llvmpipe).
+TEST(DynamicTransparency, TheRayTracedModeSeesEveryMovingSurface) {
+  VOXLINK_REQUIRE_GL();
+  ::voxlink::testing::TempDir dir;
+  std::string text;
+  {
+    std::ifstream in(writeScene(dir));
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string plain = R"("opacity": 0.35})",
+                    effects =
+                        R"("opacity": 0.35, "reflectivity": 0.2, "transmission": 0.4, "ior": 1.3})";
+  const size_t at = text.find(plain);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, plain.size(), effects);
+  std::ofstream(dir.file("glass-effects.scene.json")) << text;
+  auto description = scene::readSceneDescription(dir.file("glass-effects.scene.json"));
+  ASSERT_TRUE(description) << description.message();
+  auto dynamic = DynamicScene::load(*description, dir.file("static.vxl"));
+  ASSERT_TRUE(dynamic) << dynamic.message();
+  DynamicScene& d = **dynamic;
+  render::CameraSpec spec;
+  spec.azimuthDeg = 30;
+  spec.elevationDeg = 35;
+  spec.up = render::UpAxis::kY;
+  const render::Camera camera = render::Camera::framing(d.renderer().geometry().worldBox(), spec);
+  render::RenderSettings s;
+  s.width = s.height = 128;
+  s.shading.shadows = true;
+  s.shading.lightDirection = {0.6, 1.0, 0.3};
+  s.effects.reflect = s.effects.refract = s.effects.shadows = true;
+  auto draw = [&](render::gl::VolumeRenderer& renderer) {
+    render::gl::RenderTarget target;
+    EXPECT_TRUE(renderer.render(camera, s, target).isOk());
+    return target.read();
+  };
+  const double t = 0.5;
+  ASSERT_TRUE(d.setTime(t).isOk());
+  ASSERT_TRUE(d.checkLastUpdate().isOk());
+  const render::Image frame = draw(d.renderer());
+  auto e = render::compareImages(frame, testing::frozenSceneFrame(d, t, dir, draw));
+  ASSERT_TRUE(e);
+  std::printf(
+      "t %.1f: ray-traced glass cube + sphere vs static scene %.2f dB, %llu pixels over "
+      "1/255\n",
+      t, e->psnr, static_cast<unsigned long long>(e->pixelsOver));
+  EXPECT_GE(e->psnr, 35.0);  // the mesh tests' bound, as above
 }
 
 }  // namespace
