@@ -9,6 +9,7 @@ layout(local_size_x = 64) in;
 
 const uint kEmpty = 0xffffffffu;
 
+uniform uint uFirstSphere;  // this pass marks spheres uFirstSphere.. (the others are kept)
 uniform uint uSphereCount;
 uniform uint uCapacity;
 uniform vec3 uOrigin;  // world of voxel 0's centre
@@ -25,9 +26,10 @@ layout(std430, binding = 3) buffer Counters {
 };
 
 void main() {
-  uint s = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u +
+  uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 64u +
            gl_LocalInvocationIndex;
-  if (s >= uSphereCount) return;
+  if (i >= uSphereCount) return;
+  uint s = uFirstSphere + i;
   // Index space as the ray tracer's worldToIndex: voxel i spans [i, i + 1).
   vec3 c = (vec3(spheres[s * 8u], spheres[s * 8u + 1u], spheres[s * 8u + 2u]) - uOrigin) /
                uSpacing +

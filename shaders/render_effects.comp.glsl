@@ -28,6 +28,7 @@ layout(local_size_x = 64) in;
 #include "voxlink_effects.glsl"
 #include "compositing.glsl"
 #include "voxlink_voxels.glsl"
+#include "voxlink_dynamic_trace.glsl"
 
 // Per pixel: r, g, b and the share that reached the background, in fixed point (kAccumScale
 // per unit) so that rays of one pixel add up in any order to the same sum.

@@ -18,5 +18,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "voxlink_scene_shading.glsl"
 #include "compositing.glsl"
 #include "voxlink_voxels.glsl"
+#include "voxlink_dynamic_trace.glsl"
 #include "voxlink_trilinear.glsl"
 #include "render_main.glsl"

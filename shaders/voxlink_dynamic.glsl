@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The dynamic layer of a dynamic scene (render/gl/gl_dynamic_layer.h): moving meshes voxelized
 // this frame on the GPU into a brick map over the grid and a pool of bricks (per voxel the sum
-// of area x unit normal in fixed point and material + 1). The ray tracer finds the first
-// occupied voxel of the layer along the ray (a hit at the voxel's entry, as the static mean-mode
-// fragments) and traces the static file only up to it (render_main.glsl). Defined when
-// VXL_DYNAMIC_LAYER is; VXL_DYN_N is the layer's brick edge. With VXL_DYN_SPHERES the moving
-// spheres too (render/gl/gl_dynamic_spheres.h): per brick of VXL_DYN_SPHERE_N voxels a list of
-// spheres, intersected exactly; dynamicHit() takes the nearest of the two. VXL_DYN_POOLS: the
-// pool's storage buffers, slot s in buffer s / VXL_DYN_POOL_SLOTS (shaders/dynamic_layer.glsl).
+// of area x unit normal in fixed point and material + 1). The ray tracer takes the layer's
+// occupied voxels along the ray (a hit at each one's entry, as the static mean-mode fragments)
+// nearest first and composites them between the static file's stretches
+// (voxlink_dynamic_trace.glsl). Defined when VXL_DYNAMIC_LAYER is; VXL_DYN_N is the layer's
+// brick edge. With VXL_DYN_SPHERES the moving spheres too (render/gl/gl_dynamic_spheres.h): per
+// brick of VXL_DYN_SPHERE_N voxels a list of spheres, intersected exactly; dynamicSurfaceNext()
+// gives the surfaces of both nearest first. VXL_DYN_POOLS: the pool's storage buffers, slot s in
+// buffer s / VXL_DYN_POOL_SLOTS (shaders/dynamic_layer.glsl).
 #ifdef VXL_DYNAMIC_LAYER
 
 layout(std430, binding = 59) readonly buffer DynBrickMap { uint dynBrickMap[]; };
@@ -60,9 +61,9 @@ bool dynamicBrickWalk(vec3 o, vec3 d, float t0, float t1, ivec3 lo, ivec3 hi, in
 }
 
 // First voxel of the layer on o + t d (index space) in [t0, t1): its entry tHit, world normal n
-// (unit; towards the ray where the sides cancel) and material.
+// (unit; towards the ray where the sides cancel), material and cell.
 bool dynamicMeshHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
-                out uint material) {
+                    out uint material, out ivec3 cell) {
   tHit = kBig;
   const int bn = VXL_DYN_N;
   float ta, tb;
@@ -87,6 +88,7 @@ bool dynamicMeshHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3
         ivec4 e = dynPoolVoxel(slot, uint((l.z * bn + l.y) * bn + l.x));
         if (e.w != 0) {
           tHit = tv;
+          cell = voxels.cell;
           vec3 sum = vec3(e.xyz);
           n = dot(sum, sum) > 0.0 ? normalize(sum) : -normalize(d);
           material = uint(e.w - 1);
@@ -154,23 +156,87 @@ bool dynamicSphereHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out ve
 }
 #endif
 
-// The nearest of the moving meshes' first voxel and the moving spheres' first hit; a mesh voxel
-// wins a tie, as a static voxel's surface does against its spheres.
-bool dynamicHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out vec3 n,
-                out uint material) {
-  bool mesh = dynamicMeshHit(o, d, t0, t1, tHit, n, material);
+// The moving surfaces along a ray, nearest first, as the static path composites a voxel's
+// surfaces (voxlink_scene_shading.glsl, compositeGeometry): every voxel of the mesh layer the ray
+// crosses (a hit at its entry, as a static mean-mode voxel) and, per voxel, the first moving
+// sphere hit inside it (as firstSphereHit). A mesh voxel wins a tie, as a static voxel's surface
+// does against its spheres. Each kind keeps its own cursor and its next hit, found once: the
+// spheres are searched only up to the next mesh voxel, so an opaque mesh costs one walk of each.
+struct DynamicSurfaces {
+  float t1;
+  float meshFrom, sphereFrom;  // where each kind's next search starts
+  float meshT, sphereT;        // its next hit; -1: not searched (from there), kBig: none is left
+  vec3 meshN, sphereN;
+  uint meshMaterial, sphereMaterial;
+  ivec3 meshCell;
+};
+
+DynamicSurfaces dynamicSurfacesBegin(float t0, float t1) {
+  DynamicSurfaces s;
+  s.t1 = t1;
+  s.meshFrom = s.sphereFrom = t0;
+  s.meshT = s.sphereT = -1.0;
+  return s;
+}
+
+// The next moving surface on o + t d: its t, unit world normal, material, whether it is a mesh
+// voxel's, and the ray's chord [x, y) through the voxel it lies in. False when none is left.
+bool dynamicSurfaceNext(vec3 o, vec3 d, inout DynamicSurfaces s, out float tHit, out vec3 n,
+                        out uint material, out bool isMesh, out vec2 chord) {
+  if (s.meshT < 0.0 &&
+      !dynamicMeshHit(o, d, s.meshFrom, s.t1, s.meshT, s.meshN, s.meshMaterial, s.meshCell))
+    s.meshT = kBig;
 #ifdef VXL_DYN_SPHERES
-  float tSphere;
-  vec3 nSphere;
-  uint mSphere;
-  if (dynamicSphereHit(o, d, t0, mesh ? tHit : t1, tSphere, nSphere, mSphere)) {
-    tHit = tSphere;
-    n = nSphere;
-    material = mSphere;
+  if (s.sphereT < 0.0) {
+    float limit = min(s.meshT, s.t1);
+    if (!dynamicSphereHit(o, d, s.sphereFrom, limit, s.sphereT, s.sphereN, s.sphereMaterial)) {
+      // None before the mesh voxel: searched from there once that voxel is taken.
+      s.sphereT = limit < s.t1 ? -1.0 : kBig;
+      s.sphereFrom = max(s.sphereFrom, limit);
+    }
+  }
+  isMesh = !(s.sphereT >= 0.0 && s.sphereT < s.meshT);
+#else
+  isMesh = true;
+#endif
+  if (isMesh) {
+    if (s.meshT >= kBig) return false;
+    tHit = s.meshT;
+    n = s.meshN;
+    material = s.meshMaterial;
+    chord = intersectBox(o - vec3(s.meshCell), d, vec3(1.0));
+    // The next voxel: a thousandth of a voxel past this one's exit, so rounding cannot meet it
+    // again.
+    s.meshFrom = max(chord.y, tHit) + 1e-3 * uUnit;
+    s.meshT = -1.0;
     return true;
   }
+#ifdef VXL_DYN_SPHERES
+  tHit = s.sphereT;
+  n = s.sphereN;
+  material = s.sphereMaterial;
+  chord = intersectBox(o - floor(o + tHit * d), d, vec3(1.0));
+  s.sphereFrom = max(chord.y, tHit + 1e-4 * uUnit);  // the next sphere hit in a later voxel
+  s.sphereT = -1.0;
 #endif
-  return mesh;
+  return true;
 }
+
+#if VXL_SCENE
+// Transmittance of the moving surfaces between t0 and t1 for a shadow ray: each one the ray
+// crosses lets its material's share through, as each static surface does (geometryTransmittance).
+float dynamicTransmittance(vec3 o, vec3 d, float t0, float t1) {
+  DynamicSurfaces s = dynamicSurfacesBegin(t0, t1);
+  float transmittance = 1.0, tHit;
+  vec3 n;
+  uint material;
+  bool isMesh;
+  vec2 chord;
+  while (transmittance >= uShadowStop &&
+         dynamicSurfaceNext(o, d, s, tHit, n, material, isMesh, chord))
+    transmittance *= surfaceTransmittance(fetchMaterial(material));
+  return transmittance;
+}
+#endif
 
 #endif

@@ -24,16 +24,10 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
   float transmittance = 1.0;
   if (!(t0 < t1)) return transmittance;
 #if defined(VXL_DYNAMIC_LAYER) && VXL_SCENE
-  // The moving meshes (voxlink_dynamic.glsl): their first surface on the way to the light. A
-  // semi-transparent moving mesh lets its material's share through once, however many of its
-  // surfaces the ray crosses.
-  float tDynamic;
-  vec3 nDynamic;
-  uint mDynamic;
-  if (dynamicHit(o, d, t0, t1, tDynamic, nDynamic, mDynamic)) {
-    transmittance *= surfaceTransmittance(fetchMaterial(mDynamic));
-    if (transmittance < uShadowStop) return transmittance;
-  }
+  // The moving meshes and spheres (voxlink_dynamic.glsl): each surface on the way to the light
+  // lets its material's share through, as the primary ray composites each.
+  transmittance = dynamicTransmittance(o, d, t0, t1);
+  if (transmittance < uShadowStop) return transmittance;
 #endif
   for (BrickWalk w = brickWalkBegin(o, d, t0, t1); brickWalkGoesOn(w);) {
     RowWalk walk;

@@ -54,19 +54,3 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
     if (!brickWalkLeave(w)) break;
   }
 }
-
-#ifdef VXL_DYNAMIC_LAYER
-// The static file up to the dynamic layer's first voxel on the ray, then that voxel's surface
-// (voxlink_dynamic.glsl); the primary frame and the ray-traced mode's rays alike.
-void traceVoxelsAndLayer(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
-                         inout float transmittance) {
-  float tDynamic;
-  vec3 nDynamic;
-  uint mDynamic;
-  bool dynamic = dynamicHit(o, d, t0, t1, tDynamic, nDynamic, mDynamic);
-  traceVoxels(o, d, t0, dynamic ? tDynamic : t1, toEye, color, transmittance);
-  if (dynamic && transmittance > uStopTransmittance)
-    compositeSurface(fetchMaterial(mDynamic), nDynamic, o + tDynamic * d, toEye, color,
-                     transmittance);
-}
-#endif

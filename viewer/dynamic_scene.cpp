@@ -169,8 +169,13 @@ Result<std::unique_ptr<DynamicScene>> DynamicScene::load(Prepared p) {
                                              kSphereListCell, p.sphereReferences));
     d->spheres_ = std::make_unique<render::gl::GlDynamicSpheres>(std::move(spheres));
   }
+  uint32_t sphereCount = 0;
   for (Moving& m : d->moving_) {
-    if (m.isSpheres) continue;
+    if (m.isSpheres) {  // its records' place in the sphere lists, fixed
+      m.firstSphere = sphereCount;
+      sphereCount += uint32_t(m.fileSpheres.size());
+      continue;
+    }
     const uint32_t base = uint32_t(d->gridPositions_.size() / 3);
     m.firstFloat = d->gridPositions_.size();
     m.firstIndex = d->triangles_.size();
@@ -266,17 +271,14 @@ Status DynamicScene::checkPose(size_t index, const scene::Pose& pose) const {
 // part twice. Integer sums do not depend on order: the layer is the full update's.
 Status DynamicScene::uploadPoses() {
   std::vector<bool> still(moving_.size());
-  bool keptStill = layer_.hasKept(), newlyStable = false, spheresMoved = false;
+  bool keptStill = layer_.hasKept(), newlyStable = false;
   size_t meshCount = 0;
   std::vector<size_t> stable, others;
   for (size_t i = 0; i < moving_.size(); ++i) {
     const Moving& m = moving_[i];
     still[i] = m.uploaded && m.uploaded->translate == m.pose.translate &&
                m.uploaded->rotateDegrees == m.pose.rotateDegrees;
-    if (m.isSpheres) {  // sphere sets: all re-marked when one moved (sphere lists keep no part)
-      spheresMoved = spheresMoved || !still[i];
-      continue;
-    }
+    if (m.isSpheres) continue;  // reMarkSpheres() below
     ++meshCount;
     if (m.kept && !still[i]) keptStill = false;
     const bool isStable = still[i] && m.unmovedUpdates >= 1;
@@ -293,7 +295,8 @@ Status DynamicScene::uploadPoses() {
     VOXLINK_RETURN_IF_ERROR(reVoxelize(others, true));
   } else {
     layer_.forgetKept();
-    for (Moving& m : moving_) m.kept = false;
+    for (Moving& m : moving_)
+      if (!m.isSpheres) m.kept = false;
     if (!stable.empty()) {
       VOXLINK_RETURN_IF_ERROR(reVoxelize(stable, false));
       VOXLINK_RETURN_IF_ERROR(layer_.keep());
@@ -301,39 +304,79 @@ Status DynamicScene::uploadPoses() {
     }
     VOXLINK_RETURN_IF_ERROR(reVoxelize(others, !stable.empty()));
   }
-  stats_.reVoxelizedSpheres = 0;
-  if (spheresMoved) VOXLINK_RETURN_IF_ERROR(reMarkSpheres());
-  stats_.keptMeshes = 0;
+  VOXLINK_RETURN_IF_ERROR(reMarkSpheres(still));
+  stats_.keptMeshes = stats_.keptSphereSets = 0;
   for (size_t i = 0; i < moving_.size(); ++i) {
     Moving& m = moving_[i];
     m.unmovedUpdates = still[i] ? m.unmovedUpdates + 1 : 0;
     m.uploaded = m.pose;
-    stats_.keptMeshes += m.kept ? 1 : 0;
+    (m.isSpheres ? stats_.keptSphereSets : stats_.keptMeshes) += m.kept ? 1 : 0;
   }
   stats_.layerBytes = layer_.gpuBytes() + (spheres_ ? spheres_->gpuBytes() : 0);
   return Status::ok();
 }
 
-Status DynamicScene::reMarkSpheres() {
-  std::vector<render::gl::DynamicSphere> spheres;
-  for (const Moving& m : moving_) {
+// The meshes' rule for sphere sets: a set that stood for two updates goes into the lists' kept
+// part (marked once more, alone, then saved); later updates restore it by a copy of the list
+// heads and mark the other sets on top, until a kept set moves. Nothing moved: the lists stay.
+Status DynamicScene::reMarkSpheres(const std::vector<bool>& still) {
+  stats_.reVoxelizedSpheres = 0;
+  stats_.reMarkedSphereSets = 0;
+  if (!spheres_) return Status::ok();
+  bool moved = false, keptStill = spheres_->hasKept(), newlyStable = false;
+  std::vector<size_t> stable, others;
+  for (size_t i = 0; i < moving_.size(); ++i) {
+    const Moving& m = moving_[i];
     if (!m.isSpheres) continue;
-    // As scene::placeSceneGeometry places the object frozen at this pose (frozenAt): the same
-    // transform, applied in double to the file's spheres, then rounded to float.
-    const scene::SceneObject& o = scene_.objects[m.object];
-    const scene::Transform t = posed(m.pose, m.centre, o.transform);
-    const double scale = t.uniformScale();
-    for (const geometry::Sphere& s : m.fileSpheres) {
-      const auto c = t.apply({s.center[0], s.center[1], s.center[2]});
-      render::gl::DynamicSphere d;
-      for (int a = 0; a < 3; ++a) d.centre[size_t(a)] = float(c[size_t(a)]);
-      d.radius = float(s.radius * scale * o.radiusScale);
-      d.material = s.material;
-      spheres.push_back(d);
-    }
+    moved = moved || !still[i];
+    if (m.kept && !still[i]) keptStill = false;
+    const bool isStable = still[i] && m.unmovedUpdates >= 1;
+    if (isStable && !m.kept) newlyStable = true;
+    (isStable ? stable : others).push_back(i);
   }
-  stats_.reVoxelizedSpheres = spheres.size();
-  return spheres_->update(spheres);
+  if (!moved) return Status::ok();
+  auto markSets = [&](const std::vector<size_t>& sets) -> Status {
+    for (size_t i : sets) {
+      const std::vector<render::gl::DynamicSphere> placed = placedSpheres(i);
+      VOXLINK_RETURN_IF_ERROR(spheres_->mark(moving_[i].firstSphere, placed));
+      stats_.reVoxelizedSpheres += placed.size();
+      ++stats_.reMarkedSphereSets;
+    }
+    return Status::ok();
+  };
+  if (keptStill && !newlyStable) {  // the kept sets restored, the others (all moved) marked
+    spheres_->reset(true);
+    return markSets(others);
+  }
+  spheres_->reset(false);  // forgets the kept part
+  for (Moving& m : moving_)
+    if (m.isSpheres) m.kept = false;
+  if (!stable.empty()) {
+    VOXLINK_RETURN_IF_ERROR(markSets(stable));
+    VOXLINK_RETURN_IF_ERROR(spheres_->keep());
+    for (size_t i : stable) moving_[i].kept = true;
+  }
+  return markSets(others);
+}
+
+std::vector<render::gl::DynamicSphere> DynamicScene::placedSpheres(size_t index) const {
+  // As scene::placeSceneGeometry places the object frozen at this pose (frozenAt): the same
+  // transform, applied in double to the file's spheres, then rounded to float.
+  const Moving& m = moving_[index];
+  const scene::SceneObject& o = scene_.objects[m.object];
+  const scene::Transform t = posed(m.pose, m.centre, o.transform);
+  const double scale = t.uniformScale();
+  std::vector<render::gl::DynamicSphere> spheres;
+  spheres.reserve(m.fileSpheres.size());
+  for (const geometry::Sphere& s : m.fileSpheres) {
+    const auto c = t.apply({s.center[0], s.center[1], s.center[2]});
+    render::gl::DynamicSphere d;
+    for (int a = 0; a < 3; ++a) d.centre[size_t(a)] = float(c[size_t(a)]);
+    d.radius = float(s.radius * scale * o.radiusScale);
+    d.material = s.material;
+    spheres.push_back(d);
+  }
+  return spheres;
 }
 
 Status DynamicScene::checkLastUpdate() const {

@@ -4,7 +4,8 @@
 // CPU path) into a scene file; every frame, setTime() places the moving objects at their pose and
 // re-voxelizes only them on the GPU: meshes into the dynamic layer (render/gl/gl_dynamic_layer.h),
 // of which a mesh that has stood for two updates is kept and not re-voxelized again; spheres into
-// the sphere lists (render/gl/gl_dynamic_spheres.h), re-marked only when a sphere set moved.
+// the sphere lists (render/gl/gl_dynamic_spheres.h), where only the sets that moved are
+// re-marked and a set that has stood for two updates is kept.
 // renderer() draws all. The grid is the whole scene's at rest, and every moving object must stay
 // inside it at every key.
 #pragma once
@@ -35,8 +36,12 @@ struct DynamicSceneStats {
   // (unmoved for two updates in a row) instead.
   uint64_t reVoxelizedTriangles = 0;
   uint32_t keptMeshes = 0;
-  uint64_t movingSpheres = 0;       // of all moving sphere sets and particles
-  uint64_t reVoxelizedSpheres = 0;  // the last update's: all of them, or none when none moved
+  uint64_t movingSpheres = 0;  // of all moving sphere sets and particles
+  // The last update: spheres and sphere sets re-marked (none when no set moved; a set that stood
+  // for two updates in a row is kept in the lists instead, as a mesh in the layer), and sets kept.
+  uint64_t reVoxelizedSpheres = 0;
+  uint32_t reMarkedSphereSets = 0;
+  uint32_t keptSphereSets = 0;
 };
 
 class DynamicScene {
@@ -53,12 +58,14 @@ class DynamicScene {
     geometry::Bounds3 restBounds;
     scene::Pose pose;  // the current one
     // In the layer: the pose of the last update, the updates in a row it has not moved for,
-    // whether the layer's kept part holds it; where its vertices and triangles start in
-    // gridPositions_ (floats) and triangles_ (indices).
+    // whether the layer's (a sphere set: the sphere lists') kept part holds it; where its
+    // vertices and triangles start in gridPositions_ (floats) and triangles_ (indices), or its
+    // spheres in the sphere lists' records.
     std::optional<scene::Pose> uploaded;
     uint32_t unmovedUpdates = 0;
     bool kept = false;
     size_t firstFloat = 0, firstIndex = 0;
+    uint32_t firstSphere = 0;
   };
 
  public:
@@ -136,8 +143,11 @@ class DynamicScene {
   Status uploadPoses();
   // Re-voxelizes `meshes` (indices into moving_) into the layer, on its kept part or not.
   Status reVoxelize(const std::vector<size_t>& meshes, bool onKept);
-  // Places every moving sphere set at its pose and re-marks the sphere lists.
-  Status reMarkSpheres();
+  // Re-marks the sphere sets that moved (`still`: per moving object, whether its pose is the
+  // last update's), on the lists' kept part of sets that stand, as uploadPoses() does for meshes.
+  Status reMarkSpheres(const std::vector<bool>& still);
+  // Sphere set `index`'s spheres at its pose, as the frozen scene's static build places them.
+  std::vector<render::gl::DynamicSphere> placedSpheres(size_t index) const;
   DynamicScene(scene::SceneDescription scene, format::VoxLinkFile file,
                render::gl::GlDynamicLayer layer);
   scene::SceneDescription scene_;

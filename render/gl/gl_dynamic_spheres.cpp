@@ -40,9 +40,14 @@ struct GlDynamicSpheres::State {
   double spacing = 1;
   uint32_t brickSize = 8;
   uint64_t capacity = 0, sphereRoom = 0;
-  uint64_t dirtyFirst = 0, dirtyEnd = 0;  // brick heads the last update may have written
+  // Brick heads written since the lists were last emptied or set back to the kept part.
+  uint64_t dirtyFirst = 0, dirtyEnd = 0;
   ComputeProgram mark;
   GlBuffer heads, nodes, spheres, counters;
+  // The kept part: the heads and counters as keep() found them, and the heads it had written.
+  GlBuffer keptHeads, keptCounters;
+  uint64_t keptDirtyFirst = 0, keptDirtyEnd = 0;
+  bool hasKept = false;
 };
 
 GlDynamicSpheres::GlDynamicSpheres(std::unique_ptr<State> state) : s_(std::move(state)) {}
@@ -56,7 +61,8 @@ uint32_t GlDynamicSpheres::brickSize() const { return s_->brickSize; }
 
 uint64_t GlDynamicSpheres::gpuBytes() const {
   const uint64_t bricks = uint64_t(s_->brickGrid[0]) * s_->brickGrid[1] * s_->brickGrid[2];
-  return bricks * 4 + s_->capacity * kNodeBytes + s_->sphereRoom * kSphereBytes + 8;
+  const uint64_t kept = s_->keptHeads.id() ? bricks * 4 + 8 : 0;
+  return bricks * 4 + s_->capacity * kNodeBytes + s_->sphereRoom * kSphereBytes + 8 + kept;
 }
 
 Result<GlDynamicSpheres> GlDynamicSpheres::create(const std::array<uint32_t, 3>& dims,
@@ -89,7 +95,43 @@ Result<GlDynamicSpheres> GlDynamicSpheres::create(const std::array<uint32_t, 3>&
 }
 
 Status GlDynamicSpheres::update(const std::vector<DynamicSphere>& spheres) {
+  reset(false);
+  return mark(0, spheres);
+}
+
+void GlDynamicSpheres::reset(bool onKept) {
   State& s = *s_;
+  const GLuint empty = kEmpty, zero = 0;
+  if (onKept && s.hasKept) {
+    // The heads the kept part or a mark since wrote, back to the kept part's; its nodes are
+    // untouched (marks after it only take nodes past its count).
+    const uint64_t first = std::min(s.dirtyFirst, s.keptDirtyFirst);
+    const uint64_t end = std::max(s.dirtyEnd, s.keptDirtyEnd);
+    if (end > first)
+      glCopyNamedBufferSubData(s.keptHeads.id(), s.heads.id(), GLintptr(first * 4),
+                               GLintptr(first * 4), GLsizeiptr((end - first) * 4));
+    glCopyNamedBufferSubData(s.keptCounters.id(), s.counters.id(), 0, 0, 8);
+    s.dirtyFirst = s.keptDirtyFirst;
+    s.dirtyEnd = s.keptDirtyEnd;
+    lo_ = keptLo_;
+    hi_ = keptHi_;
+  } else {
+    forgetKept();  // its nodes are about to be overwritten
+    if (s.dirtyEnd > s.dirtyFirst)
+      glClearNamedBufferSubData(s.heads.id(), GL_R32UI, GLintptr(s.dirtyFirst * 4),
+                                GLsizeiptr((s.dirtyEnd - s.dirtyFirst) * 4), GL_RED_INTEGER,
+                                GL_UNSIGNED_INT, &empty);
+    glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    s.dirtyFirst = s.dirtyEnd = 0;
+    lo_ = {int32_t(s.dims[0]), int32_t(s.dims[1]), int32_t(s.dims[2])};
+    hi_ = {0, 0, 0};
+  }
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+Status GlDynamicSpheres::mark(uint32_t first, const std::vector<DynamicSphere>& spheres) {
+  State& s = *s_;
+  if (spheres.empty()) return Status::ok();
   // The records (8 words: centre, radius, material, unused) and the voxel box of the balls.
   std::vector<uint32_t> words(spheres.size() * 8, 0);
   std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
@@ -105,33 +147,38 @@ Status GlDynamicSpheres::update(const std::vector<DynamicSphere>& spheres) {
       hi[size_t(a)] = std::max(hi[size_t(a)], c + r);
     }
   }
+  std::array<int32_t, 3> markLo{}, markHi{};
   for (int a = 0; a < 3; ++a) {
     const int32_t dim = int32_t(s.dims[size_t(a)]);
-    lo_[size_t(a)] = spheres.empty() ? dim : std::clamp(int32_t(std::floor(lo[size_t(a)])), 0, dim);
-    hi_[size_t(a)] =
-        spheres.empty() ? 0 : std::clamp(int32_t(std::floor(hi[size_t(a)])) + 1, 0, dim);
+    markLo[size_t(a)] = std::clamp(int32_t(std::floor(lo[size_t(a)])), 0, dim);
+    markHi[size_t(a)] = std::clamp(int32_t(std::floor(hi[size_t(a)])) + 1, 0, dim);
+    lo_[size_t(a)] = std::min(lo_[size_t(a)], markLo[size_t(a)]);
+    hi_[size_t(a)] = std::max(hi_[size_t(a)], markHi[size_t(a)]);
   }
-  if (spheres.size() > s.sphereRoom) {
-    s.spheres = storage(spheres.size() * kSphereBytes);
-    s.sphereRoom = spheres.size();
+  const uint64_t end = uint64_t(first) + spheres.size();
+  if (end > s.sphereRoom) {  // grown, keeping the records of spheres marked before
+    GlBuffer grown = storage(end * kSphereBytes);
+    if (s.sphereRoom > 0)
+      glCopyNamedBufferSubData(s.spheres.id(), grown.id(), 0, 0,
+                               GLsizeiptr(s.sphereRoom * kSphereBytes));
+    s.spheres = std::move(grown);
+    s.sphereRoom = end;
   }
-  if (!words.empty())
-    glNamedBufferSubData(s.spheres.id(), 0, GLsizeiptr(words.size() * 4), words.data());
-
-  // Reset: the heads of the brick slabs (z) the last update wrote, and the counters.
-  const GLuint empty = kEmpty, zero = 0;
-  if (s.dirtyEnd > s.dirtyFirst)
-    glClearNamedBufferSubData(s.heads.id(), GL_R32UI, GLintptr(s.dirtyFirst * 4),
-                              GLsizeiptr((s.dirtyEnd - s.dirtyFirst) * 4), GL_RED_INTEGER,
-                              GL_UNSIGNED_INT, &empty);
-  glClearNamedBufferData(s.counters.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  const uint64_t slab = uint64_t(s.brickGrid[0]) * s.brickGrid[1];
-  s.dirtyFirst = lo_[2] < hi_[2] ? uint64_t(lo_[2] / int32_t(s.brickSize)) * slab : 0;
-  s.dirtyEnd = lo_[2] < hi_[2] ? uint64_t((hi_[2] - 1) / int32_t(s.brickSize) + 1) * slab : 0;
-  glMemoryBarrier(GL_ALL_BARRIER_BITS);
-  if (spheres.empty()) return Status::ok();
+  glNamedBufferSubData(s.spheres.id(), GLintptr(uint64_t(first) * kSphereBytes),
+                       GLsizeiptr(words.size() * 4), words.data());
+  // The heads this mark may write: the brick slabs (z) of its box, added to the reset's range.
+  if (markLo[2] < markHi[2]) {
+    const uint64_t slab = uint64_t(s.brickGrid[0]) * s.brickGrid[1];
+    const uint64_t slabFirst = uint64_t(markLo[2] / int32_t(s.brickSize)) * slab;
+    const uint64_t slabEnd = uint64_t((markHi[2] - 1) / int32_t(s.brickSize) + 1) * slab;
+    const bool none = s.dirtyEnd <= s.dirtyFirst;
+    s.dirtyFirst = none ? slabFirst : std::min(s.dirtyFirst, slabFirst);
+    s.dirtyEnd = none ? slabEnd : std::max(s.dirtyEnd, slabEnd);
+  }
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
   s.mark.use();
+  glUniform1ui(s.mark.uniform("uFirstSphere"), GLuint(first));
   glUniform1ui(s.mark.uniform("uSphereCount"), GLuint(spheres.size()));
   glUniform1ui(s.mark.uniform("uCapacity"), GLuint(s.capacity));
   glUniform3f(s.mark.uniform("uOrigin"), float(s.origin[0]), float(s.origin[1]),
@@ -151,6 +198,31 @@ Status GlDynamicSpheres::update(const std::vector<DynamicSphere>& spheres) {
     return makeError(ErrorCode::kUnsupported, "dynamic spheres: GL error 0x", std::hex, e);
   return Status::ok();
 }
+
+Status GlDynamicSpheres::keep() {
+  State& s = *s_;
+  const uint64_t bricks = uint64_t(s.brickGrid[0]) * s.brickGrid[1] * s.brickGrid[2];
+  if (!s.keptHeads.id()) {  // made on the first keep: scenes with one sphere set never need it
+    s.keptHeads = storage(bricks * 4);
+    s.keptCounters = storage(8);
+  }
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  glCopyNamedBufferSubData(s.heads.id(), s.keptHeads.id(), 0, 0, GLsizeiptr(bricks * 4));
+  glCopyNamedBufferSubData(s.counters.id(), s.keptCounters.id(), 0, 0, 8);
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  s.keptDirtyFirst = s.dirtyFirst;
+  s.keptDirtyEnd = s.dirtyEnd;
+  keptLo_ = lo_;
+  keptHi_ = hi_;
+  s.hasKept = true;
+  if (GLenum e = glGetError(); e != GL_NO_ERROR)
+    return makeError(ErrorCode::kTooLarge, "dynamic spheres: GL error 0x", std::hex, e,
+                     " keeping the lists");
+  return Status::ok();
+}
+
+void GlDynamicSpheres::forgetKept() { s_->hasKept = false; }
+bool GlDynamicSpheres::hasKept() const { return s_->hasKept; }
 
 Status GlDynamicSpheres::checkLastUpdate() const {
   GLuint counters[2] = {0, 0};  // references made, references dropped

@@ -8,7 +8,9 @@
 // static path intersects a voxel's sphere references (shaders/voxlink_scene.glsl), so a sphere
 // at a pose is drawn as the static scene with the sphere there draws it. Lists per brick, not
 // per voxel (measured faster): the image does not depend on the granularity, since a ray takes
-// the nearest hit inside each brick's chord, brick by brick.
+// the nearest hit inside each brick's chord, brick by brick. Only what moved: the spheres of sets
+// that stand can be kept (keep()), and later updates restore them by a copy of the list heads and
+// mark only the others on top, as the mesh layer keeps its standing meshes.
 #pragma once
 
 #include <epoxy/gl.h>
@@ -37,9 +39,20 @@ class GlDynamicSpheres {
   static Result<GlDynamicSpheres> create(const std::array<uint32_t, 3>& dims,
                                          const std::array<double, 3>& origin, double spacing,
                                          uint32_t brickSize, uint64_t referenceCapacity);
-  // Re-marks the layer with `spheres` (world units). Queues an upload, a clear and a dispatch;
-  // reads nothing back.
+  // Re-marks the layer with `spheres` (world units): reset(false) and mark(0, spheres).
   Status update(const std::vector<DynamicSphere>& spheres);
+  // Empties the lists, or with `onKept` sets them back to the kept part (a copy of the heads the
+  // keep() saved and of its counters; the kept nodes stay where they are, as marks after them only
+  // append). Queued; reads nothing back.
+  void reset(bool onKept);
+  // Uploads `spheres` as spheres first.. of the layer (indices stay a sphere's until it is marked
+  // again at another) and appends them to the lists on top of what is there. Queued: an upload
+  // and a dispatch, nothing read back.
+  Status mark(uint32_t first, const std::vector<DynamicSphere>& spheres);
+  // Saves the lists as they are as the kept part (GPU copies, nothing read back).
+  Status keep();
+  void forgetKept();
+  bool hasKept() const;
   // Waits and reads two counters: an error when the last update had more references than room.
   Status checkLastUpdate() const;
   // Reads the lists back (tests): per brick index, its spheres sorted.
@@ -59,6 +72,7 @@ class GlDynamicSpheres {
   explicit GlDynamicSpheres(std::unique_ptr<State> state);
   std::unique_ptr<State> s_;
   std::array<int32_t, 3> lo_{}, hi_{};
+  std::array<int32_t, 3> keptLo_{}, keptHi_{};  // the kept part's box, as lo_/hi_
 
  public:
   GlDynamicSpheres(GlDynamicSpheres&&) noexcept;
