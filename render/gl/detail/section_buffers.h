@@ -44,6 +44,8 @@ class SectionBuffers {
   const std::string& glsl() const { return glsl_; }
   uint64_t gpuBytes() const { return gpuBytes_; }
   uint32_t bindingCount() const { return static_cast<uint32_t>(chunks_.size()); }
+  // The texture unit after the last chunk's.
+  GLuint endUnit() const { return chunks_.empty() ? 0 : chunks_.back().unit + 1; }
 
  private:
   struct Chunk {
