@@ -16,7 +16,8 @@ layout(r32ui, binding = VXL_SHADOW_CACHE_IMAGE) uniform uimageBuffer uShadowCode
 
 const float kShadowLevels = 254.0;
 
-// The stored transmittance of voxel `slot` (a file-wide stored-voxel index), walking from the
+// The stored transmittance of voxel `slot` (its voxel word's index: the file's voxel index, or
+// where row words have an apron, the extended index, copies included), walking from the
 // centre of its cell `cell` (index space, voxel centres at cell + 1/2) on a miss.
 float centreShadow(uint slot, ivec3 cell) {
   uint shift = (slot & 3u) * 8u;

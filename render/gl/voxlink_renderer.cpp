@@ -59,7 +59,7 @@ Status VoxLinkRenderer::beginShadowCache() {
                        sections_.endUnit() - 1, ", the cache's unit ", shadowCacheUnit(),
                        " among them; use --shadow-rays per-sample");
     VOXLINK_ASSIGN_OR_RETURN(ShadowCacheBuffer cache,
-                             ShadowCacheBuffer::create(header_.voxelCount, shadowCacheUnit()));
+                             ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit()));
     shadowCache_ = std::move(cache);
   }
   shadowCache_->clearAndBind();

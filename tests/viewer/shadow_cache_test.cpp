@@ -117,8 +117,9 @@ TEST(ShadowCache, ClearedBetweenFrames) {
     ASSERT_TRUE(lit.isOk());
     EXPECT_LT(lit->psnr, 40.0) << samplingName(sampling);
   }
-  // One byte per stored voxel, in whole words, from the first frame that needs the cache on.
-  const uint64_t voxels = fresh.file->header().voxelCount;
+  // One byte per voxel word (stored voxels and apron copies), in whole words, from the first
+  // frame that needs the cache on.
+  const uint64_t voxels = fresh.renderer->sections().voxelSlots();
   EXPECT_EQ(fresh.renderer->gpuBytes() - withoutCache, (voxels + 3) / 4 * 4);
 }
 
