@@ -7,8 +7,8 @@
 // share a word, set with imageAtomicOr: the value is deterministic (one call site), so two
 // invocations that race write the same bits. The host clears the words before every frame
 // (render/gl/detail/shadow_cache_buffer.h). Reads go through a buffer texture (a gather on
-// llvmpipe, cheaper than an image or storage-buffer load); a read that misses a word another
-// invocation wrote this frame only walks that centre again.
+// llvmpipe, 2.5x cheaper than a storage-buffer read: section_buffers.h); a read that misses a
+// word another invocation wrote this frame only walks that centre again.
 // Mirrors ReferenceRenderer's per-voxel shadow model (render/voxel_shadow_cache.h).
 
 layout(binding = VXL_SHADOW_CACHE_UNIT) uniform usamplerBuffer uShadowCodes;
@@ -37,8 +37,8 @@ ivec3 rowWalkCell(RowWalk w) {
   return cell;
 }
 
-// Trilinear sampling. Alpha times centre transmittance of the current cell's corners (numbered as cornerOffset in
-// compositing.glsl), 0 for invisible ones; set by loadCornerShadows.
+// Trilinear sampling. Alpha times centre transmittance of the current cell's corners (numbered
+// as cornerOffset in compositing.glsl), 0 for invisible ones; set by loadCornerShadows.
 float gAT0, gAT1, gAT2, gAT3, gAT4, gAT5, gAT6, gAT7;
 
 // The corner term of corner m: one centreShadow call site for all 8 corners (each call site
