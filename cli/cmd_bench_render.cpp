@@ -168,10 +168,16 @@ CommandRunner addBenchRenderCommand(CLI::App& app) {
                     threads ? ", LP_NUM_THREADS=" : "", threads ? threads : "");
     args->out.print(
         "protocol: %u frames per 360 deg turn, about y then about x; step %.2f voxels; rays stop "
-        "at opacity %.6f; shading %s; shadows %s; effects %s (max %d bounces, %zu scene "
+        "at opacity %.6f; shading %s; shadows %s%s%s; effects %s (max %d bounces, %zu scene "
         "lights)\n\n",
         o.framesPerTurn, o.base.stepVoxels, o.base.terminationAlpha,
-        o.base.shading.enabled ? "on" : "off", o.base.shading.shadows ? "on" : "off",
+        o.base.shading.enabled ? "on" : "off", o.base.shading.shadows ? "on, rays " : "off",
+        // The dense caster casts per-sample rays whatever --shadow-rays says (docs/shadows.md).
+        o.base.shading.shadows ? render::shadowRaysName(o.base.shading.shadowRays).data() : "",
+        o.base.shading.shadows && o.base.shading.shadowRays == render::ShadowRays::kPerVoxel &&
+                !args->noDense
+            ? " (dense: per-sample)"
+            : "",
         render::effectsName(o.base.effects).c_str(), o.base.effects.maxBounces,
         o.base.lights.size());
     auto rows =

@@ -30,6 +30,10 @@ void RenderOptions::add(CLI::App* cmd, bool withSize) {
          "1 - 1/255)")
       ->capture_default_str();
   cmd->add_flag("--shadows", shadows, "Shadow rays towards the light");
+  cmd->add_option("--shadow-rays", shadowRays,
+                  "With --shadows: per-voxel (one ray per voxel centre per frame, shared; the "
+                  "default for volume files) or per-sample (one per sample; scenes)")
+      ->check(CLI::IsMember({"per-sample", "per-voxel"}));
   cmd->add_flag("--no-shading", noShading, "Unlit colours (no Phong shading)");
   cmd->add_option(
          "--effects", effects,

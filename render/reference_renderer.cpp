@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "render/reference_renderer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "render/detail/render_rows.h"
 #include "render/render_model.h"
+#include "render/voxel_shadow_cache.h"
 
 namespace voxlink::render {
 
@@ -14,6 +17,8 @@ struct ReferenceRenderer::Frame {
   double unit;         // smallest spacing: the length the TF's opacities refer to
   double step;         // trilinear step, world units
   Box box;
+  bool perVoxelShadows;                           // ShadowRays::kPerVoxel with shadows on
+  std::shared_ptr<VoxelShadowCache> shadowCache;  // per frame; null: computed per request
 };
 
 ReferenceRenderer::ReferenceRenderer(const DenseVolume& volume, const tf::TransferFunction& tf)
@@ -38,11 +43,14 @@ ReferenceRenderer::Frame ReferenceRenderer::makeFrame(const Camera& camera,
   f.unit = volume_.minSpacing();
   f.step = settings.stepVoxels * f.unit;
   f.box = volume_.worldBox();
+  f.perVoxelShadows = settings.shading.enabled && settings.shading.shadows &&
+                      settings.shading.shadowRays == ShadowRays::kPerVoxel;
   return f;
 }
 
 Image ReferenceRenderer::render(const Camera& camera, const RenderSettings& settings) const {
-  const Frame f = makeFrame(camera, settings);
+  Frame f = makeFrame(camera, settings);
+  if (f.perVoxelShadows) f.shadowCache = std::make_shared<VoxelShadowCache>(volume_.voxelCount());
   return renderRows(camera, settings, [&](const Ray& ray) { return trace(ray, f); });
 }
 
@@ -90,7 +98,9 @@ void ReferenceRenderer::traceVoxels(const glm::dvec3& o, const glm::dvec3& d, do
                                         gradientDirection(volume_.gradient(c.x, c.y, c.z)),
                                         f.toLight, toEye, f.settings.shading);
       double shadow = 1.0;
-      if (f.settings.shading.shadows && f.settings.shading.enabled) {
+      if (f.perVoxelShadows) {
+        shadow = centreShadow(c, f);
+      } else if (f.settings.shading.shadows && f.settings.shading.enabled) {
         const double tm = 0.5 * (ta + tb);
         glm::dvec3 world;
         for (int i = 0; i < 3; ++i)
@@ -115,6 +125,7 @@ void ReferenceRenderer::traceTrilinear(const glm::dvec3& o, const glm::dvec3& d,
   struct Corner {
     double alpha = 0;
     glm::dvec3 color{0.0}, gradient{0.0};
+    double shadowedAlpha = 0;  // per-voxel shadows: alpha times its centre's transmittance
   };
   Corner corners[8];
   glm::ivec3 cached(INT32_MIN);
@@ -138,10 +149,11 @@ void ReferenceRenderer::traceTrilinear(const glm::dvec3& o, const glm::dvec3& d,
         if (!(a > 0)) continue;
         const auto rgb = tf_.colorAt(v);
         corners[i] = Corner{a, a * glm::dvec3(rgb[0], rgb[1], rgb[2]),
-                            a * gradientDirection(volume_.gradient(p.x, p.y, p.z))};
+                            a * gradientDirection(volume_.gradient(p.x, p.y, p.z)),
+                            f.perVoxelShadows ? a * centreShadow(p, f) : 0.0};
       }
     }
-    double alpha = 0;
+    double alpha = 0, shadowedAlpha = 0;
     glm::dvec3 premultiplied(0.0), gradient(0.0);
     for (int i = 0; i < 8; ++i) {
       const double wi =
@@ -149,13 +161,17 @@ void ReferenceRenderer::traceTrilinear(const glm::dvec3& o, const glm::dvec3& d,
       alpha += wi * corners[i].alpha;
       premultiplied += wi * corners[i].color;
       gradient += wi * corners[i].gradient;
+      shadowedAlpha += wi * corners[i].shadowedAlpha;
     }
     if (!(alpha > 0)) continue;
     const ShadedTerms s =
         shadeSample(premultiplied, alpha, gradient, f.toLight, toEye, f.settings.shading);
     const double a = correctedAlpha(alpha, f.step, f.unit);
     double shadow = 1.0;
-    if (f.settings.shading.shadows && f.settings.shading.enabled) {
+    if (f.perVoxelShadows) {
+      // The corners' centre transmittances weighted by trilinear weight times alpha.
+      shadow = std::clamp(shadowedAlpha / alpha, 0.0, 1.0);
+    } else if (f.settings.shading.shadows && f.settings.shading.enabled) {
       glm::dvec3 world;
       for (int i = 0; i < 3; ++i) world[i] = volume_.origin[i] + q[i] * volume_.spacing[i];
       shadow = shadowTransmittance(world, f);
@@ -180,6 +196,16 @@ double ReferenceRenderer::shadowTransmittance(const glm::dvec3& worldPoint, cons
                return transmittance >= stopAt;
              });
   return transmittance;
+}
+
+double ReferenceRenderer::centreShadow(const glm::ivec3& c, const Frame& f) const {
+  auto compute = [&] {
+    glm::dvec3 world;
+    for (int i = 0; i < 3; ++i) world[i] = volume_.origin[i] + double(c[i]) * volume_.spacing[i];
+    return shadowTransmittance(world, f);
+  };
+  if (!f.shadowCache) return compute();
+  return f.shadowCache->get(volume_.index(uint32_t(c.x), uint32_t(c.y), uint32_t(c.z)), compute);
 }
 
 }  // namespace voxlink::render

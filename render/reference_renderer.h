@@ -37,6 +37,9 @@ class ReferenceRenderer {
                       const Frame& f, glm::dvec3& color, double& transmittance) const;
   // Transmittance from world point p towards the light (voxel sampling, opacity only).
   double shadowTransmittance(const glm::dvec3& worldPoint, const Frame& f) const;
+  // ShadowRays::kPerVoxel: shadowTransmittance from voxel c's centre, through the frame's cache
+  // where it has one (render(); single rays compute it).
+  double centreShadow(const glm::ivec3& c, const Frame& f) const;
   glm::dvec3 toIndex(const glm::dvec3& world) const;
   glm::dvec3 dirToIndex(const glm::dvec3& dir) const;
 

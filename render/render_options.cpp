@@ -28,6 +28,18 @@ Result<RenderSettings> RenderOptions::settings(const format::VoxLinkFile& file) 
   s.stepVoxels = step;
   s.terminationAlpha = terminationAlpha;
   s.shading.shadows = shadows;
+  if (shadowRays.empty()) {
+    s.shading.shadowRays = file.isScene() ? ShadowRays::kPerSample : ShadowRays::kPerVoxel;
+  } else if (const auto rays = parseShadowRays(shadowRays)) {
+    if (file.isScene() && *rays == ShadowRays::kPerVoxel)
+      return makeError(ErrorCode::kUnsupported, file.path(),
+                       ": --shadow-rays per-voxel: scenes (files with geometry) cast shadow rays "
+                       "per sample");
+    s.shading.shadowRays = *rays;
+  } else {
+    return makeError(ErrorCode::kInvalidArgument, "--shadow-rays: \"", shadowRays,
+                     "\" is not per-sample or per-voxel");
+  }
   s.shading.enabled = !noShading;
   std::stringstream in(background);
   std::string item;

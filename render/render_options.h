@@ -25,6 +25,8 @@ struct RenderOptions {
   double step = 0.5;
   double terminationAlpha = 0.99;  // RenderSettings::terminationAlpha
   bool shadows = false;
+  // ShadowRays by name; empty: per-voxel for volume files, per-sample for scenes (docs/shadows.md).
+  std::string shadowRays;
   bool noShading = false;
   std::string effects = "none";
   int maxBounces = 4;

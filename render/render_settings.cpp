@@ -17,6 +17,16 @@ std::optional<Sampling> parseSampling(std::string_view name) {
   return std::nullopt;
 }
 
+std::string_view shadowRaysName(ShadowRays r) {
+  return r == ShadowRays::kPerSample ? "per-sample" : "per-voxel";
+}
+
+std::optional<ShadowRays> parseShadowRays(std::string_view name) {
+  if (name == "per-sample") return ShadowRays::kPerSample;
+  if (name == "per-voxel") return ShadowRays::kPerVoxel;
+  return std::nullopt;
+}
+
 Status checkSettings(const RenderSettings& s, const std::string& where) {
   constexpr uint32_t kMaxSide = 16384;
   if (s.width == 0 || s.height == 0 || s.width > kMaxSide || s.height > kMaxSide)

@@ -29,6 +29,18 @@ enum class Sampling {
 std::string_view samplingName(Sampling s);  // "voxel", "trilinear"
 std::optional<Sampling> parseSampling(std::string_view name);
 
+// Where the shadow rays of Shading::shadows start (docs/shadows.md).
+enum class ShadowRays {
+  // One ray per composited sample, from the sample's point: exact, and the slow path.
+  kPerSample,
+  // One ray per voxel centre per frame, shared by every sample in that voxel (trilinear: the
+  // alpha-and-weight mean over the sample's visible corners); the GL renderer caches it.
+  kPerVoxel,
+};
+
+std::string_view shadowRaysName(ShadowRays r);  // "per-sample", "per-voxel"
+std::optional<ShadowRays> parseShadowRays(std::string_view name);
+
 struct Shading {
   bool enabled = true;
   double ambient = 0.3;
@@ -37,7 +49,8 @@ struct Shading {
   double shininess = 24.0;
   // Direction towards the light in camera space (+x right, +y up, +z towards the viewer).
   std::array<double, 3> lightDirection{0.35, 0.5, 1.0};
-  bool shadows = false;  // a shadow ray per contributing sample towards the light
+  bool shadows = false;  // shadow rays towards the light, started as shadowRays says
+  ShadowRays shadowRays = ShadowRays::kPerSample;
 };
 
 struct RenderSettings {

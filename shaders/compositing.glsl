@@ -47,7 +47,11 @@ void compositeSample(vec3 q, vec3 fraction, vec3 toEye, inout vec3 color,
   float a = stepAlpha(c.a);
   float shadow = 1.0;
 #if VXL_SHADOWS
+#if defined(VXL_SHADOW_CACHE) && VXL_SHADOW_CACHE
+  shadow = cornerShadowMean(fraction, c.a);  // shadow_cache.glsl
+#else
   shadow = shadowTransmittance(indexToWorld(q + 0.5));
+#endif
 #endif
   color += transmittance * (a / c.a) * (ambient + shadow * lit);
   transmittance *= 1.0 - a;

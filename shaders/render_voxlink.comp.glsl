@@ -16,6 +16,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "voxlink_dynamic.glsl"
 #include "voxlink_shadow.glsl"
 #include "voxlink_scene_shading.glsl"
+#if VXL_SHADOW_CACHE
+#include "shadow_cache.glsl"
+#endif
 #include "compositing.glsl"
 #include "voxlink_voxels.glsl"
 #include "voxlink_dynamic_trace.glsl"

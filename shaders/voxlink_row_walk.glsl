@@ -17,6 +17,7 @@ struct RowWalk {
   Row row;
   uint hits;  // stored voxels of the row still ahead within this stretch
   int entryDepth;
+  int depth;  // brick-local depth of the voxel returned last (the shadow cache's centre)
   float tRowEnd;
 };
 
@@ -80,6 +81,7 @@ bool rowWalkNext(inout RowWalk w, out uint voxel, out float tStart, out float tE
         w.hits = 0u;
       } else {
         voxel = uint(voxelInRow(w.row, uint(e)));
+        w.depth = e;
         return true;
       }
       continue;

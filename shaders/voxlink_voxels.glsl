@@ -42,7 +42,11 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
           shadeSample(c.rgb, 1.0, directionOfWord(word), toEye, ambient, lit);
           float shadow = 1.0;
 #if VXL_SHADOWS
+#if VXL_SHADOW_CACHE
+          shadow = centreShadow(voxel, rowWalkCell(walk));  // shadow_cache.glsl
+#else
           shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));
+#endif
 #endif
           color += transmittance * a * (ambient + shadow * lit);
 #endif

@@ -115,8 +115,10 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   const bool halfVoxelStep = s.stepVoxels == 0.5;
   const double e = s.shading.shininess;
   const int shininess = e >= 1 && e <= 127 && e == std::floor(e) ? int(e) : 0;
+  // The ray-traced mode casts its own shadow rays; the cache serves the plain frame's.
+  const bool shadowCache = shadows && pass == Pass::kPlain && cachesShadows(s);
   const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()),
-                                   halfVoxelStep, shininess);
+                                   halfVoxelStep, shininess, shadowCache);
   if (auto it = programs_.find(key); it != programs_.end()) return &it->second;
   if (pass == Pass::kEffectsResolve) {
     VOXLINK_ASSIGN_OR_RETURN(
@@ -138,6 +140,7 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_HALF_VOXEL_STEP", halfVoxelStep ? "1" : "0"});
   defines.push_back({"VXL_SHININESS", std::to_string(shininess)});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
+  defines.push_back({"VXL_SHADOW_CACHE", shadowCache ? "1" : "0"});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
   defines.push_back({"VXL_TF_PREMULTIPLIED", premultipliedTf() ? "1" : "0"});
@@ -206,6 +209,8 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   p->use();
   setFrameUniforms(*p, camera, settings, settings.width, settings.height);
   bindTables(*p);
+  if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings))
+    VOXLINK_RETURN_IF_ERROR(beginShadowCache());
   glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

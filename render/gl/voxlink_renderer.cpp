@@ -34,7 +34,37 @@ Status VoxLinkRenderer::checkSupported(const RenderSettings& settings) const {
   return Status::ok();
 }
 
-std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const { return voxlinkDefines(header_); }
+// The shadow cache reads through the texture unit below the TF table's (volume_renderer.h).
+GLuint shadowCacheUnit() { return tfTextureUnit() - 1; }
+
+std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const {
+  std::vector<ShaderDefine> defines = voxlinkDefines(header_);
+  defines.push_back({"VXL_SHADOW_CACHE_UNIT", std::to_string(shadowCacheUnit())});
+  defines.push_back({"VXL_SHADOW_CACHE_IMAGE", std::to_string(kShadowCacheImage)});
+  return defines;
+}
+
+// Volume files: a scene's shadow rays also cross its geometry, and stay per sample.
+bool VoxLinkRenderer::cachesShadows(const RenderSettings& settings) const {
+  return settings.shading.shadowRays == ShadowRays::kPerVoxel &&
+         header_.versionMajor != format::kVersionMajorScene;
+}
+
+Status VoxLinkRenderer::beginShadowCache() {
+  if (!shadowCache_) {
+    if (sections_.endUnit() > shadowCacheUnit())
+      return makeError(ErrorCode::kTooLarge,
+                       "shadow cache: the file's sections take texture units "
+                       "up to ",
+                       sections_.endUnit() - 1, ", the cache's unit ", shadowCacheUnit(),
+                       " among them; use --shadow-rays per-sample");
+    VOXLINK_ASSIGN_OR_RETURN(ShadowCacheBuffer cache,
+                             ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit()));
+    shadowCache_ = std::move(cache);
+  }
+  shadowCache_->clearAndBind();
+  return Status::ok();
+}
 
 std::map<std::string, std::string> VoxLinkRenderer::generatedFiles() const {
   return {{"voxlink_sections.glsl", sections_.glsl()}};

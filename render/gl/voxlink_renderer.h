@@ -4,9 +4,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "format/voxlink_file.h"
 #include "render/gl/detail/section_buffers.h"
+#include "render/gl/detail/shadow_cache_buffer.h"
 #include "render/gl/detail/volume_renderer.h"
 
 namespace voxlink::render::gl {
@@ -26,7 +28,12 @@ class VoxLinkRenderer : public VolumeRenderer {
   std::vector<ShaderDefine> dataDefines() const override;
   std::map<std::string, std::string> generatedFiles() const override;
   void bindData(const ComputeProgram& program) const override;
-  uint64_t dataBytes() const override { return sections_.gpuBytes(); }
+  // The sections, and the shadow cache once a frame with per-voxel shadow rays made it.
+  uint64_t dataBytes() const override {
+    return sections_.gpuBytes() + (shadowCache_ ? shadowCache_->bytes() : 0);
+  }
+  bool cachesShadows(const RenderSettings& settings) const override;
+  Status beginShadowCache() override;
 
  protected:
   VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections);
@@ -34,6 +41,7 @@ class VoxLinkRenderer : public VolumeRenderer {
  private:
   SectionBuffers sections_;
   format::FileHeader header_;
+  std::optional<ShadowCacheBuffer> shadowCache_;
 };
 
 // The defines and generated include the VoxLink shaders need for a file (tests reuse them).

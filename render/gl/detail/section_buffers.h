@@ -44,6 +44,11 @@ class SectionBuffers {
   const std::string& glsl() const { return glsl_; }
   uint64_t gpuBytes() const { return gpuBytes_; }
   uint32_t bindingCount() const { return static_cast<uint32_t>(chunks_.size()); }
+  // Voxel words, so the range of the voxel indices the shaders see: the file's voxel count, plus
+  // the apron's copies where row words have one (row_words.h).
+  uint64_t voxelSlots() const { return voxelSlots_; }
+  // The texture unit after the last chunk's.
+  GLuint endUnit() const { return chunks_.empty() ? 0 : chunks_.back().unit + 1; }
 
  private:
   struct Chunk {
@@ -54,6 +59,7 @@ class SectionBuffers {
   std::vector<Chunk> chunks_;
   std::string glsl_;
   uint64_t gpuBytes_ = 0;
+  uint64_t voxelSlots_ = 0;
 };
 
 }  // namespace voxlink::render::gl

@@ -86,6 +86,10 @@ class VolumeRenderer {
   virtual std::map<std::string, std::string> generatedFiles() const { return {}; }
   virtual void bindData(const ComputeProgram& program) const = 0;
   virtual uint64_t dataBytes() const = 0;
+  // Whether frames with these settings read the per-frame shadow cache (shaders/shadow_cache.glsl);
+  // then beginShadowCache() clears and binds it before each such frame.
+  virtual bool cachesShadows(const RenderSettings&) const { return false; }
+  virtual Status beginShadowCache() { return Status::ok(); }
 
  private:
   // Program variants: the plain frame, and the ray-traced mode's primary pass, secondary pass and
@@ -108,7 +112,7 @@ class VolumeRenderer {
   GlTexture tfTexels_;  // tfBuffer_ as a buffer texture of RGBA texels
   uint64_t tfBytes_ = 0;
   GlStorageBuffer gradientTable_;
-  std::map<std::tuple<int, bool, int, int, bool, int>, ComputeProgram> programs_;
+  std::map<std::tuple<int, bool, int, int, bool, int, bool>, ComputeProgram> programs_;
   EffectsBuffers effects_;
   EffectsStats effectsStats_;
 };

@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Shadow rays, speed against error (docs/shadows.md): for one file and sampling mode, the GL
+// frame without shadows, with per-sample shadow rays and with per-voxel ones (the per-frame
+// cache), interleaved view by view over the paper's protocol (a turn about y, then one about x),
+// so that a load change on a shared machine hits the three alike; median frame times and their
+// ratios; PSNR of each frame against both float64 references (per-sample and per-voxel rays) at
+// the first view, and of the per-voxel reference against the per-sample one (the model's own
+// error, free of any GL-vs-reference difference). Prints one markdown table row.
+//
+// usage: voxlink_bench_shadow_rays NAME FILE.vxl TF.json voxel|trilinear WxH FRAMES_PER_TURN
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "render/gl/gl_context.h"
+#include "render/gl/voxlink_renderer.h"
+#include "render/recorded_source.h"
+#include "render/reference_renderer.h"
+
+namespace {
+
+using namespace voxlink;
+using namespace voxlink::render;
+
+double seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// View f of the protocol (render/gl/render_benchmark.cpp): turns about y, then about x.
+Camera protocolCamera(const Camera& start, uint32_t f, uint32_t perTurn) {
+  Camera c = start;
+  const double step = 360.0 / perTurn;
+  if (f < perTurn) {
+    c.rotateAboutWorldAxis({0, 1, 0}, step * f);
+  } else {
+    c.rotateAboutWorldAxis({0, 1, 0}, 360.0);
+    c.rotateAboutWorldAxis({1, 0, 0}, step * (f - perTurn));
+  }
+  return c;
+}
+
+int fail(const std::string& what) {
+  std::fprintf(stderr, "voxlink_bench_shadow_rays: %s\n", what.c_str());
+  return 1;
+}
+
+int run(int argc, char** argv) {
+  if (argc != 7) return fail("usage: NAME FILE.vxl TF.json voxel|trilinear WxH FRAMES_PER_TURN");
+  const std::string name = argv[1];
+  auto file = format::VoxLinkFile::open(argv[2]);
+  if (!file) return fail(file.message());
+  auto tf = tf::loadTransferFunction(argv[3]);
+  if (!tf) return fail(tf.message());
+  const auto sampling = parseSampling(argv[4]);
+  if (!sampling) return fail(std::string("sampling: '") + argv[4] + "' is not voxel or trilinear");
+  auto size = parseImageSize(argv[5]);
+  if (!size) return fail(size.message());
+  const int perTurn = std::atoi(argv[6]);
+  if (perTurn < 1) return fail(std::string("frames per turn: '") + argv[6] + "' is not >= 1");
+  auto dense = loadSourceVolume(*file, "", {});
+  if (!dense) return fail(dense.message());
+  auto context = gl::createHeadlessContext();
+  if (!context) return fail(context.message());
+  auto renderer = gl::VoxLinkRenderer::create(*file);
+  if (!renderer) return fail(renderer.message());
+  (*renderer)->setTransferFunction(*tf);
+  const uint64_t plainBytes = (*renderer)->gpuBytes();
+
+  RenderSettings none;
+  none.width = (*size)[0];
+  none.height = (*size)[1];
+  none.sampling = *sampling;
+  RenderSettings perSample = none, perVoxel = none;
+  perSample.shading.shadows = perVoxel.shading.shadows = true;
+  perSample.shading.shadowRays = ShadowRays::kPerSample;
+  perVoxel.shading.shadowRays = ShadowRays::kPerVoxel;
+  const std::vector<RenderSettings> variants{none, perSample, perVoxel};
+
+  const Camera start = Camera::framing((*renderer)->geometry().worldBox(), {});
+  gl::RenderTarget target;
+  std::vector<Image> first;
+  for (const RenderSettings& s : variants) {  // warm-up (compiles, JIT); its frame is view 0
+    if (Status st = (*renderer)->render(start, s, target); !st) return fail(st.message());
+    first.push_back(target.read());
+  }
+  std::vector<std::vector<double>> ms(variants.size());
+  for (uint32_t f = 0; f < 2 * uint32_t(perTurn); ++f) {
+    const Camera camera = protocolCamera(start, f, uint32_t(perTurn));
+    for (size_t v = 0; v < variants.size(); ++v) {
+      const double t0 = seconds();
+      if (Status st = (*renderer)->render(camera, variants[v], target); !st)
+        return fail(st.message());
+      glFinish();
+      ms[v].push_back(1e3 * (seconds() - t0));
+    }
+  }
+
+  const ReferenceRenderer reference(*dense, *tf);
+  const double r0 = seconds();
+  const Image refSample = reference.render(start, perSample);
+  const double r1 = seconds();
+  const Image refVoxel = reference.render(start, perVoxel);
+  const double r2 = seconds();
+  auto psnr = [](const Image& a, const Image& b) {
+    auto e = compareImages(a, b);
+    return e ? e->psnr : -1.0;
+  };
+  const double none_ = median(ms[0]), sample = median(ms[1]), voxel = median(ms[2]);
+  std::printf(
+      "| %s | %s | %ux%u | %zu | %.1f | %.1f | %.1f | %.1fx | %.2fx | %.1fx | %.2f | %.2f | %.2f | "
+      "%.2f | %.2f | %.2f | %.2f | %.0f / %.0f | %.2f |\n",
+      name.c_str(), argv[4], none.width, none.height, ms[0].size(), none_, sample, voxel,
+      sample / none_, voxel / none_, sample / voxel, psnr(first[0], refSample),
+      psnr(first[1], refSample), psnr(first[1], refVoxel), psnr(first[2], refSample),
+      psnr(first[2], refVoxel), psnr(refVoxel, refSample), psnr(first[2], first[1]),
+      1e3 * (r1 - r0), 1e3 * (r2 - r1), double((*renderer)->gpuBytes() - plainBytes) / 1048576.0);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return run(argc, argv); }
