@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Shadow rays through a VoxLink file: transmittance towards the light with voxel (nearest)
 // sampling, skipping empty bricks (voxlink_brick_walk.glsl) and, in an occupied one, stepping
-// through the cells of its box of stored voxels. Mirrors ReferenceRenderer::shadowTransmittance.
+// through the cells of its box of stored voxels (volumes) or walking its rows (scenes). Mirrors
+// ReferenceRenderer::shadowTransmittance.
 
 #include "voxlink_brick_walk.glsl"
+
+const int kBigInt = 1 << 30;  // more cells than a row has
 
 // The cells of one occupied brick's box of stored voxels that a shadow ray crosses.
 struct ShadowCells {
@@ -16,30 +19,42 @@ struct ShadowCells {
   float tOut;    // where it leaves the box
 };
 
-// Takes the current cell's share of the light off `transmittance` and steps on; false when the
-// ray has left the box or the light is all but gone. Straight-line code, called four times a
-// loop pass: llvmpipe caps an invocation's loop passes (65535 for the 8 pixels of a SIMD vector,
-// render/gl/detail/loop_limit_retrace.h), and a row walk's pass for every row change and voxel
-// ran past it on a whole ray for one pixel alone (trilinear sampling, faint 80^3 volume).
+// Volumes (not scenes, below): takes the current cell's share of the light off `transmittance`
+// and steps on; false when the ray has left the box or the light is all but gone. A run of empty cells along the row (the
+// predominant axis w) is crossed in the same step, up to the row's next stored voxel or the
+// ray's next u or v plane, so the walk meets about as many cells as the row walk does.
+// Straight-line code, called four times a loop pass: llvmpipe caps an invocation's loop passes
+// (65535 for the 8 pixels of a SIMD vector, render/gl/detail/loop_limit_retrace.h), and a row
+// walk's pass for every row change and voxel ran past it on a whole ray for one pixel alone
+// (trilinear sampling, faint 80^3 volume).
 bool shadowCell(inout ShadowCells c, vec3 o, vec3 d, inout float transmittance) {
   if (!(c.t < c.tOut)) return false;
-  int axis = minAxis(c.dda.tMax);
-  float tz = min(max(c.dda.tMax[axis], c.t), c.tOut);
   ivec3 local = c.dda.cell - c.origin;
   uvec2 info = rowInfo(c.k, rowOfLocal(local));
-  int voxel = voxelInRow(Row(info.x, rowFirst(c.base, info.y)), uint(local[VXL_W]));
-  if (voxel >= 0) {
-    uint v = uint(voxel);
-#if VXL_SCENE
-    transmittance *= geometryTransmittance(v, o, d, c.t, tz);
-    uint slot;
-    // VALU and GRAD of a scene hold the volume voxels only
-    if (volumeSlot(v, slot))
-      transmittance *= 1.0 - correctedAlpha(classify(storedBits(slot)).a, tz - c.t);
-#else
-    transmittance *= 1.0 - correctedAlpha(classify(storedBits(v)).a, tz - c.t);
-#endif
+  Row row = Row(info.x, rowFirst(c.base, info.y));
+  int depth = local[VXL_W];
+  int stepW = c.dda.stepDir[VXL_W];
+  if (((row.bits >> uint(depth)) & 1u) == 0u && stepW != 0) {
+    uint ahead = stepW > 0 ? row.bits & ~((2u << uint(depth)) - 1u)
+                           : row.bits & ((1u << uint(depth)) - 1u);
+    int toNext = ahead == 0u ? kBigInt : (stepW > 0 ? findLSB(ahead) - depth : depth - findMSB(ahead));
+    float tRowEnd = min(min(c.dda.tMax[VXL_U], c.dda.tMax[VXL_V]), c.tOut);
+    float tW = c.dda.tMax[VXL_W], dW = c.dda.tDelta[VXL_W];
+    int n = min(toNext, tW < tRowEnd ? int(ceil((tRowEnd - tW) / dW)) : 0);
+    if (n > 0) {
+      c.t = max(c.t, tW + float(n - 1) * dW);
+      c.dda.cell[VXL_W] += n * stepW;
+      c.dda.tMax[VXL_W] += float(n) * dW;
+      depth += n * stepW;
+      if (c.dda.cell[VXL_W] < c.lo[VXL_W] || c.dda.cell[VXL_W] > c.hi[VXL_W] || !(c.t < c.tOut))
+        return false;
+    }
   }
+  int axis = minAxis(c.dda.tMax);
+  float tz = min(max(c.dda.tMax[axis], c.t), c.tOut);
+  int voxel = voxelInRow(row, uint(depth));
+  if (voxel >= 0)
+    transmittance *= 1.0 - correctedAlpha(classify(storedBits(uint(voxel))).a, tz - c.t);
   c.t = tz;
   ddaAdvance(c.dda, axis);
   return transmittance >= uShadowStop && c.dda.cell[axis] >= c.lo[axis] &&
@@ -77,6 +92,24 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
   }
 #endif
   for (BrickWalk w = brickWalkBegin(o, d, t0, t1); brickWalkGoesOn(w);) {
+#if VXL_SCENE
+    // Scenes keep the row walk: their boxes of stored voxels hold thin surfaces, and the cell
+    // walk (with geometryTransmittance four times over) doubled the CPU time of the
+    // fragment-list scenes' test (FragmentListsRender.GlMatchesTheFloat64Walker, 17.6 s to 30-36 s).
+    RowWalk walk;
+    if (brickWalkEnter(w, o, d, false, walk)) {
+      uint voxel;
+      float ta, tz;
+      while (rowWalkNext(walk, voxel, ta, tz)) {
+        transmittance *= geometryTransmittance(voxel, o, d, ta, tz);
+        uint slot;
+        if (!volumeSlot(voxel, slot)) continue;
+        // VALU and GRAD of a scene hold the volume voxels only
+        transmittance *= 1.0 - correctedAlpha(classify(storedBits(slot)).a, tz - ta);
+        if (transmittance < uShadowStop) return transmittance;
+      }
+    }
+#else
     ShadowCells c;
     if (brickWalkEnterBox(w, o, d, false, c.t, c.tOut, c.lo, c.hi, c.k, c.base)) {
       c.dda = ddaInit(o, d, c.t, c.lo, c.hi);
@@ -88,6 +121,7 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
       }
       if (transmittance < uShadowStop) break;
     }
+#endif
     if (!brickWalkLeave(w)) break;
   }
   return transmittance;
