@@ -6,8 +6,6 @@
 
 #include "voxlink_brick_walk.glsl"
 
-const int kBigInt = 1 << 30;  // more cells than a row has
-
 // The cells of one occupied brick's box of stored voxels that a shadow ray crosses.
 struct ShadowCells {
   Dda dda;
@@ -20,39 +18,19 @@ struct ShadowCells {
 };
 
 // Volumes (not scenes, below): takes the current cell's share of the light off `transmittance`
-// and steps on; false when the ray has left the box or the light is all but gone. A run of empty cells along the row (the
-// predominant axis w) is crossed in the same step, up to the row's next stored voxel or the
-// ray's next u or v plane, so the walk meets about as many cells as the row walk does.
-// Straight-line code, called four times a loop pass: llvmpipe caps an invocation's loop passes
-// (65535 for the 8 pixels of a SIMD vector, render/gl/detail/loop_limit_retrace.h), and a row
-// walk's pass for every row change and voxel ran past it on a whole ray for one pixel alone
-// (trilinear sampling, faint 80^3 volume).
+// and steps on; false when the ray has left the box or the light is all but gone. Straight-line
+// code, called four times a loop pass: llvmpipe caps an invocation's loop passes (65535 for the
+// 8 pixels of a SIMD vector, render/gl/detail/loop_limit_retrace.h), and a row walk's pass for
+// every row change and voxel ran past it on a whole ray for one pixel alone (trilinear sampling,
+// faint 80^3 volume). (Crossing a row's run of empty cells in the same step measured no faster
+// on the foot and LIDC under this machine's load, so the walk stays simple.)
 bool shadowCell(inout ShadowCells c, vec3 o, vec3 d, inout float transmittance) {
   if (!(c.t < c.tOut)) return false;
   ivec3 local = c.dda.cell - c.origin;
   uvec2 info = rowInfo(c.k, rowOfLocal(local));
-  Row row = Row(info.x, rowFirst(c.base, info.y));
-  int depth = local[VXL_W];
-  int stepW = c.dda.stepDir[VXL_W];
-  if (((row.bits >> uint(depth)) & 1u) == 0u && stepW != 0) {
-    uint ahead = stepW > 0 ? row.bits & ~((2u << uint(depth)) - 1u)
-                           : row.bits & ((1u << uint(depth)) - 1u);
-    int toNext = ahead == 0u ? kBigInt : (stepW > 0 ? findLSB(ahead) - depth : depth - findMSB(ahead));
-    float tRowEnd = min(min(c.dda.tMax[VXL_U], c.dda.tMax[VXL_V]), c.tOut);
-    float tW = c.dda.tMax[VXL_W], dW = c.dda.tDelta[VXL_W];
-    int n = min(toNext, tW < tRowEnd ? int(ceil((tRowEnd - tW) / dW)) : 0);
-    if (n > 0) {
-      c.t = max(c.t, tW + float(n - 1) * dW);
-      c.dda.cell[VXL_W] += n * stepW;
-      c.dda.tMax[VXL_W] += float(n) * dW;
-      depth += n * stepW;
-      if (c.dda.cell[VXL_W] < c.lo[VXL_W] || c.dda.cell[VXL_W] > c.hi[VXL_W] || !(c.t < c.tOut))
-        return false;
-    }
-  }
+  int voxel = voxelInRow(Row(info.x, rowFirst(c.base, info.y)), uint(local[VXL_W]));
   int axis = minAxis(c.dda.tMax);
   float tz = min(max(c.dda.tMax[axis], c.t), c.tOut);
-  int voxel = voxelInRow(row, uint(depth));
   if (voxel >= 0)
     transmittance *= 1.0 - correctedAlpha(classify(storedBits(uint(voxel))).a, tz - c.t);
   c.t = tz;
@@ -95,7 +73,8 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
 #if VXL_SCENE
     // Scenes keep the row walk: their boxes of stored voxels hold thin surfaces, and the cell
     // walk (with geometryTransmittance four times over) doubled the CPU time of the
-    // fragment-list scenes' test (FragmentListsRender.GlMatchesTheFloat64Walker, 17.6 s to 30-36 s).
+    // fragment-list scenes' test (FragmentListsRender.GlMatchesTheFloat64Walker, 17.6 s to
+    // 30-36 s). The retrace pass (loop_limit_retrace.h) still guards them.
     RowWalk walk;
     if (brickWalkEnter(w, o, d, false, walk)) {
       uint voxel;
