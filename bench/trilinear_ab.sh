@@ -7,6 +7,7 @@
 # usage: bench/trilinear_ab.sh VOXLINK_A SHADERS_A VOXLINK_B DATA_DIR [ROUNDS] [SIZE] [SAMPLING]
 #        SHADERS_A: a shaders/ directory for A (VOXLINK_SHADER_DIR), or - for its built-in ones;
 #        SAMPLING: trilinear (default) or voxel.
+# AB_ARGS="--shadows" passes extra options to every bench-render run (docs/viewer.md, shadows).
 # AB_CPU=1 times each run by the CPU seconds (user + sys) it took as a whole, not by its frames'
 # wall-clock ms: on the shared 2-core machine, wall time swung 2-3x with other engineers' load
 # while CPU seconds varied by 2 % (docs/rendering-trilinear-profile.md, seventh session). The
@@ -32,7 +33,7 @@ frame() {  # binary shader-dir name -> ms per frame (CPU seconds of the run with
   [[ $2 != - ]] && env=(VOXLINK_SHADER_DIR="$(realpath "$2")")
   local run=(env "${env[@]}" "$1" bench-render "$tmp/$3.vxl" --tf "$tf/$3$( [[ $3 == tooth ]] || echo -bone).tf.json"
     --sizes "$size" --frames-per-turn 1 --no-dense --no-reference --samplings "$sampling"
-    --termination-alpha "$termination")
+    --termination-alpha "$termination" ${AB_ARGS:-})
   if [[ ${AB_CPU:-0} == 1 ]]; then
     local TIMEFORMAT='%U %S'
     { time "${run[@]}" >/dev/null 2>&1; } 2>&1 | awk '{print $1 + $2}'

@@ -14,7 +14,9 @@
 //
 // The loop leaves through that break, not through a flag in its condition: with the flag, Mesa
 // 22.3 llvmpipe rendered some shadows differently (up to 67/255 in 290 pixels of the foot CT
-// with --shadows at 384x384), though the walk is the same.
+// with --shadows at 384x384), though the walk is the same. The cause was llvmpipe's cap on an
+// invocation's loop passes, which a different loop shape reached elsewhere
+// (render/gl/detail/loop_limit_retrace.h).
 
 struct BrickWalk {
   Dda bricks;
@@ -43,20 +45,23 @@ BrickWalk brickWalkBegin(vec3 o, vec3 d, float t0, float t1) {
 
 bool brickWalkGoesOn(BrickWalk w) { return w.step < w.limit && w.t < w.t1; }
 
-// Starts the row walk `rows` through the stored voxels of the brick the ray is in; false when
-// the brick is empty or the ray misses its voxels. With `skipEmpty` (a constant at each call,
-// folded away) a run of empty bricks ahead is crossed first, in an inner loop; false too when the
-// ray leaves the grid or passes t1 there.
-bool brickWalkEnter(inout BrickWalk w, vec3 o, vec3 d, bool skipEmpty, out RowWalk rows) {
+// Clips the ray to the box of stored voxels of the brick it is in: [tIn, tOut), the box's cells
+// lo..hi, the brick's occupied index k and first voxel base; false when the brick is empty or the
+// ray misses its voxels. With `skipEmpty` (a constant at each call, folded away) a run of empty
+// bricks ahead is crossed first, in an inner loop; false too when the ray leaves the grid or
+// passes t1 there.
+bool brickWalkEnterBox(inout BrickWalk w, vec3 o, vec3 d, bool skipEmpty, out float tIn,
+                       out float tOut, out ivec3 lo, out ivec3 hi, out uint k, out uint base) {
   int axis = minAxis(w.bricks.tMax);
-  int k = occupiedIndex(w.bricks.cell);
+  int occupied = occupiedIndex(w.bricks.cell);
   if (skipEmpty) {
     // Runs of empty bricks are crossed here, one occupancy bit each: llvmpipe executes the
     // whole body of the caller's loop for all 8 lanes of a SIMD vector whenever one of them
     // needs it, so an empty brick taking a pass of its own costs as much as an occupied one.
     // Shadow rays do without it: there it changed the images on Mesa 22.3 llvmpipe (up to
-    // 76/255 in 810 pixels of the foot CT with --shadows at 384x384), though the walk is the same.
-    for (int j = 0; j < w.limit && k < 0; ++j) {
+    // 76/255 in 810 pixels of the foot CT with --shadows at 384x384), though the walk is the
+    // same: llvmpipe's cap on loop passes (render/gl/detail/loop_limit_retrace.h), now handled.
+    for (int j = 0; j < w.limit && occupied < 0; ++j) {
       w.t = min(max(w.bricks.tMax[axis], w.t), w.t1);
       ddaAdvance(w.bricks, axis);
       if (w.t >= w.t1 || w.bricks.cell[axis] < 0 || w.bricks.cell[axis] >= uBrickGrid[axis]) {
@@ -64,19 +69,26 @@ bool brickWalkEnter(inout BrickWalk w, vec3 o, vec3 d, bool skipEmpty, out RowWa
         break;
       }
       axis = minAxis(w.bricks.tMax);
-      k = occupiedIndex(w.bricks.cell);
+      occupied = occupiedIndex(w.bricks.cell);
     }
     if (w.outside) return false;
   }
   w.axis = axis;
   w.tExit = min(max(w.bricks.tMax[axis], w.t), w.t1);
-  float tIn = w.t, tOut = w.tExit;
+  tIn = w.t;
+  tOut = w.tExit;
+  k = uint(max(occupied, 0));
+  return occupied >= 0 && w.tExit > w.t &&
+         clipToBrickBounds(o, d, k, w.bricks.cell, tIn, tOut, lo, hi, base);
+}
+
+// brickWalkEnterBox, then the row walk `rows` through the box's stored voxels.
+bool brickWalkEnter(inout BrickWalk w, vec3 o, vec3 d, bool skipEmpty, out RowWalk rows) {
+  float tIn, tOut;
   ivec3 lo, hi;
-  uint base;
-  if (!(k >= 0 && w.tExit > w.t &&
-        clipToBrickBounds(o, d, uint(k), w.bricks.cell, tIn, tOut, lo, hi, base)))
-    return false;
-  rows = rowWalkBegin(o, d, tIn, tOut, w.bricks.cell, uint(k), base, lo, hi);
+  uint k, base;
+  if (!brickWalkEnterBox(w, o, d, skipEmpty, tIn, tOut, lo, hi, k, base)) return false;
+  rows = rowWalkBegin(o, d, tIn, tOut, w.bricks.cell, k, base, lo, hi);
   return true;
 }
 

@@ -141,6 +141,7 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_SHININESS", std::to_string(shininess)});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_SHADOW_CACHE", shadowCache ? "1" : "0"});
+  defines.push_back({"VXL_RETRACE_BINDING", std::to_string(kRetraceBinding)});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
   defines.push_back({"VXL_TF_PREMULTIPLIED", premultipliedTf() ? "1" : "0"});
@@ -212,9 +213,16 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings))
     VOXLINK_RETURN_IF_ERROR(beginShadowCache());
   glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  // Only shadow rays make rays long enough to reach a driver's loop cap (loop_limit_retrace.h).
+  const bool shadows = settings.shading.enabled && settings.shading.shadows;
+  if (shadows) retrace_.begin(*p, settings.width, settings.height);
   glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
                   GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  lastRetraced_ = 0;
+  if (shadows) {
+    VOXLINK_ASSIGN_OR_RETURN(lastRetraced_, retrace_.finish(*p, name()));
+  }
   if (const GLenum e = glGetError(); e != GL_NO_ERROR)
     return makeError(ErrorCode::kUnsupported, "render (", name(), " renderer): GL error 0x",
                      std::hex, e, " while rendering");

@@ -14,6 +14,7 @@
 #include "render/camera.h"
 #include "render/gl/detail/effects_buffers.h"
 #include "render/gl/detail/gl_objects.h"
+#include "render/gl/detail/loop_limit_retrace.h"
 #include "render/gl/render_target.h"
 #include "render/gl/shader_program.h"
 #include "render/render_model.h"
@@ -74,6 +75,9 @@ class VolumeRenderer {
     uint64_t droppedRays = 0;
   };
   const EffectsStats& lastEffectsStats() const { return effectsStats_; }
+  // Pixels of the last plain frame traced again because the driver's loop cap cut their rays
+  // short (loop_limit_retrace.h); 0 without shadow rays.
+  uint32_t lastRetracedPixels() const { return lastRetraced_; }
 
  protected:
   explicit VolumeRenderer(const VolumeGeometry& geometry);
@@ -115,6 +119,8 @@ class VolumeRenderer {
   std::map<std::tuple<int, bool, int, int, bool, int, bool>, ComputeProgram> programs_;
   EffectsBuffers effects_;
   EffectsStats effectsStats_;
+  LoopLimitRetrace retrace_;
+  uint32_t lastRetraced_ = 0;
 };
 
 }  // namespace voxlink::render::gl
