@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/gl/gl_context.h"
+#include "render/gl/render_benchmark.h"
 #include "render/gl/voxlink_renderer.h"
 #include "render/recorded_source.h"
 #include "render/reference_renderer.h"
@@ -32,19 +33,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// View f of the protocol (render/gl/render_benchmark.cpp): turns about y, then about x.
-Camera protocolCamera(const Camera& start, uint32_t f, uint32_t perTurn) {
-  Camera c = start;
-  const double step = 360.0 / perTurn;
-  if (f < perTurn) {
-    c.rotateAboutWorldAxis({0, 1, 0}, step * f);
-  } else {
-    c.rotateAboutWorldAxis({0, 1, 0}, 360.0);
-    c.rotateAboutWorldAxis({1, 0, 0}, step * (f - perTurn));
-  }
-  return c;
 }
 
 int fail(const std::string& what) {
@@ -93,7 +81,7 @@ int run(int argc, char** argv) {
   }
   std::vector<std::vector<double>> ms(variants.size());
   for (uint32_t f = 0; f < 2 * uint32_t(perTurn); ++f) {
-    const Camera camera = protocolCamera(start, f, uint32_t(perTurn));
+    const Camera camera = gl::protocolCamera(start, f, uint32_t(perTurn));
     for (size_t v = 0; v < variants.size(); ++v) {
       const double t0 = seconds();
       if (Status st = (*renderer)->render(camera, variants[v], target); !st)

@@ -16,7 +16,8 @@ double seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Frame i of the protocol: turns 0..n-1 about y, then n..2n-1 about x.
+}  // namespace
+
 Camera protocolCamera(const Camera& start, uint32_t i, uint32_t n) {
   Camera c = start;
   const double step = 360.0 / n;
@@ -28,6 +29,8 @@ Camera protocolCamera(const Camera& start, uint32_t i, uint32_t n) {
   }
   return c;
 }
+
+namespace {
 
 std::string sizeName(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
 

@@ -44,6 +44,10 @@ struct BenchmarkRow {
 // tracer over the same voxel scene. Empty: no PSNR column.
 using ReferenceRender = std::function<Image(const Camera&, const RenderSettings&)>;
 
+// View i of the benchmark's rotation protocol (the paper's): turns 0..n-1 about y, then n..2n-1
+// about x, from `start`.
+Camera protocolCamera(const Camera& start, uint32_t i, uint32_t n);
+
 // Renderers must share the TF already set on them.
 Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRenderer*>& renderers,
                                                      const ReferenceRender& reference,
