@@ -17,6 +17,17 @@ std::array<uint32_t, 3> brickCell(const format::FileHeader& h, uint64_t b) {
 
 }  // namespace
 
+std::vector<uint32_t> occupiedBrickCells(const format::VoxLinkFile& file) {
+  std::vector<uint32_t> cells;
+  cells.reserve(3 * file.occupiedBrickCount());
+  format::forEachOccupiedBrick(file.occupancyWords(), file.gridBrickCount(),
+                               [&](uint64_t b, uint64_t) {
+                                 const auto c = brickCell(file.header(), b);
+                                 cells.insert(cells.end(), c.begin(), c.end());
+                               });
+  return cells;
+}
+
 BrickRange occupiedBrickRange(const format::VoxLinkFile& file) {
   const format::FileHeader& h = file.header();
   std::array<uint32_t, 3> lo{UINT32_MAX, UINT32_MAX, UINT32_MAX}, hi{0, 0, 0};

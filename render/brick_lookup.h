@@ -36,6 +36,9 @@ struct BrickRange {
 // The smallest box holding every occupied brick; empty for a file without voxels.
 BrickRange occupiedBrickRange(const format::VoxLinkFile& file);
 
+// The grid cell (x, y, z) of every occupied brick, in occupied-index order: 3 words per brick.
+std::vector<uint32_t> occupiedBrickCells(const format::VoxLinkFile& file);
+
 // Marks an empty brick in occupiedIndexByBrick().
 inline constexpr uint32_t kEmptyBrick = 0xFFFFFFFFu;
 

@@ -16,17 +16,27 @@ layout(r32ui, binding = VXL_SHADOW_CACHE_IMAGE) uniform uimageBuffer uShadowCode
 
 const float kShadowLevels = 254.0;
 
+// The code of transmittance t: 1 + round(254 t), never 0 (0 marks a voxel not yet walked).
+uint shadowCode(float t) { return 1u + uint(round(clamp(t, 0.0, 1.0) * kShadowLevels)); }
+
+// Sets voxel `slot`'s code; its word's three other bytes belong to other voxels.
+void storeShadowCode(uint slot, uint code) {
+  imageAtomicOr(uShadowCodesOut, int(slot >> 2u), code << ((slot & 3u) * 8u));
+}
+
 // The stored transmittance of voxel `slot` (its voxel word's index: the file's voxel index, or
 // where row words have an apron, the extended index, copies included), walking from the
-// centre of its cell `cell` (index space, voxel centres at cell + 1/2) on a miss.
+// centre of its cell `cell` (index space, voxel centres at cell + 1/2) on a miss. Where the
+// fill pass (shadow_fill.comp.glsl) set every visible voxel's code first, the frame only reads:
+// its shader then holds no shadow walk at all.
 float centreShadow(uint slot, ivec3 cell) {
-  uint shift = (slot & 3u) * 8u;
-  uint code = (texelFetch(uShadowCodes, int(slot >> 2u)).x >> shift) & 0xFFu;
+  uint code = (texelFetch(uShadowCodes, int(slot >> 2u)).x >> ((slot & 3u) * 8u)) & 0xFFu;
+#if !VXL_SHADOW_FILLED
   if (code == 0u) {
-    float t = shadowTransmittance(indexToWorld(vec3(cell) + 0.5));
-    code = 1u + uint(round(clamp(t, 0.0, 1.0) * kShadowLevels));
-    imageAtomicOr(uShadowCodesOut, int(slot >> 2u), code << shift);
+    code = shadowCode(shadowTransmittance(indexToWorld(vec3(cell) + 0.5)));
+    storeShadowCode(slot, code);
   }
+#endif
   return float(code - 1u) / kShadowLevels;
 }
 

@@ -55,3 +55,15 @@ vec4 classifyPremultiplied(uint bits) {
   return vec4(c.rgb * c.a, c.a);
 #endif
 }
+
+// -log2(1 - alpha) of a voxel's stored value bits, alpha its opacity per unit length (held below
+// 1 as correctedAlpha holds it): a chord of length len lets exp2(-len / uUnit * this) through, so
+// a shadow walk sums these and takes one exp2 at its end instead of a pow per cell. 8-bit files
+// read it from texels 512.. of the table (volume_renderer.cpp), others take a log2.
+float unitOpticalDepth(uint bits) {
+#if VXL_TF_PREMULTIPLIED && !VXL_TF_BREAKPOINTS
+  return texelFetch(uTfTexels, int(bits) + 512).x;
+#else
+  return -log2(1.0 - min(classify(bits).a, kMaxUnitAlpha));
+#endif
+}

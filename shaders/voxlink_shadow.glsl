@@ -17,26 +17,25 @@ struct ShadowCells {
   float tOut;    // where it leaves the box
 };
 
-// Volumes (not scenes, below): takes the current cell's share of the light off `transmittance`
-// and steps on; false when the ray has left the box or the light is all but gone. Straight-line
+// Volumes (not scenes, below): adds the current cell's optical depth (unitOpticalDepth times
+// its chord, in units of uUnit) to `depth` and steps on; false when the ray has left the box or
+// the depth has passed `depthStop` (the light is all but gone). Straight-line
 // code, called four times a loop pass: llvmpipe caps an invocation's loop passes (65535 for the
 // 8 pixels of a SIMD vector, render/gl/detail/loop_limit_retrace.h), and a row walk's pass for
 // every row change and voxel ran past it on a whole ray for one pixel alone (trilinear sampling,
 // faint 80^3 volume). (Crossing a row's run of empty cells in the same step measured no faster
 // on the foot and LIDC under this machine's load, so the walk stays simple.)
-bool shadowCell(inout ShadowCells c, vec3 o, vec3 d, inout float transmittance) {
+bool shadowCell(inout ShadowCells c, vec3 o, vec3 d, float depthStop, inout float depth) {
   if (!(c.t < c.tOut)) return false;
   ivec3 local = c.dda.cell - c.origin;
   uvec2 info = rowInfo(c.k, rowOfLocal(local));
   int voxel = voxelInRow(Row(info.x, rowFirst(c.base, info.y)), uint(local[VXL_W]));
   int axis = minAxis(c.dda.tMax);
   float tz = min(max(c.dda.tMax[axis], c.t), c.tOut);
-  if (voxel >= 0)
-    transmittance *= 1.0 - correctedAlpha(classify(storedBits(uint(voxel))).a, tz - c.t);
+  if (voxel >= 0) depth += (tz - c.t) * unitOpticalDepth(storedBits(uint(voxel)));
   c.t = tz;
   ddaAdvance(c.dda, axis);
-  return transmittance >= uShadowStop && c.dda.cell[axis] >= c.lo[axis] &&
-         c.dda.cell[axis] <= c.hi[axis];
+  return depth <= depthStop && c.dda.cell[axis] >= c.lo[axis] && c.dda.cell[axis] <= c.hi[axis];
 }
 
 // Transmittance from worldPoint towards unit direction toLight, over at most `distance` (world;
@@ -57,6 +56,10 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
   float t0 = max(range.x, 0.0), t1 = min(range.y, distance - start);
   float transmittance = 1.0;
   if (!(t0 < t1)) return transmittance;
+  // Volumes: the optical depth so far (world length times unitOpticalDepth), and where the
+  // transmittance falls below uShadowStop.
+  float depth = 0.0;
+  const float depthStop = -log2(uShadowStop) * uUnit;
 #if defined(VXL_DYNAMIC_LAYER) && VXL_SCENE
   // The moving meshes and spheres (voxlink_dynamic.glsl): each surface on the way to the light
   // lets its material's share through, as the primary ray composites each.
@@ -88,16 +91,16 @@ float shadowAlong(vec3 worldPoint, vec3 toLight, float distance) {
       c.dda = ddaInit(o, d, c.t, c.lo, c.hi);
       c.origin = w.bricks.cell * VXL_N;
       for (;;) {
-        if (!shadowCell(c, o, d, transmittance) || !shadowCell(c, o, d, transmittance) ||
-            !shadowCell(c, o, d, transmittance) || !shadowCell(c, o, d, transmittance))
+        if (!shadowCell(c, o, d, depthStop, depth) || !shadowCell(c, o, d, depthStop, depth) ||
+            !shadowCell(c, o, d, depthStop, depth) || !shadowCell(c, o, d, depthStop, depth))
           break;
       }
-      if (transmittance < uShadowStop) break;
+      if (depth > depthStop) break;
     }
 #endif
     if (!brickWalkLeave(w)) break;
   }
-  return transmittance;
+  return transmittance * exp2(-depth / uUnit);
 }
 
 // Towards the frame's directional light.

@@ -83,8 +83,8 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   if (premultipliedTf()) {
     // 8-bit files: (colour * opacity, opacity) of value i at texel 256 + i as well, so a
     // trilinear corner skips 3 multiplies (transfer_function.glsl). Float products, as the
-    // shader formed them: images stay bit-identical.
-    texels.resize(2 * kU8TfEntries * 4, 0.0f);
+    // shader formed them: images stay bit-identical. And its optical depth at 512 + i.
+    texels.resize(3 * kU8TfEntries * 4, 0.0f);
     for (size_t i = 0; i < kU8TfEntries; ++i) {
       const float* c = &texels[4 * i];
       float* p = &texels[4 * (kU8TfEntries + i)];
@@ -92,6 +92,9 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
       p[1] = c[1] * c[3];
       p[2] = c[2] * c[3];
       p[3] = c[3];
+      // Texel 512 + i: -log2(1 - opacity) for shadow walks (unitOpticalDepth), in double.
+      texels[4 * (2 * kU8TfEntries + i)] =
+          float(-std::log2(1.0 - std::min(double(c[3]), render::kMaxUnitAlpha)));
     }
   }
   tfBuffer_ = createStorageBuffer(texels.data(), texels.size() * sizeof(float));
@@ -108,7 +111,8 @@ bool VolumeRenderer::premultipliedTf() const {
 }
 
 Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
-  const bool effects = pass != Pass::kPlain;
+  const bool fill = pass == Pass::kShadowFill;
+  const bool effects = pass != Pass::kPlain && !fill;
   const bool shadows = s.shading.enabled && (s.shading.shadows || (effects && s.effects.shadows));
   // pow() specialised away where the settings allow (shading.glsl): a half-voxel step, an
   // integer specular exponent.
@@ -116,7 +120,7 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   const double e = s.shading.shininess;
   const int shininess = e >= 1 && e <= 127 && e == std::floor(e) ? int(e) : 0;
   // The ray-traced mode casts its own shadow rays; the cache serves the plain frame's.
-  const bool shadowCache = shadows && pass == Pass::kPlain && cachesShadows(s);
+  const bool shadowCache = shadows && (pass == Pass::kPlain || fill) && cachesShadows(s);
   const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()),
                                    halfVoxelStep, shininess, shadowCache);
   if (auto it = programs_.find(key); it != programs_.end()) return &it->second;
@@ -141,21 +145,26 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_SHININESS", std::to_string(shininess)});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_SHADOW_CACHE", shadowCache ? "1" : "0"});
+  defines.push_back({"VXL_SHADOW_FILLED", shadowCache ? "1" : "0"});
   defines.push_back({"VXL_RETRACE_BINDING", std::to_string(kRetraceBinding)});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
   defines.push_back({"VXL_TF_PREMULTIPLIED", premultipliedTf() ? "1" : "0"});
   defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
   defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
-  VOXLINK_ASSIGN_OR_RETURN(
-      ComputeProgram p,
-      ComputeProgram::build(effects ? effectsShader() : mainShader(), defines, generatedFiles()));
+  const std::string shader = fill ? shadowFillShader() : effects ? effectsShader() : mainShader();
+  VOXLINK_ASSIGN_OR_RETURN(ComputeProgram p,
+                           ComputeProgram::build(shader, defines, generatedFiles()));
   return &programs_.emplace(key, std::move(p)).first->second;
 }
 
 Status VolumeRenderer::prepare(const RenderSettings& settings) {
   VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
-  if (!settings.effects.any()) return program(settings).status();
+  if (!settings.effects.any()) {
+    if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings))
+      VOXLINK_RETURN_IF_ERROR(program(settings, Pass::kShadowFill).status());
+    return program(settings).status();
+  }
   for (Pass pass : {Pass::kEffectsPrimary, Pass::kEffectsSecondary, Pass::kEffectsResolve})
     VOXLINK_RETURN_IF_ERROR(program(settings, pass).status());
   return Status::ok();
@@ -207,14 +216,23 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   if (settings.effects.any()) return renderEffects(camera, settings, target);
   VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* p, program(settings));
   VOXLINK_RETURN_IF_ERROR(target.resize(settings.width, settings.height));
+  const bool cached =
+      settings.shading.enabled && settings.shading.shadows && cachesShadows(settings);
+  if (cached) {
+    VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* fill, program(settings, Pass::kShadowFill));
+    VOXLINK_RETURN_IF_ERROR(beginShadowCache());
+    fill->use();
+    setFrameUniforms(*fill, camera, settings, settings.width, settings.height);
+    bindTables(*fill);
+    fillShadowCache(*fill);
+  }
   p->use();
   setFrameUniforms(*p, camera, settings, settings.width, settings.height);
   bindTables(*p);
-  if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings))
-    VOXLINK_RETURN_IF_ERROR(beginShadowCache());
   glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  // Only shadow rays make rays long enough to reach a driver's loop cap (loop_limit_retrace.h).
-  const bool shadows = settings.shading.enabled && settings.shading.shadows;
+  // Only shadow rays make rays long enough to reach a driver's loop cap (loop_limit_retrace.h);
+  // a frame that reads filled shadow codes walks none (the fill pass walks one per invocation).
+  const bool shadows = settings.shading.enabled && settings.shading.shadows && !cached;
   if (shadows) retrace_.begin(*p, settings.width, settings.height);
   glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "render/gl/voxlink_renderer.h"
 
+#include "render/brick_lookup.h"
 #include "render/gl/detail/volume_renderer.h"
 
 namespace voxlink::render::gl {
@@ -24,7 +25,8 @@ Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(
 VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections)
     : VolumeRenderer(VolumeGeometry::of(file.header())),
       sections_(std::move(sections)),
-      header_(file.header()) {}
+      header_(file.header()),
+      brickCells_(file.isScene() ? std::vector<uint32_t>() : occupiedBrickCells(file)) {}
 
 Status VoxLinkRenderer::checkSupported(const RenderSettings& settings) const {
   if (header_.versionMajor == format::kVersionMajorScene && settings.sampling != Sampling::kVoxel)
@@ -41,6 +43,7 @@ std::vector<ShaderDefine> VoxLinkRenderer::dataDefines() const {
   std::vector<ShaderDefine> defines = voxlinkDefines(header_);
   defines.push_back({"VXL_SHADOW_CACHE_UNIT", std::to_string(shadowCacheUnit())});
   defines.push_back({"VXL_SHADOW_CACHE_IMAGE", std::to_string(kShadowCacheImage)});
+  defines.push_back({"VXL_BRICK_CELLS_BINDING", std::to_string(kBrickCellsBinding)});
   return defines;
 }
 
@@ -59,11 +62,18 @@ Status VoxLinkRenderer::beginShadowCache() {
                        sections_.endUnit() - 1, ", the cache's unit ", shadowCacheUnit(),
                        " among them; use --shadow-rays per-sample");
     VOXLINK_ASSIGN_OR_RETURN(ShadowCacheBuffer cache,
-                             ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit()));
+                             ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit(),
+                                                       brickCells_));
     shadowCache_ = std::move(cache);
   }
   shadowCache_->clearAndBind();
   return Status::ok();
+}
+
+void VoxLinkRenderer::fillShadowCache(const ComputeProgram& program) const {
+  // Depth n is a row's apron copy, where row words have one (shadow_fill.comp.glsl).
+  shadowCache_->fill(program.uniform("uOccupiedBricks"), program.uniform("uDepths"),
+                     header_.brickSize + (sections_.rowApron() ? 1 : 0));
 }
 
 std::map<std::string, std::string> VoxLinkRenderer::generatedFiles() const {

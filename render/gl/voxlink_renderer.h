@@ -34,6 +34,8 @@ class VoxLinkRenderer : public VolumeRenderer {
   }
   bool cachesShadows(const RenderSettings& settings) const override;
   Status beginShadowCache() override;
+  std::string shadowFillShader() const override { return "shadow_fill.comp.glsl"; }
+  void fillShadowCache(const ComputeProgram& program) const override;
 
  protected:
   VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections);
@@ -42,6 +44,8 @@ class VoxLinkRenderer : public VolumeRenderer {
   SectionBuffers sections_;
   format::FileHeader header_;
   std::optional<ShadowCacheBuffer> shadowCache_;
+  // Per occupied brick its grid cell (occupiedBrickCells), for the shadow cache's fill pass.
+  std::vector<uint32_t> brickCells_;
 };
 
 // The defines and generated include the VoxLink shaders need for a file (tests reuse them).

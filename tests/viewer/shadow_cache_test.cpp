@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Per-voxel shadow rays (`--shadow-rays per-voxel`, docs/shadows.md): the GL renderer's per-frame
-// cache (shaders/shadow_cache.glsl) against the float64 reference's per-voxel model, the cache
-// cleared between frames, the reference's cache against its uncached single rays, and the option.
+// cache (shaders/shadow_cache.glsl, filled by shaders/shadow_fill.comp.glsl) against the float64
+// reference's per-voxel model on every brick layout, the cache cleared and filled between frames, the reference's cache against its uncached single rays, and the option.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,8 +51,8 @@ struct Fixture {
   std::optional<format::VoxLinkFile> file;
   std::unique_ptr<VoxLinkRenderer> renderer;
 
-  Status open() {
-    auto sparse = testing::sparsify(dense, [](double v) { return v > 100; }, {});
+  Status open(const testing::SparseOptions& options = {}) {
+    auto sparse = testing::sparsify(dense, [](double v) { return v > 100; }, options);
     if (!sparse) return sparse.status();
     VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f,
                              testing::writeAndOpen(*sparse, dir.file("shell.vxl")));
@@ -91,6 +91,42 @@ TEST(ShadowCache, GlFramesMatchThePerVoxelReference) {
   }
 }
 
+// The fill pass (shaders/shadow_fill.comp.glsl) finds every visible stored voxel whatever the
+// layout: bricks of 4^3 to 32^3 (8^3 and below with row aprons, whose copies have slots of their
+// own; 16^3 in row words without them; 32^3 in MASK and ROWS), other predominant axes, and a
+// 16-bit file (no apron, values apart from the voxel words). A voxel it missed would read code 0,
+// far outside [0, 1].
+TEST(ShadowCache, FillCoversEveryBrickLayout) {
+  VOXLINK_REQUIRE_GL();
+  struct Layout {
+    uint32_t brickSize;
+    format::Axis axis;
+    StoredType type;
+  };
+  for (const Layout& l : {Layout{4, format::Axis::kZ, StoredType::kU8},
+                          Layout{8, format::Axis::kX, StoredType::kU8},
+                          Layout{16, format::Axis::kY, StoredType::kU8},
+                          Layout{32, format::Axis::kZ, StoredType::kU8},
+                          Layout{8, format::Axis::kZ, StoredType::kU16}}) {
+    Fixture f;
+    testing::SparseOptions options;
+    options.brickSize = l.brickSize;
+    options.axis = l.axis;
+    options.type = l.type;
+    ASSERT_TRUE(f.open(options).isOk());
+    const ReferenceRenderer reference(f.dense, f.tf);
+    const Camera camera = Camera::framing(f.dense.worldBox(), {70, 25, 1, 30});
+    for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
+      const auto pair = testing::renderBoth(*f.renderer, reference, camera,
+                                            shadowed(sampling, ShadowRays::kPerVoxel));
+      EXPECT_EQ(pair.error.nonFinite, 0u);
+      EXPECT_GE(pair.error.psnr, 64.0)
+          << l.brickSize << "^3 bricks, axis " << int(l.axis) << ", "
+          << storedName(l.type) << ", " << samplingName(sampling);
+    }
+  }
+}
+
 // The light follows the camera, so a cache left from one view holds the wrong transmittances
 // for the next: a second frame from another view equals a fresh renderer's first frame there,
 // bit for bit (each cached value is deterministic, whichever invocation computed it).
@@ -117,10 +153,11 @@ TEST(ShadowCache, ClearedBetweenFrames) {
     ASSERT_TRUE(lit.isOk());
     EXPECT_LT(lit->psnr, 40.0) << samplingName(sampling);
   }
-  // One byte per voxel word (stored voxels and apron copies), in whole words, from the first
-  // frame that needs the cache on.
+  // One byte per voxel word (stored voxels and apron copies), in whole words, and the fill
+  // pass's 3 words per occupied brick, from the first frame that needs the cache on.
   const uint64_t voxels = fresh.renderer->sections().voxelSlots();
-  EXPECT_EQ(fresh.renderer->gpuBytes() - withoutCache, (voxels + 3) / 4 * 4);
+  EXPECT_EQ(fresh.renderer->gpuBytes() - withoutCache,
+            (voxels + 3) / 4 * 4 + 12 * fresh.file->occupiedBrickCount());
 }
 
 // The reference's per-frame store gives what its uncached single rays compute.

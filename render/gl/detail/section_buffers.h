@@ -47,6 +47,8 @@ class SectionBuffers {
   // Voxel words, so the range of the voxel indices the shaders see: the file's voxel count, plus
   // the apron's copies where row words have one (row_words.h).
   uint64_t voxelSlots() const { return voxelSlots_; }
+  // Whether row words carry an apron (VXL_ROW_APRON, row_words.h).
+  bool rowApron() const { return rowApron_; }
   // The texture unit after the last chunk's.
   GLuint endUnit() const { return chunks_.empty() ? 0 : chunks_.back().unit + 1; }
 
@@ -60,6 +62,7 @@ class SectionBuffers {
   std::string glsl_;
   uint64_t gpuBytes_ = 0;
   uint64_t voxelSlots_ = 0;
+  bool rowApron_ = false;
 };
 
 }  // namespace voxlink::render::gl

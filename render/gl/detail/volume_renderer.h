@@ -91,14 +91,18 @@ class VolumeRenderer {
   virtual void bindData(const ComputeProgram& program) const = 0;
   virtual uint64_t dataBytes() const = 0;
   // Whether frames with these settings read the per-frame shadow cache (shaders/shadow_cache.glsl);
-  // then beginShadowCache() clears and binds it before each such frame.
+  // then before each such frame beginShadowCache() clears and binds it, and fillShadowCache()
+  // runs the fill pass (shadowFillShader(), its uniforms and tables set) that sets every code the
+  // frame reads.
   virtual bool cachesShadows(const RenderSettings&) const { return false; }
   virtual Status beginShadowCache() { return Status::ok(); }
+  virtual std::string shadowFillShader() const { return {}; }
+  virtual void fillShadowCache(const ComputeProgram&) const {}
 
  private:
-  // Program variants: the plain frame, and the ray-traced mode's primary pass, secondary pass and
-  // resolve (volume_renderer_effects.cpp).
-  enum class Pass { kPlain, kEffectsPrimary, kEffectsSecondary, kEffectsResolve };
+  // Program variants: the plain frame, the shadow cache's fill pass before it, and the
+  // ray-traced mode's primary pass, secondary pass and resolve (volume_renderer_effects.cpp).
+  enum class Pass { kPlain, kEffectsPrimary, kEffectsSecondary, kEffectsResolve, kShadowFill };
   Result<const ComputeProgram*> program(const RenderSettings& settings, Pass pass = Pass::kPlain);
   Status renderEffects(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
   void setEffectsUniforms(const ComputeProgram& p, const Camera& camera,
