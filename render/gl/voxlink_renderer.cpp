@@ -61,9 +61,9 @@ Status VoxLinkRenderer::beginShadowCache() {
                        "up to ",
                        sections_.endUnit() - 1, ", the cache's unit ", shadowCacheUnit(),
                        " among them; use --shadow-rays per-sample");
-    VOXLINK_ASSIGN_OR_RETURN(ShadowCacheBuffer cache,
-                             ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit(),
-                                                       brickCells_));
+    VOXLINK_ASSIGN_OR_RETURN(
+        ShadowCacheBuffer cache,
+        ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit(), brickCells_));
     shadowCache_ = std::move(cache);
   }
   shadowCache_->clearAndBind();

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Per-voxel shadow rays (`--shadow-rays per-voxel`, docs/shadows.md): the GL renderer's per-frame
 // cache (shaders/shadow_cache.glsl, filled by shaders/shadow_fill.comp.glsl) against the float64
-// reference's per-voxel model on every brick layout, the cache cleared and filled between frames, the reference's cache against its uncached single rays, and the option.
+// reference's per-voxel model on every brick layout, the cache cleared and filled between frames,
+// the reference's cache against its uncached single rays, and the option.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,7 +53,8 @@ struct Fixture {
   std::unique_ptr<VoxLinkRenderer> renderer;
 
   Status open(const testing::SparseOptions& options = {}) {
-    auto sparse = testing::sparsify(dense, [](double v) { return v > 100; }, options);
+    auto sparse = testing::sparsify(
+        dense, [](double v) { return v > 100; }, options);
     if (!sparse) return sparse.status();
     VOXLINK_ASSIGN_OR_RETURN(format::VoxLinkFile f,
                              testing::writeAndOpen(*sparse, dir.file("shell.vxl")));
@@ -103,11 +105,11 @@ TEST(ShadowCache, FillCoversEveryBrickLayout) {
     format::Axis axis;
     StoredType type;
   };
-  for (const Layout& l : {Layout{4, format::Axis::kZ, StoredType::kU8},
-                          Layout{8, format::Axis::kX, StoredType::kU8},
-                          Layout{16, format::Axis::kY, StoredType::kU8},
-                          Layout{32, format::Axis::kZ, StoredType::kU8},
-                          Layout{8, format::Axis::kZ, StoredType::kU16}}) {
+  for (const Layout& l :
+       {Layout{4, format::Axis::kZ, StoredType::kU8}, Layout{8, format::Axis::kX, StoredType::kU8},
+        Layout{16, format::Axis::kY, StoredType::kU8},
+        Layout{32, format::Axis::kZ, StoredType::kU8},
+        Layout{8, format::Axis::kZ, StoredType::kU16}}) {
     Fixture f;
     testing::SparseOptions options;
     options.brickSize = l.brickSize;
@@ -120,9 +122,8 @@ TEST(ShadowCache, FillCoversEveryBrickLayout) {
       const auto pair = testing::renderBoth(*f.renderer, reference, camera,
                                             shadowed(sampling, ShadowRays::kPerVoxel));
       EXPECT_EQ(pair.error.nonFinite, 0u);
-      EXPECT_GE(pair.error.psnr, 64.0)
-          << l.brickSize << "^3 bricks, axis " << int(l.axis) << ", "
-          << storedName(l.type) << ", " << samplingName(sampling);
+      EXPECT_GE(pair.error.psnr, 64.0) << l.brickSize << "^3 bricks, axis " << int(l.axis) << ", "
+                                       << storedName(l.type) << ", " << samplingName(sampling);
     }
   }
 }
