@@ -6,10 +6,12 @@
 // files built with -ffp-contract=off (no FMA).
 #pragma once
 
-#if defined(__x86_64__) && defined(__clang__)
-// (clang 14 cannot dispatch to an "arch=x86-64-v4" clone: it gets AVX-512F by name)
-#define VOXLINK_VECTOR_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
-#elif defined(__x86_64__) && defined(__GNUC__)
+// GCC only. Clang 14 breaks a function declared first without the attribute (as every one here
+// is, in its header): it emits the AVX-512F body alone under the plain name, no dispatch, and the
+// program dies of SIGILL on a CPU without AVX-512 (the fuzz build on an AMD EPYC, 2026-11-27);
+// without that declaration it names the dispatcher apart from the callers' symbol. Clang builds
+// (fuzzing, sanitizers) take the one plain build.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define VOXLINK_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #else
 #define VOXLINK_VECTOR_CLONES
