@@ -1,14 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The per-frame shadow cache of `--shadow-rays per-voxel` (docs/shadows.md): a sample's shadow
 // is the transmittance from its voxel's centre (voxel sampling), or the alpha-and-weight mean of
-// its visible corners' centre transmittances (trilinear). Each centre's transmittance is walked
-// once per frame, by the first invocation that needs it (shadowTransmittance, voxlink_shadow.glsl),
-// and kept in 8 bits per stored voxel: 0 = not yet walked, else 1 + round(254 T). Four voxels
-// share a word, set with imageAtomicOr: the value is deterministic (one call site), so two
-// invocations that race write the same bits. The host clears the words before every frame
-// (render/gl/detail/shadow_cache_buffer.h). Reads go through a buffer texture (a gather on
-// llvmpipe, 2.5x cheaper than a storage-buffer read: section_buffers.h); a read that misses a
-// word another invocation wrote this frame only walks that centre again.
+// its visible corners' centre transmittances (trilinear). Before every frame the host clears the
+// words (render/gl/detail/shadow_cache_buffer.h) and the fill pass (shadow_fill.comp.glsl) walks
+// every visible stored voxel's centre (shadowTransmittance, voxlink_shadow.glsl), keeping 8 bits
+// per stored voxel: 1 + round(254 T). Four voxels share a word, each set with imageAtomicOr. The
+// frame only reads, through a buffer texture (a gather on llvmpipe, 2.5x cheaper than a
+// storage-buffer read: section_buffers.h): its shader holds no shadow walk.
 // Mirrors ReferenceRenderer's per-voxel shadow model (render/voxel_shadow_cache.h).
 
 layout(binding = VXL_SHADOW_CACHE_UNIT) uniform usamplerBuffer uShadowCodes;
@@ -16,7 +14,7 @@ layout(r32ui, binding = VXL_SHADOW_CACHE_IMAGE) uniform uimageBuffer uShadowCode
 
 const float kShadowLevels = 254.0;
 
-// The code of transmittance t: 1 + round(254 t), never 0 (0 marks a voxel not yet walked).
+// The code of transmittance t: 1 + round(254 t).
 uint shadowCode(float t) { return 1u + uint(round(clamp(t, 0.0, 1.0) * kShadowLevels)); }
 
 // Sets voxel `slot`'s code; its word's three other bytes belong to other voxels.
@@ -24,37 +22,20 @@ void storeShadowCode(uint slot, uint code) {
   imageAtomicOr(uShadowCodesOut, int(slot >> 2u), code << ((slot & 3u) * 8u));
 }
 
-// The stored transmittance of voxel `slot` (its voxel word's index: the file's voxel index, or
-// where row words have an apron, the extended index, copies included), walking from the
-// centre of its cell `cell` (index space, voxel centres at cell + 1/2) on a miss. Where the
-// fill pass (shadow_fill.comp.glsl) set every visible voxel's code first, the frame only reads:
-// its shader then holds no shadow walk at all.
-float centreShadow(uint slot, ivec3 cell) {
+// The stored transmittance of visible voxel `slot` (its voxel word's index: the file's voxel
+// index, or where row words have an apron, the extended index, copies included).
+float centreShadow(uint slot) {
   uint code = (texelFetch(uShadowCodes, int(slot >> 2u)).x >> ((slot & 3u) * 8u)) & 0xFFu;
-#if !VXL_SHADOW_FILLED
-  if (code == 0u) {
-    code = shadowCode(shadowTransmittance(indexToWorld(vec3(cell) + 0.5)));
-    storeShadowCode(slot, code);
-  }
-#endif
   return float(code - 1u) / kShadowLevels;
-}
-
-// The cell of the voxel rowWalkNext returned last (voxlink_row_walk.glsl).
-ivec3 rowWalkCell(RowWalk w) {
-  ivec3 cell = w.dda.cell;
-  cell[VXL_W] = w.origin[VXL_W] + w.depth;
-  return cell;
 }
 
 // Trilinear sampling. Alpha times centre transmittance of the current cell's corners (numbered
 // as cornerOffset in compositing.glsl), 0 for invisible ones; set by loadCornerShadows.
 float gAT0, gAT1, gAT2, gAT3, gAT4, gAT5, gAT6, gAT7;
 
-// The corner term of corner m: one centreShadow call site for all 8 corners (each call site
-// would inline its own shadow walk). Corners come in a loop over a bit mask of the visible ones,
-// the slot and alpha picked by selects, not arrays (llvmpipe keeps those in memory).
-void loadCornerShadows(ivec3 cell, int v0, int v1, int v2, int v3, int v4, int v5, int v6,
+// The corner terms: corners come in a loop over a bit mask of the visible ones, the slot and
+// alpha picked by selects, not arrays (llvmpipe keeps those in memory).
+void loadCornerShadows(int v0, int v1, int v2, int v3, int v4, int v5, int v6,
                        int v7, float a0, float a1, float a2, float a3, float a4, float a5,
                        float a6, float a7) {
   gAT0 = gAT1 = gAT2 = gAT3 = gAT4 = gAT5 = gAT6 = gAT7 = 0.0;
@@ -67,11 +48,7 @@ void loadCornerShadows(ivec3 cell, int v0, int v1, int v2, int v3, int v4, int v
     bool w = (m & 1) != 0, u = (m & 2) != 0, v = (m & 4) != 0;
     int slot = v ? (u ? (w ? v7 : v6) : (w ? v5 : v4)) : (u ? (w ? v3 : v2) : (w ? v1 : v0));
     float a = v ? (u ? (w ? a7 : a6) : (w ? a5 : a4)) : (u ? (w ? a3 : a2) : (w ? a1 : a0));
-    ivec3 corner = cell;  // cornerOffset(m) of compositing.glsl, included after this file
-    corner[VXL_W] += m & 1;
-    corner[VXL_U] += (m >> 1) & 1;
-    corner[VXL_V] += (m >> 2) & 1;
-    float at = a * centreShadow(uint(slot), corner);
+    float at = a * centreShadow(uint(slot));
     gAT0 = m == 0 ? at : gAT0;
     gAT1 = m == 1 ? at : gAT1;
     gAT2 = m == 2 ? at : gAT2;

@@ -2,7 +2,7 @@
 // Fills the per-voxel shadow cache before a frame (`--shadow-rays per-voxel`, docs/shadows.md):
 // every stored voxel the transfer function leaves visible gets the transmittance from its
 // centre towards the light, the same shadowTransmittance call the frame made on a miss. The
-// frame then only reads codes (VXL_SHADOW_FILLED): no lane of a pixel's SIMD vector waits on
+// frame then only reads codes (shadow_cache.glsl): no lane of a pixel's SIMD vector waits on
 // another's shadow walk, and the walks run here one per invocation, side by side.
 // One work group per occupied brick, one invocation per row. Few of a brick's cells hold a
 // visible voxel (the foot at 256^3: a fifth of its occupied bricks' cells), so a walk per cell

@@ -273,7 +273,7 @@ void loadCorners(ivec3 cell) {
   storedCorner(v6, gA6, gL6);
   storedCorner(v7, gA7, gL7);
 #if VXL_SHADOWS && VXL_SHADOW_CACHE
-  loadCornerShadows(cell, v0, v1, v2, v3, v4, v5, v6, v7, gA0.a, gA1.a, gA2.a, gA3.a, gA4.a, gA5.a,
+  loadCornerShadows(v0, v1, v2, v3, v4, v5, v6, v7, gA0.a, gA1.a, gA2.a, gA3.a, gA4.a, gA5.a,
                     gA6.a, gA7.a);  // shadow_cache.glsl
 #endif
 }

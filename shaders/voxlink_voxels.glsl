@@ -43,7 +43,7 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
           float shadow = 1.0;
 #if VXL_SHADOWS
 #if VXL_SHADOW_CACHE
-          shadow = centreShadow(voxel, rowWalkCell(walk));  // shadow_cache.glsl
+          shadow = centreShadow(voxel);  // shadow_cache.glsl
 #else
           shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));
 #endif

@@ -145,7 +145,6 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_SHININESS", std::to_string(shininess)});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_SHADOW_CACHE", shadowCache ? "1" : "0"});
-  defines.push_back({"VXL_SHADOW_FILLED", shadowCache ? "1" : "0"});
   defines.push_back({"VXL_RETRACE_BINDING", std::to_string(kRetraceBinding)});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
