@@ -129,7 +129,7 @@ std::string benchmarkTable(const std::vector<BenchmarkRow>& rows) {
     const double ref = slowest[{r.width, r.height, int(r.sampling)}];
     std::snprintf(
         line, sizeof line,
-        "| %s | %s | %ux%u | %u | %.1f | %.1f | %.1f | %.2f | %s | %s | %.1f | %.2fx |\n",
+        "| %s | %s | %ux%u | %u | %.1f | %.1f | %.1f | %.2f | %s | %s | %.2f | %.2fx |\n",
         r.renderer.c_str(), std::string(samplingName(r.sampling)).c_str(), r.width, r.height,
         r.frames, r.meanMs, r.minMs, r.maxMs, r.fps,
         std::isnan(r.psnr)

@@ -122,18 +122,19 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
       packVoxelWords(file.sectionBytes(format::SectionId::kGradients),
                      valuesInWords ? values : std::span<const uint8_t>());
   // Bricks up to 16^3: mask and start of a row in one word, in place of MASK and ROWS; with an
-  // apron along w where the voxel indices may change (8-bit values, no scene sections).
+  // apron along w where the voxel indices may change (8-bit values, no scene sections), in row
+  // groups of 4 rows.
   const uint32_t n = file.header().brickSize;
   const uint64_t bricks = file.occupiedBrickCount();
   const bool apron =
-      valuesInWords && !file.isScene() && rowWordsApronFit(n, file.voxelCount(), bricks * n * n);
+      valuesInWords && !file.isScene() && rowGroupsFit(n, file.voxelCount(), bricks * n * n);
   const bool rowsGlobal = apron || rowWordsGlobal(n, file.voxelCount());
   std::vector<uint32_t> rowWords;
   if (apron) {
     ApronRows rows = packApronRows(
         n, bricks, file.rowMaskWords(), file.rowStarts(), file.brickVoxelBase(), voxelWords,
         nextAlongAxis(occupied, brickIndex, bricks, file.header().predominantAxis));
-    rowWords = std::move(rows.rowWords);
+    rowWords = std::move(rows.rowGroups);
     voxelWords = std::move(rows.voxelWords);
   } else if (rowWordsFit(n)) {
     rowWords = packRowWords(n, bricks, file.rowMaskWords(), file.rowStarts(),
@@ -151,7 +152,9 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
         {"dual brick indices", "dualIndexWords", "VxlDualIndex", 4, bytesOf(dualBricks)});
   if (!valuesInWords)
     arrays.push_back(section(file, format::SectionId::kValues, "valuWord", "VxlValu"));
-  if (rowWordsFit(n)) {
+  if (apron) {
+    arrays.push_back({"row groups", "rowGroup", "VxlRowGroup", 2, bytesOf(rowWords)});
+  } else if (rowWordsFit(n)) {
     arrays.push_back({"row words", "rowWord", "VxlRowWord", 1, bytesOf(rowWords)});
   } else {
     arrays.push_back(section(file, format::SectionId::kRowStart, "rowsWord", "VxlRows"));

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -260,8 +261,8 @@ TEST(RowWords, FileWideStartsAddTheBricksFirstVoxel) {
   EXPECT_FALSE(rowWordsGlobal(16, 100));
 }
 
-// Row aprons: a row's word shows (bit n) whether the brick next along w holds its depth-0
-// voxel, whose word is copied after the row's own; starts index the words with the copies.
+// Row aprons: a row shows (bit n) whether the brick next along w holds its depth-0 voxel, whose
+// word is copied after the row's own; starts index the words with the copies.
 TEST(RowWords, ApronCopiesTheNextBricksFirstVoxel) {
   // Two 4^3 bricks, brick 1 next to brick 0 along w. Brick 0: row 0 holds depths 0, 1, 3; row 1
   // depth 3. Brick 1: row 0 holds depth 0, row 1 depth 2 (no apron for brick 0's row 1).
@@ -273,14 +274,68 @@ TEST(RowWords, ApronCopiesTheNextBricksFirstVoxel) {
   const uint32_t words[] = {10, 11, 13, 23, 40, 42};  // file order: brick 0's 4, brick 1's 2
   const uint32_t next[] = {1, kEmptyBrick};
   const ApronRows rows = packApronRows(4, 2, masks, starts, first, words, next);
-  EXPECT_EQ(rows.rowWords[0], 0xBu | 1u << 4);   // apron: brick 1 row 0 depth 0
-  EXPECT_EQ(rows.rowWords[1], 0x8u | 4u << 5);   // after 3 voxels and the copy
-  EXPECT_EQ(rows.rowWords[16], 0x1u | 5u << 5);  // brick 1 has no brick next along w
-  EXPECT_EQ(rows.rowWords[17], 0x4u | 6u << 5);
+  // Groups of 4 rows: 8 groups, two words each. Word 0: rows 0-2's masks at bits 4 j, their
+  // aprons at bits 12 + j; word 1: row 3's mask, apron bit 4 and row 0's start above bit 5.
+  ASSERT_EQ(rows.rowGroups.size(), 16u);
+  EXPECT_EQ(rows.rowGroups[0], 0x8Bu | 1u << 12);  // row 0's apron
+  EXPECT_EQ(rows.rowGroups[1], 0u);
+  EXPECT_EQ(rows.rowGroups[3], 5u << 5);  // rows 4-7 after rows 0 and 1: 4 voxels, 1 copy
+  EXPECT_EQ(rows.rowGroups[8], 0x41u);    // brick 1, rows 0 and 1
+  EXPECT_EQ(rows.rowGroups[9], 5u << 5);  // no brick next along w: no apron
+  const ApronRow r0 = apronRowOf(4, rows.rowGroups, 0);
+  EXPECT_EQ(r0.bits, 0xBu | 1u << 4);  // apron: brick 1 row 0 depth 0
+  EXPECT_EQ(r0.start, 0u);
+  const ApronRow r1 = apronRowOf(4, rows.rowGroups, 1);
+  EXPECT_EQ(r1.bits, 0x8u);
+  EXPECT_EQ(r1.start, 4u);  // after 3 voxels and the copy
+  EXPECT_EQ(apronRowOf(4, rows.rowGroups, 16).start, 5u);
+  const ApronRow r17 = apronRowOf(4, rows.rowGroups, 17);
+  EXPECT_EQ(r17.bits, 0x4u);
+  EXPECT_EQ(r17.start, 6u);
   EXPECT_EQ(rows.voxelWords, (std::vector<uint32_t>{10, 11, 13, 40, 23, 40, 42}));
-  EXPECT_TRUE(rowWordsApronFit(8, (1u << 23) - 1001, 1000));
-  EXPECT_FALSE(rowWordsApronFit(8, 1u << 23, 0));
-  EXPECT_FALSE(rowWordsApronFit(16, 100, 100));
+  EXPECT_TRUE(rowGroupsFit(8, (1u << 23) - 1001, 1000));
+  EXPECT_FALSE(rowGroupsFit(8, 1u << 23, 0));
+  EXPECT_FALSE(rowGroupsFit(16, 100, 100));
+}
+
+// Row groups of 8^3 bricks give every row's start as the count of the extended
+// voxel words before it, at random occupancy with aprons between bricks 0 -> 1 -> 2.
+TEST(RowWords, GroupsGiveEveryRowsStartInEightCubedBricks) {
+  std::mt19937 rng(7);
+  const uint32_t n = 8, bricks = 3;
+  std::vector<uint32_t> masks(bricks * 16);
+  for (uint32_t& m : masks) m = rng() & rng();  // about a quarter of the voxels
+  std::vector<uint16_t> starts(bricks * 64);
+  std::vector<uint32_t> first(bricks);
+  uint32_t voxels = 0;
+  for (uint32_t k = 0; k < bricks; ++k) {
+    first[k] = voxels;
+    for (uint32_t row = 0; row < 64; ++row) {
+      starts[k * 64 + row] = uint16_t(voxels - first[k]);
+      voxels += uint32_t(std::popcount((masks[k * 16 + row / 4] >> (8 * (row % 4))) & 0xFFu));
+    }
+  }
+  std::vector<uint32_t> words(voxels);
+  for (uint32_t i = 0; i < voxels; ++i) words[i] = i * 3 + 1;
+  const uint32_t next[] = {1, 2, kEmptyBrick};
+  const ApronRows rows = packApronRows(n, bricks, masks, starts, first, words, next);
+  ASSERT_EQ(rows.rowGroups.size(), bricks * 16u * 2u);  // 16 groups of 8 bytes per brick
+  uint32_t extended = 0;
+  int aprons = 0;
+  for (uint64_t r = 0; r < bricks * 64u; ++r) {
+    const ApronRow row = apronRowOf(n, rows.rowGroups, r);
+    const uint32_t mask = (masks[r / 4] >> (8 * (r % 4))) & 0xFFu;
+    ASSERT_EQ(row.bits & 0xFFu, mask) << "row " << r;
+    ASSERT_EQ(row.start, extended) << "row " << r;
+    if (mask != 0) {
+      ASSERT_EQ(rows.voxelWords[row.start], words[first[r / 64] + starts[r]]) << "row " << r;
+    }
+    const uint32_t apron = row.bits >> n;
+    aprons += int(apron);
+    extended += uint32_t(std::popcount(mask)) + apron;
+  }
+  EXPECT_EQ(extended, rows.voxelWords.size());
+  EXPECT_GT(aprons, 10);
 }
 
 std::vector<LookupCase> lookupCases() {
@@ -288,6 +343,7 @@ std::vector<LookupCase> lookupCases() {
   for (uint32_t brick : {4u, 8u, 16u, 32u})
     for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ})
       cases.push_back({brick, axis, brick == 8 ? StoredType::kU16 : StoredType::kU8});
+  cases.push_back({8, format::Axis::kX, StoredType::kU8});  // row planes of two mask words
   cases.push_back({8, format::Axis::kZ, StoredType::kF16});
   cases.push_back({8, format::Axis::kY, StoredType::kF32});
   return cases;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A VoxLink file in GPU buffers: its voxel sections as words derived at load time, ROWS and MASK
-// as row words (row_words.h: a row's mask and start in one word; as they are for 32^3 bricks),
+// as row words (row_words.h: a row's mask and start in one word; with row aprons 4 rows in one
+// group of two words; as they are for 32^3 bricks),
 // GRAD as voxel words (voxel_words.h: decoded gradient directions, with the values of 8-bit
 // files; VALU goes up as it is only for wider values), and in
 // place of its brick sections (BOCC, BRNK, BVOX) brick tables derived from them when it is
@@ -38,7 +39,8 @@ class SectionBuffers {
 
   // Binds every chunk to its texture unit.
   void bind() const;
-  // Sampler declarations and the accessors rowWord() (or rowsWord() and maskWord()), voxelWord(),
+  // Sampler declarations and the accessors rowGroup() (row aprons) or rowWord() (or rowsWord() and
+  // maskWord()), voxelWord(),
   // valuWord() (wider values only), brickIndexWord(), dualBoxWord(), dualIndexWords() (files
   // below 65535 occupied bricks: VXL_DUAL_INDICES) and brickEntry() for the shaders.
   const std::string& glsl() const { return glsl_; }
