@@ -6,7 +6,8 @@
 #   on the GPU machine:     bash .gpu/gpu_session.sh run [SECTION...] (carry [".gpu"]; log in $OUT/log.md)
 # Sections (default: all, in this order): foot256 table1 animate foot1024 krige.
 #   foot256   the foot CT 256^3 (bench/tf/foot-bone.tf.json), 1000x1000: voxlink vs the dense 3D-texture
-#             caster, voxel and trilinear, without and with --shadows (issue 29 item 2)
+#             caster, voxel and trilinear, without and with --shadows, and voxlink with row words in
+#             place of row groups (issue 29 item 2)
 #   table1    the paper's Table 1 scenes (dragon plain and ray-traced, house and glass bunny ray-traced) at
 #             256 [8], 512 [8], 1024 [16], 1000x1000 (issue 29 item 2). On NVIDIA the first use of the
 #             ray-traced mode compiles its shaders for 35-210 s (then the driver's cache holds them).
@@ -53,6 +54,8 @@ for section in $sections; do
     foot256)
       t $V convert $foot --tf $tf -o $T/foot.vxl -q
       t $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --source $foot
+      # Row words in place of the GPU's row groups (docs/gpu-measurements.md): speed against memory.
+      t env VOXLINK_ROW_GROUPS=0 $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --no-dense
       t $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --shadows --source $foot ;;
     table1)
       for grid in "256 8" "512 8" "1024 16"; do

@@ -3,9 +3,9 @@
 // brick -> occupied index -> row start -> bit rank within the row mask. The generated
 // voxlink_sections.glsl declares the buffers (render/gl/detail/section_buffers.h: the voxel
 // sections unchanged, brick tables derived at load time in place of BOCC, BRNK and BVOX; split into
-// chunks where one exceeds a storage block) and the accessors rowGroup() (row aprons), rowWord()
-// (other bricks up to 16^3) or rowsWord() and maskWord() (32^3), voxelWord(), valuWord() (values
-// wider than 8 bits), brickIndexWord(), dualBoxWord(), brickEntry().
+// chunks where one exceeds a storage block) and the accessors rowGroup() (row aprons on GPUs),
+// rowWord() (other bricks up to 16^3) or rowsWord() and maskWord() (32^3), voxelWord(),
+// valuWord() (values wider than 8 bits), brickIndexWord(), dualBoxWord(), brickEntry().
 #include "voxlink_sections.glsl"
 
 // VXL_N (brick size) and VXL_AXIS (predominant axis) come as defines.
@@ -54,16 +54,21 @@ uvec2 rowInfo(uint k, uint row) {
 
 #if VXL_ROW_APRON
 // rowInfo with the apron bit as mask bit n: whether the brick next along w holds the voxel at
-// depth 0 of this row, which then follows the row's voxels (row_words.h). From the row's group
-// of 4 rows: row j's start is the group's plus the bits of rows 0..j-1 in the group's word 0.
+// depth 0 of this row, which then follows the row's voxels (row_words.h). Row groups: row j of
+// a group of 4 starts where row 0 does plus the bits of rows 0..j-1 in the group's word 0.
 uvec2 rowInfoWithApron(uint k, uint row) {
   const uint n = uint(VXL_N);
+#if VXL_ROW_GROUPS
   uvec2 group = rowGroup((k * n * n + row) >> 2u);
   uint j = row & 3u;
   uint before = (((1u << (j * n)) - 1u) | ((1u << j) - 1u) << (3u * n)) & group.x;
   uint low = ((group.x >> (j * n)) & ((1u << n) - 1u)) | ((group.x >> (3u * n + j)) & 1u) << n;
   uint bits = j == 3u ? group.y & ((2u << n) - 1u) : low;
   return uvec2(bits, (group.y >> (n + 1u)) + uint(bitCount(before)));
+#else
+  uint word = rowWord(k * n * n + row);
+  return uvec2(word & ((2u << n) - 1u), word >> (n + 1u));
+#endif
 }
 #endif
 

@@ -81,6 +81,7 @@ struct LookupCase {
   uint32_t brick;
   format::Axis axis;
   StoredType type;
+  bool rowGroups = false;  // rows with aprons as row groups (row_words.h), as on GPUs
 };
 
 class GlslLookup : public ::testing::TestWithParam<LookupCase> {};
@@ -130,6 +131,8 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
   for (const auto& e : file->sectionTable()) largest = std::max(largest, e.bytes);
   SectionBufferOptions split;
   split.maxChunkBytes = std::max<uint64_t>(largest / 2, 64);
+  split.rowGroups =
+      c.rowGroups ? SectionBufferOptions::RowGroups::kOn : SectionBufferOptions::RowGroups::kOff;
   auto sections = SectionBuffers::upload(*file, split);
   ASSERT_TRUE(sections) << sections.message();
   // 6 arrays (with the dual brick indices), one more with VALU (values wider than 8 bits,
@@ -159,6 +162,7 @@ TEST_P(GlslLookup, EveryCellMatchesVoxelLocator) {
 
   const bool apron = sections->glsl().find("#define VXL_ROW_APRON 1") != std::string::npos;
   EXPECT_EQ(apron, c.brick <= 8 && storedSize(c.type) == 1);
+  EXPECT_EQ(sections->rowGroups(), apron && c.rowGroups);
   const format::VoxelLocator locator(*file);
   const size_t valueSize = storedSize(c.type);
   const uint8_t* values = file->valueBytes();
@@ -261,8 +265,8 @@ TEST(RowWords, FileWideStartsAddTheBricksFirstVoxel) {
   EXPECT_FALSE(rowWordsGlobal(16, 100));
 }
 
-// Row aprons: a row shows (bit n) whether the brick next along w holds its depth-0 voxel, whose
-// word is copied after the row's own; starts index the words with the copies.
+// Row aprons: a row's word shows (bit n) whether the brick next along w holds its depth-0
+// voxel, whose word is copied after the row's own; starts index the words with the copies.
 TEST(RowWords, ApronCopiesTheNextBricksFirstVoxel) {
   // Two 4^3 bricks, brick 1 next to brick 0 along w. Brick 0: row 0 holds depths 0, 1, 3; row 1
   // depth 3. Brick 1: row 0 holds depth 0, row 1 depth 2 (no apron for brick 0's row 1).
@@ -274,33 +278,28 @@ TEST(RowWords, ApronCopiesTheNextBricksFirstVoxel) {
   const uint32_t words[] = {10, 11, 13, 23, 40, 42};  // file order: brick 0's 4, brick 1's 2
   const uint32_t next[] = {1, kEmptyBrick};
   const ApronRows rows = packApronRows(4, 2, masks, starts, first, words, next);
-  // Groups of 4 rows: 8 groups, two words each. Word 0: rows 0-2's masks at bits 4 j, their
-  // aprons at bits 12 + j; word 1: row 3's mask, apron bit 4 and row 0's start above bit 5.
-  ASSERT_EQ(rows.rowGroups.size(), 16u);
-  EXPECT_EQ(rows.rowGroups[0], 0x8Bu | 1u << 12);  // row 0's apron
-  EXPECT_EQ(rows.rowGroups[1], 0u);
-  EXPECT_EQ(rows.rowGroups[3], 5u << 5);  // rows 4-7 after rows 0 and 1: 4 voxels, 1 copy
-  EXPECT_EQ(rows.rowGroups[8], 0x41u);    // brick 1, rows 0 and 1
-  EXPECT_EQ(rows.rowGroups[9], 5u << 5);  // no brick next along w: no apron
-  const ApronRow r0 = apronRowOf(4, rows.rowGroups, 0);
-  EXPECT_EQ(r0.bits, 0xBu | 1u << 4);  // apron: brick 1 row 0 depth 0
-  EXPECT_EQ(r0.start, 0u);
-  const ApronRow r1 = apronRowOf(4, rows.rowGroups, 1);
-  EXPECT_EQ(r1.bits, 0x8u);
-  EXPECT_EQ(r1.start, 4u);  // after 3 voxels and the copy
-  EXPECT_EQ(apronRowOf(4, rows.rowGroups, 16).start, 5u);
-  const ApronRow r17 = apronRowOf(4, rows.rowGroups, 17);
-  EXPECT_EQ(r17.bits, 0x4u);
-  EXPECT_EQ(r17.start, 6u);
+  EXPECT_EQ(rows.rowWords[0], 0xBu | 1u << 4);   // apron: brick 1 row 0 depth 0
+  EXPECT_EQ(rows.rowWords[1], 0x8u | 4u << 5);   // after 3 voxels and the copy
+  EXPECT_EQ(rows.rowWords[16], 0x1u | 5u << 5);  // brick 1 has no brick next along w
+  EXPECT_EQ(rows.rowWords[17], 0x4u | 6u << 5);
   EXPECT_EQ(rows.voxelWords, (std::vector<uint32_t>{10, 11, 13, 40, 23, 40, 42}));
-  EXPECT_TRUE(rowGroupsFit(8, (1u << 23) - 1001, 1000));
-  EXPECT_FALSE(rowGroupsFit(8, 1u << 23, 0));
-  EXPECT_FALSE(rowGroupsFit(16, 100, 100));
+  // Row groups (4 rows each: masks of rows 0-2 and their aprons in word 0, row 3's word with row
+  // 0's start in word 1) give back every row word.
+  const std::vector<uint32_t> groups = packRowGroups(4, rows.rowWords);
+  ASSERT_EQ(groups.size(), 16u);
+  EXPECT_EQ(groups[0], 0xBu | 0x8u << 4 | 1u << 12);  // rows 0 and 1, row 0's apron
+  EXPECT_EQ(groups[1], 0u);
+  EXPECT_EQ(groups[3], 5u << 5);  // rows 4-7 after 4 voxels and a copy
+  for (uint64_t r = 0; r < rows.rowWords.size(); ++r)
+    EXPECT_EQ(rowWordOfGroups(4, groups, r), rows.rowWords[r]) << "row " << r;
+  EXPECT_TRUE(rowWordsApronFit(8, (1u << 23) - 1001, 1000));
+  EXPECT_FALSE(rowWordsApronFit(8, 1u << 23, 0));
+  EXPECT_FALSE(rowWordsApronFit(16, 100, 100));
 }
 
-// Row groups of 8^3 bricks give every row's start as the count of the extended
-// voxel words before it, at random occupancy with aprons between bricks 0 -> 1 -> 2.
-TEST(RowWords, GroupsGiveEveryRowsStartInEightCubedBricks) {
+// Row groups of 8^3 bricks (rows 0-2's masks fill 24 bits of word 0) give back every row word,
+// at random occupancy with aprons between bricks 0 -> 1 -> 2.
+TEST(RowWords, GroupsGiveBackEveryRowWordOfEightCubedBricks) {
   std::mt19937 rng(7);
   const uint32_t n = 8, bricks = 3;
   std::vector<uint32_t> masks(bricks * 16);
@@ -319,22 +318,13 @@ TEST(RowWords, GroupsGiveEveryRowsStartInEightCubedBricks) {
   for (uint32_t i = 0; i < voxels; ++i) words[i] = i * 3 + 1;
   const uint32_t next[] = {1, 2, kEmptyBrick};
   const ApronRows rows = packApronRows(n, bricks, masks, starts, first, words, next);
-  ASSERT_EQ(rows.rowGroups.size(), bricks * 16u * 2u);  // 16 groups of 8 bytes per brick
-  uint32_t extended = 0;
+  const std::vector<uint32_t> groups = packRowGroups(n, rows.rowWords);
+  ASSERT_EQ(groups.size(), bricks * 16u * 2u);  // 8 bytes per 4 rows
   int aprons = 0;
-  for (uint64_t r = 0; r < bricks * 64u; ++r) {
-    const ApronRow row = apronRowOf(n, rows.rowGroups, r);
-    const uint32_t mask = (masks[r / 4] >> (8 * (r % 4))) & 0xFFu;
-    ASSERT_EQ(row.bits & 0xFFu, mask) << "row " << r;
-    ASSERT_EQ(row.start, extended) << "row " << r;
-    if (mask != 0) {
-      ASSERT_EQ(rows.voxelWords[row.start], words[first[r / 64] + starts[r]]) << "row " << r;
-    }
-    const uint32_t apron = row.bits >> n;
-    aprons += int(apron);
-    extended += uint32_t(std::popcount(mask)) + apron;
+  for (uint64_t r = 0; r < rows.rowWords.size(); ++r) {
+    aprons += int((rows.rowWords[r] >> n) & 1u);
+    ASSERT_EQ(rowWordOfGroups(n, groups, r), rows.rowWords[r]) << "row " << r;
   }
-  EXPECT_EQ(extended, rows.voxelWords.size());
   EXPECT_GT(aprons, 10);
 }
 
@@ -343,7 +333,12 @@ std::vector<LookupCase> lookupCases() {
   for (uint32_t brick : {4u, 8u, 16u, 32u})
     for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ})
       cases.push_back({brick, axis, brick == 8 ? StoredType::kU16 : StoredType::kU8});
-  cases.push_back({8, format::Axis::kX, StoredType::kU8});  // row planes of two mask words
+  // Row groups of 4^3 and 8^3 bricks (one and two groups per mask word).
+  for (format::Axis axis : {format::Axis::kX, format::Axis::kY, format::Axis::kZ}) {
+    cases.push_back({4, axis, StoredType::kU8, true});
+    cases.push_back({8, axis, StoredType::kU8, true});
+  }
+  cases.push_back({8, format::Axis::kZ, StoredType::kU8});  // row words of 8^3 bricks
   cases.push_back({8, format::Axis::kZ, StoredType::kF16});
   cases.push_back({8, format::Axis::kY, StoredType::kF32});
   return cases;
@@ -356,6 +351,7 @@ std::string lookupName(const ::testing::TestParamInfo<LookupCase>& param) {
   name.push_back("xyz"[int(param.param.axis)]);
   name += "_";
   name += storedName(param.param.type);
+  if (param.param.rowGroups) name += "_groups";
   return name;
 }
 

@@ -217,5 +217,34 @@ TEST(HardCases, SplitSectionsRenderTheSameImage) {
   }
 }
 
+// Row groups (the GPU layout of rows with aprons, row_words.h) and row words (llvmpipe's) give
+// the same pixels, shadow rays of both kinds included: the shaders read the same rows from either.
+TEST(HardCases, RowGroupsRenderTheSameImageAsRowWords) {
+  VOXLINK_REQUIRE_GL();
+  for (uint32_t brick : {4u, 8u}) {
+    SectionBufferOptions groups, words;
+    groups.rowGroups = SectionBufferOptions::RowGroups::kOn;
+    words.rowGroups = SectionBufferOptions::RowGroups::kOff;
+    auto a = makeScene(shell, positive, brick, format::Axis::kY, groups);
+    auto b = makeScene(shell, positive, brick, format::Axis::kY, words);
+    ASSERT_TRUE(a && b);
+    EXPECT_TRUE(a->renderer->sections().rowGroups());
+    EXPECT_FALSE(b->renderer->sections().rowGroups());
+    EXPECT_LT(a->renderer->gpuBytes(), b->renderer->gpuBytes());
+    const Camera camera = Camera::framing(a->dense.worldBox(), {});
+    for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear})
+      for (int shadows = 0; shadows < 3; ++shadows) {
+        RenderSettings s = smallSettings(sampling);
+        s.shading.shadows = shadows > 0;
+        s.shading.shadowRays = shadows == 2 ? ShadowRays::kPerVoxel : ShadowRays::kPerSample;
+        RenderTarget x, y;
+        ASSERT_TRUE(a->renderer->render(camera, s, x).isOk());
+        ASSERT_TRUE(b->renderer->render(camera, s, y).isOk());
+        EXPECT_EQ(x.read().rgba, y.read().rgba)
+            << brick << "^3, " << samplingName(sampling) << ", shadows " << shadows;
+      }
+  }
+}
+
 }  // namespace
 }  // namespace voxlink::render::gl

@@ -29,44 +29,45 @@ std::vector<uint32_t> packRowWords(uint32_t n, uint64_t bricks, std::span<const 
                                    std::span<const uint16_t> rowStarts,
                                    std::span<const uint32_t> firstVoxels = {});
 
-// Row groups with an apron (VXL_ROW_APRON), for bricks up to 8^3 of 8-bit files that are not
-// scenes. A row's apron bit says that the brick next along w holds a voxel at depth 0 of the same
-// row, whose word then follows the row's own voxels as a copy; starts index these extended
-// voxel words. A trilinear cell's pairs of corners along w then sit in one row even where the
-// pair crosses a brick face: 4 row fetches per cell instead of 8 (docs/rendering-trilinear-
-// profile.md, fifth session). The copies cost 4 bytes each, at most one per row. Other readers
-// see the row's n mask bits and the same voxels as without it.
-// Four rows of a brick that follow one another in its row order share one group of two words
-// (8 bytes, where a word per row took 16): word 0 holds the mask bits of rows 0, 1 and 2 at bits
-// 0, n and 2 n and their apron bits at bits 3 n to 3 n + 2; word 1 row 3's mask bits, its apron
-// bit n and above bit n + 1 the start of row 0. The start of row j is row 0's plus the set bits
-// of word 0 that belong to rows 0..j-1 (one bitCount in the shaders), as the extended voxel
-// words hold each row's voxels and copy one after another. Row words were 30 % of the foot CT's
-// GPU memory (docs/gpu-measurements.md).
-inline constexpr uint32_t kRowsPerGroup = 4;
-inline bool rowGroupsFit(uint32_t brickSize, uint64_t voxelCount, uint64_t rows) {
+// Row words with an apron (VXL_ROW_APRON), for bricks up to 8^3 of 8-bit files that are not
+// scenes: bit n says that the brick next along w holds a voxel at depth 0 of the same row, whose
+// word then follows the row's own voxels as a copy, and the start (above bit n) indexes these
+// extended voxel words. A trilinear cell's pairs of corners along w then sit in one row word
+// even where the pair crosses a brick face: 4 row fetches per cell instead of 8
+// (docs/rendering-trilinear-profile.md, fifth session). The copies cost 4 bytes each, at most
+// one per row. Other readers see the row's n mask bits and the same voxels as without it.
+inline bool rowWordsApronFit(uint32_t brickSize, uint64_t voxelCount, uint64_t rows) {
   return brickSize <= 8 && voxelCount + rows < (uint64_t(1) << (31 - brickSize));
 }
 
 struct ApronRows {
-  std::vector<uint32_t> rowGroups;  // two words per group
+  std::vector<uint32_t> rowWords;
   std::vector<uint32_t> voxelWords;
 };
 
-// The row groups and extended voxel words of `bricks` occupied bricks of size n (rowGroupsFit)
-// from MASK, ROWS, BVOX (firstVoxels), the voxel words in file order, and per occupied brick the
-// occupied index of the brick next to it along w (kEmptyBrick, brick_lookup.h, where there is
-// none).
+// The row words and extended voxel words of `bricks` occupied bricks of size n from MASK, ROWS,
+// BVOX (firstVoxels), the voxel words in file order, and per occupied brick the occupied index
+// of the brick next to it along w (kEmptyBrick, brick_lookup.h, where there is none).
 ApronRows packApronRows(uint32_t n, uint64_t bricks, std::span<const uint32_t> maskWords,
                         std::span<const uint16_t> rowStarts, std::span<const uint32_t> firstVoxels,
                         std::span<const uint32_t> voxelWords, std::span<const uint32_t> nextAlongW);
 
-// Row r of all bricks (brick r / n^2) as the shaders read it from the groups: its mask bits with
-// the apron bit as bit n, and its start among the extended voxel words.
-struct ApronRow {
-  uint32_t bits;
-  uint32_t start;
-};
-ApronRow apronRowOf(uint32_t n, std::span<const uint32_t> rowGroups, uint64_t r);
+// Row groups: the same apron rows, four of a brick that follow one another in its row order in
+// one group of two words (8 bytes where the row words took 16). Word 0 holds the mask bits of rows
+// 0, 1 and 2 at bits 0, n and 2 n and their apron bits at bits 3 n to 3 n + 2; word 1 is row 3's
+// row word, but with the start of row 0. The start of row j is row 0's plus the set bits of word
+// 0 that belong to rows 0..j-1 (one bitCount in the shaders), as the extended voxel words hold
+// each row's voxels and copy one after another. The foot CT 256^3 takes 4.71 MiB of GPU memory
+// with them, 5.5 MiB with row words (docs/gpu-measurements.md), but on llvmpipe their 8-byte
+// fetch and the bitCount cost 2-14 % of a frame (docs/rendering-trilinear-profile.md, eighth
+// session): SectionBuffers uses them on GPUs only (section_buffers.h).
+inline constexpr uint32_t kRowsPerGroup = 4;
+
+// The groups (two words each) of apron row words `rowWords` of bricks of size n.
+std::vector<uint32_t> packRowGroups(uint32_t n, std::span<const uint32_t> rowWords);
+
+// Row word r as the shaders read it from the groups (VXL_ROW_GROUPS): the inverse of
+// packRowGroups.
+uint32_t rowWordOfGroups(uint32_t n, std::span<const uint32_t> rowGroups, uint64_t r);
 
 }  // namespace voxlink::render::gl

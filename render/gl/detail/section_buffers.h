@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // A VoxLink file in GPU buffers: its voxel sections as words derived at load time, ROWS and MASK
-// as row words (row_words.h: a row's mask and start in one word; with row aprons 4 rows in one
-// group of two words; as they are for 32^3 bricks),
+// as row words (row_words.h: a row's mask and start in one word; with row aprons on GPUs 4 rows
+// in one group of two words; as they are for 32^3 bricks),
 // GRAD as voxel words (voxel_words.h: decoded gradient directions, with the values of 8-bit
 // files; VALU goes up as it is only for wider values), and in
 // place of its brick sections (BOCC, BRNK, BVOX) brick tables derived from them when it is
@@ -30,6 +30,11 @@ struct SectionBufferOptions {
   // path. Rounded down to a power of two bytes, at least 64.
   uint64_t maxChunkBytes = 0;
   GLuint firstUnit = 0;  // texture unit of the first chunk
+  // Rows with aprons as row groups (row_words.h: half the bytes, a costlier fetch): kAuto takes
+  // them unless the GL renderer is a CPU rasterizer (llvmpipe, softpipe, SwiftShader), or as
+  // the environment variable VOXLINK_ROW_GROUPS (0 or 1) says.
+  enum class RowGroups { kAuto, kOn, kOff };
+  RowGroups rowGroups = RowGroups::kAuto;
 };
 
 class SectionBuffers {
@@ -51,6 +56,8 @@ class SectionBuffers {
   uint64_t voxelSlots() const { return voxelSlots_; }
   // Whether row words carry an apron (VXL_ROW_APRON, row_words.h).
   bool rowApron() const { return rowApron_; }
+  // Whether those rows went up as row groups (VXL_ROW_GROUPS).
+  bool rowGroups() const { return rowGroups_; }
   // The texture unit after the last chunk's.
   GLuint endUnit() const { return chunks_.empty() ? 0 : chunks_.back().unit + 1; }
 
@@ -65,6 +72,7 @@ class SectionBuffers {
   uint64_t gpuBytes_ = 0;
   uint64_t voxelSlots_ = 0;
   bool rowApron_ = false;
+  bool rowGroups_ = false;
 };
 
 }  // namespace voxlink::render::gl
