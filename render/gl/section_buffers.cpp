@@ -167,8 +167,8 @@ Result<SectionBuffers> SectionBuffers::upload(const format::VoxLinkFile& file,
   if (!valuesInWords)
     arrays.push_back(section(file, format::SectionId::kValues, "valuWord", "VxlValu"));
   const bool groups = apron && useRowGroups(options.rowGroups);
-  if (groups) rowWords = packRowGroups(n, rowWords);
   if (groups) {
+    rowWords = packRowGroups(n, rowWords);
     arrays.push_back({"row groups", "rowGroup", "VxlRowGroup", 2, bytesOf(rowWords)});
   } else if (rowWordsFit(n)) {
     arrays.push_back({"row words", "rowWord", "VxlRowWord", 1, bytesOf(rowWords)});

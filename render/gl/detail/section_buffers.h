@@ -44,10 +44,10 @@ class SectionBuffers {
 
   // Binds every chunk to its texture unit.
   void bind() const;
-  // Sampler declarations and the accessors rowGroup() (row aprons) or rowWord() (or rowsWord() and
-  // maskWord()), voxelWord(),
-  // valuWord() (wider values only), brickIndexWord(), dualBoxWord(), dualIndexWords() (files
-  // below 65535 occupied bricks: VXL_DUAL_INDICES) and brickEntry() for the shaders.
+  // Sampler declarations and the accessors rowGroup() (row aprons on GPUs: VXL_ROW_GROUPS) or
+  // rowWord() (or rowsWord() and maskWord()), voxelWord(), valuWord() (wider values only),
+  // brickIndexWord(), dualBoxWord(), dualIndexWords() (files below 65535 occupied bricks:
+  // VXL_DUAL_INDICES) and brickEntry() for the shaders.
   const std::string& glsl() const { return glsl_; }
   uint64_t gpuBytes() const { return gpuBytes_; }
   uint32_t bindingCount() const { return static_cast<uint32_t>(chunks_.size()); }
