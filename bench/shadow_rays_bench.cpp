@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Shadow rays, speed against error (docs/shadows.md): for one file and sampling mode, the GL
-// frame without shadows, with per-sample shadow rays and with per-voxel ones (the per-frame
-// cache), interleaved view by view over the paper's protocol (a turn about y, then one about x),
-// so that a load change on a shared machine hits the three alike; median frame times and their
+// frame without shadows, with per-sample shadow rays, with per-voxel ones (the cache, filled
+// for the view) and the per-voxel frame again from the same view (a still frame: the cache as
+// it is), interleaved view by view over the paper's protocol (a turn about y, then one about x),
+// so that a load change on a shared machine hits the four alike; median frame times and their
 // ratios; PSNR of each frame against both float64 references (per-sample and per-voxel rays) at
 // the first view, and of the per-voxel reference against the per-sample one (the model's own
 // error, free of any GL-vs-reference difference). Prints one markdown table row.
@@ -79,15 +80,22 @@ int run(int argc, char** argv) {
     if (Status st = (*renderer)->render(start, s, target); !st) return fail(st.message());
     first.push_back(target.read());
   }
-  std::vector<std::vector<double>> ms(variants.size());
+  // ms[3]: the per-voxel frame drawn again from the same view, the viewer's still frame, which
+  // reads the codes the frame before filled (no fill pass).
+  std::vector<std::vector<double>> ms(variants.size() + 1);
   for (uint32_t f = 0; f < 2 * uint32_t(perTurn); ++f) {
     const Camera camera = gl::protocolCamera(start, f, uint32_t(perTurn));
-    for (size_t v = 0; v < variants.size(); ++v) {
+    for (size_t v = 0; v <= variants.size(); ++v) {
+      // The per-voxel frame includes its fill, even where this view is the last one's.
+      if (v == 2) (*renderer)->forgetShadowCache();
+      const uint64_t fills = (*renderer)->shadowFills();
       const double t0 = seconds();
-      if (Status st = (*renderer)->render(camera, variants[v], target); !st)
+      if (Status st = (*renderer)->render(camera, variants[std::min<size_t>(v, 2)], target); !st)
         return fail(st.message());
       glFinish();
       ms[v].push_back(1e3 * (seconds() - t0));
+      if ((*renderer)->shadowFills() - fills != (v == 2 ? 1u : 0u))
+        return fail("the shadow cache was filled where it should not, or not where it should");
     }
   }
 
@@ -101,12 +109,14 @@ int run(int argc, char** argv) {
     auto e = compareImages(a, b);
     return e ? e->psnr : -1.0;
   };
-  const double none_ = median(ms[0]), sample = median(ms[1]), voxel = median(ms[2]);
+  const double none_ = median(ms[0]), sample = median(ms[1]), voxel = median(ms[2]),
+               still = median(ms[3]);
   std::printf(
-      "| %s | %s | %ux%u | %zu | %.1f | %.1f | %.1f | %.1fx | %.2fx | %.1fx | %.2f | %.2f | %.2f | "
-      "%.2f | %.2f | %.2f | %.2f | %.0f / %.0f | %.2f |\n",
-      name.c_str(), argv[4], none.width, none.height, ms[0].size(), none_, sample, voxel,
-      sample / none_, voxel / none_, sample / voxel, psnr(first[0], refSample),
+      "| %s | %s | %ux%u | %zu | %.1f | %.1f | %.1f | %.1f | %.1fx | %.2fx | %.2fx | %.1fx | %.2f "
+      "| "
+      "%.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f / %.0f | %.2f |\n",
+      name.c_str(), argv[4], none.width, none.height, ms[0].size(), none_, sample, voxel, still,
+      sample / none_, voxel / none_, still / none_, sample / voxel, psnr(first[0], refSample),
       psnr(first[1], refSample), psnr(first[1], refVoxel), psnr(first[2], refSample),
       psnr(first[2], refVoxel), psnr(refVoxel, refSample), psnr(first[2], first[1]),
       1e3 * (r1 - r0), 1e3 * (r2 - r1), double((*renderer)->gpuBytes() - plainBytes) / 1048576.0);

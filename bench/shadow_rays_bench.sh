@@ -3,7 +3,8 @@
 # Shadow rays, speed against error (docs/shadows.md): converts the foot, the tooth and the LIDC
 # chest with their bench transfer functions (as bench/render_bench.sh does), then for each and
 # both sampling modes runs voxlink_bench_shadow_rays (bench/shadow_rays_bench.cpp): GL frames
-# without shadows, with per-sample and with per-voxel shadow rays, interleaved, median ms and
+# without shadows, with per-sample and with per-voxel shadow rays, and the per-voxel still frame
+# (the cache reused), interleaved, median ms and
 # ratios from the same run, and PSNRs against both float64 references. Prints one table.
 # usage: bench/shadow_rays_bench.sh VOXLINK BENCH_TOOL DATA_DIR OUT_DIR [SIZE] [FRAMES_PER_TURN]
 # DATASETS="foot tooth lidc" picks the data sets, SAMPLINGS="voxel trilinear" the modes.
@@ -20,12 +21,13 @@ here=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$out"
 
 echo "shadow rays at $size, $perTurn views per turn (2 turns), median ms; $(date -u +%FT%TZ); load: $(uptime | sed 's/.*load average/load average/')"
-echo "none / per-sample / per-voxel: GL frame without shadows, with a shadow ray per sample, with the per-voxel cache;"
+echo "none / per-sample / per-voxel: GL frame without shadows, with a shadow ray per sample, with the per-voxel cache (its fill included);"
+echo "still: the per-voxel frame again from the same view (the viewer's still frame, a zoom or a pan: the cache reused, no fill);"
 echo "PSNR (dB, first view) of each GL frame against the float64 per-sample (ref-S) and per-voxel (ref-V) references;"
 echo "ref-V vs ref-S: the per-voxel model's own error; V vs S: the two GL frames; ref ms: the two references' render times."
 echo
-echo "| data | sampling | size | views | none ms | per-sample ms | per-voxel ms | per-sample / none | per-voxel / none | per-sample / per-voxel | none vs ref-S | per-sample vs ref-S | per-sample vs ref-V | per-voxel vs ref-S | per-voxel vs ref-V | ref-V vs ref-S | V vs S | ref-S / ref-V ms | cache MiB |"
-echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| data | sampling | size | views | none ms | per-sample ms | per-voxel ms | still ms | per-sample / none | per-voxel / none | still / none | per-sample / per-voxel | none vs ref-S | per-sample vs ref-S | per-sample vs ref-V | per-voxel vs ref-S | per-voxel vs ref-V | ref-V vs ref-S | V vs S | ref-S / ref-V ms | cache MiB |"
+echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 
 run() {  # name source tf [convert options...]
   local name=$1 source=$2 tf=$3

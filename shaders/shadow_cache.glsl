@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The per-frame shadow cache of `--shadow-rays per-voxel` (docs/shadows.md): a sample's shadow
 // is the transmittance from its voxel's centre (voxel sampling), or the alpha-and-weight mean of
-// its visible corners' centre transmittances (trilinear). Before every frame the host clears the
-// words (render/gl/detail/shadow_cache_buffer.h) and the fill pass (shadow_fill.comp.glsl) walks
+// its visible corners' centre transmittances (trilinear). Before a frame whose world light or TF
+// differs from the last fill's, the host clears the words (render/gl/detail/shadow_cache_buffer.h,
+// volume_renderer.h) and the fill pass (shadow_fill.comp.glsl) walks
 // every visible stored voxel's centre (shadowTransmittance, voxlink_shadow.glsl), keeping 8 bits
 // per stored voxel: 1 + round(254 T). Four voxels share a word, each set with imageAtomicOr. The
 // frame only reads, through a buffer texture (a gather on llvmpipe, 2.5x cheaper than a

@@ -67,6 +67,9 @@ Result<std::vector<BenchmarkRow>> runRenderBenchmark(const std::vector<VolumeRen
       for (uint32_t f = 0; f < frames; ++f) {
         const Camera camera = protocolCamera(start, f, o.framesPerTurn);
         for (size_t r = 0; r < renderers.size(); ++r) {
+          // A frame with per-voxel shadow rays is timed with its fill, even where two views of
+          // the protocol coincide (one frame per turn).
+          renderers[r]->forgetShadowCache();
           const double t0 = seconds();
           VOXLINK_RETURN_IF_ERROR(renderers[r]->render(camera, s, targets[r]));
           glFinish();

@@ -33,10 +33,13 @@ Result<ShadowCacheBuffer> ShadowCacheBuffer::create(uint64_t voxels, GLuint unit
   return c;
 }
 
-void ShadowCacheBuffer::clearAndBind() const {
-  // The last frame's image atomics land before the clear (which a later dispatch sees as is).
+void ShadowCacheBuffer::clear() const {
+  // The last fill's image atomics land before the clear (which a later dispatch sees as is).
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glClearNamedBufferData(buffer_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
+void ShadowCacheBuffer::bind() const {
   glBindTextureUnit(unit_, texture_.id());
   glBindImageTexture(kShadowCacheImage, texture_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }

@@ -76,6 +76,7 @@ VolumeRenderer::VolumeRenderer(const VolumeGeometry& geometry) : geometry_(geome
 
 void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   tf_ = tf;
+  ++tfGeneration_;  // the shadow cache's codes were walked through the old opacities
   table_ = buildTfTable(tf, geometry_.valueType, geometry_.valueScale, geometry_.valueOffset);
   // A texture buffer may not be empty.
   std::vector<float> texels = table_.texels;
@@ -176,6 +177,16 @@ void VolumeRenderer::bindTables(const ComputeProgram& p) const {
   bindData(p);
 }
 
+namespace {
+
+// The frame's directional light in world space (it follows the camera), as the shaders get it.
+glm::vec3 worldToLight(const Camera& camera, const RenderSettings& s) {
+  const auto& l = s.shading.lightDirection;
+  return glm::vec3(glm::normalize(camera.toWorld(glm::normalize(glm::dvec3(l[0], l[1], l[2])))));
+}
+
+}  // namespace
+
 void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& camera,
                                       const RenderSettings& s, uint32_t width,
                                       uint32_t height) const {
@@ -195,8 +206,8 @@ void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& cam
   const double unit = g.minSpacing();
   glUniform1f(p.uniform("uUnit"), float(unit));
   glUniform1f(p.uniform("uStep"), float(s.stepVoxels * unit));
-  const auto& l = s.shading.lightDirection;
-  vec3("uToLight", glm::normalize(camera.toWorld(glm::normalize(glm::dvec3(l[0], l[1], l[2])))));
+  const glm::vec3 toLight = worldToLight(camera, s);
+  glUniform3f(p.uniform("uToLight"), toLight.x, toLight.y, toLight.z);
   glUniform4f(p.uniform("uPhong"), float(s.shading.ambient), float(s.shading.diffuse),
               float(s.shading.specular), float(s.shading.shininess));
   glUniform1i(p.uniform("uShadingEnabled"), s.shading.enabled ? 1 : 0);
@@ -218,12 +229,20 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   const bool cached =
       settings.shading.enabled && settings.shading.shadows && cachesShadows(settings);
   if (cached) {
-    VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* fill, program(settings, Pass::kShadowFill));
-    VOXLINK_RETURN_IF_ERROR(beginShadowCache());
-    fill->use();
-    setFrameUniforms(*fill, camera, settings, settings.width, settings.height);
-    bindTables(*fill);
-    fillShadowCache(*fill);
+    const ShadowFill wanted{worldToLight(camera, settings),
+                            float(settings.shadowTerminationTransmittance), tfGeneration_};
+    const bool refill = filledFor_ != wanted;
+    filledFor_.reset();  // until the fill below is queued
+    VOXLINK_RETURN_IF_ERROR(beginShadowCache(refill));
+    if (refill) {
+      VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* fill, program(settings, Pass::kShadowFill));
+      fill->use();
+      setFrameUniforms(*fill, camera, settings, settings.width, settings.height);
+      bindTables(*fill);
+      fillShadowCache(*fill);
+      ++shadowFills_;
+    }
+    filledFor_ = wanted;
   }
   p->use();
   setFrameUniforms(*p, camera, settings, settings.width, settings.height);
@@ -240,9 +259,11 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   if (shadows) {
     VOXLINK_ASSIGN_OR_RETURN(lastRetraced_, retrace_.finish(*p, name()));
   }
-  if (const GLenum e = glGetError(); e != GL_NO_ERROR)
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+    filledFor_.reset();  // the fill may not have run
     return makeError(ErrorCode::kUnsupported, "render (", name(), " renderer): GL error 0x",
                      std::hex, e, " while rendering");
+  }
   return Status::ok();
 }
 

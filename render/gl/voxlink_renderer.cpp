@@ -53,7 +53,7 @@ bool VoxLinkRenderer::cachesShadows(const RenderSettings& settings) const {
          header_.versionMajor != format::kVersionMajorScene;
 }
 
-Status VoxLinkRenderer::beginShadowCache() {
+Status VoxLinkRenderer::beginShadowCache(bool refill) {
   if (!shadowCache_) {
     if (sections_.endUnit() > shadowCacheUnit())
       return makeError(ErrorCode::kTooLarge,
@@ -66,7 +66,8 @@ Status VoxLinkRenderer::beginShadowCache() {
         ShadowCacheBuffer::create(sections_.voxelSlots(), shadowCacheUnit(), brickCells_));
     shadowCache_ = std::move(cache);
   }
-  shadowCache_->clearAndBind();
+  if (refill) shadowCache_->clear();
+  shadowCache_->bind();
   return Status::ok();
 }
 

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Per-voxel shadow rays (`--shadow-rays per-voxel`, docs/shadows.md): the GL renderer's per-frame
 // cache (shaders/shadow_cache.glsl, filled by shaders/shadow_fill.comp.glsl) against the float64
-// reference's per-voxel model on every brick layout, the cache cleared and filled between frames,
-// the reference's cache against its uncached single rays, and the option.
+// reference's per-voxel model on every brick layout, the cache cleared and filled between frames
+// where its codes change and reused where they do not, the reference's cache against its uncached
+// single rays, and the option.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -159,6 +160,63 @@ TEST(ShadowCache, ClearedBetweenFrames) {
   const uint64_t voxels = fresh.renderer->sections().voxelSlots();
   EXPECT_EQ(fresh.renderer->gpuBytes() - withoutCache,
             (voxels + 3) / 4 * 4 + 12 * fresh.file->occupiedBrickCount());
+}
+
+// The cache is filled again only where its codes would change: a still frame, a zoom and a pan
+// (the light follows the camera's orientation, not its place) and a switch of sampling mode read
+// the codes as they are, and equal a fresh renderer's frames bit for bit; a turn, a new transfer
+// function, a new shadow stop and forgetShadowCache() fill again.
+TEST(ShadowCache, FilledAgainOnlyWhereTheCodesChange) {
+  VOXLINK_REQUIRE_GL();
+  Fixture kept, fresh;
+  ASSERT_TRUE(kept.open().isOk());
+  ASSERT_TRUE(fresh.open().isOk());
+  const Camera start = Camera::framing(kept.dense.worldBox(), {30, 20, 1, 30});
+  const RenderSettings voxel = shadowed(Sampling::kVoxel, ShadowRays::kPerVoxel);
+  const RenderSettings trilinear = shadowed(Sampling::kTrilinear, ShadowRays::kPerVoxel);
+  // Each step: the frame from a renderer whose cache is filled for it alone, a frame of another
+  // view there (its cache, bound last, then holds other codes: a kept renderer that read it
+  // unbound would show that), then the frame on the kept renderer and whether it filled.
+  Camera elsewhere = start;
+  elsewhere.orbit(90, 0);
+  auto step = [&](const char* what, const Camera& camera, const RenderSettings& s, bool fills) {
+    fresh.renderer->forgetShadowCache();
+    const Image expected = renderGl(*fresh.renderer, camera, s);
+    renderGl(*fresh.renderer, elsewhere, voxel);
+    const uint64_t before = kept.renderer->shadowFills();
+    const Image image = renderGl(*kept.renderer, camera, s);
+    EXPECT_EQ(kept.renderer->shadowFills() - before, fills ? 1u : 0u) << what;
+    auto e = compareImages(image, expected);
+    ASSERT_TRUE(e.isOk());
+    EXPECT_EQ(e->maxError, 0.0) << what;
+  };
+  step("first frame", start, voxel, true);
+  step("still frame", start, voxel, false);
+  Camera zoomed = start;
+  zoomed.zoom(1.4);
+  step("zoom", zoomed, voxel, false);
+  Camera panned = zoomed;
+  panned.pan(0.1, -0.05);
+  step("pan", panned, trilinear, false);
+  Camera turned = panned;
+  turned.orbit(25, -10);
+  step("turn", turned, trilinear, true);
+  RenderSettings stop = trilinear;
+  stop.shadowTerminationTransmittance = 0.2;
+  step("shadow stop", turned, stop, true);
+  step("shadow stop back", turned, trilinear, true);
+  // A darker TF on both: the codes of the old one would leave too much light.
+  const tf::TransferFunction denser = testing::rampTf(100, 60, 0.95, 100, 255);
+  kept.renderer->setTransferFunction(denser);
+  fresh.renderer->setTransferFunction(denser);
+  step("transfer function", turned, trilinear, true);
+  kept.renderer->forgetShadowCache();
+  step("forgotten", turned, trilinear, true);
+  // Frames without per-voxel rays leave the codes alone.
+  RenderSettings perSample = trilinear;
+  perSample.shading.shadowRays = ShadowRays::kPerSample;
+  step("per-sample rays", turned, perSample, false);
+  step("per-voxel again", turned, trilinear, false);
 }
 
 // The reference's per-frame store gives what its uncached single rays compute.

@@ -259,12 +259,14 @@ Status runViewer(const ViewerOptions& options) {
       state.settings.width = std::max(1u, uint32_t(std::lround(size[0] * scale)));
       state.settings.height = std::max(1u, uint32_t(std::lround(size[1] * scale)));
       const double start = nowMs();
+      const uint64_t fills = state.renderer->shadowFills();
       if (Status s = state.renderer->render(controller.camera(), state.settings, target); !s) {
         state.message = s.message();
       } else {
         glFinish();
         state.lastRenderMs = nowMs() - start;
       }
+      state.lastFrameFilledShadows = state.renderer->shadowFills() != fills;
       state.lastFrameReduced = interacting;
       dirty = false;
     }

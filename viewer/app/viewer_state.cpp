@@ -64,8 +64,15 @@ bool drawStatsPanel(ViewerState& s, const std::string& glDescription, uint32_t w
               h.dims[2], h.brickSize, (unsigned long long)h.voxelCount,
               (unsigned long long)h.occupiedBrickCount,
               (unsigned long long)s.file->gridBrickCount());
-  ImGui::Text("frame %.1f ms at %ux%u%s", s.lastRenderMs, width, height,
-              s.lastFrameReduced ? " (reduced while moving)" : "");
+  const auto& shading = s.settings.shading;
+  const bool perVoxelShadows = shading.enabled && shading.shadows && !s.settings.effects.any() &&
+                               shading.shadowRays == render::ShadowRays::kPerVoxel &&
+                               !s.file->isScene();
+  ImGui::Text("frame %.1f ms at %ux%u%s%s", s.lastRenderMs, width, height,
+              s.lastFrameReduced ? " (reduced while moving)" : "",
+              !perVoxelShadows           ? ""
+              : s.lastFrameFilledShadows ? ", shadow cache filled"
+                                         : ", shadow cache reused");
   ImGui::Text("GPU buffers %.2f MiB (sections, TF, gradient table)",
               s.renderer->gpuBytes() / 1048576.0);
   ImGui::TextDisabled("%s", glDescription.c_str());

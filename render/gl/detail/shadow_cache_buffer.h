@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The GPU side of the per-frame shadow cache (`--shadow-rays per-voxel`, shaders/shadow_cache.glsl,
 // docs/shadows.md): one byte per stored voxel, four to a 32-bit word, read as a buffer texture and
-// set through an image with atomicOr. Cleared and filled before every frame (the light follows
-// the camera): the fill pass (shaders/shadow_fill.comp.glsl) walks one shadow ray per visible
-// stored voxel, one work group per occupied brick, so it holds the grid cell of every occupied
-// brick.
+// set through an image with atomicOr. Cleared and filled before a frame whose world light or
+// transfer function differs from the last fill's (the light follows the camera): the fill pass
+// (shaders/shadow_fill.comp.glsl) walks one shadow ray per visible stored voxel, one work group per
+// occupied brick, so it holds the grid cell of every occupied brick.
 #pragma once
 
 #include <cstdint>
@@ -28,8 +28,10 @@ class ShadowCacheBuffer {
   static Result<ShadowCacheBuffer> create(uint64_t voxels, GLuint unit,
                                           std::span<const uint32_t> brickCells);
 
-  // Zeroes every code (the GL clears in place, no upload) and binds the texture and the image.
-  void clearAndBind() const;
+  // Zeroes every code (the GL clears in place, no upload).
+  void clear() const;
+  // Binds the texture the frame reads and the image the fill pass sets.
+  void bind() const;
   // Runs the fill pass with the bound program (its uniforms and the file's buffers set): a work
   // group per occupied brick; `depths` per row is the brick size n, or n + 1 with row aprons.
   void fill(GLint occupiedBricksUniform, GLint depthsUniform, uint32_t depths) const;

@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -78,6 +79,12 @@ class VolumeRenderer {
   // Pixels of the last plain frame traced again because the driver's loop cap cut their rays
   // short (loop_limit_retrace.h); 0 without shadow rays.
   uint32_t lastRetracedPixels() const { return lastRetraced_; }
+  // Per-voxel shadow rays (docs/shadows.md): a frame fills the cache only where the world light,
+  // the transfer function or the shadow stop differ from the last fill's; a still frame, a zoom
+  // or a pan reads the codes as they are. shadowFills() counts the fill passes run;
+  // forgetShadowCache() makes the next such frame fill again (benchmarks time a frame with it).
+  uint64_t shadowFills() const { return shadowFills_; }
+  void forgetShadowCache() { filledFor_.reset(); }
 
  protected:
   explicit VolumeRenderer(const VolumeGeometry& geometry);
@@ -90,12 +97,15 @@ class VolumeRenderer {
   virtual std::map<std::string, std::string> generatedFiles() const { return {}; }
   virtual void bindData(const ComputeProgram& program) const = 0;
   virtual uint64_t dataBytes() const = 0;
-  // Whether frames with these settings read the per-frame shadow cache (shaders/shadow_cache.glsl);
-  // then before each such frame beginShadowCache() clears and binds it, and fillShadowCache()
-  // runs the fill pass (shadowFillShader(), its uniforms and tables set) that sets every code the
-  // frame reads.
+  // Whether frames with these settings read the shadow cache (shaders/shadow_cache.glsl); then
+  // before each such frame beginShadowCache() binds it, and where its codes are stale (`refill`)
+  // first clears it, and fillShadowCache() then runs the fill pass (shadowFillShader(), its
+  // uniforms and tables set) that sets every code the frame reads. The codes depend on the world
+  // light, the TF and the shadow stop only (the ShadowFill key): the data never change after
+  // upload (dynamic scenes' layers move, but scenes cast per-sample rays), and the fill walks the
+  // same nearest-voxel shadow rays whatever the frame's sampling.
   virtual bool cachesShadows(const RenderSettings&) const { return false; }
-  virtual Status beginShadowCache() { return Status::ok(); }
+  virtual Status beginShadowCache(bool /*refill*/) { return Status::ok(); }
   virtual std::string shadowFillShader() const { return {}; }
   virtual void fillShadowCache(const ComputeProgram&) const {}
 
@@ -113,8 +123,19 @@ class VolumeRenderer {
   void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
                         uint32_t width, uint32_t height) const;
 
+  // What the shadow cache's codes were filled for: the light as the fill's uniform held it.
+  struct ShadowFill {
+    glm::vec3 toLight{0.0f};
+    float stop = 0.0f;
+    uint64_t tfGeneration = 0;
+    bool operator==(const ShadowFill&) const = default;
+  };
+
   VolumeGeometry geometry_;
   tf::TransferFunction tf_;
+  uint64_t tfGeneration_ = 0;  // bumped by every setTransferFunction
+  std::optional<ShadowFill> filledFor_;
+  uint64_t shadowFills_ = 0;
   TfTable table_;
   GlStorageBuffer tfBuffer_;
   GlTexture tfTexels_;  // tfBuffer_ as a buffer texture of RGBA texels

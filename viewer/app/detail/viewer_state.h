@@ -39,6 +39,9 @@ struct ViewerState {
   double interactiveScale = 0.5;   // resolution factor while the user drags
   double lastRenderMs = 0;
   bool lastFrameReduced = false;
+  // Per-voxel shadow rays: whether the last frame filled the cache (a turn, a new TF) or read
+  // the codes as they were (a still frame, a zoom, a pan; docs/shadows.md).
+  bool lastFrameFilledShadows = false;
   std::string message;    // last screenshot / reload / error line
   std::string shownPath;  // the scene file a scratch .vxl was built from (else empty)
 
