@@ -6,8 +6,8 @@
 #   on the GPU machine:     bash .gpu/gpu_session.sh run [SECTION...] (carry [".gpu"]; log in $OUT/log.md)
 # Sections (default: all, in this order): foot256 table1 animate foot1024 krige.
 #   foot256   the foot CT 256^3 (bench/tf/foot-bone.tf.json), 1000x1000: voxlink vs the dense 3D-texture
-#             caster, voxel and trilinear, without and with --shadows, and voxlink with row words in
-#             place of row groups (issue 29 item 2)
+#             caster, voxel and trilinear, without and with --shadows, voxlink with row words in
+#             place of row groups, and the shadow rays' bench (per-sample, per-voxel, still) (issue 29)
 #   table1    the paper's Table 1 scenes (dragon plain and ray-traced, house and glass bunny ray-traced) at
 #             256 [8], 512 [8], 1024 [16], 1000x1000 (issue 29 item 2). On NVIDIA the first use of the
 #             ray-traced mode compiles its shaders for 35-210 s (then the driver's cache holds them).
@@ -28,6 +28,7 @@ if [[ $mode == prepare ]]; then
     bench/tf/foot-bone.tf.json "$data/mesh/stanford_dragon_decimated.ply" \
     "$data/mesh/c3dtm_stanford-bunny.obj" "$samples"
   cp build/bench/voxlink_bench_upsample .gpu/upsample
+  cp build/bench/voxlink_bench_shadow_rays .gpu/shadow_rays
   cp bench/gpu_session.sh .gpu/
   git rev-parse --short HEAD >.gpu/commit
   echo "gpu_session: .gpu/ ready ($(du -sh .gpu | cut -f1))"
@@ -43,6 +44,9 @@ mkdir -p $T
 t() { local s; s=$(date +%s%N); "$@"; echo "[exit $? in $((($(date +%s%N) - s) / 1000000)) ms: $*]"; }
 echo "# device run $(date -u +%FT%TZ), commit $(cat .gpu/commit), $(nproc) cores"
 (nvidia-smi -L || /usr/local/nvidia/bin/nvidia-smi -L) 2>&1 | head -2
+# What .gpu/run.sh sets for the CLI, for the bench tools run beside it (their libraries: the bundle's).
+NV=$(ls -d /usr/local/nvidia/lib64 /usr/local/nvidia/lib 2>/dev/null | tr '\n' ':')
+EGL_VENDOR=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 # The sample scenes name their meshes as ../../../shared/data/mesh/...: put them there.
 M="$(dirname "$PWD")/shared/data/mesh"
 mkdir -p "$M" && cp $D/*.ply $D/*.obj "$M"/
@@ -56,7 +60,13 @@ for section in $sections; do
       t $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --source $foot
       # Row words in place of the GPU's row groups (docs/gpu-measurements.md): speed against memory.
       t env VOXLINK_ROW_GROUPS=0 $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --no-dense
-      t $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --shadows --source $foot ;;
+      t $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --shadows --source $foot
+      # Shadowed frames against plain ones in one process (docs/shadows.md): per-sample rays, per-voxel
+      # rays with their fill, and the still frame that reuses the cache; PSNRs against float64 references.
+      for sampling in voxel trilinear; do
+        t env LD_LIBRARY_PATH=/tmp/bundle/lib:$NV __EGL_VENDOR_LIBRARY_FILENAMES=$EGL_VENDOR \
+          .gpu/shadow_rays foot $T/foot.vxl $tf $sampling 1000x1000 12
+      done ;;
     table1)
       for grid in "256 8" "512 8" "1024 16"; do
         set -- $grid
