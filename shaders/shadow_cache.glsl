@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The per-frame shadow cache of `--shadow-rays per-voxel` (docs/shadows.md): a sample's shadow
+// The shadow cache of `--shadow-rays per-voxel` (docs/shadows.md): a sample's shadow
 // is the transmittance from its voxel's centre (voxel sampling), or the alpha-and-weight mean of
 // its visible corners' centre transmittances (trilinear). Before a frame whose world light or TF
 // differs from the last fill's, the host clears the words (render/gl/detail/shadow_cache_buffer.h,

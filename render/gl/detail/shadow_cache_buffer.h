@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The GPU side of the per-frame shadow cache (`--shadow-rays per-voxel`, shaders/shadow_cache.glsl,
+// The GPU side of the shadow cache (`--shadow-rays per-voxel`, shaders/shadow_cache.glsl,
 // docs/shadows.md): one byte per stored voxel, four to a 32-bit word, read as a buffer texture and
 // set through an image with atomicOr. Cleared and filled before a frame whose world light or
 // transfer function differs from the last fill's (the light follows the camera): the fill pass
