@@ -12,11 +12,23 @@
 
 layout(binding = VXL_SHADOW_CACHE_UNIT) uniform usamplerBuffer uShadowCodes;
 layout(r32ui, binding = VXL_SHADOW_CACHE_IMAGE) uniform uimageBuffer uShadowCodesOut;
+#if VXL_SHADOW_MARK || VXL_SHADOW_MARKED
+// One bit per slot: the centres the frame reads (render/gl/detail/shadow_cache_buffer.h). The
+// marking frame (VXL_SHADOW_MARK) sets them, the fill (VXL_SHADOW_MARKED) walks only those.
+layout(r32ui, binding = VXL_SHADOW_MARK_IMAGE) uniform uimageBuffer uShadowMarks;
+#endif
 
 const float kShadowLevels = 254.0;
 
 // The code of transmittance t: 1 + round(254 t).
 uint shadowCode(float t) { return 1u + uint(round(clamp(t, 0.0, 1.0) * kShadowLevels)); }
+
+#if VXL_SHADOW_MARKED
+// Whether the marking frame read slot `slot`.
+bool shadowMarked(uint slot) {
+  return ((imageLoad(uShadowMarks, int(slot >> 5u)).x >> (slot & 31u)) & 1u) != 0u;
+}
+#endif
 
 // Sets voxel `slot`'s code; its word's three other bytes belong to other voxels.
 void storeShadowCode(uint slot, uint code) {
@@ -26,6 +38,12 @@ void storeShadowCode(uint slot, uint code) {
 // The stored transmittance of visible voxel `slot` (its voxel word's index: the file's voxel
 // index, or where row words have an apron, the extended index, copies included).
 float centreShadow(uint slot) {
+#if VXL_SHADOW_MARK
+  // The marking frame: the frame's own traversal and termination (alpha only), so it reads
+  // exactly the centres the frame will; it records them and its image is drawn over.
+  imageAtomicOr(uShadowMarks, int(slot >> 5u), 1u << (slot & 31u));
+  return 1.0;
+#endif
   uint code = (texelFetch(uShadowCodes, int(slot >> 2u)).x >> ((slot & 3u) * 8u)) & 0xFFu;
   return float(code - 1u) / kShadowLevels;
 }

@@ -8,7 +8,8 @@
 // visible voxel (the foot at 256^3: a fifth of its occupied bricks' cells), so a walk per cell
 // would leave most lanes of a SIMD vector idle while one walks: the group first lists its visible
 // voxels in shared memory, then its invocations walk the list side by side. Depth n of a row is
-// its apron copy (row_words.h), the voxel at depth 0 of the next brick along w.
+// its apron copy (row_words.h), the voxel at depth 0 of the next brick along w. With
+// VXL_SHADOW_MARKED it walks only the voxels the marking frame before it read (shadow_cache.glsl).
 #version 450
 layout(local_size_x = VXL_N, local_size_y = VXL_N) in;
 
@@ -60,6 +61,9 @@ void main() {
       if (((info.x >> depth) & 1u) == 0u) continue;
       uint before = depth == 0u ? 0u : uint(bitCount(info.x & ((1u << depth) - 1u)));
       uint slot = first + before;
+#if VXL_SHADOW_MARKED
+      if (!shadowMarked(slot)) continue;  // no sample of the frame reads it
+#endif
       if (!(classify(storedBits(slot)).a > 0.0)) continue;
       uint i = atomicAdd(sCount, 1u);
       sSlot[i] = slot;

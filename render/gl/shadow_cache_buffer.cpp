@@ -19,6 +19,11 @@ Result<ShadowCacheBuffer> ShadowCacheBuffer::create(uint64_t voxels, GLuint unit
   glNamedBufferStorage(c.buffer_.id(), GLsizeiptr(words * 4), nullptr, 0);
   c.texture_ = createTexture(GL_TEXTURE_BUFFER);
   glTextureBuffer(c.texture_.id(), GL_R32UI, c.buffer_.id());
+  const uint64_t markWords = std::max<uint64_t>((voxels + 31) / 32, 1);
+  c.marks_ = createBuffer();
+  glNamedBufferStorage(c.marks_.id(), GLsizeiptr(markWords * 4), nullptr, 0);
+  c.marksTexture_ = createTexture(GL_TEXTURE_BUFFER);
+  glTextureBuffer(c.marksTexture_.id(), GL_R32UI, c.marks_.id());
   // A storage buffer may not be empty.
   const uint32_t none[3] = {0, 0, 0};
   c.brickCells_ = brickCells.empty()
@@ -26,7 +31,7 @@ Result<ShadowCacheBuffer> ShadowCacheBuffer::create(uint64_t voxels, GLuint unit
                       : createStorageBuffer(brickCells.data(), brickCells.size_bytes());
   c.bricks_ = brickCells.size() / 3;
   c.unit_ = unit;
-  c.bytes_ = words * 4 + c.brickCells_.bytes;
+  c.bytes_ = words * 4 + markWords * 4 + c.brickCells_.bytes;
   if (glGetError() != GL_NO_ERROR)
     return makeError(ErrorCode::kTooLarge, "shadow cache: the GL refused a buffer of ", c.bytes_,
                      " bytes for ", voxels, " stored voxels; use --shadow-rays per-sample");
@@ -39,9 +44,15 @@ void ShadowCacheBuffer::clear() const {
   glClearNamedBufferData(buffer_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
 }
 
+void ShadowCacheBuffer::clearMarks() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glClearNamedBufferData(marks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
 void ShadowCacheBuffer::bind() const {
   glBindTextureUnit(unit_, texture_.id());
   glBindImageTexture(kShadowCacheImage, texture_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
+  glBindImageTexture(kShadowMarkImage, marksTexture_.id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_R32UI);
 }
 
 void ShadowCacheBuffer::fill(GLint occupiedBricksUniform, GLint depthsUniform,

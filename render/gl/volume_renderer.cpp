@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "format/gradient_codec.h"
 
@@ -112,8 +113,9 @@ bool VolumeRenderer::premultipliedTf() const {
 }
 
 Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, Pass pass) {
-  const bool fill = pass == Pass::kShadowFill;
-  const bool effects = pass != Pass::kPlain && !fill;
+  const bool fill = pass == Pass::kShadowFill || pass == Pass::kShadowFillMarked;
+  const bool mark = pass == Pass::kShadowMark;  // the plain frame's shader, marking
+  const bool effects = pass != Pass::kPlain && !fill && !mark;
   const bool shadows = s.shading.enabled && (s.shading.shadows || (effects && s.effects.shadows));
   // pow() specialised away where the settings allow (shading.glsl): a half-voxel step, an
   // integer specular exponent.
@@ -121,7 +123,7 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   const double e = s.shading.shininess;
   const int shininess = e >= 1 && e <= 127 && e == std::floor(e) ? int(e) : 0;
   // The ray-traced mode casts its own shadow rays; the cache serves the plain frame's.
-  const bool shadowCache = shadows && (pass == Pass::kPlain || fill) && cachesShadows(s);
+  const bool shadowCache = shadows && (pass == Pass::kPlain || fill || mark) && cachesShadows(s);
   const auto key = std::make_tuple(int(s.sampling), shadows, int(pass), int(s.lights.size()),
                                    halfVoxelStep, shininess, shadowCache);
   if (auto it = programs_.find(key); it != programs_.end()) return &it->second;
@@ -146,6 +148,8 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_SHININESS", std::to_string(shininess)});
   defines.push_back({"VXL_SHADOWS", shadows ? "1" : "0"});
   defines.push_back({"VXL_SHADOW_CACHE", shadowCache ? "1" : "0"});
+  defines.push_back({"VXL_SHADOW_MARK", mark ? "1" : "0"});
+  defines.push_back({"VXL_SHADOW_MARKED", pass == Pass::kShadowFillMarked ? "1" : "0"});
   defines.push_back({"VXL_RETRACE_BINDING", std::to_string(kRetraceBinding)});
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
@@ -161,8 +165,12 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
 Status VolumeRenderer::prepare(const RenderSettings& settings) {
   VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
   if (!settings.effects.any()) {
-    if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings))
-      VOXLINK_RETURN_IF_ERROR(program(settings, Pass::kShadowFill).status());
+    if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings)) {
+      const bool marked = marks(settings);
+      VOXLINK_RETURN_IF_ERROR(
+          program(settings, marked ? Pass::kShadowFillMarked : Pass::kShadowFill).status());
+      if (marked) VOXLINK_RETURN_IF_ERROR(program(settings, Pass::kShadowMark).status());
+    }
     return program(settings).status();
   }
   for (Pass pass : {Pass::kEffectsPrimary, Pass::kEffectsSecondary, Pass::kEffectsResolve})
@@ -187,17 +195,43 @@ glm::vec3 worldToLight(const Camera& camera, const RenderSettings& s) {
 
 }  // namespace
 
+bool VolumeRenderer::marks(const RenderSettings& s) const {
+  if (marking_ != ShadowMarking::kAuto) return marking_ == ShadowMarking::kOn;
+  if (const char* env = std::getenv("VOXLINK_SHADOW_MARK"); env && (*env == '0' || *env == '1'))
+    return *env == '1';
+  return marksByDefault(s);
+}
+
+VolumeRenderer::MarkedView VolumeRenderer::markedView(const Camera& camera, const RenderSettings& s,
+                                                      uint32_t width, uint32_t height) const {
+  const glm::dvec2 half = camera.planeHalfExtent(width, height);
+  MarkedView v;
+  v.eye = glm::vec3(camera.eye());
+  v.forward = glm::vec3(-camera.back());
+  v.right = glm::vec3(camera.right() * half.x);
+  v.up = glm::vec3(camera.up() * half.y);
+  v.width = width;
+  v.height = height;
+  v.sampling = int(s.sampling);
+  v.step = float(s.stepVoxels * geometry_.minSpacing());
+  v.stopTransmittance = float(1.0 - s.terminationAlpha);
+  return v;
+}
+
 void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& camera,
                                       const RenderSettings& s, uint32_t width,
                                       uint32_t height) const {
   auto vec3 = [&](const char* name, const glm::dvec3& v) {
     glUniform3f(p.uniform(name), float(v.x), float(v.y), float(v.z));
   };
-  const glm::dvec2 half = camera.planeHalfExtent(width, height);
-  vec3("uEyeWorld", camera.eye());
-  vec3("uCamForward", -camera.back());
-  vec3("uCamRight", camera.right() * half.x);
-  vec3("uCamUp", camera.up() * half.y);
+  auto fvec3 = [&](const char* name, const glm::vec3& v) {
+    glUniform3f(p.uniform(name), v.x, v.y, v.z);
+  };
+  const MarkedView view = markedView(camera, s, width, height);
+  fvec3("uEyeWorld", view.eye);
+  fvec3("uCamForward", view.forward);
+  fvec3("uCamRight", view.right);
+  fvec3("uCamUp", view.up);
   glUniform2ui(p.uniform("uImageSize"), width, height);
   const auto& g = geometry_;
   vec3("uVolumeOrigin", {g.origin[0], g.origin[1], g.origin[2]});
@@ -205,13 +239,13 @@ void VolumeRenderer::setFrameUniforms(const ComputeProgram& p, const Camera& cam
   glUniform3i(p.uniform("uDims"), GLint(g.dims[0]), GLint(g.dims[1]), GLint(g.dims[2]));
   const double unit = g.minSpacing();
   glUniform1f(p.uniform("uUnit"), float(unit));
-  glUniform1f(p.uniform("uStep"), float(s.stepVoxels * unit));
+  glUniform1f(p.uniform("uStep"), view.step);
   const glm::vec3 toLight = worldToLight(camera, s);
   glUniform3f(p.uniform("uToLight"), toLight.x, toLight.y, toLight.z);
   glUniform4f(p.uniform("uPhong"), float(s.shading.ambient), float(s.shading.diffuse),
               float(s.shading.specular), float(s.shading.shininess));
   glUniform1i(p.uniform("uShadingEnabled"), s.shading.enabled ? 1 : 0);
-  glUniform1f(p.uniform("uStopTransmittance"), float(1.0 - s.terminationAlpha));
+  glUniform1f(p.uniform("uStopTransmittance"), view.stopTransmittance);
   glUniform1f(p.uniform("uShadowStop"), float(s.shadowTerminationTransmittance));
   vec3("uBackground", {s.background[0], s.background[1], s.background[2]});
   glUniform1i(p.uniform("uTfEntries"), GLint(table_.entries));
@@ -229,13 +263,28 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   const bool cached =
       settings.shading.enabled && settings.shading.shadows && cachesShadows(settings);
   if (cached) {
-    const ShadowFill wanted{worldToLight(camera, settings),
-                            float(settings.shadowTerminationTransmittance), tfGeneration_};
+    const bool marked = marks(settings);
+    ShadowFill wanted{worldToLight(camera, settings),
+                      float(settings.shadowTerminationTransmittance), tfGeneration_, marked};
+    if (marked) wanted.view = markedView(camera, settings, settings.width, settings.height);
     const bool refill = filledFor_ != wanted;
     filledFor_.reset();  // until the fill below is queued
-    VOXLINK_RETURN_IF_ERROR(beginShadowCache(refill));
+    VOXLINK_RETURN_IF_ERROR(beginShadowCache(refill, refill && marked));
+    if (refill && marked) {
+      // The frame's traversal, marking the centres it reads (its image is drawn over below).
+      VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* mark, program(settings, Pass::kShadowMark));
+      mark->use();
+      setFrameUniforms(*mark, camera, settings, settings.width, settings.height);
+      bindTables(*mark);
+      glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+      glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
+      glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+      ++shadowMarks_;
+    }
     if (refill) {
-      VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* fill, program(settings, Pass::kShadowFill));
+      VOXLINK_ASSIGN_OR_RETURN(
+          const ComputeProgram* fill,
+          program(settings, marked ? Pass::kShadowFillMarked : Pass::kShadowFill));
       fill->use();
       setFrameUniforms(*fill, camera, settings, settings.width, settings.height);
       bindTables(*fill);

@@ -33,7 +33,8 @@ class VoxLinkRenderer : public VolumeRenderer {
     return sections_.gpuBytes() + (shadowCache_ ? shadowCache_->bytes() : 0);
   }
   bool cachesShadows(const RenderSettings& settings) const override;
-  Status beginShadowCache(bool refill) override;
+  bool marksByDefault(const RenderSettings& settings) const override;
+  Status beginShadowCache(bool refill, bool clearMarks) override;
   std::string shadowFillShader() const override { return "shadow_fill.comp.glsl"; }
   void fillShadowCache(const ComputeProgram& program) const override;
 

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "render/gl/voxlink_renderer.h"
 #include "render/render_options.h"
@@ -155,11 +156,11 @@ TEST(ShadowCache, ClearedBetweenFrames) {
     ASSERT_TRUE(lit.isOk());
     EXPECT_LT(lit->psnr, 40.0) << samplingName(sampling);
   }
-  // One byte per voxel word (stored voxels and apron copies), in whole words, and the fill
-  // pass's 3 words per occupied brick, from the first frame that needs the cache on.
+  // One byte and one mark bit per voxel word (stored voxels and apron copies), in whole words,
+  // and the fill pass's 3 words per occupied brick, from the first frame that needs the cache on.
   const uint64_t voxels = fresh.renderer->sections().voxelSlots();
   EXPECT_EQ(fresh.renderer->gpuBytes() - withoutCache,
-            (voxels + 3) / 4 * 4 + 12 * fresh.file->occupiedBrickCount());
+            (voxels + 3) / 4 * 4 + (voxels + 31) / 32 * 4 + 12 * fresh.file->occupiedBrickCount());
 }
 
 // The cache is filled again only where its codes would change: a still frame, a zoom and a pan
@@ -171,6 +172,8 @@ TEST(ShadowCache, FilledAgainOnlyWhereTheCodesChange) {
   Fixture kept, fresh;
   ASSERT_TRUE(kept.open().isOk());
   ASSERT_TRUE(fresh.open().isOk());
+  // Codes of every visible centre (marked codes hold for one view: MarkedFillRendersTheSameImage).
+  kept.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOff);
   const Camera start = Camera::framing(kept.dense.worldBox(), {30, 20, 1, 30});
   const RenderSettings voxel = shadowed(Sampling::kVoxel, ShadowRays::kPerVoxel);
   const RenderSettings trilinear = shadowed(Sampling::kTrilinear, ShadowRays::kPerVoxel);
@@ -217,6 +220,107 @@ TEST(ShadowCache, FilledAgainOnlyWhereTheCodesChange) {
   perSample.shading.shadowRays = ShadowRays::kPerSample;
   step("per-sample rays", turned, perSample, false);
   step("per-voxel again", turned, trilinear, false);
+}
+
+// The marking frame (shadow_cache.glsl, VXL_SHADOW_MARK) marks every centre the frame reads, so
+// a fill of the marked centres alone renders the same image bit for bit as a fill of all visible
+// ones, whatever the layout (apron copies included) and sampling; and marked codes hold for
+// their view alone: a still frame reads them, a zoom marks and fills again.
+TEST(ShadowCache, MarkedFillRendersTheSameImage) {
+  VOXLINK_REQUIRE_GL();
+  struct Layout {
+    uint32_t brickSize;
+    format::Axis axis;
+    StoredType type;
+  };
+  for (const Layout& l :
+       {Layout{4, format::Axis::kZ, StoredType::kU8}, Layout{8, format::Axis::kX, StoredType::kU8},
+        Layout{16, format::Axis::kY, StoredType::kU8},
+        Layout{32, format::Axis::kZ, StoredType::kU8},
+        Layout{8, format::Axis::kZ, StoredType::kU16}}) {
+    Fixture f;
+    testing::SparseOptions options;
+    options.brickSize = l.brickSize;
+    options.axis = l.axis;
+    options.type = l.type;
+    ASSERT_TRUE(f.open(options).isOk());
+    const Camera camera = Camera::framing(f.dense.worldBox(), {70, 25, 1, 30});
+    for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
+      const RenderSettings s = shadowed(sampling, ShadowRays::kPerVoxel);
+      f.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOff);
+      f.renderer->forgetShadowCache();
+      const Image all = renderGl(*f.renderer, camera, s);
+      f.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOn);
+      f.renderer->forgetShadowCache();
+      const uint64_t marks = f.renderer->shadowMarks();
+      const Image marked = renderGl(*f.renderer, camera, s);
+      EXPECT_EQ(f.renderer->shadowMarks() - marks, 1u);
+      auto e = compareImages(marked, all);
+      ASSERT_TRUE(e.isOk());
+      EXPECT_EQ(e->maxError, 0.0) << l.brickSize << "^3 bricks, axis " << int(l.axis) << ", "
+                                  << storedName(l.type) << ", " << samplingName(sampling);
+    }
+  }
+  // kAuto marks in voxel sampling where the pixels are fewer than half the voxel slots.
+  {
+    Fixture f;
+    ASSERT_TRUE(f.open().isOk());
+    const uint64_t slots = f.renderer->sections().voxelSlots();
+    const Camera camera = Camera::framing(f.dense.worldBox(), {});
+    const uint32_t few = uint32_t(std::sqrt(double(slots) / 4.0));
+    const uint32_t many = uint32_t(std::sqrt(double(slots) / 2.0)) + 2;
+    ASSERT_GT(few, 8u);
+    for (const auto& [sampling, side, marks] :
+         {std::tuple{Sampling::kVoxel, few, true}, std::tuple{Sampling::kVoxel, many, false},
+          std::tuple{Sampling::kTrilinear, few, false}}) {
+      RenderSettings s = shadowed(sampling, ShadowRays::kPerVoxel);
+      s.width = s.height = side;
+      const uint64_t before = f.renderer->shadowMarks();
+      renderGl(*f.renderer, camera, s);
+      EXPECT_EQ(f.renderer->shadowMarks() - before, marks ? 1u : 0u)
+          << samplingName(sampling) << " " << side << "x" << side << ", " << slots << " slots";
+    }
+  }
+  // Reuse: marked codes cover one view.
+  Fixture kept, fresh;
+  ASSERT_TRUE(kept.open().isOk());
+  ASSERT_TRUE(fresh.open().isOk());
+  kept.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOn);
+  const Camera start = Camera::framing(kept.dense.worldBox(), {30, 20, 1, 30});
+  const RenderSettings s = shadowed(Sampling::kTrilinear, ShadowRays::kPerVoxel);
+  auto step = [&](const char* what, const Camera& camera, const RenderSettings& settings,
+                  bool fills) {
+    fresh.renderer->forgetShadowCache();
+    const Image expected = renderGl(*fresh.renderer, camera, settings);
+    const uint64_t before = kept.renderer->shadowFills();
+    const Image image = renderGl(*kept.renderer, camera, settings);
+    EXPECT_EQ(kept.renderer->shadowFills() - before, fills ? 1u : 0u) << what;
+    auto e = compareImages(image, expected);
+    ASSERT_TRUE(e.isOk());
+    EXPECT_EQ(e->maxError, 0.0) << what;
+  };
+  step("first frame", start, s, true);
+  step("still frame", start, s, false);
+  Camera zoomed = start;
+  zoomed.zoom(1.4);
+  step("zoom", zoomed, s, true);
+  Camera panned = zoomed;
+  panned.pan(0.1, -0.05);
+  step("pan", panned, s, true);
+  RenderSettings voxel = s;
+  voxel.sampling = Sampling::kVoxel;
+  step("sampling", panned, voxel, true);
+  RenderSettings larger = voxel;
+  larger.width += 16;
+  step("size", panned, larger, true);
+  RenderSettings step2 = larger;
+  step2.stepVoxels = 0.25;
+  step2.sampling = Sampling::kTrilinear;
+  step("step", panned, step2, true);
+  RenderSettings stop = step2;
+  stop.terminationAlpha = 0.9;
+  step("termination", panned, stop, true);
+  step("still again", panned, stop, false);
 }
 
 // The reference's per-frame store gives what its uncached single rays compute.

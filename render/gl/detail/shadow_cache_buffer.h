@@ -17,12 +17,15 @@ namespace voxlink::render::gl {
 
 // Image unit the shader sets codes through (unit 0 is the frame's target image).
 inline constexpr GLuint kShadowCacheImage = 1;
+// Image unit of the marks: one bit per slot, set by the marking frame (shadow_cache.glsl).
+inline constexpr GLuint kShadowMarkImage = 2;
 // Storage-buffer binding of the occupied bricks' grid cells the fill pass reads.
 inline constexpr GLuint kBrickCellsBinding = 60;
 
 class ShadowCacheBuffer {
  public:
-  // Room for `voxels` stored voxels, read through texture unit `unit`, and the occupied bricks'
+  // Room for `voxels` stored voxels (a byte and a mark bit each), read through texture unit
+  // `unit`, and the occupied bricks'
   // grid cells (render/brick_lookup.h: occupiedBrickCells). Refuses (kTooLarge) where one buffer
   // texture cannot address the words (GL_MAX_TEXTURE_BUFFER_SIZE), naming the counts.
   static Result<ShadowCacheBuffer> create(uint64_t voxels, GLuint unit,
@@ -30,7 +33,9 @@ class ShadowCacheBuffer {
 
   // Zeroes every code (the GL clears in place, no upload).
   void clear() const;
-  // Binds the texture the frame reads and the image the fill pass sets.
+  // Zeroes every mark.
+  void clearMarks() const;
+  // Binds the texture the frame reads, the image the fill pass sets and the marks' image.
   void bind() const;
   // Runs the fill pass with the bound program (its uniforms and the file's buffers set): a work
   // group per occupied brick; `depths` per row is the brick size n, or n + 1 with row aprons.
@@ -40,6 +45,8 @@ class ShadowCacheBuffer {
  private:
   GlBuffer buffer_;
   GlTexture texture_;
+  GlBuffer marks_;
+  GlTexture marksTexture_;
   GlStorageBuffer brickCells_;
   uint64_t bricks_ = 0;
   GLuint unit_ = 0;

@@ -85,6 +85,15 @@ class VolumeRenderer {
   // forgetShadowCache() makes the next such frame fill again (benchmarks time a frame with it).
   uint64_t shadowFills() const { return shadowFills_; }
   void forgetShadowCache() { filledFor_.reset(); }
+  // Whether a marking frame runs before the fill, so that the fill walks only the centres the
+  // frame reads (docs/shadows.md, "The marking frame"): kAuto in voxel sampling where the image
+  // has fewer than half as many pixels as the file has voxel slots (the env
+  // VOXLINK_SHADOW_MARK=0/1 overrides it). Marked codes hold for this view alone: a zoom or a
+  // pan fills again.
+  enum class ShadowMarking { kAuto, kOn, kOff };
+  void setShadowMarking(ShadowMarking m) { marking_ = m; }
+  // Marking frames run (each before a fill that walks only what it marked).
+  uint64_t shadowMarks() const { return shadowMarks_; }
 
  protected:
   explicit VolumeRenderer(const VolumeGeometry& geometry);
@@ -105,14 +114,28 @@ class VolumeRenderer {
   // upload (dynamic scenes' layers move, but scenes cast per-sample rays), and the fill walks the
   // same nearest-voxel shadow rays whatever the frame's sampling.
   virtual bool cachesShadows(const RenderSettings&) const { return false; }
-  virtual Status beginShadowCache(bool /*refill*/) { return Status::ok(); }
+  // ShadowMarking::kAuto's choice for these settings.
+  virtual bool marksByDefault(const RenderSettings&) const { return false; }
+  // `clearMarks`: a marking frame follows.
+  virtual Status beginShadowCache(bool /*refill*/, bool /*clearMarks*/) { return Status::ok(); }
   virtual std::string shadowFillShader() const { return {}; }
   virtual void fillShadowCache(const ComputeProgram&) const {}
 
  private:
   // Program variants: the plain frame, the shadow cache's fill pass before it, and the
   // ray-traced mode's primary pass, secondary pass and resolve (volume_renderer_effects.cpp).
-  enum class Pass { kPlain, kEffectsPrimary, kEffectsSecondary, kEffectsResolve, kShadowFill };
+  // kShadowMark: the plain frame marking the centres it reads; kShadowFillMarked: the fill of
+  // those.
+  enum class Pass {
+    kPlain,
+    kEffectsPrimary,
+    kEffectsSecondary,
+    kEffectsResolve,
+    kShadowFill,
+    kShadowMark,
+    kShadowFillMarked
+  };
+  bool marks(const RenderSettings& s) const;
   Result<const ComputeProgram*> program(const RenderSettings& settings, Pass pass = Pass::kPlain);
   Status renderEffects(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
   void setEffectsUniforms(const ComputeProgram& p, const Camera& camera,
@@ -122,14 +145,30 @@ class VolumeRenderer {
   bool premultipliedTf() const;
   void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
                         uint32_t width, uint32_t height) const;
+  struct MarkedView;
+  // The camera and sampling uniforms, as setFrameUniforms sets them.
+  MarkedView markedView(const Camera& camera, const RenderSettings& s, uint32_t width,
+                        uint32_t height) const;
 
-  // What the shadow cache's codes were filled for: the light as the fill's uniform held it.
+  // What the shadow cache's codes were filled for: the light as the fill's uniform held it, and
+  // for marked codes the view and what decides the samples a frame takes.
+  struct MarkedView {
+    glm::vec3 eye{0.0f}, forward{0.0f}, right{0.0f}, up{0.0f};
+    uint32_t width = 0, height = 0;
+    int sampling = 0;
+    float step = 0.0f, stopTransmittance = 0.0f;
+    bool operator==(const MarkedView&) const = default;
+  };
   struct ShadowFill {
     glm::vec3 toLight{0.0f};
     float stop = 0.0f;
     uint64_t tfGeneration = 0;
+    bool marked = false;
+    MarkedView view;  // zero where not marked
     bool operator==(const ShadowFill&) const = default;
   };
+  ShadowMarking marking_ = ShadowMarking::kAuto;
+  uint64_t shadowMarks_ = 0;
 
   VolumeGeometry geometry_;
   tf::TransferFunction tf_;
