@@ -87,7 +87,10 @@ for section in $sections; do
       t $V bench-render $T/foot1024.vxl --tf $tf --sizes 1000x1000 --no-reference --frames-per-turn 12 \
         --source $T/foot1024.raw --source-dims 1024,1024,1024 --source-type u8
       t $V bench-render $T/foot1024.vxl --tf $tf --sizes 1000x1000 --no-reference --frames-per-turn 12 \
-        --shadows --no-dense ;;
+        --shadows --no-dense
+      # Voxel sampling marks before the fill at this size (docs/shadows.md): the fill of every visible voxel.
+      t env VOXLINK_SHADOW_MARK=0 $V bench-render $T/foot1024.vxl --tf $tf --sizes 1000x1000 --no-reference \
+        --frames-per-turn 12 --shadows --no-dense --samplings voxel ;;
     krige)
       for threads in 16 8 2; do
         t $V krige $D/samples200000.csv --x x --y y --z z --value v --variogram exp:psill=1,range=16 -k 32 \

@@ -3,8 +3,9 @@
 // is the transmittance from its voxel's centre (voxel sampling), or the alpha-and-weight mean of
 // its visible corners' centre transmittances (trilinear). Before a frame whose world light or TF
 // differs from the last fill's, the host clears the words (render/gl/detail/shadow_cache_buffer.h,
-// volume_renderer.h) and the fill pass (shadow_fill.comp.glsl) walks
-// every visible stored voxel's centre (shadowTransmittance, voxlink_shadow.glsl), keeping 8 bits
+// volume_renderer.h) and the fill pass (shadow_fill.comp.glsl) walks every visible stored voxel's
+// centre, or only those a marking frame found the frame reads (shadowTransmittance,
+// voxlink_shadow.glsl), keeping 8 bits
 // per stored voxel: 1 + round(254 T). Four voxels share a word, each set with imageAtomicOr. The
 // frame only reads, through a buffer texture (a gather on llvmpipe, 2.5x cheaper than a
 // storage-buffer read: section_buffers.h): its shader holds no shadow walk.

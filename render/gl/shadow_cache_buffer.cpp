@@ -2,6 +2,7 @@
 #include "render/gl/detail/shadow_cache_buffer.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace voxlink::render::gl {
 
@@ -30,6 +31,7 @@ Result<ShadowCacheBuffer> ShadowCacheBuffer::create(uint64_t voxels, GLuint unit
                       ? createStorageBuffer(none, sizeof(none))
                       : createStorageBuffer(brickCells.data(), brickCells.size_bytes());
   c.bricks_ = brickCells.size() / 3;
+  c.words_ = words;
   c.unit_ = unit;
   c.bytes_ = words * 4 + markWords * 4 + c.brickCells_.bytes;
   if (glGetError() != GL_NO_ERROR)
@@ -47,6 +49,16 @@ void ShadowCacheBuffer::clear() const {
 void ShadowCacheBuffer::clearMarks() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   glClearNamedBufferData(marks_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+}
+
+uint64_t ShadowCacheBuffer::countSetCodes() const {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the fill's image atomics land first
+  std::vector<uint32_t> words(words_);
+  glGetNamedBufferSubData(buffer_.id(), 0, GLsizeiptr(words_ * 4), words.data());
+  uint64_t set = 0;
+  for (uint32_t w : words)
+    for (int b = 0; b < 4; ++b) set += ((w >> (8 * b)) & 0xFFu) != 0;
+  return set;
 }
 
 void ShadowCacheBuffer::bind() const {

@@ -267,7 +267,13 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
     ShadowFill wanted{worldToLight(camera, settings),
                       float(settings.shadowTerminationTransmittance), tfGeneration_, marked};
     if (marked) wanted.view = markedView(camera, settings, settings.width, settings.height);
-    const bool refill = filledFor_ != wanted;
+    // Codes of every visible voxel (an unmarked fill) serve any view, marked ones their own.
+    const bool reuse = filledFor_ && filledFor_->toLight == wanted.toLight &&
+                       filledFor_->stop == wanted.stop &&
+                       filledFor_->tfGeneration == wanted.tfGeneration &&
+                       (!filledFor_->marked || *filledFor_ == wanted);
+    const bool refill = !reuse;
+    if (reuse) wanted = *filledFor_;
     filledFor_.reset();  // until the fill below is queued
     VOXLINK_RETURN_IF_ERROR(beginShadowCache(refill, refill && marked));
     if (refill && marked) {

@@ -20,6 +20,8 @@ class VoxLinkRenderer : public VolumeRenderer {
                                                          const SectionBufferOptions& options = {});
   std::string name() const override { return "voxlink"; }
   const SectionBuffers& sections() const { return sections_; }
+  // Shadow codes the fills so far set (ShadowCacheBuffer::countSetCodes); 0 before any.
+  uint64_t setShadowCodes() const { return shadowCache_ ? shadowCache_->countSetCodes() : 0; }
 
  protected:
   std::string mainShader() const override { return "render_voxlink.comp.glsl"; }

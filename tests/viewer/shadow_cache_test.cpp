@@ -224,8 +224,9 @@ TEST(ShadowCache, FilledAgainOnlyWhereTheCodesChange) {
 
 // The marking frame (shadow_cache.glsl, VXL_SHADOW_MARK) marks every centre the frame reads, so
 // a fill of the marked centres alone renders the same image bit for bit as a fill of all visible
-// ones, whatever the layout (apron copies included) and sampling; and marked codes hold for
-// their view alone: a still frame reads them, a zoom marks and fills again.
+// ones, whatever the layout (apron copies included) and sampling, from fewer centres; and marked
+// codes hold for their view alone: a still frame reads them, a zoom marks and fills again, while
+// codes of every visible voxel serve a marked request from any view.
 TEST(ShadowCache, MarkedFillRendersTheSameImage) {
   VOXLINK_REQUIRE_GL();
   struct Layout {
@@ -247,21 +248,29 @@ TEST(ShadowCache, MarkedFillRendersTheSameImage) {
     const Camera camera = Camera::framing(f.dense.worldBox(), {70, 25, 1, 30});
     for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
       const RenderSettings s = shadowed(sampling, ShadowRays::kPerVoxel);
+      const std::string what = cat(l.brickSize, "^3 bricks, axis ", int(l.axis), ", ",
+                                   storedName(l.type), ", ", samplingName(sampling));
       f.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOff);
       f.renderer->forgetShadowCache();
       const Image all = renderGl(*f.renderer, camera, s);
+      const uint64_t allCodes = f.renderer->setShadowCodes();
       f.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOn);
       f.renderer->forgetShadowCache();
       const uint64_t marks = f.renderer->shadowMarks();
       const Image marked = renderGl(*f.renderer, camera, s);
       EXPECT_EQ(f.renderer->shadowMarks() - marks, 1u);
+      // The fill walked fewer centres (the view sees one side of the shell), but some.
+      const uint64_t markedCodes = f.renderer->setShadowCodes();
+      EXPECT_GT(markedCodes, 0u) << what;
+      EXPECT_LT(markedCodes, allCodes) << what;
       auto e = compareImages(marked, all);
       ASSERT_TRUE(e.isOk());
-      EXPECT_EQ(e->maxError, 0.0) << l.brickSize << "^3 bricks, axis " << int(l.axis) << ", "
-                                  << storedName(l.type) << ", " << samplingName(sampling);
+      EXPECT_EQ(e->maxError, 0.0) << what;
     }
   }
-  // kAuto marks in voxel sampling where the pixels are fewer than half the voxel slots.
+  // kAuto marks in voxel sampling where the pixels are fewer than half the voxel slots (without
+  // the environment's override).
+  unsetenv("VOXLINK_SHADOW_MARK");
   {
     Fixture f;
     ASSERT_TRUE(f.open().isOk());
@@ -310,17 +319,27 @@ TEST(ShadowCache, MarkedFillRendersTheSameImage) {
   RenderSettings voxel = s;
   voxel.sampling = Sampling::kVoxel;
   step("sampling", panned, voxel, true);
+  // The same aspect ratio: the camera's uniforms stay, the pixels change.
   RenderSettings larger = voxel;
-  larger.width += 16;
+  larger.width = larger.width * 5 / 4;
+  larger.height = larger.height * 5 / 4;
   step("size", panned, larger, true);
-  RenderSettings step2 = larger;
-  step2.stepVoxels = 0.25;
-  step2.sampling = Sampling::kTrilinear;
-  step("step", panned, step2, true);
-  RenderSettings stop = step2;
+  RenderSettings trilinearLarger = larger;
+  trilinearLarger.sampling = Sampling::kTrilinear;
+  step("sampling back", panned, trilinearLarger, true);
+  RenderSettings finer = trilinearLarger;
+  finer.stepVoxels = 0.25;
+  step("step", panned, finer, true);
+  RenderSettings stop = finer;
   stop.terminationAlpha = 0.9;
   step("termination", panned, stop, true);
   step("still again", panned, stop, false);
+  // Codes of every visible voxel serve a marked request from any view.
+  kept.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOff);
+  step("unmarked fill", start, s, true);
+  kept.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOn);
+  step("marked request after it", zoomed, s, false);
+  step("marked request, another size", zoomed, larger, false);
 }
 
 // The reference's per-frame store gives what its uncached single rays compute.

@@ -41,6 +41,9 @@ class ShadowCacheBuffer {
   // group per occupied brick; `depths` per row is the brick size n, or n + 1 with row aprons.
   void fill(GLint occupiedBricksUniform, GLint depthsUniform, uint32_t depths) const;
   uint64_t bytes() const { return bytes_; }
+  // Codes set (non-zero), read back from the GPU: the centres the last fills walked (tests,
+  // diagnostics; waits for the GL).
+  uint64_t countSetCodes() const;
 
  private:
   GlBuffer buffer_;
@@ -49,6 +52,7 @@ class ShadowCacheBuffer {
   GlTexture marksTexture_;
   GlStorageBuffer brickCells_;
   uint64_t bricks_ = 0;
+  uint64_t words_ = 0;
   GLuint unit_ = 0;
   uint64_t bytes_ = 0;
 };
