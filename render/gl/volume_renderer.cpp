@@ -260,6 +260,13 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
   if (settings.effects.any()) return renderEffects(camera, settings, target);
   VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* p, program(settings));
   VOXLINK_RETURN_IF_ERROR(target.resize(settings.width, settings.height));
+  // The frame's program, or the marking frame's (the same traversal), writing into the target.
+  auto useForFrame = [&](const ComputeProgram& program) {
+    program.use();
+    setFrameUniforms(program, camera, settings, settings.width, settings.height);
+    bindTables(program);
+    glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  };
   const bool cached =
       settings.shading.enabled && settings.shading.shadows && cachesShadows(settings);
   if (cached) {
@@ -279,10 +286,7 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
     if (refill && marked) {
       // The frame's traversal, marking the centres it reads (its image is drawn over below).
       VOXLINK_ASSIGN_OR_RETURN(const ComputeProgram* mark, program(settings, Pass::kShadowMark));
-      mark->use();
-      setFrameUniforms(*mark, camera, settings, settings.width, settings.height);
-      bindTables(*mark);
-      glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+      useForFrame(*mark);
       glDispatchCompute((settings.width + 7) / 8, (settings.height + 7) / 8, 1);
       glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
       ++shadowMarks_;
@@ -299,10 +303,7 @@ Status VolumeRenderer::render(const Camera& camera, const RenderSettings& settin
     }
     filledFor_ = wanted;
   }
-  p->use();
-  setFrameUniforms(*p, camera, settings, settings.width, settings.height);
-  bindTables(*p);
-  glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  useForFrame(*p);
   // Only shadow rays make rays long enough to reach a driver's loop cap (loop_limit_retrace.h);
   // a frame that reads filled shadow codes walks none (the fill pass walks one per invocation).
   const bool shadows = settings.shading.enabled && settings.shading.shadows && !cached;

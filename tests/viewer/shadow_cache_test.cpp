@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include "render/gl/voxlink_renderer.h"
 #include "render/render_options.h"
@@ -95,37 +97,43 @@ TEST(ShadowCache, GlFramesMatchThePerVoxelReference) {
   }
 }
 
+// Bricks of 4^3 to 32^3 (8^3 and below with row aprons, whose copies have slots of their own;
+// 16^3 in row words without them; 32^3 in MASK and ROWS), other predominant axes, and a 16-bit
+// file (no apron, values apart from the voxel words).
+std::vector<testing::SparseOptions> brickLayouts() {
+  std::vector<testing::SparseOptions> layouts;
+  for (const auto& [brick, axis, type] : {std::tuple{4u, format::Axis::kZ, StoredType::kU8},
+                                          std::tuple{8u, format::Axis::kX, StoredType::kU8},
+                                          std::tuple{16u, format::Axis::kY, StoredType::kU8},
+                                          std::tuple{32u, format::Axis::kZ, StoredType::kU8},
+                                          std::tuple{8u, format::Axis::kZ, StoredType::kU16}}) {
+    testing::SparseOptions o;
+    o.brickSize = brick;
+    o.axis = axis;
+    o.type = type;
+    layouts.push_back(o);
+  }
+  return layouts;
+}
+
+std::string layoutName(const testing::SparseOptions& o) {
+  return cat(o.brickSize, "^3 bricks, axis ", int(o.axis), ", ", storedName(o.type));
+}
+
 // The fill pass (shaders/shadow_fill.comp.glsl) finds every visible stored voxel whatever the
-// layout: bricks of 4^3 to 32^3 (8^3 and below with row aprons, whose copies have slots of their
-// own; 16^3 in row words without them; 32^3 in MASK and ROWS), other predominant axes, and a
-// 16-bit file (no apron, values apart from the voxel words). A voxel it missed would read code 0,
-// far outside [0, 1].
+// layout (brickLayouts). A voxel it missed would read code 0, far outside [0, 1].
 TEST(ShadowCache, FillCoversEveryBrickLayout) {
   VOXLINK_REQUIRE_GL();
-  struct Layout {
-    uint32_t brickSize;
-    format::Axis axis;
-    StoredType type;
-  };
-  for (const Layout& l :
-       {Layout{4, format::Axis::kZ, StoredType::kU8}, Layout{8, format::Axis::kX, StoredType::kU8},
-        Layout{16, format::Axis::kY, StoredType::kU8},
-        Layout{32, format::Axis::kZ, StoredType::kU8},
-        Layout{8, format::Axis::kZ, StoredType::kU16}}) {
+  for (const testing::SparseOptions& l : brickLayouts()) {
     Fixture f;
-    testing::SparseOptions options;
-    options.brickSize = l.brickSize;
-    options.axis = l.axis;
-    options.type = l.type;
-    ASSERT_TRUE(f.open(options).isOk());
+    ASSERT_TRUE(f.open(l).isOk());
     const ReferenceRenderer reference(f.dense, f.tf);
     const Camera camera = Camera::framing(f.dense.worldBox(), {70, 25, 1, 30});
     for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
       const auto pair = testing::renderBoth(*f.renderer, reference, camera,
                                             shadowed(sampling, ShadowRays::kPerVoxel));
       EXPECT_EQ(pair.error.nonFinite, 0u);
-      EXPECT_GE(pair.error.psnr, 64.0) << l.brickSize << "^3 bricks, axis " << int(l.axis) << ", "
-                                       << storedName(l.type) << ", " << samplingName(sampling);
+      EXPECT_GE(pair.error.psnr, 64.0) << layoutName(l) << ", " << samplingName(sampling);
     }
   }
 }
@@ -229,27 +237,13 @@ TEST(ShadowCache, FilledAgainOnlyWhereTheCodesChange) {
 // codes of every visible voxel serve a marked request from any view.
 TEST(ShadowCache, MarkedFillRendersTheSameImage) {
   VOXLINK_REQUIRE_GL();
-  struct Layout {
-    uint32_t brickSize;
-    format::Axis axis;
-    StoredType type;
-  };
-  for (const Layout& l :
-       {Layout{4, format::Axis::kZ, StoredType::kU8}, Layout{8, format::Axis::kX, StoredType::kU8},
-        Layout{16, format::Axis::kY, StoredType::kU8},
-        Layout{32, format::Axis::kZ, StoredType::kU8},
-        Layout{8, format::Axis::kZ, StoredType::kU16}}) {
+  for (const testing::SparseOptions& l : brickLayouts()) {
     Fixture f;
-    testing::SparseOptions options;
-    options.brickSize = l.brickSize;
-    options.axis = l.axis;
-    options.type = l.type;
-    ASSERT_TRUE(f.open(options).isOk());
+    ASSERT_TRUE(f.open(l).isOk());
     const Camera camera = Camera::framing(f.dense.worldBox(), {70, 25, 1, 30});
     for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
       const RenderSettings s = shadowed(sampling, ShadowRays::kPerVoxel);
-      const std::string what = cat(l.brickSize, "^3 bricks, axis ", int(l.axis), ", ",
-                                   storedName(l.type), ", ", samplingName(sampling));
+      const std::string what = cat(layoutName(l), ", ", samplingName(sampling));
       f.renderer->setShadowMarking(VolumeRenderer::ShadowMarking::kOff);
       f.renderer->forgetShadowCache();
       const Image all = renderGl(*f.renderer, camera, s);
