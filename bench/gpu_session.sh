@@ -7,7 +7,8 @@
 # Sections (default: all, in this order): foot256 table1 animate foot1024 krige.
 #   foot256   the foot CT 256^3 (bench/tf/foot-bone.tf.json), 1000x1000: voxlink vs the dense 3D-texture
 #             caster, voxel and trilinear, without and with --shadows, voxlink with row words in
-#             place of row groups, and the shadow rays' bench (per-sample, per-voxel, still) (issue 29)
+#             place of row groups, the shadow rays' bench (per-sample, per-voxel, still) (issue 29), and
+#             shadowed images with and without the marking frame compared byte for byte (also in foot1024)
 #   table1    the paper's Table 1 scenes (dragon plain and ray-traced, house and glass bunny ray-traced) at
 #             256 [8], 512 [8], 1024 [16], 1000x1000 (issue 29 item 2). On NVIDIA the first use of the
 #             ray-traced mode compiles its shaders for 35-210 s (then the driver's cache holds them).
