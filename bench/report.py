@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """One command for speed against error: runs the bench scripts of this folder on the real data
-(rendering, conversion, Kriging beside gstat, voxelization beside the Embree exact tracer,
-packed files beside zstd and OpenVDB), plots each with matplotlib and writes OUT/report.md and
+(rendering, shadow rays, conversion, Kriging beside gstat, voxelization beside the Embree exact
+tracer, packed files beside zstd and OpenVDB), plots each with matplotlib and writes OUT/report.md and
 OUT/report/*.png (docs/report.md describes the sections). Each plot's caption names the CPU,
 its cores, the load, the commit and the date; the hand tables of docs/ that a section
 reproduces are printed beside its own numbers.
 
-usage: report.py VOXLINK UPSAMPLE VDB_PEER DATA_DIR [--quick] [--out DIR] [--work DIR]
+usage: report.py VOXLINK UPSAMPLE VDB_PEER SHADOW_BENCH DATA_DIR [--quick] [--out DIR]
+                 [--work DIR]
 
 --quick: small inputs (about 2 minutes on 2 cores; the ctest `report_quick`); without it the
 full preset of docs/report.md (about 15 minutes on 2 shared cores). A missing peer (gstat,
@@ -29,7 +30,7 @@ import report_sections
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def peers_missing(voxlink, vdb_peer):
+def peers_missing(voxlink, vdb_peer, shadow_bench):
     """One line per peer or tool the report cannot run without."""
     missing = []
 
@@ -46,6 +47,8 @@ def peers_missing(voxlink, vdb_peer):
         missing.append("OpenVDB: /usr/bin/python3 cannot import pyopenvdb (python3-openvdb)")
     if not os.access(vdb_peer, os.X_OK):
         missing.append(f"OpenVDB: {vdb_peer} is not built (target voxlink_bench_vdb_peer)")
+    if not os.access(shadow_bench, os.X_OK):
+        missing.append(f"shadow bench: {shadow_bench} is not built (target voxlink_bench_shadow_rays)")
     if not shutil.which("zstd"):
         missing.append("zstd: not on PATH (Debian: zstd)")
     if not works([voxlink, "render-exact", "--help"]):
@@ -136,19 +139,20 @@ def main():
     ap.add_argument("voxlink")
     ap.add_argument("upsample")
     ap.add_argument("vdb_peer")
+    ap.add_argument("shadow_bench")
     ap.add_argument("data")
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--out", default=os.path.join(os.path.dirname(HERE), "docs"))
     ap.add_argument("--work", help="work files (default: a temporary folder)")
     a = ap.parse_args()
-    missing = peers_missing(a.voxlink, a.vdb_peer)
+    missing = peers_missing(a.voxlink, a.vdb_peer, a.shadow_bench)
     if missing:
         sys.exit("report: peer missing, nothing measured: " + "; ".join(missing))
     m = machine()
     work = a.work or tempfile.mkdtemp(prefix="voxlink-report-")
     os.makedirs(work, exist_ok=True)
-    tools = report_sections.Tools(a.voxlink, a.upsample, a.vdb_peer, os.path.abspath(a.data),
-                                  work, a.quick)
+    tools = report_sections.Tools(a.voxlink, a.upsample, a.vdb_peer, a.shadow_bench,
+                                  os.path.abspath(a.data), work, a.quick)
     docs = os.path.join(os.path.dirname(HERE), "docs")
     measured = [fn(tools, docs) for fn in report_sections.SECTIONS]
     with open("/proc/loadavg") as f:

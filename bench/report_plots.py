@@ -51,6 +51,33 @@ def render(rows, caption):
     return fig
 
 
+def shadows(rows, caption):
+    """rows: one per data set and sampling, with ms and psnr per variant (none, per-sample,
+    per-voxel, still). One panel per sampling: frame time against PSNR vs exact shadow rays."""
+    samplings = [s for s in ("voxel", "trilinear") if any(r["sampling"] == s for r in rows)]
+    fig, axes = _figure(caption, len(samplings))
+    markers = {"none": ("x", "no shadows"), "per-sample": ("o", "per-sample rays (exact)"),
+               "per-voxel": ("^", "per-voxel cache, filled"),
+               "still": ("v", "per-voxel cache, reused (still frame)")}
+    colours = {}
+    for ax, sampling in zip(axes, samplings):
+        for r in (r for r in rows if r["sampling"] == sampling):
+            colour = colours.setdefault(r["data"], f"C{len(colours)}")
+            for k, (marker, _) in markers.items():
+                ax.scatter([r["ms"][k]], [r["psnr"][k]], marker=marker, color=colour)
+        for data, colour in colours.items():
+            ax.plot([], [], "-", color=colour, label=data)
+        for marker, label in markers.values():
+            ax.scatter([], [], marker=marker, color="0.3", label=label)
+        ax.set_xscale("log")
+        ax.set_xlabel("median frame time, ms (log)")
+        ax.set_ylabel("PSNR vs float64 exact shadow rays, dB")
+        ax.set_title(f"Shadow rays, {sampling} sampling (llvmpipe)")
+        ax.legend(fontsize=7)
+        ax.grid(True, alpha=0.3)
+    return fig
+
+
 def convert(rows, caption):
     """rows: convert_bench.py's rows. Left: conversion time against B/voxel per case (marker:
     stored value type), with OpenVDB's B/voxel and its job time where it ran. Right: the

@@ -17,8 +17,9 @@ PY = "/usr/bin/python3"  # Debian's: numpy, matplotlib and pyopenvdb are its pac
 
 
 class Tools:
-    def __init__(self, voxlink, upsample, vdb_peer, data, work, quick):
+    def __init__(self, voxlink, upsample, vdb_peer, shadow_bench, data, work, quick):
         self.voxlink, self.upsample, self.vdb_peer = voxlink, upsample, vdb_peer
+        self.shadow_bench = shadow_bench
         self.data, self.work, self.quick = data, work, quick
         self.env = dict(os.environ, VOXLINK_BENCH_DIR=work)
 
@@ -90,6 +91,65 @@ def render(t, docs):
                          f"{r['step']:g}", f"{r['ms']:.1f}", f"{r['psnr']:.2f}", r["gpu"],
                          r["speedup"]) for r in rows]),
         "doc": "docs/rendering-benchmark.md", "hand": hand, "commands": commands}
+
+
+def shadows(t, docs):
+    datasets, size, per_turn = (("tooth", "128x128", "1") if t.quick else
+                                ("foot tooth lidc", "512x512", "2"))
+    out = os.path.join(t.work, "shadows")
+    env = {"DATASETS": datasets}
+    cmd = ["bash", script("shadow_rays_bench.sh"), t.voxlink, t.shadow_bench, t.data, out, size,
+           per_turn]
+    rows = [{"data": r["data"], "sampling": r["sampling"],
+             "ms": {k: float(r[f"{k} ms"]) for k in ("none", "per-sample", "per-voxel", "still")},
+             "psnr": {"none": float(r["none vs ref-S"]),
+                      "per-sample": float(r["per-sample vs ref-S"]),
+                      "per-voxel": float(r["per-voxel vs ref-S"]),
+                      "still": float(r["per-voxel vs ref-S"])},
+             "model": float(r["ref-V vs ref-S"]), "own": float(r["per-voxel vs ref-V"]),
+             "mib": r["cache MiB"]}
+            for r in markdown_rows(t.run(cmd, env))]
+    if not rows:
+        sys.exit(f"report: {' '.join(cmd)} measured no data set (is {t.data}/ct there?)")
+    doc_rows = report_docs.first_table_after(os.path.join(docs, "shadows.md"),
+                                             rf"^{size}, 2 views per turn")
+    hand = []
+    for r in rows:
+        d = next((d for d in doc_rows if d.get("data") == r["data"] and
+                  d.get("sampling") == r["sampling"]), None)
+        if d:
+            key = f"{r['data']} {r['sampling']} {size}"
+            hand += [(key, "none ms", d["none ms"], f"{r['ms']['none']:.1f}"),
+                     (key, "per-voxel ms", d["per-voxel ms"], f"{r['ms']['per-voxel']:.1f}"),
+                     (key, "per-voxel vs ref-S dB", d["per-voxel vs ref-S"],
+                      f"{r['psnr']['per-voxel']:.2f}"),
+                     (key, "ref-V vs ref-S dB", d["ref-V vs ref-S"], f"{r['model']:.2f}")]
+    return {
+        "title": "Shadow rays: frame time vs error against exact shadow rays", "png": "shadows.png",
+        "text": f"`bench/shadow_rays_bench.sh` ({size}, {per_turn} views per turn, the paper's two "
+                "turns, median frame): the GL frame without shadows, with a shadow ray per sample "
+                "(exact), with the per-voxel cache (a ray per visible voxel centre, its fill pass "
+                "included), and the per-voxel frame again from the same view (the still frame: the "
+                "cache reused), interleaved view by view in one process. Error: PSNR of the first "
+                "view against the float64 reference with exact per-sample shadow rays (ref-S), so "
+                "the frame without shadows shows what leaving them out costs and the per-voxel "
+                "frames the per-voxel model's error (docs/shadows.md).",
+        "plot": lambda cap: report_plots.shadows(rows, cap),
+        "table": table(["data", "sampling", "none ms", "per-sample ms", "per-voxel ms",
+                        "still ms", "per-voxel / none", "still / none",
+                        "PSNR vs ref-S: none / per-sample / per-voxel dB",
+                        "per-voxel vs its own model dB", "cache MiB"],
+                       [(r["data"], r["sampling"], f"{r['ms']['none']:.1f}",
+                         f"{r['ms']['per-sample']:.1f}", f"{r['ms']['per-voxel']:.1f}",
+                         f"{r['ms']['still']:.1f}",
+                         f"{r['ms']['per-voxel'] / r['ms']['none']:.2f}x",
+                         f"{r['ms']['still'] / r['ms']['none']:.2f}x",
+                         f"{r['psnr']['none']:.2f} / {r['psnr']['per-sample']:.2f} / "
+                         f"{r['psnr']['per-voxel']:.2f}", f"{r['own']:.2f}", r["mib"])
+                        for r in rows]),
+        "doc": "docs/shadows.md (\"Speed against error\")", "hand": hand,
+        "commands": [" ".join(f"{k}={v!r}" if " " in v else f"{k}={v}" for k, v in env.items())
+                     + " " + " ".join(cmd)]}
 
 
 def convert(t, docs):
@@ -272,4 +332,4 @@ def pack(t, docs):
         "commands": result["commands"]}
 
 
-SECTIONS = [render, convert, kriging, voxelization, pack]
+SECTIONS = [render, shadows, convert, kriging, voxelization, pack]

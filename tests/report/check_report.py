@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """ctest driver for bench/report.py (tests/report/CMakeLists.txt).
 
-usage: check_report.py quick|peer-missing OUT_DIR VOXLINK UPSAMPLE VDB_PEER DATA_DIR
+usage: check_report.py quick|peer-missing OUT_DIR VOXLINK UPSAMPLE VDB_PEER SHADOW_BENCH
+                       DATA_DIR
 
 quick: runs the quick preset into OUT_DIR and checks that report.md and every plot it links are
 written, that each link is a PNG, and that each plot drew data points (report/points.json,
@@ -25,15 +26,15 @@ def fail(message):
 
 
 def main():
-    mode, out, voxlink, upsample, vdb_peer, data = sys.argv[1:7]
+    mode, out, voxlink, upsample, vdb_peer, shadow_bench, data = sys.argv[1:8]
     if not os.path.isdir(os.path.join(data, "ct")):
         if os.environ.get("VOXLINK_REQUIRE_DATA") == "1":
             fail(f"real data missing with VOXLINK_REQUIRE_DATA=1: {data}")
         print(f"skipped: real data missing: {data}")
         sys.exit(77)
     shutil.rmtree(out, ignore_errors=True)
-    cmd = ["/usr/bin/python3", REPORT, voxlink, upsample, vdb_peer, data, "--out", out,
-           "--work", os.path.join(out, "work"), "--quick"]
+    cmd = ["/usr/bin/python3", REPORT, voxlink, upsample, vdb_peer, shadow_bench, data,
+           "--out", out, "--work", os.path.join(out, "work"), "--quick"]
     env = dict(os.environ)
     if mode == "peer-missing":
         env["VOXLINK_RSCRIPT"] = os.path.join(out, "no-such-Rscript")
@@ -55,8 +56,8 @@ def main():
     with open(md) as f:
         text = f.read()
     pngs = re.findall(r"\]\(report/([\w-]+\.png)\)", text)
-    if len(pngs) < 5:
-        fail(f"report.md links {len(pngs)} plots, expected one per section (5)")
+    if len(pngs) < 6:
+        fail(f"report.md links {len(pngs)} plots, expected one per section (6)")
     with open(os.path.join(out, "report", "points.json")) as f:
         points = json.load(f)
     for png in pngs:
