@@ -1,6 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Transfer function lookup by stored value bits (tf/tf_table.h). Indexed tables hold
 // one RGBA per stored value (u8, u16, f16 files); f32 files evaluate the TF's breakpoints.
+// A 16-bit file's table holds only the values from VXL_TF_FIRST up that the file stores
+// (VolumeGeometry::firstValueBits): 65,536 RGBA floats were 1 MiB.
+#ifndef VXL_TF_FIRST
+#define VXL_TF_FIRST 0
+#endif
 
 layout(std430, binding = VXL_TF_BINDING) readonly restrict buffer VxlTransferFunction {
   vec4 tfTable[];
@@ -37,7 +42,7 @@ vec4 classify(uint bits) {
   if (isnan(value) || isinf(value)) return vec4(0.0);
   return tfBreakpoints(value);
 #else
-  return texelFetch(uTfTexels, int(bits));
+  return texelFetch(uTfTexels, int(bits) - VXL_TF_FIRST);
 #endif
 }
 

@@ -81,6 +81,10 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   table_ = buildTfTable(tf, geometry_.valueType, geometry_.valueScale, geometry_.valueOffset);
   // A texture buffer may not be empty.
   std::vector<float> texels = table_.texels;
+  if (slicesTf())  // the entries of the values the file holds (transfer_function.glsl)
+    texels.assign(
+        table_.texels.begin() + 4 * size_t(geometry_.firstValueBits),
+        table_.texels.begin() + 4 * size_t(geometry_.firstValueBits + geometry_.valueBitsCount));
   if (texels.empty()) texels.assign(4, 0.0f);
   if (premultipliedTf()) {
     // 8-bit files: (colour * opacity, opacity) of value i at texel 256 + i as well, so a
@@ -106,6 +110,11 @@ void VolumeRenderer::setTransferFunction(const tf::TransferFunction& tf) {
   // trilinear sample reads the TF for 8 corners (docs/rendering-benchmark.md).
   tfTexels_ = createTexture(GL_TEXTURE_BUFFER);
   glTextureBuffer(tfTexels_.id(), GL_RGBA32F, tfBuffer_.buffer.id());
+}
+
+bool VolumeRenderer::slicesTf() const {
+  return geometry_.valueBitsCount > 0 && table_.kind == tf::TfTable::Kind::kIndexed &&
+         !premultipliedTf();
 }
 
 bool VolumeRenderer::premultipliedTf() const {
@@ -154,28 +163,13 @@ Result<const ComputeProgram*> VolumeRenderer::program(const RenderSettings& s, P
   defines.push_back({"VXL_TF_BINDING", std::to_string(kTfBinding)});
   defines.push_back({"VXL_TF_UNIT", std::to_string(tfTextureUnit())});
   defines.push_back({"VXL_TF_PREMULTIPLIED", premultipliedTf() ? "1" : "0"});
+  defines.push_back({"VXL_TF_FIRST", std::to_string(slicesTf() ? geometry_.firstValueBits : 0u)});
   defines.push_back({"VXL_GRADIENT_TABLE_BINDING", std::to_string(kGradientTableBinding)});
   defines.push_back({"VXL_TF_BREAKPOINTS", geometry_.valueType == StoredType::kF32 ? "1" : "0"});
   const std::string shader = fill ? shadowFillShader() : effects ? effectsShader() : mainShader();
   VOXLINK_ASSIGN_OR_RETURN(ComputeProgram p,
                            ComputeProgram::build(shader, defines, generatedFiles()));
   return &programs_.emplace(key, std::move(p)).first->second;
-}
-
-Status VolumeRenderer::prepare(const RenderSettings& settings) {
-  VOXLINK_RETURN_IF_ERROR(checkSupported(settings));
-  if (!settings.effects.any()) {
-    if (settings.shading.enabled && settings.shading.shadows && cachesShadows(settings)) {
-      const bool marked = marks(settings);
-      VOXLINK_RETURN_IF_ERROR(
-          program(settings, marked ? Pass::kShadowFillMarked : Pass::kShadowFill).status());
-      if (marked) VOXLINK_RETURN_IF_ERROR(program(settings, Pass::kShadowMark).status());
-    }
-    return program(settings).status();
-  }
-  for (Pass pass : {Pass::kEffectsPrimary, Pass::kEffectsSecondary, Pass::kEffectsResolve})
-    VOXLINK_RETURN_IF_ERROR(program(settings, pass).status());
-  return Status::ok();
 }
 
 void VolumeRenderer::bindTables(const ComputeProgram& p) const {

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "render/gl/voxlink_renderer.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include "render/brick_lookup.h"
 #include "render/gl/detail/volume_renderer.h"
 
@@ -16,6 +19,28 @@ std::vector<ShaderDefine> voxlinkDefines(const format::FileHeader& h) {
            std::to_string(h.versionMajor == format::kVersionMajorScene ? h.surfaceMode : 0u)}};
 }
 
+namespace {
+
+// The header's geometry, with the stored values a 16-bit file holds: its TF table then has
+// their entries only (the carp CT, a 0.71 MB file, had 1 MiB of TF texels for 65,536 values).
+VolumeGeometry geometryOf(const format::VoxLinkFile& file) {
+  VolumeGeometry g = VolumeGeometry::of(file.header());
+  const uint64_t slots = format::sampleSlots(file.header());
+  if (storedSize(file.valueType()) != 2 || slots == 0) return g;
+  uint16_t lo = 0xFFFF, hi = 0;
+  for (uint64_t i = 0; i < slots; ++i) {
+    uint16_t bits;
+    std::memcpy(&bits, file.valueBytes() + 2 * i, 2);
+    lo = std::min(lo, bits);
+    hi = std::max(hi, bits);
+  }
+  g.firstValueBits = lo;
+  g.valueBitsCount = uint32_t(hi) - lo + 1u;
+  return g;
+}
+
+}  // namespace
+
 Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(
     const format::VoxLinkFile& file, const SectionBufferOptions& options) {
   VOXLINK_ASSIGN_OR_RETURN(SectionBuffers sections, SectionBuffers::upload(file, options));
@@ -23,7 +48,7 @@ Result<std::unique_ptr<VoxLinkRenderer>> VoxLinkRenderer::create(
 }
 
 VoxLinkRenderer::VoxLinkRenderer(const format::VoxLinkFile& file, SectionBuffers sections)
-    : VolumeRenderer(VolumeGeometry::of(file.header())),
+    : VolumeRenderer(geometryOf(file)),
       sections_(std::move(sections)),
       header_(file.header()),
       brickCells_(file.isScene() ? std::vector<uint32_t>() : occupiedBrickCells(file)) {}

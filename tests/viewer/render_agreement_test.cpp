@@ -88,6 +88,48 @@ TEST(RenderAgreement, SphereShellMatchesReference) {
   }
 }
 
+// A 16-bit file's TF table holds the values the file stores only (VolumeGeometry::firstValueBits):
+// colours that alternate from one value to the next would show a table shifted by one entry.
+TEST(RenderAgreement, SixteenBitFilesHoldTheTfOfTheirStoredValuesOnly) {
+  VOXLINK_REQUIRE_GL();
+  const DenseVolume dense = testing::makeVolume({20, 18, 22}, {1, 1, 1}, [](int x, int y, int z) {
+    const double r =
+        std::sqrt((x - 9.5) * (x - 9.5) + (y - 8.5) * (y - 8.5) + (z - 10.5) * (z - 10.5));
+    return r < 8.0 ? 3000.0 + (x + 2 * y + 3 * z) % 8 : 0.0;
+  });
+  testing::SparseOptions options;
+  options.type = StoredType::kU16;
+  auto sparse = testing::sparsify(
+      dense, [](double v) { return v >= 3000; }, options);
+  ASSERT_TRUE(sparse) << sparse.message();
+  voxlink::testing::TempDir dir;
+  auto file = testing::writeAndOpen(*sparse, dir.file("u16.vxl"));
+  ASSERT_TRUE(file) << file.message();
+  auto renderer = VoxLinkRenderer::create(*file);
+  ASSERT_TRUE(renderer) << renderer.message();
+  tf::TransferFunction tf;
+  tf.opacity = {{2999, 0.0}, {3000, 0.3}, {3007, 0.3}};
+  for (int v = 3000; v <= 3007; ++v)
+    tf.color.push_back({double(v), v % 2 ? std::array<double, 3>{0.1, 0.3, 1.0}
+                                         : std::array<double, 3>{1.0, 0.3, 0.1}});
+  (*renderer)->setTransferFunction(tf);
+  EXPECT_EQ((*renderer)->geometry().firstValueBits, 3000u);
+  EXPECT_EQ((*renderer)->geometry().valueBitsCount, 8u);
+  EXPECT_EQ((*renderer)->tfBytes(), 8u * 4u * sizeof(float));  // 8 RGBA floats, not 65,536
+  const ReferenceRenderer reference(dense, tf);
+  for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
+    RenderSettings s;
+    s.width = 96;
+    s.height = 80;
+    s.sampling = sampling;
+    s.shading.enabled = false;  // the TF's colours alone
+    const auto pair =
+        testing::renderBoth(**renderer, reference, Camera::framing(dense.worldBox(), {}), s);
+    EXPECT_EQ(pair.error.nonFinite, 0u);
+    EXPECT_GE(pair.error.psnr, kTargetPsnr) << samplingName(sampling);
+  }
+}
+
 TEST(RenderAgreement, ToothCtConvertedByTheConverter) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   VOXLINK_REQUIRE_GL();

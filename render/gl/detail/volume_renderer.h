@@ -37,6 +37,10 @@ struct VolumeGeometry {
   double valueOffset = 0.0;
   // Voxels (of the smallest spacing) that rays spawned at a surface start off it.
   double surfaceOffsetVoxels = render::kSurfaceShadowBias;
+  // The stored value bits a 16-bit file holds, [firstValueBits, firstValueBits + valueBitsCount):
+  // its indexed TF table covers only those (0: every value of the type).
+  uint32_t firstValueBits = 0;
+  uint32_t valueBitsCount = 0;
 
   static VolumeGeometry of(const format::FileHeader& header);
   Box worldBox() const;
@@ -61,10 +65,9 @@ class VolumeRenderer {
   // Renders into `target` (resized to the settings' size). Returns once the work is queued;
   // call glFinish() or target.read() to wait for it.
   Status render(const Camera& camera, const RenderSettings& settings, RenderTarget& target);
-  // Compiles the program variant for these settings ahead of the first frame.
-  Status prepare(const RenderSettings& settings);
   // GPU memory of the volume data, the tables and nothing else.
   uint64_t gpuBytes() const { return dataBytes() + tfBytes_ + gradientTable_.bytes; }
+  uint64_t tfBytes() const { return tfBytes_; }
   const VolumeGeometry& geometry() const { return geometry_; }
   virtual std::string name() const = 0;
 
@@ -143,6 +146,8 @@ class VolumeRenderer {
   void bindTables(const ComputeProgram& p) const;
   // Whether the TF texels hold a premultiplied copy (8-bit files; VXL_TF_PREMULTIPLIED).
   bool premultipliedTf() const;
+  // Whether the TF texels hold only the file's stored values (16-bit files; VXL_TF_FIRST).
+  bool slicesTf() const;
   void setFrameUniforms(const ComputeProgram& p, const Camera& camera, const RenderSettings& s,
                         uint32_t width, uint32_t height) const;
   struct MarkedView;
