@@ -11,6 +11,8 @@
 # usage: bench/render_vs_paraview.sh VOXLINK DATA_DIR OUT_DIR [FRAMES_PER_TURN] [SIZE]
 # OCCUPANCY=1 runs the occupancy sweep instead: the tooth CT kept at thresholds that keep about
 # 1 %, 6 %, 20 % and 50 % of its voxels, each shown with a ramp TF over what it keeps.
+# DATASETS picks the CT volumes (default "foot lidc tooth", issue 29's three; also engine, carp
+# and beetle: the engine block, 11 % kept, and two 16-bit scans, 2.4 % and 3.8 % kept).
 # BENCH_FLAGS (environment) adds options to bench-render, e.g. --no-reference (no PSNR, faster).
 # pvpython needs an X display: the script starts its own Xvfb (display 180 + a free number).
 set -euo pipefail
@@ -74,9 +76,19 @@ if [[ ${OCCUPANCY:-0} == 1 ]]; then
     run "tooth-$threshold" "$data/ct/tooth_103x94x161_uint8.raw" "$tf" --dims 103 94 161 --type u8
   done
 else
-  run foot "$data/ct/openscivis_lossy/foot_256x256x256_uint8_lossy.nrrd" "$here/tf/foot-bone.tf.json"
-  run lidc "$data/ct/vtkjs_LIDC2/LIDC2.nhdr" "$here/tf/lidc-bone.tf.json"
-  run tooth "$data/ct/tooth_103x94x161_uint8.raw" "$here/tf/tooth.tf.json" --dims 103 94 161 --type u8
+  datasets=" ${DATASETS:-foot lidc tooth} "
+  picked() { [[ $datasets == *" $1 "* ]]; }
+  scivis=$data/ct/openscivis_lossy
+  if picked foot; then run foot "$scivis/foot_256x256x256_uint8_lossy.nrrd" "$here/tf/foot-bone.tf.json"; fi
+  if picked lidc; then run lidc "$data/ct/vtkjs_LIDC2/LIDC2.nhdr" "$here/tf/lidc-bone.tf.json"; fi
+  if picked tooth; then
+    run tooth "$data/ct/tooth_103x94x161_uint8.raw" "$here/tf/tooth.tf.json" --dims 103 94 161 --type u8
+  fi
+  if picked engine; then run engine "$scivis/engine_256x256x128_uint8_lossy.nrrd" "$here/tf/engine.tf.json"; fi
+  if picked carp; then run carp "$scivis/carp_128x128x256_uint16_lossy.nrrd" "$here/tf/carp-bone.tf.json"; fi
+  if picked beetle; then
+    run beetle "$scivis/stag_beetle_416x208x124_uint16_lossy.nrrd" "$here/tf/stag-beetle.tf.json"
+  fi
 fi
 echo
 echo "load: $(uptime)"
