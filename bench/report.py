@@ -49,6 +49,8 @@ def peers_missing(voxlink, vdb_peer, shadow_bench):
         missing.append(f"OpenVDB: {vdb_peer} is not built (target voxlink_bench_vdb_peer)")
     if not os.access(shadow_bench, os.X_OK):
         missing.append(f"shadow bench: {shadow_bench} is not built (target voxlink_bench_shadow_rays)")
+    if not shutil.which("pvpython") or not shutil.which("xvfb-run"):
+        missing.append("ParaView: pvpython or xvfb-run not on PATH (Debian: paraview, xvfb)")
     if not shutil.which("zstd"):
         missing.append("zstd: not on PATH (Debian: zstd)")
     if not works([voxlink, "render-exact", "--help"]):
@@ -119,9 +121,10 @@ def write_markdown(path, m, preset, sections):
         "",
         "Regenerate: `cmake --build build --target report` (this page and docs/report/*.png; "
         "`--target report-quick` writes the small preset to build/report-quick instead). "
-        "The rendering peer here is the dense 3D-texture ray caster; ParaView (pvpython) at "
-        "matched settings is measured by `bench/render_vs_paraview.sh` "
-        "(docs/rendering-benchmark.md, \"Against ParaView\"), not by this report.",
+        "The rendering section measures ParaView (pvpython) and the project's dense "
+        "3D-texture ray caster beside voxlink; ParaView at fully matched settings on more "
+        "CT volumes is `bench/render_vs_paraview.sh` (docs/rendering-benchmark.md, "
+        "\"Against ParaView\").",
         "",
     ]
     for s in sections:

@@ -36,12 +36,19 @@ def render(rows, caption):
         if not sel:
             continue
         ax.plot([r["ms"] for r in sel], [r["psnr"] for r in sel], style,
-                label=f"{renderer} {sampling}" + (" (dense 3D-texture peer)" if renderer ==
+                label=f"{renderer} {sampling}" + (" (the project's dense 3D-texture caster)" if renderer ==
                                                   "dense" else ""))
         if sampling == "trilinear":
             for r in sel:
                 ax.annotate(f"step {r['step']:g}", (r["ms"], r["psnr"]), fontsize=7,
                             textcoords="offset points", xytext=(4, 4))
+    peer = sorted((r for r in rows if r["renderer"] == "paraview"), key=lambda r: r["step"])
+    for i, r in enumerate(peer):
+        ax.axvline(r["ms"], color="0.4", linestyle=":", linewidth=1,
+                   label="ParaView 5.11 trilinear (time only)" if i == 0 else None)
+        ax.annotate(f"ParaView step {r['step']:g}", (r["ms"], 0.02), xycoords=("data", "axes fraction"),
+                    rotation=90, fontsize=7, color="0.3", textcoords="offset points",
+                    xytext=(-9, 0))
     ax.set_xscale("log")
     ax.set_xlabel("mean frame time, ms (log)")
     ax.set_ylabel("PSNR vs float64 reference, dB")
