@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """One command for speed against error: runs the bench scripts of this folder on the real data
-(rendering, shadow rays, conversion, Kriging beside gstat, voxelization beside the Embree exact
-tracer, packed files beside zstd and OpenVDB), plots each with matplotlib and writes OUT/report.md and
-OUT/report/*.png (docs/report.md describes the sections). Each plot's caption names the CPU,
+(rendering beside ParaView, shadow rays, conversion, Kriging beside gstat, voxelization beside
+the Embree exact tracer, packed files beside zstd and OpenVDB), plots each with matplotlib and
+writes OUT/report.md and OUT/report/*.png (docs/report.md describes the sections). Each plot's caption names the CPU,
 its cores, the load, the commit and the date; the hand tables of docs/ that a section
 reproduces are printed beside its own numbers.
 
@@ -48,7 +48,8 @@ def peers_missing(voxlink, vdb_peer, shadow_bench):
     if not os.access(vdb_peer, os.X_OK):
         missing.append(f"OpenVDB: {vdb_peer} is not built (target voxlink_bench_vdb_peer)")
     if not os.access(shadow_bench, os.X_OK):
-        missing.append(f"shadow bench: {shadow_bench} is not built (target voxlink_bench_shadow_rays)")
+        missing.append(f"shadow bench: {shadow_bench} is not built "
+                       "(target voxlink_bench_shadow_rays)")
     if not shutil.which("pvpython") or not shutil.which("xvfb-run"):
         missing.append("ParaView: pvpython or xvfb-run not on PATH (Debian: paraview, xvfb)")
     if not shutil.which("zstd"):

@@ -35,9 +35,9 @@ def render(rows, caption):
                      key=lambda r: r["step"])
         if not sel:
             continue
+        own = " (the project's dense 3D-texture caster)" if renderer == "dense" else ""
         ax.plot([r["ms"] for r in sel], [r["psnr"] for r in sel], style,
-                label=f"{renderer} {sampling}" + (" (the project's dense 3D-texture caster)" if renderer ==
-                                                  "dense" else ""))
+                label=f"{renderer} {sampling}{own}")
         if sampling == "trilinear":
             for r in sel:
                 ax.annotate(f"step {r['step']:g}", (r["ms"], r["psnr"]), fontsize=7,
@@ -46,9 +46,9 @@ def render(rows, caption):
     for i, r in enumerate(peer):
         ax.axvline(r["ms"], color="0.4", linestyle=":", linewidth=1,
                    label="ParaView 5.11 trilinear (time only)" if i == 0 else None)
-        ax.annotate(f"ParaView step {r['step']:g}", (r["ms"], 0.02), xycoords=("data", "axes fraction"),
-                    rotation=90, fontsize=7, color="0.3", textcoords="offset points",
-                    xytext=(-9, 0))
+        ax.annotate(f"ParaView step {r['step']:g}", (r["ms"], 0.02),
+                    xycoords=("data", "axes fraction"), rotation=90, fontsize=7, color="0.3",
+                    textcoords="offset points", xytext=(-9, 0))
     ax.set_xscale("log")
     ax.set_xlabel("mean frame time, ms (log)")
     ax.set_ylabel("PSNR vs float64 reference, dB")
