@@ -3,9 +3,9 @@
 """One command for speed against error: runs the bench scripts of this folder on the real data
 (rendering beside ParaView, shadow rays, conversion, Kriging beside gstat, voxelization beside
 the Embree exact tracer, packed files beside zstd and OpenVDB), plots each with matplotlib and
-writes OUT/report.md and OUT/report/*.png (docs/report.md describes the sections). Each plot's caption names the CPU,
-its cores, the load, the commit and the date; the hand tables of docs/ that a section
-reproduces are printed beside its own numbers.
+writes OUT/report.md and OUT/report/*.png (docs/report.md describes the sections). Each plot's
+caption names the CPU, its cores, the load, the commit and the date; the hand tables of docs/
+that a section reproduces are printed beside its own numbers.
 
 usage: report.py VOXLINK UPSAMPLE VDB_PEER SHADOW_BENCH DATA_DIR [--quick] [--out DIR]
                  [--work DIR]
