@@ -5,10 +5,13 @@ Run in pvpython (ParaView 5.11 ships VTK 9.2): `pvpython --no-mpi bench/paraview
 DENSE.nrrd TF.tf.json --size 1000x1000 --frames-per-turn 6`. DENSE.nrrd is `voxlink export` of the
 benchmark's .vxl, so both renderers see the same kept values. ParaView's Volume representation
 renders vtkImageData through vtkSmartVolumeMapper (vtkOpenGLGPUVolumeRayCastMapper underneath),
-but its multi-block wrapper in 5.11 hides the sample distance; this script drives the same mapper
-directly so the settings can be matched with `voxlink bench-render`:
+but its multi-block wrapper in 5.11 hides the sample distance; this script drives the GPU mapper
+itself so the settings can be matched with `voxlink bench-render`:
   - sample distance: STEP voxels of the smallest spacing, AutoAdjustSampleDistances and
-    InteractiveAdjustSampleDistances off (ParaView's default adjusts it from the frame time);
+    LockSampleDistanceToInputSpacing off (ParaView's default adjusts it from the frame time).
+    Not through vtkSmartVolumeMapper: in VTK 9.2 its SetSampleDistance did not reach the GPU
+    mapper (the foot at step 0.5 and at step 4 gave the same image, byte for byte, and the same
+    time), which kept its own distance from the input spacing;
   - the TF's opacities are per unit length of the smallest spacing (ScalarOpacityUnitDistance);
   - Phong shading on with voxlink's defaults (ambient 0.3, diffuse 0.7, specular 0.25, power 24)
     and its light: a camera light from (0.35, 0.5, 1) in camera space;
@@ -115,11 +118,10 @@ def main():
         prop.SetSpecular(0.25)
         prop.SetSpecularPower(24.0)
 
-    mapper = vtk_volume.vtkSmartVolumeMapper()
-    mapper.SetRequestedRenderModeToGPU()
+    mapper = vtk_volume.vtkOpenGLGPUVolumeRayCastMapper()
     mapper.SetInputData(image)
     mapper.AutoAdjustSampleDistancesOff()
-    mapper.InteractiveAdjustSampleDistancesOff()
+    mapper.LockSampleDistanceToInputSpacingOff()
     mapper.SetSampleDistance(a.step * unit)
     volume = vtk_render.vtkVolume()
     volume.SetMapper(mapper)
