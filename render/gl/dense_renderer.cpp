@@ -62,6 +62,9 @@ Result<std::unique_ptr<DenseRenderer>> DenseRenderer::create(const DenseVolume& 
   g.dims = volume.dims;
   g.spacing = volume.spacing;
   g.origin = volume.origin;
+  // Every value of the source, not only those a VoxLink file kept: the whole TF table.
+  g.firstValueBits = 0;
+  g.valueBitsCount = 0;
   std::unique_ptr<DenseRenderer> r(new DenseRenderer(g));
   const size_t n = volume.values.size();
   std::vector<uint16_t> codes(n);

@@ -130,6 +130,45 @@ TEST(RenderAgreement, SixteenBitFilesHoldTheTfOfTheirStoredValuesOnly) {
   }
 }
 
+// The dense peer, given the geometry of a 16-bit VoxLink file, still classifies every source
+// value: its texture holds the values the file removed too (values below the file's smallest
+// here), which a table of the file's values alone would miss.
+TEST(RenderAgreement, DensePeerOfASixteenBitFileHoldsTheWholeTf) {
+  VOXLINK_REQUIRE_GL();
+  const DenseVolume dense = testing::makeVolume({20, 18, 22}, {1, 1, 1}, [](int x, int y, int z) {
+    const double r =
+        std::sqrt((x - 9.5) * (x - 9.5) + (y - 8.5) * (y - 8.5) + (z - 10.5) * (z - 10.5));
+    return r < 8.0 ? 1000.0 + (x + 2 * y + 3 * z) % 11 : 0.0;
+  });
+  testing::SparseOptions options;
+  options.type = StoredType::kU16;
+  auto sparse = testing::sparsify(
+      dense, [](double v) { return v >= 1005; }, options);
+  ASSERT_TRUE(sparse) << sparse.message();
+  voxlink::testing::TempDir dir;
+  auto file = testing::writeAndOpen(*sparse, dir.file("u16.vxl"));
+  ASSERT_TRUE(file) << file.message();
+  auto renderer = VoxLinkRenderer::create(*file);
+  ASSERT_TRUE(renderer) << renderer.message();
+  ASSERT_EQ((*renderer)->geometry().firstValueBits, 1005u);
+  auto peer = DenseRenderer::create(dense, (*renderer)->geometry());
+  ASSERT_TRUE(peer) << peer.message();
+  tf::TransferFunction tf;
+  tf.opacity = {{999, 0.0}, {1000, 0.3}, {1010, 0.3}};
+  tf.color = {{1000, {1.0, 0.3, 0.1}}, {1010, {0.1, 0.3, 1.0}}};
+  (*peer)->setTransferFunction(tf);
+  EXPECT_EQ((*peer)->tfBytes(), 65536u * 4u * sizeof(float));
+  const ReferenceRenderer reference(dense, tf);
+  RenderSettings s;
+  s.width = 96;
+  s.height = 80;
+  s.shading.enabled = false;
+  const auto pair =
+      testing::renderBoth(**peer, reference, Camera::framing(dense.worldBox(), {}), s);
+  EXPECT_EQ(pair.error.nonFinite, 0u);
+  EXPECT_GE(pair.error.psnr, kTargetPsnr);
+}
+
 TEST(RenderAgreement, ToothCtConvertedByTheConverter) {
   VOXLINK_REQUIRE_DATA("ct/tooth_103x94x161_uint8.raw");
   VOXLINK_REQUIRE_GL();
