@@ -7,8 +7,8 @@
 # Sections (default: all, in this order): foot256 table1 animate foot1024 krige.
 #   foot256   the foot CT 256^3 (bench/tf/foot-bone.tf.json), 1000x1000: voxlink vs the dense 3D-texture
 #             caster, voxel and trilinear, without and with --shadows, voxlink with row words in
-#             place of row groups, the shadow rays' bench (per-sample, per-voxel, still) (issue 29), and
-#             shadowed images with and without the marking frame compared byte for byte (also in foot1024)
+#             place of row groups, the shadow rays' bench (per-sample, per-voxel, still; and shadowed
+#             frames with and without the marking frame compared byte for byte) (issue 29)
 #   table1    the paper's Table 1 scenes (dragon plain and ray-traced, house and glass bunny ray-traced) at
 #             256 [8], 512 [8], 1024 [16], 1000x1000 (issue 29 item 2). On NVIDIA the first use of the
 #             ray-traced mode compiles its shaders for 35-210 s (then the driver's cache holds them).
@@ -51,27 +51,6 @@ EGL_VENDOR=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 # The sample scenes name their meshes as ../../../shared/data/mesh/...: put them there.
 M="$(dirname "$PWD")/shared/data/mesh"
 mkdir -p "$M" && cp $D/*.ply $D/*.obj "$M"/
-# The marking frame is a separate compile of the frame's program (docs/shadows.md): on this GPU's
-# compiler, does a marked fill give the image of the full fill, byte for byte? A slot the frame reads
-# but the marking frame missed would show as a white pixel. Several views, both samplings.
-same_with_marks() {
-  local vxl=$1 differ=0 camera size sampling
-  for camera in 30,20 115,-35 200,60 290,5; do
-    for size in 256x256 1000x1000; do
-      for sampling in voxel trilinear; do
-        for m in 0 1; do
-          VOXLINK_SHADOW_MARK=$m $V render "$vxl" --tf $tf --camera $camera --size $size \
-            --sampling $sampling --shadows -q -o $T/mark$m.png
-        done
-        if cmp -s $T/mark0.png $T/mark1.png; then echo "marks: same image ($camera $size $sampling)"
-        else differ=$((differ + 1)); echo "marks: DIFFERENT image ($camera $size $sampling)"
-          cp $T/mark0.png "${OUT:-/tmp}/marks-off-${camera/,/_}-$size-$sampling.png"
-          cp $T/mark1.png "${OUT:-/tmp}/marks-on-${camera/,/_}-$size-$sampling.png"; fi
-      done
-    done
-  done
-  echo "marks: $differ of 16 images differ ($vxl)"
-}
 foot=$D/foot_256x256x256_uint8_lossy.nrrd
 tf=$D/foot-bone.tf.json
 for section in $sections; do
@@ -85,11 +64,12 @@ for section in $sections; do
       t $V bench-render $T/foot.vxl --tf $tf --sizes 1000x1000 --no-reference --shadows --source $foot
       # Shadowed frames against plain ones in one process (docs/shadows.md): per-sample rays, per-voxel
       # rays with their fill, and the still frame that reuses the cache; PSNRs against float64 references.
+      # Its "marks" line: in every view, the same image with and without the marking frame (a
+      # program compiled apart from the frame's: does this GPU's compiler trace both alike?).
       for sampling in voxel trilinear; do
         t env LD_LIBRARY_PATH=/tmp/bundle/lib:$NV __EGL_VENDOR_LIBRARY_FILENAMES=$EGL_VENDOR \
           .gpu/shadow_rays foot $T/foot.vxl $tf $sampling 1000x1000 12
-      done
-      same_with_marks $T/foot.vxl ;;
+      done ;;
     table1)
       for grid in "256 8" "512 8" "1024 16"; do
         set -- $grid
@@ -113,8 +93,7 @@ for section in $sections; do
         --shadows --no-dense
       # Voxel sampling marks before the fill at this size (docs/shadows.md): the fill of every visible voxel.
       t env VOXLINK_SHADOW_MARK=0 $V bench-render $T/foot1024.vxl --tf $tf --sizes 1000x1000 --no-reference \
-        --frames-per-turn 12 --shadows --no-dense --samplings voxel
-      same_with_marks $T/foot1024.vxl ;;
+        --frames-per-turn 12 --shadows --no-dense --samplings voxel ;;
     krige)
       for threads in 16 8 2; do
         t $V krige $D/samples200000.csv --x x --y y --z z --value v --variogram exp:psill=1,range=16 -k 32 \
