@@ -88,22 +88,44 @@ TEST(RenderAgreement, SphereShellMatchesReference) {
   }
 }
 
+// A ball of 16-bit values first + (x + 2y + 3z) mod count, air (0) around it.
+DenseVolume ballOfValues(double first, int count) {
+  return testing::makeVolume({20, 18, 22}, {1, 1, 1}, [=](int x, int y, int z) {
+    const double r =
+        std::sqrt((x - 9.5) * (x - 9.5) + (y - 8.5) * (y - 8.5) + (z - 10.5) * (z - 10.5));
+    return r < 8.0 ? first + (x + 2 * y + 3 * z) % count : 0.0;
+  });
+}
+
+// The u16 VoxLink file of the values >= keepFrom, at `path`.
+Result<format::VoxLinkFile> sixteenBitFile(const DenseVolume& dense, double keepFrom,
+                                           const std::string& path) {
+  testing::SparseOptions options;
+  options.type = StoredType::kU16;
+  VOXLINK_ASSIGN_OR_RETURN(format::BrickedVolume sparse,
+                           testing::sparsify(
+                               dense, [=](double v) { return v >= keepFrom; }, options));
+  return testing::writeAndOpen(sparse, path);
+}
+
+// The unshaded frame (the TF's colours alone) against the reference's.
+testing::RenderPair unshaded(VolumeRenderer& renderer, const ReferenceRenderer& reference,
+                             const DenseVolume& dense, Sampling sampling) {
+  RenderSettings s;
+  s.width = 96;
+  s.height = 80;
+  s.sampling = sampling;
+  s.shading.enabled = false;
+  return testing::renderBoth(renderer, reference, Camera::framing(dense.worldBox(), {}), s);
+}
+
 // A 16-bit file's TF table holds the values the file stores only (VolumeGeometry::firstValueBits):
 // colours that alternate from one value to the next would show a table shifted by one entry.
 TEST(RenderAgreement, SixteenBitFilesHoldTheTfOfTheirStoredValuesOnly) {
   VOXLINK_REQUIRE_GL();
-  const DenseVolume dense = testing::makeVolume({20, 18, 22}, {1, 1, 1}, [](int x, int y, int z) {
-    const double r =
-        std::sqrt((x - 9.5) * (x - 9.5) + (y - 8.5) * (y - 8.5) + (z - 10.5) * (z - 10.5));
-    return r < 8.0 ? 3000.0 + (x + 2 * y + 3 * z) % 8 : 0.0;
-  });
-  testing::SparseOptions options;
-  options.type = StoredType::kU16;
-  auto sparse = testing::sparsify(
-      dense, [](double v) { return v >= 3000; }, options);
-  ASSERT_TRUE(sparse) << sparse.message();
+  const DenseVolume dense = ballOfValues(3000, 8);
   voxlink::testing::TempDir dir;
-  auto file = testing::writeAndOpen(*sparse, dir.file("u16.vxl"));
+  auto file = sixteenBitFile(dense, 3000, dir.file("u16.vxl"));
   ASSERT_TRUE(file) << file.message();
   auto renderer = VoxLinkRenderer::create(*file);
   ASSERT_TRUE(renderer) << renderer.message();
@@ -118,13 +140,7 @@ TEST(RenderAgreement, SixteenBitFilesHoldTheTfOfTheirStoredValuesOnly) {
   EXPECT_EQ((*renderer)->tfBytes(), 8u * 4u * sizeof(float));  // 8 RGBA floats, not 65,536
   const ReferenceRenderer reference(dense, tf);
   for (Sampling sampling : {Sampling::kVoxel, Sampling::kTrilinear}) {
-    RenderSettings s;
-    s.width = 96;
-    s.height = 80;
-    s.sampling = sampling;
-    s.shading.enabled = false;  // the TF's colours alone
-    const auto pair =
-        testing::renderBoth(**renderer, reference, Camera::framing(dense.worldBox(), {}), s);
+    const auto pair = unshaded(**renderer, reference, dense, sampling);
     EXPECT_EQ(pair.error.nonFinite, 0u);
     EXPECT_GE(pair.error.psnr, kTargetPsnr) << samplingName(sampling);
   }
@@ -135,18 +151,9 @@ TEST(RenderAgreement, SixteenBitFilesHoldTheTfOfTheirStoredValuesOnly) {
 // here), which a table of the file's values alone would miss.
 TEST(RenderAgreement, DensePeerOfASixteenBitFileHoldsTheWholeTf) {
   VOXLINK_REQUIRE_GL();
-  const DenseVolume dense = testing::makeVolume({20, 18, 22}, {1, 1, 1}, [](int x, int y, int z) {
-    const double r =
-        std::sqrt((x - 9.5) * (x - 9.5) + (y - 8.5) * (y - 8.5) + (z - 10.5) * (z - 10.5));
-    return r < 8.0 ? 1000.0 + (x + 2 * y + 3 * z) % 11 : 0.0;
-  });
-  testing::SparseOptions options;
-  options.type = StoredType::kU16;
-  auto sparse = testing::sparsify(
-      dense, [](double v) { return v >= 1005; }, options);
-  ASSERT_TRUE(sparse) << sparse.message();
+  const DenseVolume dense = ballOfValues(1000, 11);
   voxlink::testing::TempDir dir;
-  auto file = testing::writeAndOpen(*sparse, dir.file("u16.vxl"));
+  auto file = sixteenBitFile(dense, 1005, dir.file("u16.vxl"));
   ASSERT_TRUE(file) << file.message();
   auto renderer = VoxLinkRenderer::create(*file);
   ASSERT_TRUE(renderer) << renderer.message();
@@ -159,12 +166,7 @@ TEST(RenderAgreement, DensePeerOfASixteenBitFileHoldsTheWholeTf) {
   (*peer)->setTransferFunction(tf);
   EXPECT_EQ((*peer)->tfBytes(), 65536u * 4u * sizeof(float));
   const ReferenceRenderer reference(dense, tf);
-  RenderSettings s;
-  s.width = 96;
-  s.height = 80;
-  s.shading.enabled = false;
-  const auto pair =
-      testing::renderBoth(**peer, reference, Camera::framing(dense.worldBox(), {}), s);
+  const auto pair = unshaded(**peer, reference, dense, Sampling::kVoxel);
   EXPECT_EQ(pair.error.nonFinite, 0u);
   EXPECT_GE(pair.error.psnr, kTargetPsnr);
 }
