@@ -1,17 +1,18 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: BSD-3-Clause
 """One command for speed against error: runs the bench scripts of this folder on the real data
-(rendering beside ParaView, shadow rays, conversion, Kriging beside gstat, voxelization beside
-the Embree exact tracer, packed files beside zstd and OpenVDB), plots each with matplotlib and
-writes OUT/report.md and OUT/report/*.png (docs/report.md describes the sections). Each plot's
-caption names the CPU, its cores, the load, the commit and the date; the hand tables of docs/
-that a section reproduces are printed beside its own numbers.
+(rendering beside ParaView, ParaView matched on six CT volumes and an occupancy sweep, shadow
+rays, conversion, Kriging beside gstat, voxelization beside the Embree exact tracer, packed
+files beside zstd and OpenVDB), plots each with matplotlib and writes OUT/report.md and
+OUT/report/*.png (docs/report.md describes the sections). Each plot's caption names the CPU,
+its cores, the load, the commit and the date; the hand tables of docs/ that a section
+reproduces are printed beside its own numbers.
 
 usage: report.py VOXLINK UPSAMPLE VDB_PEER SHADOW_BENCH DATA_DIR [--quick] [--out DIR]
                  [--work DIR]
 
 --quick: small inputs (about 2 minutes on 2 cores; the ctest `report_quick`); without it the
-full preset of docs/report.md (about 15 minutes on 2 shared cores). A missing peer (gstat,
+full preset of docs/report.md (about 25 minutes on 2 shared cores). A missing peer (gstat,
 OpenVDB, zstd, Embree) or plotting library stops the report before it measures anything, with
 one line naming it. Outputs appear only when every section succeeded.
 """
@@ -122,10 +123,10 @@ def write_markdown(path, m, preset, sections):
         "",
         "Regenerate: `cmake --build build --target report` (this page and docs/report/*.png; "
         "`--target report-quick` writes the small preset to build/report-quick instead). "
-        "The rendering section measures ParaView (pvpython) and the project's dense "
-        "3D-texture ray caster beside voxlink; ParaView at fully matched settings on more "
-        "CT volumes is `bench/render_vs_paraview.sh` (docs/rendering-benchmark.md, "
-        "\"Against ParaView\").",
+        "The first rendering section measures ParaView (pvpython) and the project's dense "
+        "3D-texture ray caster beside voxlink across step sizes; the second runs ParaView at "
+        "fully matched settings on six CT volumes and an occupancy sweep "
+        "(`bench/render_vs_paraview.sh`, docs/rendering-benchmark.md, \"Against ParaView\").",
         "",
     ]
     for s in sections:

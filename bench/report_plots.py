@@ -199,3 +199,48 @@ def pack(rows, caption):
     ax.legend(fontsize=8)
     ax.grid(True, alpha=0.3)
     return fig
+
+
+def against_paraview(volumes, sweep, caption):
+    """volumes, sweep: render_vs_paraview.sh's summary rows (with "kept %"). Left: speed-up over
+    ParaView against the share of voxels kept, both samplings, with issue 29's goals. Right:
+    the occupancy sweep's frame times: where sparsity stops paying."""
+    fig, (left, right) = _figure(caption, 2)
+
+    def speedup(r, sampling):
+        return float(r["ParaView ms"]) / float(r[f"voxlink {sampling} ms"])
+
+    for sampling, marker, goal in (("trilinear", "o", 10), ("voxel", "s", 20)):
+        colour = "C0" if sampling == "trilinear" else "C1"
+        left.scatter([r["kept %"] for r in volumes], [speedup(r, sampling) for r in volumes],
+                     marker=marker, color=colour, label=f"{sampling}, CT volumes")
+        sel = sorted(sweep, key=lambda r: r["kept %"])
+        left.plot([r["kept %"] for r in sel], [speedup(r, sampling) for r in sel], marker + "--",
+                  color=colour, mfc="none", label=f"{sampling}, tooth occupancy sweep")
+        left.axhline(goal, color=colour, linestyle=":", linewidth=1,
+                     label=f"goal {sampling} >= {goal}x")
+    for r in volumes:
+        left.annotate(r["data"], (r["kept %"], speedup(r, "trilinear")), fontsize=7,
+                      textcoords="offset points", xytext=(4, -8))
+    left.axhline(1, color="0.3", linewidth=1)
+    left.set_xscale("log")
+    left.set_yscale("log")
+    left.set_xlabel("voxels kept by the TF, % (log)")
+    left.set_ylabel("ParaView frame time / voxlink frame time (log)")
+    left.set_title("Speed-up over ParaView, matched settings (llvmpipe)")
+    left.legend(fontsize=7)
+    left.grid(True, alpha=0.3)
+    sel = sorted(sweep, key=lambda r: r["kept %"])
+    kept = [r["kept %"] for r in sel]
+    for column, style, label in (("voxlink voxel ms", "s-", "voxlink voxel"),
+                                 ("voxlink trilinear ms", "o-", "voxlink trilinear"),
+                                 ("ParaView ms", "D--", "ParaView 5.11 trilinear")):
+        right.plot(kept, [float(r[column]) for r in sel], style, label=label)
+    right.set_xscale("log")
+    right.set_yscale("log")
+    right.set_xlabel("tooth voxels kept, % (log)")
+    right.set_ylabel("mean frame time, ms (log)")
+    right.set_title("Frame time against occupancy")
+    right.legend(fontsize=8)
+    right.grid(True, alpha=0.3)
+    return fig

@@ -56,8 +56,8 @@ def main():
     with open(md) as f:
         text = f.read()
     pngs = re.findall(r"\]\(report/([\w-]+\.png)\)", text)
-    if len(pngs) < 6:
-        fail(f"report.md links {len(pngs)} plots, expected one per section (6)")
+    if len(pngs) < 7:
+        fail(f"report.md links {len(pngs)} plots, expected one per section (7)")
     with open(os.path.join(out, "report", "points.json")) as f:
         points = json.load(f)
     for png in pngs:
