@@ -12,7 +12,7 @@ usage: report.py VOXLINK UPSAMPLE VDB_PEER SHADOW_BENCH DATA_DIR [--quick] [--ou
                  [--work DIR]
 
 --quick: small inputs (about 2 minutes on 2 cores; the ctest `report_quick`); without it the
-full preset of docs/report.md (about 25 minutes on 2 shared cores). A missing peer (gstat,
+full preset of docs/report.md (about 15 minutes on 2 cores). A missing peer (gstat,
 OpenVDB, zstd, Embree) or plotting library stops the report before it measures anything, with
 one line naming it. Outputs appear only when every section succeeded.
 """

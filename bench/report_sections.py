@@ -145,7 +145,9 @@ def paraview_summary(t, out, env, size, frames):
         sys.exit(f"report: {' '.join(cmd)} measured no data set (is {t.data}/ct there?)")
     for r in rows:
         m = re.search(r"([\d.]+) %", r["voxels kept"])
-        r["kept %"] = float(m.group(1)) if m else None
+        if not m:
+            sys.exit(f"report: no kept share in {r['data']}'s row of {out}/summary.md")
+        r["kept %"] = float(m.group(1))
     command = " ".join(f"{k}={v!r}" if " " in v else f"{k}={v}" for k, v in env.items())
     return rows, command + " " + " ".join(cmd)
 
