@@ -102,9 +102,10 @@ def main():
             sys.exit(f"trilinear_counters: no ray met {vxl}'s box")
         tiles = tile_max(passes)
         met = tiles > 0
+        per_visible = samples[ray].sum() / max(visible[ray].sum(), 1)
         print(f"| {os.path.basename(vxl)} | {ray.sum()} | {passes[ray].mean():.1f} | "
               f"{visible[ray].mean():.1f} | {(passes - visible)[ray].mean():.1f} | "
-              f"{samples[ray].mean():.1f} | {samples[ray].sum() / max(visible[ray].sum(), 1):.2f} | "
+              f"{samples[ray].mean():.1f} | {per_visible:.2f} | "
               f"{tiles[met].mean():.1f} / {tile_max(samples)[met].mean():.1f} | {tiles.sum()} |")
 
 
