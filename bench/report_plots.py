@@ -203,8 +203,9 @@ def pack(rows, caption):
     return fig
 
 
-def against_paraview(volumes, sweep, caption):
-    """volumes, sweep: render_vs_paraview.sh's summary rows (with "kept %"). Left: speed-up over
+def against_paraview(volumes, sweep, sizes, caption):
+    """volumes, sweep: render_vs_paraview.sh's summary rows (with "kept %"); sizes: the frame
+    size of each, as (volumes, sweep). Left: speed-up over
     ParaView against the share of voxels kept, both samplings, with issue 29's goals. Right:
     the occupancy sweep's frame times: where sparsity stops paying."""
     fig, (left, right) = _figure(caption, 2)
@@ -215,10 +216,11 @@ def against_paraview(volumes, sweep, caption):
     for sampling, marker, goal in (("trilinear", "o", 10), ("voxel", "s", 20)):
         colour = "C0" if sampling == "trilinear" else "C1"
         left.scatter([r["kept %"] for r in volumes], [speedup(r, sampling) for r in volumes],
-                     marker=marker, color=colour, label=f"{sampling}, CT volumes")
+                     marker=marker, color=colour, label=f"{sampling}, CT volumes ({sizes[0]})")
         sel = sorted(sweep, key=lambda r: r["kept %"])
         left.plot([r["kept %"] for r in sel], [speedup(r, sampling) for r in sel], marker + "--",
-                  color=colour, mfc="none", label=f"{sampling}, tooth occupancy sweep")
+                  color=colour, mfc="none",
+                  label=f"{sampling}, tooth occupancy sweep ({sizes[1]})")
         left.axhline(goal, color=colour, linestyle=":", linewidth=1,
                      label=f"goal {sampling} >= {goal}x")
     for r in volumes:
@@ -230,7 +232,7 @@ def against_paraview(volumes, sweep, caption):
     left.set_xlabel("voxels kept by the TF, % (log)")
     left.set_ylabel("ParaView frame time / voxlink frame time (log)")
     left.set_title("Speed-up over ParaView, matched settings (llvmpipe)")
-    left.legend(fontsize=7)
+    left.legend(fontsize=7, loc="lower left")  # the upper right holds the sparse scans' points
     left.grid(True, alpha=0.3)
     sel = sorted(sweep, key=lambda r: r["kept %"])
     kept = [r["kept %"] for r in sel]
@@ -242,7 +244,7 @@ def against_paraview(volumes, sweep, caption):
     right.set_yscale("log")
     right.set_xlabel("tooth voxels kept, % (log)")
     right.set_ylabel("mean frame time, ms (log)")
-    right.set_title("Frame time against occupancy")
+    right.set_title(f"Frame time against occupancy ({sizes[1]})")
     right.legend(fontsize=8)
     right.grid(True, alpha=0.3)
     return fig

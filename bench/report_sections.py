@@ -197,7 +197,8 @@ def against_paraview(t, docs):
                 f"voxels, a ramp TF over what each keeps) at {occupancy_size}, no PSNR. Issue "
                 "29's goals: trilinear >= 10x and voxel >= 20x ParaView's frame rate, GPU "
                 "memory <= 2x the file (MiB against MB here), PSNR >= 45 dB.",
-        "plot": lambda cap: report_plots.against_paraview(volumes, sweep, cap),
+        "plot": lambda cap: report_plots.against_paraview(volumes, sweep, (size, occupancy_size),
+                                                          cap),
         "table": table(columns, [[r[c] for c in columns] for r in volumes + sweep]),
         "doc": "docs/rendering-benchmark.md (\"Six CT volumes\" and \"Frame time against "
                "occupancy\")", "hand": hand, "commands": [volume_cmd, sweep_cmd]}
@@ -289,8 +290,8 @@ def convert(t, docs):
                 "kept outside [-1.96, 1.96] stored as f32, f16, and at error bounds 1e-3 and 0.02 "
                 "(the converter picks the smallest type within the bound: column stored). The "
                 "gradient errors are the converter's (angle between the exact central difference "
-                "and its 16-bit code, every 64th voxel). The OpenVDB job (copyFromDense + Blosc write) "
-                "runs on the same foot input in the same script; OpenVDB's B/voxel is "
+                "and its 16-bit code, every 64th voxel). The OpenVDB job (copyFromDense + Blosc "
+                "write) runs on the same foot input in the same script; OpenVDB's B/voxel is "
                 "`voxlink info`'s FloatGrid estimate.",
         "plot": lambda cap: report_plots.convert(rows, cap),
         "table": table(["case", "stored", "convert s", "B/voxel", "OpenVDB B/voxel",
