@@ -32,6 +32,13 @@ class Tools:
         return p.stdout
 
 
+def command_line(cmd, env=None):
+    """A bench command as the shell line the report prints: the environment it was run with
+    first, values and arguments that hold spaces quoted."""
+    assignments = [f"{k}={v!r}" if " " in v else f"{k}={v}" for k, v in (env or {}).items()]
+    return " ".join(assignments + [f"'{c}'" if " " in c else c for c in cmd])
+
+
 def script(name):
     return os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
 
@@ -70,7 +77,7 @@ def paraview_frames(t, vxl, dataset, size, frames, steps, commands):
         if not m:
             sys.exit(f"report: no frame time from {' '.join(cmd)}")
         times[step] = float(m.group(1))
-        commands.append(" ".join(f"'{c}'" if " " in c else c for c in cmd))
+        commands.append(command_line(cmd))
     return times
 
 
@@ -84,7 +91,7 @@ def render(t, docs):
         env = {"DATASETS": dataset, "SAMPLINGS": sampling, "STEP": str(step)}
         cmd = ["bash", script("render_bench.sh"), t.voxlink, t.data, out, frames, size]
         t.run(cmd, env)
-        commands.append(" ".join(f"{k}={v}" for k, v in env.items()) + " " + " ".join(cmd))
+        commands.append(command_line(cmd, env))
         with open(os.path.join(out, dataset + ".md")) as f:
             for r in markdown_rows(f.read()):
                 rows.append({"renderer": r["renderer"], "sampling": r["sampling"],
@@ -148,8 +155,7 @@ def paraview_summary(t, out, env, size, frames):
         if not m:
             sys.exit(f"report: no kept share in {r['data']}'s row of {out}/summary.md")
         r["kept %"] = float(m.group(1))
-    command = " ".join(f"{k}={v!r}" if " " in v else f"{k}={v}" for k, v in env.items())
-    return rows, command + " " + " ".join(cmd)
+    return rows, command_line(cmd, env)
 
 
 def against_paraview(t, docs):
@@ -259,8 +265,7 @@ def shadows(t, docs):
                          f"{r['psnr']['per-voxel']:.2f}", f"{r['own']:.2f}", r["mib"])
                         for r in rows]),
         "doc": "docs/shadows.md (\"Speed against error\")", "hand": hand,
-        "commands": [" ".join(f"{k}={v!r}" if " " in v else f"{k}={v}" for k, v in env.items())
-                     + " " + " ".join(cmd)]}
+        "commands": [command_line(cmd, env)]}
 
 
 def convert(t, docs):
