@@ -64,34 +64,82 @@ void compositeSurface(Material m, vec3 n, vec3 p, vec3 toEye, inout vec3 color, 
 }
 #endif
 
-// The surface hit and the nearest sphere hit, nearest first, of one voxel the primary ray
-// crosses over [ta, tz). The caller composites the voxel's volume sample afterwards, if it has one.
-void compositeGeometry(uint voxel, vec3 o, vec3 d, float ta, float tz, vec3 toEye, inout vec3 color,
-                       inout float transmittance) {
+// What one voxel the primary ray crosses over [ta, tz) holds to composite: its surface hit and
+// its nearest sphere hit, nearest first, then its volume sample. Found apart from compositing,
+// so that voxlink_scene_trace.glsl can composite them outside the row walk where shading is
+// costly (shadow walks, the ray-traced mode's lights and spawned rays).
+struct VoxelHits {
+  int geometry;         // surface and sphere hits, 0 to 2
+  vec3 p0, n0, p1, n1;  // their index-space points and world normals, nearest first
+  uint m0, m1;          // their materials
+  bool volume;          // a volume sample with opacity > 0 follows them
+  uint slot;            // its VALU/GRAD slot, voxel word and classified colour
+  uint word;
+  vec4 c;
+  float a;  // its opacity over the chord
+  float ta, tz;
+};
+
+// The hits of `voxel` over [ta, tz); false when it holds none.
+bool voxelHits(uint voxel, vec3 o, vec3 d, float ta, float tz, out VoxelHits h) {
   float tSurface;
   vec3 n;
   uint material;
   bool surface = surfaceHit(voxel, o, d, ta, tz, tSurface, n, material);
+  h.geometry = surface ? 1 : 0;
+  h.p0 = o + tSurface * d;
+  h.n0 = n;
+  h.m0 = material;
 #if VXL_SPHERES
   float tHit;
   uint sphere;
   vec3 centre;
-  bool sphereFirst = firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre) &&
-                     !(surface && tSurface <= tHit);
-  if (sphereFirst) {
-    vec3 p = o + tHit * d;
-    compositeSurface(fetchMaterial(sphereMaterial(sphere)), normalize(p - centre), p, toEye, color,
-                     transmittance);
-  }
+  bool hitSphere = firstSphereHit(voxel, o, d, ta, tz, tHit, sphere, centre);
+  vec3 ps = o + tHit * d;
+  // (sphere and centre are unset on a miss)
+  vec3 ns = normalize(ps - (hitSphere ? centre : vec3(0.0)));
+  uint ms = sphereMaterial(hitSphere ? sphere : 0u);
+  bool sphereFirst = hitSphere && !(surface && tSurface <= tHit);
+  // The sphere first (then the surface, if any) or after the surface.
+  h.p1 = sphereFirst ? h.p0 : ps;
+  h.n1 = sphereFirst ? h.n0 : ns;
+  h.m1 = sphereFirst ? h.m0 : ms;
+  h.p0 = sphereFirst ? ps : h.p0;
+  h.n0 = sphereFirst ? ns : h.n0;
+  h.m0 = sphereFirst ? ms : h.m0;
+  h.geometry += hitSphere ? 1 : 0;
 #endif
-  if (surface && transmittance > uStopTransmittance)
-    compositeSurface(fetchMaterial(material), n, o + tSurface * d, toEye, color, transmittance);
-#if VXL_SPHERES
-  if (!sphereFirst && tHit < kBig && transmittance > uStopTransmittance) {
-    vec3 p = o + tHit * d;
-    compositeSurface(fetchMaterial(sphereMaterial(sphere)), normalize(p - centre), p, toEye, color,
-                     transmittance);
+  h.word = 0u;
+  h.c = vec4(0.0);
+  h.a = 0.0;
+  h.volume = volumeSlot(voxel, h.slot);  // VALU and GRAD of a scene hold the volume voxels only
+  if (h.volume) {
+    h.word = voxelWord(h.slot);  // value (8-bit files) and direction in one fetch
+    h.c = classify(storedBitsOf(h.slot, h.word));
+    h.a = correctedAlpha(h.c.a, tz - ta);
+    h.volume = h.a > 0.0;
   }
+  h.ta = ta;
+  h.tz = tz;
+  return h.geometry > 0 || h.volume;
+}
+
+// Composites the geometry hits of h in order (as long as the ray goes on); the caller then
+// composites its volume sample.
+void compositeGeometryHits(VoxelHits h, vec3 toEye, inout vec3 color, inout float transmittance) {
+#if VXL_EFFECTS || VXL_SHADOWS
+  // One call site for both: a hit's shading holds shadow walks (and the ray-traced mode's loop
+  // over the lights), which llvmpipe would run for every call site a pass reaches.
+  for (int j = 0; j < h.geometry; ++j) {
+    if (transmittance > uStopTransmittance)
+      compositeSurface(fetchMaterial(j == 0 ? h.m0 : h.m1), j == 0 ? h.n0 : h.n1,
+                       j == 0 ? h.p0 : h.p1, toEye, color, transmittance);
+  }
+#else
+  if (h.geometry > 0)
+    compositeSurface(fetchMaterial(h.m0), h.n0, h.p0, toEye, color, transmittance);
+  if (h.geometry > 1 && transmittance > uStopTransmittance)
+    compositeSurface(fetchMaterial(h.m1), h.n1, h.p1, toEye, color, transmittance);
 #endif
 }
 

@@ -6,6 +6,33 @@
 
 #include "voxlink_brick_walk.glsl"
 
+// Composites the volume sample of stored voxel `voxel` (its voxel word, classified colour c and
+// opacity a > 0 over the chord [ta, tz)).
+void compositeVolumeSample(uint voxel, uint word, vec3 c, float a, vec3 o, vec3 d, float ta,
+                           float tz, vec3 toEye, inout vec3 color, inout float transmittance) {
+#if VXL_EFFECTS
+  color += transmittance * a *
+           effectsVolumeShade(c, directionOfWord(word), indexToWorld(o + 0.5 * (ta + tz) * d),
+                              toEye);
+#else
+  vec3 ambient, lit;
+  shadeSample(c, 1.0, directionOfWord(word), toEye, ambient, lit);
+  float shadow = 1.0;
+#if VXL_SHADOWS
+#if VXL_SHADOW_CACHE
+  shadow = centreShadow(voxel);  // shadow_cache.glsl
+#else
+  shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));
+#endif
+#endif
+  color += transmittance * a * (ambient + shadow * lit);
+#endif
+  transmittance *= 1.0 - a;
+}
+
+#if VXL_SCENE
+#include "voxlink_scene_trace.glsl"
+#else
 void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 color,
                  inout float transmittance) {
   for (BrickWalk w = brickWalkBegin(o, d, t0, t1); brickWalkGoesOn(w);) {
@@ -22,35 +49,11 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
       uint voxel;
       float ta, tz;
       while (rowWalkNext(walk, voxel, ta, tz)) {
-#if VXL_SCENE
-        compositeGeometry(voxel, o, d, ta, tz, toEye, color, transmittance);
-        if (transmittance <= uStopTransmittance) return;
-        uint slot;
-        if (!volumeSlot(voxel, slot)) continue;
-        voxel = slot;  // VALU and GRAD of a scene hold the volume voxels only
-#endif
         uint word = voxelWord(voxel);  // value (8-bit files) and direction in one fetch
         vec4 c = classify(storedBitsOf(voxel, word));
         float a = correctedAlpha(c.a, tz - ta);
         if (a > 0.0) {
-#if VXL_EFFECTS
-          color += transmittance * a *
-                   effectsVolumeShade(c.rgb, directionOfWord(word),
-                                      indexToWorld(o + 0.5 * (ta + tz) * d), toEye);
-#else
-          vec3 ambient, lit;
-          shadeSample(c.rgb, 1.0, directionOfWord(word), toEye, ambient, lit);
-          float shadow = 1.0;
-#if VXL_SHADOWS
-#if VXL_SHADOW_CACHE
-          shadow = centreShadow(voxel);  // shadow_cache.glsl
-#else
-          shadow = shadowTransmittance(indexToWorld(o + 0.5 * (ta + tz) * d));
-#endif
-#endif
-          color += transmittance * a * (ambient + shadow * lit);
-#endif
-          transmittance *= 1.0 - a;
+          compositeVolumeSample(voxel, word, c.rgb, a, o, d, ta, tz, toEye, color, transmittance);
           if (transmittance <= uStopTransmittance) return;
         }
       }
@@ -58,3 +61,4 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
     if (!brickWalkLeave(w)) break;
   }
 }
+#endif
