@@ -156,7 +156,7 @@ bool dynamicSphereHit(vec3 o, vec3 d, float t0, float t1, out float tHit, out ve
 }
 #endif
 
-// The moving surfaces along a ray, nearest first, as the static path composites a voxel's
+// The moving surfaces along a ray, nearest first, as the static path orders a voxel's
 // surfaces (voxlink_scene_shading.glsl, voxelHits): every voxel of the mesh layer the ray
 // crosses (a hit at its entry, as a static mean-mode voxel) and, per voxel, the first moving
 // sphere hit inside it (as firstSphereHit). A mesh voxel wins a tie, as a static voxel's surface

@@ -124,8 +124,9 @@ bool voxelHits(uint voxel, vec3 o, vec3 d, float ta, float tz, out VoxelHits h) 
   return h.geometry > 0 || h.volume;
 }
 
-// Composites the geometry hits of h in order (as long as the ray goes on); the caller then
-// composites its volume sample.
+// Composites the geometry hits of h in order, each after the first only while the ray goes on
+// (the first is composited while it does: the walk stops the ray as soon as it ends); the
+// caller then composites its volume sample.
 void compositeGeometryHits(VoxelHits h, vec3 toEye, inout vec3 color, inout float transmittance) {
 #if VXL_EFFECTS || VXL_SHADOWS
   // One call site for both: a hit's shading holds shadow walks (and the ray-traced mode's loop
