@@ -34,12 +34,7 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
     for (; brickWalkGoesOn(w);) {
       if (!inBrick) {
 #if VXL_EFFECTS
-        // w.t is a brick's (and so a voxel's) entry: the next pass starts a thousandth of a
-        // voxel further, inside that voxel, so the voxel before is not met twice.
-        if (continueNextPass(w.step, o + (w.t + 1e-3 * uUnit) * d, toEye, transmittance)) {
-          transmittance = 0.0;
-          return;
-        }
+        if (stopsForNextPass(w, o, d, toEye, transmittance)) return;
 #endif
         inBrick = brickWalkEnter(w, o, d, true, walk);
       }

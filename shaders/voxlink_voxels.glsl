@@ -30,6 +30,18 @@ void compositeVolumeSample(uint voxel, uint word, vec3 c, float a, vec3 o, vec3 
   transmittance *= 1.0 - a;
 }
 
+#if VXL_EFFECTS
+// The ray-traced mode: true when the ray stops for this pass on entering walk w's current brick
+// (continueNextPass stores it to go on in the next); it then carries no background share. w.t is
+// a brick's (and so a voxel's) entry: the next pass starts a thousandth of a voxel further,
+// inside that voxel, so the voxel before is not met twice.
+bool stopsForNextPass(BrickWalk w, vec3 o, vec3 d, vec3 toEye, inout float transmittance) {
+  if (!continueNextPass(w.step, o + (w.t + 1e-3 * uUnit) * d, toEye, transmittance)) return false;
+  transmittance = 0.0;
+  return true;
+}
+#endif
+
 #if VXL_SCENE
 #include "voxlink_scene_trace.glsl"
 #else
@@ -37,12 +49,7 @@ void traceVoxels(vec3 o, vec3 d, float t0, float t1, vec3 toEye, inout vec3 colo
                  inout float transmittance) {
   for (BrickWalk w = brickWalkBegin(o, d, t0, t1); brickWalkGoesOn(w);) {
 #if VXL_EFFECTS
-    // w.t is a brick's (and so a voxel's) entry: the next pass starts a thousandth of a voxel
-    // further, inside that voxel, so the voxel before is not met twice.
-    if (continueNextPass(w.step, o + (w.t + 1e-3 * uUnit) * d, toEye, transmittance)) {
-      transmittance = 0.0;
-      return;
-    }
+    if (stopsForNextPass(w, o, d, toEye, transmittance)) return;
 #endif
     RowWalk walk;
     if (brickWalkEnter(w, o, d, true, walk)) {
